@@ -1,0 +1,99 @@
+// cutaway — renders cutaway illustrations of 3-D scenes headless.
+//
+//   cutaway render examples/engine.json -o engine.png [--size 800x600] [--aov out/aovs]
+//   cutaway info examples/engine.json
+//   cutaway bench examples/engine.json --frames 30 [--json]
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <sstream>
+
+#include "commands.hpp"
+#include "cutaway/core/error.hpp"
+
+namespace {
+
+// "x,y,z" → vec3, for camera overrides.
+std::string parseVec3(const std::string& text, glm::vec3& out) {
+  std::istringstream in(text);
+  char c1 = 0, c2 = 0;
+  if (!(in >> out.x >> c1 >> out.y >> c2 >> out.z) || c1 != ',' || c2 != ',' || !in.eof())
+    return "expected three comma-separated numbers x,y,z";
+  return "";
+}
+
+void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
+  command->add_option("--size", o.size, "Image size WxH, e.g. 1024x768 (overrides the scene)");
+  auto vecOption = [&](const char* name, std::optional<glm::vec3>& target, const char* help) {
+    command->add_option_function<std::string>(
+        name,
+        [&target](const std::string& s) {
+          glm::vec3 v;
+          if (auto e = parseVec3(s, v); !e.empty()) throw CLI::ValidationError(e);
+          target = v;
+        },
+        help);
+  };
+  vecOption("--eye", o.eye, "Camera position x,y,z");
+  vecOption("--target", o.target, "Camera target x,y,z");
+  vecOption("--up", o.up, "Camera up vector x,y,z");
+  command->add_option_function<float>("--fov", [&o](float f) { o.fov = f; },
+                                      "Vertical field of view in degrees")
+      ->check(CLI::Range(1.0f, 170.0f));
+  command->add_option("--projection", o.projection, "Camera projection")
+      ->check(CLI::IsMember({"perspective", "orthographic"}));
+  command->add_flag("--fit", o.fit, "Fit the camera to the scene (keeps the viewing direction)");
+  command->add_option("--style", o.style, "Shading style")->check(CLI::IsMember({"gooch", "blinn-phong"}));
+  command->add_option_function<int>("--samples", [&o](int s) { o.samples = s; },
+                                    "MSAA samples (1, 2, 4, 8, 16)")
+      ->check(CLI::IsMember({1, 2, 4, 8, 16}));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"cutaway: cutaway illustrations of 3-D scenes"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cutaway 0.1.0");
+
+  cutaway::cli::RenderOptions renderOptions;
+  auto* render = app.add_subcommand("render", "Render a scene to a PNG image, headless");
+  render->add_option("scene", renderOptions.scene, "Scene file (JSON)")->required();
+  render->add_option("-o,--output", renderOptions.output, "Output PNG file")->required();
+  render->add_option("--aov", renderOptions.aovDir,
+                     "Directory for the frame's intermediate buffers (PFM + aovs.json)");
+  addSceneOverrides(render, renderOptions.overrides);
+
+  std::string infoScene;
+  auto* info = app.add_subcommand("info", "Print the scene's objects, triangle counts, bounds "
+                                          "and watertightness as JSON");
+  info->add_option("scene", infoScene, "Scene file (JSON)")->required();
+
+  cutaway::cli::BenchOptions benchOptions;
+  auto* bench = app.add_subcommand("bench", "Render frames and report per-pass GPU times and "
+                                            "frame times");
+  bench->add_option("scene", benchOptions.scene, "Scene file (JSON)")->required();
+  bench->add_option("--frames", benchOptions.frames, "Frames to time (after one warm-up frame)")
+      ->check(CLI::Range(1, 100000));
+  bench->add_flag("--json", benchOptions.json, "Print JSON instead of a table");
+  addSceneOverrides(bench, benchOptions.overrides);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "cutaway: error: %s (see --help)\n", e.what());
+    return 2;
+  }
+  try {
+    if (*render) return cutaway::cli::render(renderOptions);
+    if (*info) return cutaway::cli::info(infoScene);
+    if (*bench) return cutaway::cli::bench(benchOptions);
+  } catch (const cutaway::Error& e) {
+    std::fprintf(stderr, "cutaway: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cutaway: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}

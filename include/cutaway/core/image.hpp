@@ -1,0 +1,53 @@
+// cutaway/core/image.hpp — CPU images: 8-bit RGBA for final pictures, float images with
+// 1 or 3 channels for intermediate buffers (AOVs), and their file formats (PNG, PFM).
+//
+// Rows are stored top to bottom (as in PNG). Buffers read back from OpenGL are bottom-up;
+// `flipVertically()` converts.
+//
+//   cutaway::FloatImage depth(640, 480, 1);
+//   depth.at(10, 20)[0] = 0.5f;
+//   cutaway::writePfm("depth.pfm", depth);
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace cutaway {
+
+struct Rgba8Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> pixels;  // width * height * 4, rows top to bottom
+
+  Rgba8Image() = default;
+  Rgba8Image(int w, int h) : width(w), height(h), pixels(std::size_t(w) * h * 4, 0) {}
+  std::uint8_t* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * 4]; }
+  const std::uint8_t* at(int x, int y) const {
+    return &pixels[(std::size_t(y) * width + x) * 4];
+  }
+  void flipVertically();
+};
+
+struct FloatImage {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> data;  // width * height * channels, rows top to bottom
+
+  FloatImage() = default;
+  FloatImage(int w, int h, int c)
+      : width(w), height(h), channels(c), data(std::size_t(w) * h * c) {}
+  float* at(int x, int y) { return &data[(std::size_t(y) * width + x) * channels]; }
+  const float* at(int x, int y) const { return &data[(std::size_t(y) * width + x) * channels]; }
+  void flipVertically();
+};
+
+// PNG, 8-bit RGBA. Written to a temporary file and renamed; errors throw cutaway::Error.
+void writePng(const std::filesystem::path& path, const Rgba8Image& image);
+// Reads any PNG (gray, RGB, palette, 8 or 16 bit) converted to 8-bit RGBA.
+Rgba8Image readPng(const std::filesystem::path& path);
+
+// Portable float map: 1 channel ("Pf") or 3 channels ("PF"), little-endian, rows stored
+// bottom to top on disk as the format requires.
+void writePfm(const std::filesystem::path& path, const FloatImage& image);
+FloatImage readPfm(const std::filesystem::path& path);
+
+}  // namespace cutaway

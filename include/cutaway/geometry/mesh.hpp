@@ -1,0 +1,65 @@
+// cutaway/geometry/mesh.hpp — indexed triangle meshes and the checks cutters rely on.
+//
+// Cut surfaces (Burns08 §4.1, Trapp13 §5, Diepstraten03) are only meaningful for watertight
+// meshes, so every mesh carries a topology report: a mesh is watertight when, after welding
+// vertices at equal positions, every edge is shared by exactly two triangles that traverse it
+// in opposite directions (closed, manifold, consistently oriented).
+//
+//   cutaway::Mesh m = cutaway::makeBox({0,0,0}, {1,1,1});
+//   cutaway::MeshReport r = cutaway::analyzeTopology(m);   // r.watertight == true
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace cutaway {
+
+struct Bounds {
+  glm::vec3 min{1e30f}, max{-1e30f};
+  bool empty() const { return min.x > max.x; }
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void extend(const Bounds& b) {
+    if (!b.empty()) extend(b.min), extend(b.max);
+  }
+  glm::vec3 center() const { return (min + max) * 0.5f; }
+  float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
+  Bounds transformed(const glm::mat4& m) const;
+};
+
+struct MeshReport {
+  std::size_t droppedDegenerate = 0;  // triangles removed: repeated vertices or zero area
+  bool normalsComputed = false;       // true when the source had no normals
+  std::size_t boundaryEdges = 0;      // edges used by one triangle
+  std::size_t nonManifoldEdges = 0;   // edges used by three or more triangles
+  std::size_t misorientedEdges = 0;   // edges used twice in the same direction
+  bool watertight = false;
+};
+
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // one per position
+  std::vector<glm::uvec3> triangles;
+  MeshReport report;
+
+  Bounds bounds() const;
+  // Appends `other` transformed by `m` (normals by its inverse transpose).
+  void append(const Mesh& other, const glm::mat4& m);
+};
+
+// Removes triangles with repeated indices or an area below `relativeEpsilon` times the
+// squared bounding-box diagonal; returns how many were removed.
+std::size_t dropDegenerateTriangles(Mesh& mesh, float relativeEpsilon = 1e-12f);
+// Area-weighted vertex normals (a triangle contributes its unnormalised cross product).
+void computeVertexNormals(Mesh& mesh);
+// Edge topology after welding equal positions; fills the edge counts and `watertight`.
+void analyzeTopology(Mesh& mesh);
+
+// Axis-aligned box with outward-facing triangles and flat normals (24 vertices).
+Mesh makeBox(const glm::vec3& min, const glm::vec3& max);
+
+}  // namespace cutaway

@@ -1,0 +1,47 @@
+// cutaway/gl/context.hpp — an OpenGL 4.5 core context.
+//
+// Headless contexts come from EGL: the EGL device platform when a vendor driver exposes a
+// hardware device, otherwise Mesa's surfaceless platform (llvmpipe on machines without a
+// GPU). Windowed contexts (the viewer) come from GLFW and are made elsewhere; both end as a
+// current context with libepoxy resolving the entry points.
+//
+//   auto context = cutaway::gl::HeadlessContext::create();   // throws cutaway::Error
+//   std::puts(context->renderer().c_str());
+#pragma once
+
+#include <memory>
+#include <string>
+
+namespace cutaway::gl {
+
+// What the current context is; valid once a context is current.
+struct ContextInfo {
+  std::string vendor, renderer, version;
+  // True for Mesa's software rasterisers (llvmpipe, softpipe): timer queries need a flush
+  // after glBeginQuery there, and CPU kernels may beat fragment shaders.
+  bool software = false;
+  static ContextInfo query();
+};
+
+class HeadlessContext {
+ public:
+  // Creates and makes current a 4.5 core context; throws cutaway::Error with a one-line
+  // reason when none can be had.
+  static std::unique_ptr<HeadlessContext> create();
+  ~HeadlessContext();
+  HeadlessContext(const HeadlessContext&) = delete;
+  HeadlessContext& operator=(const HeadlessContext&) = delete;
+
+  const ContextInfo& info() const { return info_; }
+  // "device" (EGL device platform) or "surfaceless" (Mesa surfaceless platform).
+  const std::string& platform() const { return platform_; }
+
+ private:
+  HeadlessContext() = default;
+  void* display_ = nullptr;
+  void* context_ = nullptr;
+  std::string platform_;
+  ContextInfo info_;
+};
+
+}  // namespace cutaway::gl

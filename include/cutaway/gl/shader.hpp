@@ -1,0 +1,48 @@
+// cutaway/gl/shader.hpp — GLSL programs from the shader files embedded at build time.
+//
+// Shader files live beside the code that uses them (src/styles/gooch/gooch.glsl, …) and are
+// named by their path relative to src/. A source may `#include "name"`: the name is looked up
+// relative to the including file's folder, then from src/, then in the program's aliases
+// (which is how a geometry shader picks the active style: alias "style.glsl" to
+// "styles/gooch/gooch.glsl"). Variants are made by `#define`s injected after `#version`.
+// Compile and link errors throw cutaway::Error naming the file and line, with the info log.
+//
+//   cutaway::gl::ProgramDesc desc{
+//       .stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
+//       .defines = {{"LINES", "1"}},
+//       .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"}}};
+//   cutaway::gl::Program program = cutaway::gl::buildProgram(desc);
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cutaway/gl/objects.hpp"
+
+namespace cutaway::gl {
+
+struct ProgramDesc {
+  std::vector<std::pair<GLenum, std::string>> stages;  // stage, shader file name
+  std::map<std::string, std::string> defines;
+  std::map<std::string, std::string> aliases;
+};
+
+// The source of one stage after #include expansion and #define injection, with `#line`
+// directives; `files` maps each GLSL source-string number to its file name.
+struct PreprocessedSource {
+  std::string text;
+  std::vector<std::string> files;
+};
+PreprocessedSource preprocess(const std::string& file, const ProgramDesc& desc);
+
+// Rewrites driver info-log prefixes ("0:12(3): error", "0(12) : error") as "file:12: error".
+std::string annotateInfoLog(const std::string& log, const std::vector<std::string>& files);
+
+Program buildProgram(const ProgramDesc& desc);
+
+// Whether a file of that name was embedded.
+bool hasShader(const std::string& name);
+
+}  // namespace cutaway::gl

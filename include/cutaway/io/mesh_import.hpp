@@ -1,0 +1,30 @@
+// cutaway/io/mesh_import.hpp — triangle meshes from any format Assimp reads (OBJ, PLY, STL,
+// glTF/GLB, IFC, DAE, FBX…), gzip-compressed files included ("room.stl.gz").
+//
+// A file is returned as its mesh nodes: each node's meshes merged, with the node's
+// accumulated transform baked in. Every mesh has normals (computed where the file had none),
+// no degenerate triangles, and a topology report (watertightness).
+//
+//   for (const auto& node : cutaway::importMeshNodes("engine.glb"))
+//     std::printf("%s: %zu triangles\n", node.name.c_str(), node.mesh.triangles.size());
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cutaway/geometry/mesh.hpp"
+
+namespace cutaway {
+
+struct ImportedNode {
+  std::string name;                  // node name, made unique within the file
+  Mesh mesh;                         // in file space
+  std::optional<glm::vec3> color;    // diffuse / base colour of its first material
+};
+
+// Throws cutaway::Error naming the file and the reason.
+std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file);
+
+}  // namespace cutaway

@@ -1,0 +1,60 @@
+// cutaway/render/renderer.hpp — renders a Scene headless (or into a window's context).
+//
+// The frame: "geometry" draws the visible objects with the scene's style into multisampled
+// targets (colour, normal, world position + view depth, object id, depth); "lines" finds
+// silhouettes and creases per sample (styles/lines); "composite" resolves the samples into
+// the final colour with lines and copies sample 0 of every intermediate buffer into
+// single-sample AOVs.
+//
+//   auto context = cutaway::gl::HeadlessContext::create();
+//   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");
+//   cutaway::Renderer renderer(scene, context->info());
+//   renderer.render();
+//   cutaway::writePng("engine.png", renderer.readColor());
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cutaway/core/image.hpp"
+#include "cutaway/gl/context.hpp"
+#include "cutaway/render/frame.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace cutaway {
+
+struct Aov {
+  std::string name;     // file stem, e.g. "depth"
+  std::string meaning;  // what a texel holds, with units and conventions
+  FloatImage image;     // rows top to bottom
+};
+
+class Renderer {
+ public:
+  // Uploads the meshes and compiles the programs; the scene must outlive the renderer.
+  Renderer(const Scene& scene, const gl::ContextInfo& info);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Renders one frame with `camera` (already resolved: near/far set), or the scene's
+  // resolved camera.
+  void render(const Camera& camera);
+  void render() { render(scene_.resolvedCamera()); }
+
+  Rgba8Image readColor() const;
+  std::vector<Aov> readAovs() const;
+  std::vector<PassTiming> timings() { return frame_->timings(); }
+  const Frame& frame() const { return *frame_; }
+  // The final colour texture (single sample, RGBA8), e.g. for a window's blit.
+  GLuint colorTexture() const;
+
+ private:
+  struct Impl;
+  const Scene& scene_;
+  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Frame> frame_;
+};
+
+}  // namespace cutaway

@@ -1,0 +1,137 @@
+// cutaway/scene/scene.hpp — the scene model: objects with roles and importance, invisible
+// proxies, camera, lights, background, resolution and style.
+//
+// Scenes are usually loaded from JSON (docs/scene-format.md) with `loadScene`, which also
+// imports the meshes. Roles follow the papers' vocabulary: objects of `interest` are exposed
+// (Burns08), `context` objects are cut away where they hide them; `exterior` and `interior`
+// are Diepstraten03's outside and inside objects.
+//
+//   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");   // throws cutaway::Error
+//   for (const auto& object : scene.objects) std::puts(object.name.c_str());
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cutaway/geometry/mesh.hpp"
+
+namespace cutaway {
+
+enum class Role { Context, Interest, Exterior, Interior };
+const char* roleName(Role role);
+
+struct Material {
+  glm::vec3 color{0.75f};
+  float specular = 0.25f;   // Blinn-Phong specular weight
+  float shininess = 32.0f;  // Blinn-Phong exponent
+};
+
+// Per-object parameters: values by name; which names exist is declared by the cutters and
+// styles in `objectParameterSpecs()` and validated at load time.
+using ParamValue = std::variant<bool, double>;
+using ObjectParams = std::map<std::string, ParamValue>;
+
+struct ObjectParamSpec {
+  std::string name;
+  enum class Type { Bool, Number } type;
+  double min = 0, max = 0;  // for numbers
+  std::string meaning;
+};
+const std::vector<ObjectParamSpec>& objectParameterSpecs();
+
+struct SceneObject {
+  std::string name;
+  std::string group;                // optional group name ("" = none)
+  std::string source;               // "file" or "file#node" it came from, or "proxy"
+  Role role = Role::Context;
+  float importance = 0.5f;          // in [0, 1]
+  bool proxy = false;               // invisible: seen only by cutters (Burns11 §4.2.2)
+  Material material;
+  ObjectParams params;
+  std::shared_ptr<const Mesh> mesh; // in object space
+  glm::mat4 transform{1.0f};        // object → world
+
+  Bounds worldBounds() const { return mesh ? mesh->bounds().transformed(transform) : Bounds{}; }
+};
+
+enum class Projection { Perspective, Orthographic };
+
+struct Camera {
+  Projection projection = Projection::Perspective;
+  glm::vec3 eye{0, 0, 5}, target{0, 0, 0}, up{0, 1, 0};
+  float fovY = 40.0f;        // degrees, perspective
+  float height = 2.0f;       // world units of the view's height, orthographic
+  float near = 0, far = 0;   // 0: derived from the scene bounds
+  bool fit = false;          // place eye/target so the scene fills the view
+
+  glm::mat4 view() const;
+  glm::mat4 projectionMatrix(float aspect) const;
+};
+
+struct Light {
+  enum class Type { Directional, Point } type = Type::Directional;
+  glm::vec3 direction{-0.4f, -0.6f, -1.0f};  // direction the light travels (directional)
+  glm::vec3 position{0.0f};                  // point lights
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  bool cameraSpace = true;                    // direction/position given in eye space
+};
+
+struct LineStyle {
+  bool silhouettes = true;  // object and depth discontinuities
+  bool creases = true;      // normal discontinuities within an object
+  float creaseAngle = 45.0f;  // degrees
+  float depthThreshold = 0.01f;  // relative view-depth jump that counts as a silhouette
+  float width = 1.0f;       // pixels
+  glm::vec3 color{0.0f};
+};
+
+struct GoochStyle {  // Gooch et al. 1998
+  glm::vec3 cool{0.0f, 0.0f, 0.55f}, warm{0.3f, 0.3f, 0.0f};
+  float alpha = 0.25f, beta = 0.5f;  // how much of the object colour enters cool / warm
+};
+
+struct BlinnPhongStyle {
+  float ambient = 0.15f;
+};
+
+struct Style {
+  std::string name = "gooch";  // "gooch" or "blinn-phong"
+  std::optional<LineStyle> lines = LineStyle{};  // nullopt: no lines
+  GoochStyle gooch;
+  BlinnPhongStyle blinnPhong;
+};
+const std::vector<std::string>& styleNames();
+
+struct Scene {
+  std::filesystem::path file;  // where it was loaded from, for messages
+  std::vector<SceneObject> objects;
+  Camera camera;
+  std::vector<Light> lights;
+  glm::vec3 backgroundTop{1.0f}, backgroundBottom{1.0f};
+  int width = 800, height = 600;
+  int samples = 4;  // MSAA samples of the final image
+  Style style;
+
+  // Bounds of the visible (non-proxy) objects in world space.
+  Bounds bounds() const;
+  // Resolves "fit" and derived near/far planes into concrete camera values.
+  Camera resolvedCamera() const;
+  const SceneObject* find(const std::string& name) const;
+};
+
+// Loads and validates a scene file and imports its meshes; throws cutaway::Error naming the
+// file, the JSON pointer and the reason.
+Scene loadScene(const std::filesystem::path& path);
+// Same, from JSON text; relative mesh paths resolve against `baseDir`.
+Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
+                 const std::filesystem::path& baseDir);
+
+}  // namespace cutaway

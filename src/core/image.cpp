@@ -1,0 +1,113 @@
+#include "cutaway/core/image.hpp"
+
+#include <png.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "cutaway/core/atomic_file.hpp"
+#include "cutaway/core/error.hpp"
+
+namespace cutaway {
+
+namespace {
+
+template <typename T>
+void flipRows(std::vector<T>& v, std::size_t rowLength, int height) {
+  for (int y = 0; y < height / 2; ++y) {
+    std::swap_ranges(v.begin() + std::ptrdiff_t(y * rowLength),
+                     v.begin() + std::ptrdiff_t((y + 1) * rowLength),
+                     v.begin() + std::ptrdiff_t((height - 1 - y) * rowLength));
+  }
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+}  // namespace
+
+void Rgba8Image::flipVertically() { flipRows(pixels, std::size_t(width) * 4, height); }
+void FloatImage::flipVertically() { flipRows(data, std::size_t(width) * channels, height); }
+
+void writePng(const std::filesystem::path& path, const Rgba8Image& image) {
+  replaceFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = png_uint_32(image.width);
+    png.height = png_uint_32(image.height);
+    png.format = PNG_FORMAT_RGBA;
+    if (!png_image_write_to_file(&png, tmp.c_str(), 0, image.pixels.data(), 0, nullptr)) {
+      std::string reason = png.message;
+      png_image_free(&png);
+      throw Error(path.string(), "", "cannot write PNG: " + reason);
+    }
+  });
+}
+
+Rgba8Image readPng(const std::filesystem::path& path) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, path.c_str())) {
+    std::string reason = png.message;
+    png_image_free(&png);
+    throw Error(path.string(), "", "cannot read PNG: " + reason);
+  }
+  png.format = PNG_FORMAT_RGBA;
+  Rgba8Image image(int(png.width), int(png.height));
+  if (!png_image_finish_read(&png, nullptr, image.pixels.data(), 0, nullptr)) {
+    std::string reason = png.message;
+    png_image_free(&png);
+    throw Error(path.string(), "", "cannot decode PNG: " + reason);
+  }
+  return image;
+}
+
+void writePfm(const std::filesystem::path& path, const FloatImage& image) {
+  if (image.channels != 1 && image.channels != 3)
+    throw Error(path.string(), "", "PFM holds 1 or 3 channels, not " +
+                                       std::to_string(image.channels));
+  writeFileAtomically(path, [&](std::ostream& os) {
+    // Negative scale marks little-endian data.
+    os << (image.channels == 3 ? "PF" : "Pf") << "\n"
+       << image.width << " " << image.height << "\n-1.0\n";
+    const std::size_t row = std::size_t(image.width) * image.channels;
+    for (int y = image.height - 1; y >= 0; --y) {
+      const float* p = image.data.data() + std::size_t(y) * row;
+      static_assert(std::endian::native == std::endian::little);
+      os.write(reinterpret_cast<const char*>(p), std::streamsize(row * sizeof(float)));
+    }
+  });
+}
+
+FloatImage readPfm(const std::filesystem::path& path) {
+  std::ifstream is(path, std::ios::binary);
+  if (!is) throw Error(path.string(), "", "cannot open PFM");
+  std::string magic;
+  int w = 0, h = 0;
+  double scale = 0;
+  is >> magic >> w >> h >> scale;
+  if (!is || (magic != "PF" && magic != "Pf"))
+    throw Error(path.string(), "header", "not a PFM file (expected PF or Pf)");
+  if (w <= 0 || h <= 0 || w > 65536 || h > 65536)
+    throw Error(path.string(), "header", "invalid size " + std::to_string(w) + "x" +
+                                             std::to_string(h));
+  if (scale >= 0) throw Error(path.string(), "header", "big-endian PFM is not supported");
+  is.get();  // the single whitespace character after the scale
+  FloatImage image(w, h, magic == "PF" ? 3 : 1);
+  const std::size_t row = std::size_t(w) * image.channels;
+  for (int y = h - 1; y >= 0; --y) {
+    is.read(reinterpret_cast<char*>(image.data.data() + std::size_t(y) * row),
+            std::streamsize(row * sizeof(float)));
+    if (!is) throw Error(path.string(), "row " + std::to_string(h - 1 - y), "truncated PFM");
+  }
+  return image;
+}
+
+}  // namespace cutaway

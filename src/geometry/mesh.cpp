@@ -1,0 +1,137 @@
+#include "cutaway/geometry/mesh.hpp"
+
+#include <array>
+#include <map>
+#include <unordered_map>
+
+namespace cutaway {
+
+Bounds Bounds::transformed(const glm::mat4& m) const {
+  Bounds out;
+  if (empty()) return out;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner{(i & 1) ? max.x : min.x, (i & 2) ? max.y : min.y,
+                           (i & 4) ? max.z : min.z};
+    out.extend(glm::vec3(m * glm::vec4(corner, 1.0f)));
+  }
+  return out;
+}
+
+Bounds Mesh::bounds() const {
+  Bounds b;
+  for (const auto& p : positions) b.extend(p);
+  return b;
+}
+
+void Mesh::append(const Mesh& other, const glm::mat4& m) {
+  const auto base = unsigned(positions.size());
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+  // A mirroring transform flips the winding; restore outward-facing orientation.
+  const bool mirrored = glm::determinant(glm::mat3(m)) < 0.0f;
+  for (std::size_t i = 0; i < other.positions.size(); ++i) {
+    positions.push_back(glm::vec3(m * glm::vec4(other.positions[i], 1.0f)));
+    const glm::vec3 n = normalMatrix * other.normals[i];
+    const float len = glm::length(n);
+    normals.push_back(len > 0.0f ? n / len : n);
+  }
+  for (const auto& t : other.triangles)
+    triangles.push_back(mirrored ? glm::uvec3(t.x, t.z, t.y) + base : t + base);
+}
+
+std::size_t dropDegenerateTriangles(Mesh& mesh, float relativeEpsilon) {
+  const Bounds b = mesh.bounds();
+  const float diagonal2 = b.empty() ? 0.0f : glm::dot(b.max - b.min, b.max - b.min);
+  const float minArea2 = relativeEpsilon * diagonal2 * diagonal2;  // |cross|² vs diagonal⁴
+  std::size_t kept = 0;
+  for (const auto& t : mesh.triangles) {
+    if (t.x == t.y || t.y == t.z || t.x == t.z) continue;
+    const glm::vec3 c = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                   mesh.positions[t.z] - mesh.positions[t.x]);
+    if (!(glm::dot(c, c) > minArea2)) continue;  // also rejects NaN
+    mesh.triangles[kept++] = t;
+  }
+  const std::size_t dropped = mesh.triangles.size() - kept;
+  mesh.triangles.resize(kept);
+  return dropped;
+}
+
+void computeVertexNormals(Mesh& mesh) {
+  mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
+  for (const auto& t : mesh.triangles) {
+    const glm::vec3 c = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                   mesh.positions[t.z] - mesh.positions[t.x]);
+    mesh.normals[t.x] += c;
+    mesh.normals[t.y] += c;
+    mesh.normals[t.z] += c;
+  }
+  for (auto& n : mesh.normals) {
+    const float len = glm::length(n);
+    n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+}
+
+void analyzeTopology(Mesh& mesh) {
+  struct Key {
+    float x, y, z;
+    bool operator==(const Key&) const = default;
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      const auto h = [](float f) { return std::hash<float>{}(f); };
+      return h(k.x) * 73856093u ^ h(k.y) * 19349663u ^ h(k.z) * 83492791u;
+    }
+  };
+  std::unordered_map<Key, unsigned, Hash> weld;
+  std::vector<unsigned> welded(mesh.positions.size());
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const auto& p = mesh.positions[i];
+    welded[i] = weld.emplace(Key{p.x, p.y, p.z}, unsigned(weld.size())).first->second;
+  }
+  // Per undirected edge: uses in each direction (low→high, high→low).
+  std::map<std::pair<unsigned, unsigned>, std::array<int, 2>> edges;
+  for (const auto& t : mesh.triangles) {
+    const unsigned v[3] = {welded[t.x], welded[t.y], welded[t.z]};
+    for (int e = 0; e < 3; ++e) {
+      const unsigned a = v[e], b = v[(e + 1) % 3];
+      if (a == b) continue;
+      auto& uses = edges[{std::min(a, b), std::max(a, b)}];
+      ++uses[a < b ? 0 : 1];
+    }
+  }
+  MeshReport& r = mesh.report;
+  r.boundaryEdges = r.nonManifoldEdges = r.misorientedEdges = 0;
+  for (const auto& [edge, uses] : edges) {
+    const int total = uses[0] + uses[1];
+    if (total == 1) ++r.boundaryEdges;
+    else if (total > 2) ++r.nonManifoldEdges;
+    else if (uses[0] != 1) ++r.misorientedEdges;
+  }
+  r.watertight = !mesh.triangles.empty() && r.boundaryEdges == 0 && r.nonManifoldEdges == 0 &&
+                 r.misorientedEdges == 0;
+}
+
+Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi) {
+  Mesh m;
+  // Each face: outward normal n and in-plane axes un, vn = n × un, so un × vn = n and the
+  // quad winds counter-clockwise seen from outside.
+  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const glm::vec3 center = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
+  for (const auto& n : normals) {
+    const glm::vec3 un = glm::abs(n.x) > 0.5f ? glm::vec3(0, 1, 0) * n.x
+                       : glm::abs(n.y) > 0.5f ? glm::vec3(0, 0, 1) * n.y
+                                              : glm::vec3(1, 0, 0) * n.z;
+    const glm::vec3 vn = glm::cross(n, un);
+    const auto base = unsigned(m.positions.size());
+    const glm::vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (const auto& c : corners) {
+      m.positions.push_back(center + half * (n + c.x * un + c.y * vn));
+      m.normals.push_back(n);
+    }
+    m.triangles.push_back({base, base + 1, base + 2});
+    m.triangles.push_back({base, base + 2, base + 3});
+  }
+  analyzeTopology(m);
+  return m;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,34 @@
+#include "cutaway/gl/timer.hpp"
+
+#include <cassert>
+
+namespace cutaway::gl {
+
+void PassTimer::begin(const std::string& pass) {
+  assert(!active_ && "GL_TIME_ELAPSED queries cannot nest");
+  if (names_.size() == pool_.size()) pool_.push_back(Query::create(GL_TIME_ELAPSED));
+  glBeginQuery(GL_TIME_ELAPSED, pool_[names_.size()].id());
+  if (flushAfterBegin_) glFlush();
+  names_.push_back(pass);
+  active_ = true;
+}
+
+void PassTimer::end() {
+  assert(active_);
+  glEndQuery(GL_TIME_ELAPSED);
+  active_ = false;
+}
+
+std::vector<std::pair<std::string, double>> PassTimer::collect() {
+  assert(!active_);
+  std::vector<std::pair<std::string, double>> result;
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(pool_[i].id(), GL_QUERY_RESULT, &ns);
+    result.emplace_back(names_[i], double(ns) * 1e-6);
+  }
+  names_.clear();
+  return result;
+}
+
+}  // namespace cutaway::gl

@@ -1,0 +1,17 @@
+// Per-frame data shared by every pass (std140, binding 0); filled by src/render/renderer.cpp.
+const int kMaxLights = 8;
+layout(std140, binding = 0) uniform FrameUniforms {
+  mat4 uView;
+  mat4 uProjection;
+  mat4 uViewProjection;
+  vec4 uEye;                      // world-space eye position
+  vec4 uForward;                  // world-space viewing direction (orthographic view rays)
+  vec4 uLightVector[kMaxLights];  // w = 0: direction the light travels; w = 1: position
+  vec4 uLightColor[kMaxLights];   // colour × intensity
+  ivec4 uCounts;                  // x: lights, y: 1 if orthographic
+  vec4 uBackgroundTop;
+  vec4 uBackgroundBottom;
+  vec4 uGoochCool;                // rgb: k_blue, w: alpha (Gooch98)
+  vec4 uGoochWarm;                // rgb: k_yellow, w: beta
+  vec4 uStyleParams;              // x: Blinn-Phong ambient
+};

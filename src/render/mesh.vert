@@ -1,0 +1,14 @@
+#version 450 core
+#include "frame_uniforms.glsl"
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 0) uniform mat4 uModel;
+layout(location = 4) uniform mat4 uNormalMatrix;  // inverse transpose of uModel
+out vec3 vWorldPosition;
+out vec3 vWorldNormal;
+void main() {
+  vec4 world = uModel * vec4(aPosition, 1.0);
+  vWorldPosition = world.xyz;
+  vWorldNormal = mat3(uNormalMatrix) * aNormal;
+  gl_Position = uViewProjection * world;
+}

@@ -1,0 +1,522 @@
+// The JSON scene format (docs/scene-format.md): strict parsing, every error names the file,
+// the JSON pointer and the reason; unknown keys are errors.
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/geometry/convex_hull.hpp"
+#include "cutaway/io/mesh_import.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace cutaway {
+
+namespace {
+
+using json = nlohmann::json;
+
+struct Context {
+  std::string file;
+  std::filesystem::path baseDir;
+  [[noreturn]] void fail(const std::string& pointer, const std::string& reason) const {
+    throw Error(file, pointer.empty() ? "/" : pointer, reason);
+  }
+};
+
+std::string typeName(const json& j) { return j.type_name(); }
+
+// One JSON object being read: fields are taken by name, and `finish` rejects the rest.
+class ObjectReader {
+ public:
+  ObjectReader(const Context& ctx, const json& j, std::string pointer)
+      : ctx_(ctx), j_(j), pointer_(std::move(pointer)) {
+    if (!j.is_object()) ctx.fail(pointer_, "expected an object, got " + typeName(j));
+  }
+  const json* take(const std::string& key) {
+    taken_.insert(key);
+    const auto it = j_.find(key);
+    return it == j_.end() ? nullptr : &*it;
+  }
+  const json& require(const std::string& key) {
+    const json* v = take(key);
+    if (!v) ctx_.fail(pointer_, "missing required key \"" + key + "\"");
+    return *v;
+  }
+  bool has(const std::string& key) const { return j_.contains(key); }
+  std::string at(const std::string& key) const { return pointer_ + "/" + key; }
+  const std::string& pointer() const { return pointer_; }
+  void finish() const {
+    for (const auto& [key, value] : j_.items())
+      if (!taken_.count(key)) {
+        std::string known;
+        for (const auto& k : taken_) known += (known.empty() ? "" : ", ") + k;
+        ctx_.fail(pointer_ + "/" + key, "unknown key \"" + key + "\" (expected one of: " + known + ")");
+      }
+  }
+
+ private:
+  const Context& ctx_;
+  const json& j_;
+  std::string pointer_;
+  std::set<std::string> taken_;
+};
+
+double number(const Context& ctx, const json& j, const std::string& ptr, double lo, double hi) {
+  if (!j.is_number()) ctx.fail(ptr, "expected a number, got " + typeName(j));
+  const double v = j.get<double>();
+  if (!(v >= lo && v <= hi)) {
+    std::ostringstream s;
+    s << "value " << v << " is outside [" << lo << ", " << hi << "]";
+    ctx.fail(ptr, s.str());
+  }
+  return v;
+}
+
+int integer(const Context& ctx, const json& j, const std::string& ptr, int lo, int hi) {
+  if (!j.is_number_integer()) ctx.fail(ptr, "expected an integer, got " + typeName(j));
+  return int(number(ctx, j, ptr, lo, hi));
+}
+
+bool boolean(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_boolean()) ctx.fail(ptr, "expected true or false, got " + typeName(j));
+  return j.get<bool>();
+}
+
+std::string string(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_string()) ctx.fail(ptr, "expected a string, got " + typeName(j));
+  return j.get<std::string>();
+}
+
+std::string oneOf(const Context& ctx, const json& j, const std::string& ptr,
+                  const std::vector<std::string>& names) {
+  const std::string v = string(ctx, j, ptr);
+  for (const auto& n : names)
+    if (n == v) return v;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  ctx.fail(ptr, "unknown value \"" + v + "\" (expected one of: " + list + ")");
+}
+
+glm::vec3 vec3(const Context& ctx, const json& j, const std::string& ptr,
+               double lo = -1e30, double hi = 1e30) {
+  if (!j.is_array() || j.size() != 3)
+    ctx.fail(ptr, "expected an array of 3 numbers, got " +
+                      (j.is_array() ? std::to_string(j.size()) + " elements" : typeName(j)));
+  glm::vec3 v;
+  for (int i = 0; i < 3; ++i)
+    v[i] = float(number(ctx, j[std::size_t(i)], ptr + "/" + std::to_string(i), lo, hi));
+  return v;
+}
+
+glm::vec3 color(const Context& ctx, const json& j, const std::string& ptr) {
+  return vec3(ctx, j, ptr, 0.0, 1.0);
+}
+
+glm::vec3 direction(const Context& ctx, const json& j, const std::string& ptr) {
+  const glm::vec3 v = vec3(ctx, j, ptr);
+  if (glm::length(v) < 1e-9f) ctx.fail(ptr, "a direction must not be the zero vector");
+  return glm::normalize(v);
+}
+
+std::regex regex(const Context& ctx, const json& j, const std::string& ptr) {
+  const std::string pattern = string(ctx, j, ptr);
+  try {
+    return std::regex(pattern, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    ctx.fail(ptr, "invalid regular expression \"" + pattern + "\": " + e.what());
+  }
+}
+
+glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
+  ObjectReader r(ctx, j, ptr);
+  if (const json* m = r.take("matrix")) {
+    for (const char* k : {"translate", "rotate", "scale"})
+      if (r.has(k)) ctx.fail(r.at(k), "\"matrix\" excludes translate/rotate/scale");
+    if (!m->is_array() || m->size() != 16) ctx.fail(r.at("matrix"), "expected 16 numbers");
+    glm::mat4 out;
+    for (int row = 0; row < 4; ++row)
+      for (int col = 0; col < 4; ++col)  // written row-major, as one reads a matrix
+        out[col][row] = float(number(ctx, (*m)[std::size_t(row * 4 + col)],
+                                     r.at("matrix") + "/" + std::to_string(row * 4 + col), -1e30, 1e30));
+    if (std::abs(glm::determinant(glm::mat3(out))) < 1e-12f)
+      ctx.fail(r.at("matrix"), "the matrix is singular");
+    r.finish();
+    return out;
+  }
+  glm::mat4 t(1.0f), rot(1.0f), s(1.0f);
+  if (const json* v = r.take("translate")) t = glm::translate(glm::mat4(1.0f), vec3(ctx, *v, r.at("translate")));
+  if (const json* v = r.take("rotate")) {
+    if (v->is_array()) {  // Euler angles in degrees, applied about x, then y, then z
+      const glm::vec3 e = vec3(ctx, *v, r.at("rotate"));
+      for (int axis : {0, 1, 2}) {
+        glm::vec3 a(0.0f);
+        a[axis] = 1.0f;
+        rot = glm::rotate(glm::mat4(1.0f), glm::radians(e[axis]), a) * rot;
+      }
+    } else {
+      ObjectReader rr(ctx, *v, r.at("rotate"));
+      const glm::vec3 axis = direction(ctx, rr.require("axis"), rr.at("axis"));
+      const double degrees = number(ctx, rr.require("degrees"), rr.at("degrees"), -1e6, 1e6);
+      rr.finish();
+      rot = glm::rotate(glm::mat4(1.0f), glm::radians(float(degrees)), axis);
+    }
+  }
+  if (const json* v = r.take("scale")) {
+    glm::vec3 k = v->is_number() ? glm::vec3(float(number(ctx, *v, r.at("scale"), -1e30, 1e30)))
+                                 : vec3(ctx, *v, r.at("scale"));
+    if (std::abs(k.x * k.y * k.z) < 1e-12f) ctx.fail(r.at("scale"), "scale must not be zero");
+    s = glm::scale(glm::mat4(1.0f), k);
+  }
+  r.finish();
+  return t * rot * s;
+}
+
+Role role(const Context& ctx, const json& j, const std::string& ptr) {
+  const std::string v = oneOf(ctx, j, ptr, {"context", "interest", "exterior", "interior"});
+  if (v == "interest") return Role::Interest;
+  if (v == "exterior") return Role::Exterior;
+  if (v == "interior") return Role::Interior;
+  return Role::Context;
+}
+
+ObjectParams params(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_object()) ctx.fail(ptr, "expected an object, got " + typeName(j));
+  ObjectParams out;
+  for (const auto& [key, value] : j.items()) {
+    const std::string p = ptr + "/" + key;
+    const ObjectParamSpec* spec = nullptr;
+    for (const auto& s : objectParameterSpecs())
+      if (s.name == key) spec = &s;
+    if (!spec) {
+      std::string known;
+      for (const auto& s : objectParameterSpecs()) known += (known.empty() ? "" : ", ") + s.name;
+      ctx.fail(p, "unknown object parameter \"" + key + "\" (known: " + known + ")");
+    }
+    if (spec->type == ObjectParamSpec::Type::Bool) out[key] = boolean(ctx, value, p);
+    else out[key] = number(ctx, value, p, spec->min, spec->max);
+  }
+  return out;
+}
+
+// The keys every object, override and proxy may set about itself.
+void appearance(const Context& ctx, ObjectReader& r, SceneObject& o, bool visible) {
+  if (const json* v = r.take("role")) o.role = role(ctx, *v, r.at("role"));
+  if (const json* v = r.take("importance")) o.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
+  if (const json* v = r.take("group")) o.group = string(ctx, *v, r.at("group"));
+  if (const json* v = r.take("params")) {
+    for (auto& [k, value] : params(ctx, *v, r.at("params"))) o.params[k] = value;
+  }
+  if (!visible) return;
+  if (const json* v = r.take("color")) o.material.color = color(ctx, *v, r.at("color"));
+  if (const json* v = r.take("specular")) o.material.specular = float(number(ctx, *v, r.at("specular"), 0, 1));
+  if (const json* v = r.take("shininess")) o.material.shininess = float(number(ctx, *v, r.at("shininess"), 1, 10000));
+}
+
+class MeshCache {
+ public:
+  // Shared so that the objects' meshes (aliasing pointers into it) outlive the cache.
+  std::shared_ptr<const std::vector<ImportedNode>> get(const std::filesystem::path& file) {
+    auto it = files_.find(file);
+    if (it == files_.end())
+      it = files_.emplace(file, std::make_shared<const std::vector<ImportedNode>>(importMeshNodes(file))).first;
+    return it->second;
+  }
+
+ private:
+  std::map<std::filesystem::path, std::shared_ptr<const std::vector<ImportedNode>>> files_;
+};
+
+void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshCache& cache,
+                std::vector<SceneObject>& out) {
+  ObjectReader r(ctx, j, ptr);
+  const std::string name = string(ctx, r.require("name"), r.at("name"));
+  if (name.empty()) ctx.fail(r.at("name"), "object name must not be empty");
+  const std::string fileText = string(ctx, r.require("file"), r.at("file"));
+  std::filesystem::path file = fileText;
+  if (file.is_relative()) file = ctx.baseDir / file;
+  const bool split = r.has("split") && oneOf(ctx, *r.take("split"), r.at("split"), {"file", "nodes"}) == "nodes";
+  r.take("split");
+  std::optional<std::regex> nodeFilter;
+  if (const json* v = r.take("nodes")) nodeFilter = regex(ctx, *v, r.at("nodes"));
+  glm::mat4 m(1.0f);
+  if (const json* v = r.take("transform")) m = transform(ctx, *v, r.at("transform"));
+
+  SceneObject base;
+  base.name = name;
+  base.transform = m;
+  const bool colorGiven = r.has("color");
+  appearance(ctx, r, base, true);
+
+  struct Override {
+    std::regex match;
+    json body;
+    std::string pointer;
+  };
+  std::vector<Override> overrides;
+  if (const json* v = r.take("overrides")) {
+    if (!v->is_array()) ctx.fail(r.at("overrides"), "expected an array, got " + typeName(*v));
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      const std::string p = r.at("overrides") + "/" + std::to_string(i);
+      ObjectReader orr(ctx, (*v)[i], p);
+      Override o{regex(ctx, orr.require("match"), orr.at("match")), (*v)[i], p};
+      SceneObject probe;
+      appearance(ctx, orr, probe, true);  // validates the keys now, applied per node below
+      orr.finish();
+      overrides.push_back(std::move(o));
+    }
+    if (!split) ctx.fail(r.at("overrides"), "overrides need \"split\": \"nodes\"");
+  }
+  r.finish();
+
+  std::shared_ptr<const std::vector<ImportedNode>> nodes;
+  try {
+    nodes = cache.get(file);
+  } catch (const Error& e) {
+    ctx.fail(r.at("file"), e.reason() + " (" + file.string() + ")");
+  }
+  std::vector<const ImportedNode*> selected;
+  for (const auto& node : *nodes)
+    if (!nodeFilter || std::regex_match(node.name, *nodeFilter)) selected.push_back(&node);
+  if (selected.empty()) ctx.fail(r.at("nodes"), "no mesh node of " + file.string() + " matches");
+
+  if (!split) {
+    auto mesh = std::make_shared<Mesh>();
+    for (const auto* node : selected) {
+      mesh->append(node->mesh, glm::mat4(1.0f));
+      mesh->report.droppedDegenerate += node->mesh.report.droppedDegenerate;
+      mesh->report.normalsComputed |= node->mesh.report.normalsComputed;
+    }
+    analyzeTopology(*mesh);
+    SceneObject o = base;
+    o.source = file.string();
+    if (!colorGiven && selected.front()->color) o.material.color = *selected.front()->color;
+    o.mesh = std::move(mesh);
+    out.push_back(std::move(o));
+    return;
+  }
+  for (const auto* node : selected) {
+    SceneObject o = base;
+    o.name = name + "/" + node->name;
+    o.source = file.string() + "#" + node->name;
+    if (!colorGiven && node->color) o.material.color = *node->color;
+    o.mesh = std::shared_ptr<const Mesh>(nodes, &node->mesh);  // aliasing: shares the file's nodes
+    for (const auto& ov : overrides) {
+      if (!std::regex_match(node->name, ov.match)) continue;
+      ObjectReader orr(ctx, ov.body, ov.pointer);
+      orr.take("match");
+      appearance(ctx, orr, o, true);
+    }
+    out.push_back(std::move(o));
+  }
+}
+
+void readProxy(const Context& ctx, const json& j, const std::string& ptr,
+               std::vector<SceneObject>& objects) {
+  ObjectReader r(ctx, j, ptr);
+  SceneObject o;
+  o.proxy = true;
+  o.role = Role::Interest;
+  o.importance = 1.0f;
+  o.source = "proxy";
+  o.name = string(ctx, r.require("name"), r.at("name"));
+  if (o.name.empty()) ctx.fail(r.at("name"), "proxy name must not be empty");
+  const json* box = r.take("box");
+  const json* hullOf = r.take("hullOf");
+  if (!!box == !!hullOf) ctx.fail(ptr, "a proxy needs exactly one of \"box\" or \"hullOf\"");
+  if (const json* v = r.take("transform")) o.transform = transform(ctx, *v, r.at("transform"));
+  appearance(ctx, r, o, false);
+  r.finish();
+  if (box) {
+    ObjectReader br(ctx, *box, r.at("box"));
+    const glm::vec3 lo = vec3(ctx, br.require("min"), br.at("min"));
+    const glm::vec3 hi = vec3(ctx, br.require("max"), br.at("max"));
+    br.finish();
+    if (!glm::all(glm::lessThan(lo, hi))) ctx.fail(r.at("box"), "box min must be below max on every axis");
+    o.mesh = std::make_shared<Mesh>(makeBox(lo, hi));
+  } else {
+    const std::regex pattern = regex(ctx, *hullOf, r.at("hullOf"));
+    std::vector<glm::vec3> points;
+    int matched = 0;
+    for (const auto& other : objects) {
+      if (other.proxy || !std::regex_match(other.name, pattern)) continue;
+      ++matched;
+      for (const auto& p : other.mesh->positions) points.push_back(glm::vec3(other.transform * glm::vec4(p, 1.0f)));
+    }
+    if (matched == 0) ctx.fail(r.at("hullOf"), "no object name matches");
+    try {
+      // Points are in world space already; the proxy's own transform applies on top.
+      o.mesh = std::make_shared<Mesh>(convexHull(points));
+    } catch (const Error& e) {
+      ctx.fail(r.at("hullOf"), e.reason());
+    }
+  }
+  objects.push_back(std::move(o));
+}
+
+Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
+  ObjectReader r(ctx, j, ptr);
+  Camera c;
+  if (const json* v = r.take("projection"))
+    c.projection = oneOf(ctx, *v, r.at("projection"), {"perspective", "orthographic"}) == "perspective"
+                       ? Projection::Perspective : Projection::Orthographic;
+  if (const json* v = r.take("fit")) c.fit = boolean(ctx, *v, r.at("fit"));
+  const json* eye = r.take("eye");
+  const json* target = r.take("target");
+  if (!c.fit && (!eye || !target))
+    ctx.fail(ptr, "a camera needs \"eye\" and \"target\", or \"fit\": true");
+  if (eye) c.eye = vec3(ctx, *eye, r.at("eye"));
+  if (target) c.target = vec3(ctx, *target, r.at("target"));
+  if (eye && target && glm::length(c.eye - c.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
+  if (const json* v = r.take("up")) c.up = direction(ctx, *v, r.at("up"));
+  if (eye && target && glm::length(glm::cross(glm::normalize(c.eye - c.target), c.up)) < 1e-6f)
+    ctx.fail(r.at("up"), "up is parallel to the viewing direction");
+  if (const json* v = r.take("fov")) c.fovY = float(number(ctx, *v, r.at("fov"), 1, 170));
+  if (const json* v = r.take("height")) c.height = float(number(ctx, *v, r.at("height"), 1e-9, 1e30));
+  if (const json* v = r.take("near")) c.near = float(number(ctx, *v, r.at("near"), 1e-9, 1e30));
+  if (const json* v = r.take("far")) c.far = float(number(ctx, *v, r.at("far"), 1e-9, 1e30));
+  if (c.near > 0 && c.far > 0 && c.far <= c.near) ctx.fail(r.at("far"), "far must be greater than near");
+  r.finish();
+  return c;
+}
+
+Light light(const Context& ctx, const json& j, const std::string& ptr) {
+  ObjectReader r(ctx, j, ptr);
+  Light l;
+  l.type = oneOf(ctx, r.require("type"), r.at("type"), {"directional", "point"}) == "point"
+               ? Light::Type::Point : Light::Type::Directional;
+  if (l.type == Light::Type::Directional) l.direction = direction(ctx, r.require("direction"), r.at("direction"));
+  else l.position = vec3(ctx, r.require("position"), r.at("position"));
+  if (const json* v = r.take("color")) l.color = color(ctx, *v, r.at("color"));
+  if (const json* v = r.take("intensity")) l.intensity = float(number(ctx, *v, r.at("intensity"), 0, 1e6));
+  if (const json* v = r.take("space")) l.cameraSpace = oneOf(ctx, *v, r.at("space"), {"camera", "world"}) == "camera";
+  r.finish();
+  return l;
+}
+
+Style style(const Context& ctx, const json& j, const std::string& ptr) {
+  Style s;
+  if (j.is_string()) {
+    s.name = oneOf(ctx, j, ptr, styleNames());
+    return s;
+  }
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("name")) s.name = oneOf(ctx, *v, r.at("name"), styleNames());
+  if (const json* v = r.take("lines")) {
+    if (v->is_boolean()) {
+      if (!v->get<bool>()) s.lines.reset();
+    } else {
+      ObjectReader lr(ctx, *v, r.at("lines"));
+      LineStyle& l = *s.lines;
+      if (const json* x = lr.take("silhouettes")) l.silhouettes = boolean(ctx, *x, lr.at("silhouettes"));
+      if (const json* x = lr.take("creases")) l.creases = boolean(ctx, *x, lr.at("creases"));
+      if (const json* x = lr.take("creaseAngle")) l.creaseAngle = float(number(ctx, *x, lr.at("creaseAngle"), 0, 180));
+      if (const json* x = lr.take("depthThreshold")) l.depthThreshold = float(number(ctx, *x, lr.at("depthThreshold"), 0, 1));
+      if (const json* x = lr.take("width")) l.width = float(number(ctx, *x, lr.at("width"), 0.5, 8));
+      if (const json* x = lr.take("color")) l.color = color(ctx, *x, lr.at("color"));
+      lr.finish();
+    }
+  }
+  if (const json* v = r.take("gooch")) {
+    ObjectReader gr(ctx, *v, r.at("gooch"));
+    if (const json* x = gr.take("cool")) s.gooch.cool = color(ctx, *x, gr.at("cool"));
+    if (const json* x = gr.take("warm")) s.gooch.warm = color(ctx, *x, gr.at("warm"));
+    if (const json* x = gr.take("alpha")) s.gooch.alpha = float(number(ctx, *x, gr.at("alpha"), 0, 1));
+    if (const json* x = gr.take("beta")) s.gooch.beta = float(number(ctx, *x, gr.at("beta"), 0, 1));
+    gr.finish();
+  }
+  if (const json* v = r.take("blinnPhong")) {
+    ObjectReader br(ctx, *v, r.at("blinnPhong"));
+    if (const json* x = br.take("ambient")) s.blinnPhong.ambient = float(number(ctx, *x, br.at("ambient"), 0, 1));
+    br.finish();
+  }
+  r.finish();
+  return s;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
+                 const std::filesystem::path& baseDir) {
+  const Context ctx{displayName.string(), baseDir};
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // Turn the byte offset into a line and column a person can find.
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+      if (text[i] == '\n') ++line, column = 1;
+      else ++column;
+    }
+    std::string reason = e.what();
+    if (auto p = reason.find(": syntax error"); p != std::string::npos) reason = reason.substr(p + 2);
+    throw Error(ctx.file, "line " + std::to_string(line) + ", column " + std::to_string(column),
+                "invalid JSON: " + reason);
+  }
+  Scene scene;
+  scene.file = displayName;
+  ObjectReader r(ctx, root, "");
+  if (const json* v = r.take("version"))
+    if (integer(ctx, *v, "/version", 1, 1) != 1) ctx.fail("/version", "unsupported version");
+  if (const json* v = r.take("resolution")) {
+    if (!v->is_array() || v->size() != 2) ctx.fail("/resolution", "expected [width, height]");
+    scene.width = integer(ctx, (*v)[0], "/resolution/0", 1, 16384);
+    scene.height = integer(ctx, (*v)[1], "/resolution/1", 1, 16384);
+  }
+  if (const json* v = r.take("samples")) {
+    scene.samples = integer(ctx, *v, "/samples", 1, 16);
+    if (scene.samples & (scene.samples - 1)) ctx.fail("/samples", "samples must be 1, 2, 4, 8 or 16");
+  }
+  if (const json* v = r.take("background")) {
+    if (v->is_array()) {
+      scene.backgroundTop = scene.backgroundBottom = color(ctx, *v, "/background");
+    } else {
+      ObjectReader br(ctx, *v, "/background");
+      scene.backgroundTop = color(ctx, br.require("top"), "/background/top");
+      scene.backgroundBottom = color(ctx, br.require("bottom"), "/background/bottom");
+      br.finish();
+    }
+  }
+  if (const json* v = r.take("style")) scene.style = style(ctx, *v, "/style");
+  if (const json* v = r.take("lights")) {
+    if (!v->is_array()) ctx.fail("/lights", "expected an array, got " + typeName(*v));
+    for (std::size_t i = 0; i < v->size(); ++i)
+      scene.lights.push_back(light(ctx, (*v)[i], "/lights/" + std::to_string(i)));
+  } else {
+    scene.lights.push_back(Light{});  // a key light over the viewer's left shoulder
+  }
+
+  MeshCache cache;
+  const json& objects = r.require("objects");
+  if (!objects.is_array()) ctx.fail("/objects", "expected an array, got " + typeName(objects));
+  if (objects.empty()) ctx.fail("/objects", "a scene needs at least one object");
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    readObject(ctx, objects[i], "/objects/" + std::to_string(i), cache, scene.objects);
+  if (const json* v = r.take("proxies")) {
+    if (!v->is_array()) ctx.fail("/proxies", "expected an array, got " + typeName(*v));
+    for (std::size_t i = 0; i < v->size(); ++i)
+      readProxy(ctx, (*v)[i], "/proxies/" + std::to_string(i), scene.objects);
+  }
+  std::set<std::string> names;
+  for (const auto& o : scene.objects)
+    if (!names.insert(o.name).second) ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+  // The camera may "fit" to the objects, so it is read after them.
+  if (const json* v = r.take("camera")) scene.camera = camera(ctx, *v, "/camera");
+  else scene.camera.fit = true;
+  r.finish();
+  return scene;
+}
+
+Scene loadScene(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path.string(), "", "cannot open scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path, path.parent_path());
+}
+
+}  // namespace cutaway

@@ -1,0 +1,11 @@
+// Blinn-Phong shading: ambient + Σ_lights (k_d max(n·l, 0) + k_s max(n·h, 0)^shininess).
+// Lights have no distance falloff: illustrations want even lighting.
+vec3 shadeSurface(SurfacePoint s) {
+  vec3 c = uStyleParams.x * s.baseColor;
+  for (int i = 0; i < uCounts.x; ++i) {
+    vec3 l = towardsLight(i, s.position);
+    c += uLightColor[i].rgb * (s.baseColor * max(dot(s.normal, l), 0.0) +
+                               s.specular * blinnSpecular(s, l));
+  }
+  return c;
+}

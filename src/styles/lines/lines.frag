@@ -1,0 +1,59 @@
+#version 450 core
+// Image-space feature lines, evaluated per MSAA sample and averaged into a coverage value so
+// the lines come out anti-aliased:
+// - silhouettes: the nearer side of an object-id change, or of a view-depth discontinuity
+//   within one object (second difference of view depth across the pixel above a threshold
+//   relative to the depth, which ignores smooth slopes);
+// - creases: normals of one object meeting at more than the crease angle.
+layout(binding = 0) uniform sampler2DMS uNormal;     // world normal, w: lines flag
+layout(binding = 1) uniform sampler2DMS uPosition;   // w: linear view depth
+layout(binding = 2) uniform isampler2DMS uObjectId;  // -1: background
+layout(location = 0) uniform int uSamples;
+layout(location = 1) uniform int uRadius;            // line width in pixels
+layout(location = 2) uniform float uCreaseCos;       // cos(crease angle)
+layout(location = 3) uniform float uDepthThreshold;
+layout(location = 4) uniform int uSilhouettes;
+layout(location = 5) uniform int uCreases;
+layout(location = 0) out float outCoverage;
+
+const float kFar = 1e30;
+
+float viewDepth(ivec2 q, int s, out int id) {
+  id = texelFetch(uObjectId, q, s).r;
+  return id < 0 ? kFar : texelFetch(uPosition, q, s).w;
+}
+
+float edge(ivec2 p, int s) {
+  int id;
+  float d = viewDepth(p, s, id);
+  if (id < 0) return 0.0;
+  vec4 n = texelFetch(uNormal, p, s);
+  if (n.w < 0.5) return 0.0;
+  ivec2 last = textureSize(uObjectId) - 1;
+  const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
+  for (int r = 1; r <= uRadius; ++r) {
+    for (int k = 0; k < 4; ++k) {
+      ivec2 q = clamp(p + r * offsets[k], ivec2(0), last);
+      int idq;
+      float dq = viewDepth(q, s, idq);
+      if (uSilhouettes != 0 && dq > d) {
+        if (idq != id) return 1.0;
+        int idOpposite;
+        float dOpposite = viewDepth(clamp(p - r * offsets[k], ivec2(0), last), s, idOpposite);
+        if (idOpposite == id && abs(dq + dOpposite - 2.0 * d) > uDepthThreshold * d) return 1.0;
+      }
+      // Creases: compare with the +x and +y neighbours only, so a crease is one line thick.
+      if (uCreases != 0 && k < 2 && idq == id &&
+          dot(n.xyz, texelFetch(uNormal, q, s).xyz) < uCreaseCos)
+        return 1.0;
+    }
+  }
+  return 0.0;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  float coverage = 0.0;
+  for (int s = 0; s < uSamples; ++s) coverage += edge(p, s);
+  outCoverage = coverage / float(uSamples);
+}
