@@ -1,6 +1,7 @@
 #include "cutaway/geometry/mesh.hpp"
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <unordered_map>
 
@@ -38,16 +39,13 @@ void Mesh::append(const Mesh& other, const glm::mat4& m) {
     triangles.push_back(mirrored ? glm::uvec3(t.x, t.z, t.y) + base : t + base);
 }
 
-std::size_t dropDegenerateTriangles(Mesh& mesh, float relativeEpsilon) {
-  const Bounds b = mesh.bounds();
-  const float diagonal2 = b.empty() ? 0.0f : glm::dot(b.max - b.min, b.max - b.min);
-  const float minArea2 = relativeEpsilon * diagonal2 * diagonal2;  // |cross|² vs diagonal⁴
+std::size_t dropDegenerateTriangles(Mesh& mesh) {
   std::size_t kept = 0;
   for (const auto& t : mesh.triangles) {
     if (t.x == t.y || t.y == t.z || t.x == t.z) continue;
     const glm::vec3 c = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
                                    mesh.positions[t.z] - mesh.positions[t.x]);
-    if (!(glm::dot(c, c) > minArea2)) continue;  // also rejects NaN
+    if (!(glm::dot(c, c) > 0.0f) || !std::isfinite(glm::dot(c, c))) continue;  // also NaN
     mesh.triangles[kept++] = t;
   }
   const std::size_t dropped = mesh.triangles.size() - kept;

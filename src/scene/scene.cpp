@@ -1,5 +1,6 @@
 #include "cutaway/scene/scene.hpp"
 
+#include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace cutaway {
@@ -58,18 +59,32 @@ Camera Scene::resolvedCamera() const {
   const float aspect = float(width) / float(height);
   if (c.fit) {
     // Keep the viewing direction (eye − target), aim at the bounds' centre and back off until
-    // the bounding sphere fits the narrower field of view.
+    // every corner of the bounding box lies inside the view, with a 5% margin.
     glm::vec3 direction = c.eye - c.target;
     if (glm::length(direction) < 1e-6f) direction = glm::vec3(1.0f, 0.8f, 1.4f);
     direction = glm::normalize(direction);
     c.target = center;
+    glm::vec3 right = glm::cross(c.up, direction);
+    if (glm::length(right) < 1e-6f) right = glm::cross(glm::vec3(0, 0, 1), direction);
+    right = glm::normalize(right);
+    const glm::vec3 up = glm::cross(direction, right);
+    const float tanY = std::tan(glm::radians(c.fovY) * 0.5f), tanX = tanY * aspect;
+    float distance = 0.0f, halfWidth = 0.0f, halfHeight = 0.0f;
+    for (int i = 0; i < 8 && !b.empty(); ++i) {
+      const glm::vec3 corner{(i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                             (i & 4) ? b.max.z : b.min.z};
+      const glm::vec3 d = corner - center;
+      const float x = std::abs(glm::dot(d, right)) * 1.05f, y = std::abs(glm::dot(d, up)) * 1.05f;
+      const float towardsEye = glm::dot(d, direction);
+      // A corner at lateral offset x and depth z (towards the eye) fits when x / (D − z) ≤ tan.
+      distance = std::max({distance, x / tanX + towardsEye, y / tanY + towardsEye});
+      halfWidth = std::max(halfWidth, x);
+      halfHeight = std::max(halfHeight, y);
+    }
     if (c.projection == Projection::Perspective) {
-      const float halfY = glm::radians(c.fovY) * 0.5f;
-      const float halfX = std::atan(std::tan(halfY) * aspect);
-      const float distance = radius / std::sin(std::min(halfX, halfY));
-      c.eye = center + direction * distance;
+      c.eye = center + direction * std::max(distance, radius * 1e-2f);
     } else {
-      c.height = 2.0f * radius * std::max(1.0f, 1.0f / aspect);
+      c.height = 2.0f * std::max(halfHeight, halfWidth / aspect);
       c.eye = center + direction * (radius * 3.0f);
     }
   }

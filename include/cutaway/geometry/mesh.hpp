@@ -32,7 +32,7 @@ struct Bounds {
 };
 
 struct MeshReport {
-  std::size_t droppedDegenerate = 0;  // triangles removed: repeated vertices or zero area
+  std::size_t droppedDegenerate = 0;  // zero-area triangles removed
   bool normalsComputed = false;       // true when the source had no normals
   std::size_t boundaryEdges = 0;      // edges used by one triangle
   std::size_t nonManifoldEdges = 0;   // edges used by three or more triangles
@@ -51,9 +51,10 @@ struct Mesh {
   void append(const Mesh& other, const glm::mat4& m);
 };
 
-// Removes triangles with repeated indices or an area below `relativeEpsilon` times the
-// squared bounding-box diagonal; returns how many were removed.
-std::size_t dropDegenerateTriangles(Mesh& mesh, float relativeEpsilon = 1e-12f);
+// Removes triangles of zero area in float arithmetic (repeated indices, coincident vertices,
+// exactly collinear vertices, or non-finite positions); returns how many were removed.
+// Thin but valid triangles stay: removing slivers would open holes in closed meshes.
+std::size_t dropDegenerateTriangles(Mesh& mesh);
 // Area-weighted vertex normals (a triangle contributes its unnormalised cross product).
 void computeVertexNormals(Mesh& mesh);
 // Edge topology after welding equal positions; fills the edge counts and `watertight`.

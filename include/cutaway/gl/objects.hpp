@@ -71,9 +71,10 @@ class Texture : public Object<detail::deleteTexture> {
     glCreateTextures(target, 1, &id);
     return Texture(id);
   }
-  // A 2-D texture with one level; `samples` > 1 makes a multisample texture.
-  static Texture create2D(GLenum internalFormat, int width, int height, int samples = 1) {
-    if (samples > 1) {
+  // A 2-D texture with one level; `samples` ≥ 1 makes a multisample texture (also with one
+  // sample, so that sampler2DMS code paths serve every sample count).
+  static Texture create2D(GLenum internalFormat, int width, int height, int samples = 0) {
+    if (samples >= 1) {
       Texture t = create(GL_TEXTURE_2D_MULTISAMPLE);
       glTextureStorage2DMultisample(t.id(), samples, internalFormat, width, height, GL_TRUE);
       return t;

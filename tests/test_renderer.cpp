@@ -1,0 +1,173 @@
+// GPU tests of the frame and the renderer: AOV values against the camera, frame validation,
+// timer queries against the wall clock.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/render/renderer.hpp"
+#include "gl_test_context.hpp"
+
+using namespace cutaway;
+
+namespace {
+
+const std::string kData = CUTAWAY_TEST_DATA;
+
+Scene planeScene(int samples, const std::string& cameraJson) {
+  return parseScene(R"({"resolution": [64, 48], "samples": )" + std::to_string(samples) +
+                        R"(, "style": {"name": "blinn-phong", "lines": false},
+      "objects": [{"name": "plane", "file": "render/plane.obj",
+                   "transform": {"rotate": {"axis": [1, 0, 0], "degrees": -35}}}],
+      "camera": )" + cameraJson + "}",
+                    "plane.json", kData);
+}
+
+const Aov& find(const std::vector<Aov>& aovs, const std::string& name) {
+  for (const auto& a : aovs)
+    if (a.name == name) return a;
+  throw std::runtime_error("no AOV " + name);
+}
+
+// Where the driver puts sample 0 of a multisample target, in pixel units (y up).
+glm::vec2 firstSamplePosition(int samples) {
+  gl::Texture texture = gl::Texture::create2D(GL_RGBA8, 4, 4, samples);
+  gl::Framebuffer framebuffer = gl::Framebuffer::create();
+  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, texture.id(), 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+  glm::vec2 position(0.5f);
+  glGetMultisamplefv(GL_SAMPLE_POSITION, 0, &position[0]);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return position;
+}
+
+// The plane's world-space intersection with the ray through `offset` within pixel (x, y)
+// (rows top to bottom, offset y up), computed on the CPU from the camera alone.
+std::optional<glm::vec3> rayHit(const Scene& scene, const Camera& c, int x, int y,
+                                glm::vec2 offset = glm::vec2(0.5f)) {
+  const float aspect = float(scene.width) / float(scene.height);
+  const glm::mat4 inverse = glm::inverse(c.projectionMatrix(aspect) * c.view());
+  const glm::vec2 ndc((x + offset.x) / scene.width * 2.0f - 1.0f,
+                      (scene.height - 1 - y + offset.y) / scene.height * 2.0f - 1.0f);
+  glm::vec4 a = inverse * glm::vec4(ndc, -1.0f, 1.0f), b = inverse * glm::vec4(ndc, 1.0f, 1.0f);
+  const glm::vec3 origin = glm::vec3(a) / a.w, end = glm::vec3(b) / b.w;
+  const glm::mat4 model = scene.objects[0].transform;
+  const glm::vec3 n = glm::normalize(glm::vec3(model * glm::vec4(0, 0, 1, 0)));
+  const glm::vec3 d = end - origin;
+  const float t = glm::dot(glm::vec3(model[3]) - origin, n) / glm::dot(d, n);
+  const glm::vec3 hit = origin + t * d;
+  const glm::vec3 local = glm::vec3(glm::inverse(model) * glm::vec4(hit, 1.0f));
+  if (std::abs(local.x) > 9.9f || std::abs(local.y) > 9.9f) return std::nullopt;
+  return hit;
+}
+
+}  // namespace
+
+class PlaneAovTest : public ::testing::TestWithParam<std::tuple<int, std::string>> {};
+
+// Every pixel of the AOVs against the analytic ray–plane intersection.
+TEST_P(PlaneAovTest, AovsMatchTheCamera) {
+  test::glContext();
+  const auto& [samples, cameraJson] = GetParam();
+  const Scene scene = planeScene(samples, cameraJson);
+  Renderer renderer(scene, test::glContext().info());
+  const Camera camera = scene.resolvedCamera();
+  renderer.render(camera);
+  const auto aovs = renderer.readAovs();
+  const FloatImage& viewDepth = find(aovs, "viewDepth").image;
+  const FloatImage& depth = find(aovs, "depth").image;
+  const FloatImage& position = find(aovs, "position").image;
+  const FloatImage& objectId = find(aovs, "objectId").image;
+  const float aspect = float(scene.width) / float(scene.height);
+  const glm::mat4 viewProjection = camera.projectionMatrix(aspect) * camera.view();
+  const glm::vec2 sample0 = firstSamplePosition(scene.samples);
+  int checked = 0;
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      const auto hit = rayHit(scene, camera, x, y);
+      if (!hit) continue;
+      ++checked;
+      const glm::vec3 eyeSpace = glm::vec3(camera.view() * glm::vec4(*hit, 1.0f));
+      // Depth is per sample: evaluate it where sample 0 lies, not at the pixel centre.
+      const auto sampleHit = rayHit(scene, camera, x, y, sample0);
+      if (!sampleHit) continue;
+      const glm::vec4 clip = viewProjection * glm::vec4(*sampleHit, 1.0f);
+      const float windowDepth = 0.5f * clip.z / clip.w + 0.5f;
+      ASSERT_EQ(objectId.at(x, y)[0], 0.0f) << x << "," << y;
+      ASSERT_NEAR(viewDepth.at(x, y)[0], -eyeSpace.z, 1e-4f * camera.far) << x << "," << y;
+      ASSERT_NEAR(depth.at(x, y)[0], windowDepth, 1e-5f) << x << "," << y;
+      for (int i = 0; i < 3; ++i) ASSERT_NEAR(position.at(x, y)[i], (*hit)[i], 1e-3f) << x << "," << y;
+    }
+  EXPECT_GT(checked, scene.width * scene.height / 4);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cameras, PlaneAovTest,
+    ::testing::Combine(
+        ::testing::Values(1, 4),
+        ::testing::Values(R"({"eye": [0, 2, 12], "target": [0, 0, 0], "fov": 50, "near": 2, "far": 30})",
+                          R"({"projection": "orthographic", "eye": [1, 3, 12], "target": [0, 0, 0],
+                              "height": 12, "near": 1, "far": 40})")));
+
+TEST(Renderer, BackgroundAovsAreMarked) {
+  const Scene scene = planeScene(4, R"({"eye": [0, 0, 30], "target": [0, 0, 0], "fov": 60})");
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  // The top-left corner sees past the plane's edge.
+  EXPECT_EQ(find(aovs, "objectId").image.at(0, 0)[0], -1.0f);
+  EXPECT_EQ(find(aovs, "viewDepth").image.at(0, 0)[0], 0.0f);
+  EXPECT_EQ(find(aovs, "depth").image.at(0, 0)[0], 1.0f);
+  EXPECT_EQ(find(aovs, "objectId").image.at(32, 24)[0], 0.0f);
+}
+
+TEST(Frame, RejectsReadBeforeWrite) {
+  test::glContext();
+  Frame frame(8, 8, false);
+  frame.declare("a", {.format = GL_RGBA8});
+  frame.declare("b", {.format = GL_RGBA8});
+  frame.addPass({.name = "first", .reads = {"b"}, .writes = {"a"}, .run = [](const PassContext&) {}});
+  frame.addPass({.name = "second", .reads = {"a"}, .writes = {"b"}, .run = [](const PassContext&) {}});
+  try {
+    frame.execute();
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("first"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("reads \"b\" before any pass writes it"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Frame, RejectsUndeclaredTarget) {
+  test::glContext();
+  Frame frame(8, 8, false);
+  frame.addPass({.name = "p", .writes = {"missing"}, .run = [](const PassContext&) {}});
+  EXPECT_THROW(frame.execute(), Error);
+}
+
+// On llvmpipe the GL_TIME_ELAPSED queries need a flush after glBeginQuery (gl/timer.cpp);
+// with it, the passes' GPU times must account for the frame's wall-clock time.
+TEST(Timer, PassTimesAddUpToWallClock) {
+  Scene scene = parseScene(R"({"resolution": [256, 256], "samples": 4,
+      "objects": [{"name": "plane", "file": "render/plane.obj"}],
+      "camera": {"eye": [0, 0, 20], "target": [0, 0, 0], "fov": 40}})", "timer.json", kData);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  glFinish();
+  (void)renderer.timings();
+  double gpu = 0, wall = 0;
+  for (int i = 0; i < 5; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    renderer.render();
+    glFinish();
+    wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    for (const auto& t : renderer.timings()) {
+      EXPECT_GE(t.gpuMs, 0.0) << t.name;
+      gpu += t.gpuMs;
+    }
+  }
+  // A timer cannot measure more than the wall clock (10% + 1 ms for query overhead); on a
+  // software rasteriser the GPU work is the frame, so it must explain at least a third of it.
+  EXPECT_LE(gpu, wall * 1.1 + 1.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
+  if (test::glContext().info().software) EXPECT_GE(gpu, wall / 3.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
+}
