@@ -53,19 +53,44 @@ std::size_t dropDegenerateTriangles(Mesh& mesh) {
   return dropped;
 }
 
-void computeVertexNormals(Mesh& mesh) {
-  mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
-  for (const auto& t : mesh.triangles) {
-    const glm::vec3 c = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
-                                   mesh.positions[t.z] - mesh.positions[t.x]);
-    mesh.normals[t.x] += c;
-    mesh.normals[t.y] += c;
-    mesh.normals[t.z] += c;
+void computeVertexNormals(Mesh& mesh, float creaseAngle) {
+  const float cosCrease = std::cos(glm::radians(creaseAngle));
+  std::vector<glm::vec3> faceNormals(mesh.triangles.size());  // unnormalised: |n| = 2 area
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    faceNormals[f] = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
+                                mesh.positions[t.z] - mesh.positions[t.x]);
   }
-  for (auto& n : mesh.normals) {
+  auto unit = [](const glm::vec3& n) {
     const float len = glm::length(n);
-    n = len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    return len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  };
+  // Faces around each vertex index.
+  std::vector<std::vector<unsigned>> facesOf(mesh.positions.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) facesOf[mesh.triangles[f][k]].push_back(unsigned(f));
+
+  std::vector<glm::vec3> positions, normals;
+  std::map<std::pair<unsigned, std::array<float, 3>>, unsigned> corners;  // (vertex, normal) → new
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const glm::vec3 own = unit(faceNormals[f]);
+    for (int k = 0; k < 3; ++k) {
+      const unsigned v = mesh.triangles[f][k];
+      glm::vec3 sum(0.0f);
+      for (unsigned g : facesOf[v])
+        if (glm::dot(unit(faceNormals[g]), own) >= cosCrease) sum += faceNormals[g];
+      const glm::vec3 n = glm::length(sum) > 0.0f ? unit(sum) : own;
+      const auto [it, inserted] = corners.emplace(std::make_pair(v, std::array<float, 3>{n.x, n.y, n.z}),
+                                                  unsigned(positions.size()));
+      if (inserted) {
+        positions.push_back(mesh.positions[v]);
+        normals.push_back(n);
+      }
+      mesh.triangles[f][k] = it->second;
+    }
   }
+  mesh.positions = std::move(positions);
+  mesh.normals = std::move(normals);
 }
 
 void analyzeTopology(Mesh& mesh) {

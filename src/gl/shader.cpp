@@ -57,30 +57,23 @@ struct Expander {
     std::istringstream in{std::string(it->second)};
     std::string line;
     int number = 0;
-    bool lineDirectivePending = true;
+    auto emit = [&](const std::string& text, int sourceLine) {
+      out.text += text + "\n";
+      out.origins.push_back({index, sourceLine});
+    };
     while (std::getline(in, line)) {
       ++number;
       std::smatch m;
       if (std::regex_match(line, versionRe)) {
         if (!includedFrom.empty())
           throw Error(file, "line " + std::to_string(number), "#version in an included file");
-        out.text += line + "\n";
-        for (const auto& [name, value] : desc.defines)
-          out.text += "#define " + name + " " + value + "\n";
-        lineDirectivePending = true;
-        continue;
-      }
-      if (std::regex_match(line, m, includeRe)) {
+        emit(line, number);
+        for (const auto& [name, value] : desc.defines) emit("#define " + name + " " + value, number);
+      } else if (std::regex_match(line, m, includeRe)) {
         expand(resolveInclude(file, m[1].str(), desc), file, number);
-        lineDirectivePending = true;
-        continue;
+      } else {
+        emit(line, number);
       }
-      if (lineDirectivePending) {
-        // "#line L S": the next line is line L of source string S.
-        out.text += "#line " + std::to_string(number) + " " + std::to_string(index) + "\n";
-        lineDirectivePending = false;
-      }
-      out.text += line + "\n";
     }
     stack.pop_back();
   }
@@ -108,18 +101,21 @@ PreprocessedSource preprocess(const std::string& file, const ProgramDesc& desc) 
   return out;
 }
 
-std::string annotateInfoLog(const std::string& log, const std::vector<std::string>& files) {
-  // Mesa: "0:12(3): error: ..."; NVIDIA: "0(12) : error C1008: ...".
+std::string annotateInfoLog(const std::string& log, const PreprocessedSource& source) {
   static const std::regex prefixRe(R"(^(\d+)(?::(\d+)\(\d+\)|\((\d+)\))\s*:?)");
   std::istringstream in(log);
   std::string line, out;
   while (std::getline(in, line)) {
     std::smatch m;
     if (std::regex_search(line, m, prefixRe)) {
-      const std::size_t index = std::stoul(m[1].str());
-      const std::string number = m[2].matched ? m[2].str() : m[3].str();
-      const std::string file = index < files.size() ? files[index] : "source " + m[1].str();
-      line = file + ":" + number + ":" + m.suffix().str();
+      const std::size_t number = std::stoul(m[2].matched ? m[2].str() : m[3].str());
+      if (number >= 1 && number <= source.origins.size()) {
+        const auto& origin = source.origins[number - 1];
+        line = source.files[std::size_t(origin.file)] + ":" + std::to_string(origin.line) + ":" +
+               m.suffix().str();
+      } else {
+        line = "line " + std::to_string(number) + ":" + m.suffix().str();
+      }
     }
     if (!line.empty()) out += (out.empty() ? "" : " | ") + line;
   }
@@ -144,7 +140,7 @@ Program buildProgram(const ProgramDesc& desc) {
       std::string log(std::size_t(std::max(length, 1)), '\0');
       glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
       throw Error(file, std::string(stageName(stage)) + " shader",
-                  "compile failed: " + annotateInfoLog(log.c_str(), source.files));
+                  "compile failed: " + annotateInfoLog(log.c_str(), source));
     }
     glAttachShader(program.id(), shader.id());
     allFiles.push_back(file);
@@ -160,7 +156,7 @@ Program buildProgram(const ProgramDesc& desc) {
     glGetProgramInfoLog(program.id(), length, nullptr, log.data());
     std::string names;
     for (const auto& f : allFiles) names += (names.empty() ? "" : " + ") + f;
-    throw Error(names, "program", "link failed: " + annotateInfoLog(log.c_str(), {}));
+    throw Error(names, "program", "link failed: " + annotateInfoLog(log.c_str(), PreprocessedSource{}));
   }
   for (const auto& s : shaders) glDetachShader(program.id(), s.id());
   return program;

@@ -2,6 +2,7 @@
 // the JSON pointer and the reason; unknown keys are errors.
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -18,6 +19,10 @@ namespace cutaway {
 namespace {
 
 using json = nlohmann::json;
+
+// The renderer's light array (kMaxLights in src/render/frame_uniforms.glsl); more would be
+// dropped without a word.
+constexpr std::size_t kMaxLights = 8;
 
 struct Context {
   std::string file;
@@ -142,7 +147,14 @@ glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
       for (int col = 0; col < 4; ++col)  // written row-major, as one reads a matrix
         out[col][row] = float(number(ctx, (*m)[std::size_t(row * 4 + col)],
                                      r.at("matrix") + "/" + std::to_string(row * 4 + col), -1e30, 1e30));
-    if (std::abs(glm::determinant(glm::mat3(out))) < 1e-12f)
+    // The renderer and the bounds use the matrix as an affine map (w stays 1).
+    if (glm::vec4(out[0][3], out[1][3], out[2][3], out[3][3]) != glm::vec4(0, 0, 0, 1))
+      ctx.fail(r.at("matrix"), "the last row must be 0, 0, 0, 1 (an affine transform)");
+    // Singular relative to the columns' lengths (|det| ≤ their product), so that a uniformly
+    // small scale such as 1e-4 is not mistaken for a singular matrix.
+    const glm::mat3 linear(out);
+    if (!(std::abs(glm::determinant(linear)) >
+          1e-6f * glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2])))
       ctx.fail(r.at("matrix"), "the matrix is singular");
     r.finish();
     return out;
@@ -168,7 +180,9 @@ glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
   if (const json* v = r.take("scale")) {
     glm::vec3 k = v->is_number() ? glm::vec3(float(number(ctx, *v, r.at("scale"), -1e30, 1e30)))
                                  : vec3(ctx, *v, r.at("scale"));
-    if (std::abs(k.x * k.y * k.z) < 1e-12f) ctx.fail(r.at("scale"), "scale must not be zero");
+    // Per component: the product would reject small uniform scales (0.0001³ < 1e-12).
+    for (int i = 0; i < 3; ++i)
+      if (!(std::abs(k[i]) >= std::numeric_limits<float>::min())) ctx.fail(r.at("scale"), "scale must not be zero");
     s = glm::scale(glm::mat4(1.0f), k);
   }
   r.finish();
@@ -372,7 +386,9 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
   if (target) c.target = vec3(ctx, *target, r.at("target"));
   if (eye && target && glm::length(c.eye - c.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
   if (const json* v = r.take("up")) c.up = direction(ctx, *v, r.at("up"));
-  if (eye && target && glm::length(glm::cross(glm::normalize(c.eye - c.target), c.up)) < 1e-6f)
+  // Checked on the defaults too: "fit" keeps the direction eye − target, whichever gave it.
+  if (glm::length(c.eye - c.target) >= 1e-9f &&
+      glm::length(glm::cross(glm::normalize(c.eye - c.target), c.up)) < 1e-6f)
     ctx.fail(r.at("up"), "up is parallel to the viewing direction");
   if (const json* v = r.take("fov")) c.fovY = float(number(ctx, *v, r.at("fov"), 1, 170));
   if (const json* v = r.take("height")) c.height = float(number(ctx, *v, r.at("height"), 1e-9, 1e30));
@@ -484,10 +500,12 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   if (const json* v = r.take("style")) scene.style = style(ctx, *v, "/style");
   if (const json* v = r.take("lights")) {
     if (!v->is_array()) ctx.fail("/lights", "expected an array, got " + typeName(*v));
+    if (v->size() > kMaxLights)
+      ctx.fail("/lights", "at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(v->size()));
     for (std::size_t i = 0; i < v->size(); ++i)
       scene.lights.push_back(light(ctx, (*v)[i], "/lights/" + std::to_string(i)));
   } else {
-    scene.lights.push_back(Light{});  // a key light over the viewer's left shoulder
+    scene.lights.push_back(Light{});  // a key light over the viewer's right shoulder
   }
 
   MeshCache cache;

@@ -55,8 +55,11 @@ struct Mesh {
 // exactly collinear vertices, or non-finite positions); returns how many were removed.
 // Thin but valid triangles stay: removing slivers would open holes in closed meshes.
 std::size_t dropDegenerateTriangles(Mesh& mesh);
-// Area-weighted vertex normals (a triangle contributes its unnormalised cross product).
-void computeVertexNormals(Mesh& mesh);
+// Area-weighted vertex normals (a triangle contributes its unnormalised cross product) that
+// stay sharp at creases: a corner averages only the faces around its position whose normals
+// lie within `creaseAngle` degrees of its own face's, and vertices are split where corners
+// of one position end with different normals. Positions and topology are unchanged.
+void computeVertexNormals(Mesh& mesh, float creaseAngle = 40.0f);
 // Edge topology after welding equal positions; fills the edge counts and `watertight`.
 void analyzeTopology(Mesh& mesh);
 

@@ -29,16 +29,22 @@ struct ProgramDesc {
   std::map<std::string, std::string> aliases;
 };
 
-// The source of one stage after #include expansion and #define injection, with `#line`
-// directives; `files` maps each GLSL source-string number to its file name.
+// The source of one stage after #include expansion and #define injection. `origins[i]` is
+// where line i + 1 of `text` came from: an index into `files` and a line in that file.
+// (No `#line` directives: drivers disagree on honouring their source-string numbers.)
 struct PreprocessedSource {
   std::string text;
   std::vector<std::string> files;
+  struct Origin {
+    int file, line;
+  };
+  std::vector<Origin> origins;
 };
 PreprocessedSource preprocess(const std::string& file, const ProgramDesc& desc);
 
-// Rewrites driver info-log prefixes ("0:12(3): error", "0(12) : error") as "file:12: error".
-std::string annotateInfoLog(const std::string& log, const std::vector<std::string>& files);
+// Rewrites driver info-log prefixes ("0:12(3): error" from Mesa, "0(12) : error" from
+// NVIDIA) as "file:line: error", mapping the line back through `source.origins`.
+std::string annotateInfoLog(const std::string& log, const PreprocessedSource& source);
 
 Program buildProgram(const ProgramDesc& desc);
 
