@@ -1,0 +1,175 @@
+// End-to-end tests of the `cutaway` program: each runs the real binary.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cutaway/core/image.hpp"
+
+namespace fs = std::filesystem;
+using namespace cutaway;
+
+namespace {
+
+const std::string kBinary = CUTAWAY_BINARY;
+const std::string kSource = CUTAWAY_SOURCE_DIR;
+const std::string kData = CUTAWAY_TEST_DATA;
+
+struct Result {
+  int exitCode;
+  std::string out, err;
+};
+
+// Runs `cutaway ARGS` capturing stdout and stderr separately.
+Result run(const std::string& args) {
+  const fs::path errFile = fs::temp_directory_path() / ("cutaway-test-err-" + std::to_string(::getpid()));
+  const std::string command = kBinary + " " + args + " 2>" + errFile.string();
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buffer;
+  std::size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  std::ifstream errStream(errFile);
+  std::string err((std::istreambuf_iterator<char>(errStream)), {});
+  fs::remove(errFile);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err};
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("cutaway-cli-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+
+}  // namespace
+
+TEST(Cli, RenderWritesThePngAndSaysWhere) {
+  const fs::path out = scratch("engine.png");
+  const Result r = run("render " + kSource + "/examples/engine.json -o " + out.string() + " --size 160x120");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("wrote " + out.string()), std::string::npos) << r.out;
+  const Rgba8Image image = readPng(out);
+  EXPECT_EQ(image.width, 160);
+  EXPECT_EQ(image.height, 120);
+  // Not blank: the engine covers a good part of the picture.
+  int nonBackground = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (image.at(x, y)[0] < 200 || image.at(x, y)[2] < 180) ++nonBackground;
+  EXPECT_GT(nonBackground, image.width * image.height / 10);
+}
+
+TEST(Cli, AovRoundTripMatchesTheCamera) {
+  const fs::path dir = scratch("aovs");
+  const Result r = run("render " + kData + "/render/plane-facing.json -o " + scratch("plane.png").string() +
+                    " --aov " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream indexFile(dir / "aovs.json");
+  const auto index = nlohmann::json::parse(indexFile);
+  std::map<std::string, nlohmann::json> byName;
+  for (const auto& a : index["aovs"]) byName[a["name"]] = a;
+  for (const char* name : {"depth", "viewDepth", "normal", "position", "objectId"}) {
+    ASSERT_TRUE(byName.count(name)) << name;
+    EXPECT_EQ(byName[name]["width"], 40);
+    EXPECT_EQ(byName[name]["height"], 30);
+    EXPECT_FALSE(byName[name]["meaning"].get<std::string>().empty());
+    EXPECT_TRUE(fs::exists(dir / byName[name]["file"].get<std::string>()));
+  }
+  EXPECT_EQ(byName["normal"]["channels"], 3);
+  EXPECT_EQ(byName["depth"]["channels"], 1);
+  // The plane z = 0 faces the camera at distance 5 (near 1, far 11): its linear depth is 5
+  // everywhere and its window depth is (f + n)/(2(f − n)) − f n/((f − n) d) + 1/2.
+  const FloatImage viewDepth = readPfm(dir / "viewDepth.pfm");
+  const FloatImage depth = readPfm(dir / "depth.pfm");
+  const FloatImage normal = readPfm(dir / "normal.pfm");
+  const double n = 1, f = 11, d = 5;
+  const double expectedWindow = (f + n) / (2 * (f - n)) - f * n / ((f - n) * d) + 0.5;
+  for (int y = 0; y < 30; y += 7)
+    for (int x = 0; x < 40; x += 9) {
+      EXPECT_NEAR(viewDepth.at(x, y)[0], 5.0, 1e-4) << x << "," << y;
+      EXPECT_NEAR(depth.at(x, y)[0], expectedWindow, 1e-6) << x << "," << y;
+      EXPECT_NEAR(normal.at(x, y)[2], 1.0, 1e-3) << x << "," << y;
+    }
+}
+
+TEST(Cli, InfoPrintsObjectsAndWatertightness) {
+  const Result r = run("info " + kSource + "/examples/fan-room.json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto info = nlohmann::json::parse(r.out);
+  ASSERT_EQ(info["objects"].size(), 5u);
+  std::map<std::string, nlohmann::json> byName;
+  for (const auto& o : info["objects"]) byName[o["name"]] = o;
+  EXPECT_TRUE(byName["fan"]["watertight"].get<bool>());
+  EXPECT_TRUE(byName["desk"]["watertight"].get<bool>());
+  EXPECT_FALSE(byName["door"]["watertight"].get<bool>());  // a single open panel
+  EXPECT_EQ(byName["fan"]["role"], "interest");
+  EXPECT_GT(byName["fan"]["triangles"].get<int>(), 1000);
+  EXPECT_EQ(info["triangles"].get<int>(), [&] {
+    int sum = 0;
+    for (const auto& o : info["objects"]) sum += o["triangles"].get<int>();
+    return sum;
+  }());
+}
+
+TEST(Cli, BenchPrintsJsonAndTable) {
+  const std::string scene = kData + "/render/plane-facing.json";
+  const Result json = run("bench " + scene + " --frames 3 --json");
+  ASSERT_EQ(json.exitCode, 0) << json.err;
+  const auto result = nlohmann::json::parse(json.out);
+  EXPECT_EQ(result["frames"], 3);
+  std::vector<std::string> passes;
+  for (const auto& p : result["passes"]) {
+    passes.push_back(p["pass"]);
+    EXPECT_LE(p["gpuMinMs"].get<double>(), p["gpuMedianMs"].get<double>());
+    EXPECT_LE(p["gpuMedianMs"].get<double>(), p["gpuMaxMs"].get<double>());
+  }
+  EXPECT_EQ(passes, (std::vector<std::string>{"geometry", "lines", "composite"}));
+  const Result table = run("bench " + scene + " --frames 2");
+  ASSERT_EQ(table.exitCode, 0) << table.err;
+  EXPECT_NE(table.out.find("frame (wall ms)"), std::string::npos) << table.out;
+}
+
+TEST(Cli, BadSceneIsOneLineErrorAndNoOutput) {
+  const fs::path bad = scratch("bad.json");
+  std::ofstream(bad) << R"({"objects": [{"name": "x", "file": "plane.obj", "role": "hero"}]})";
+  const fs::path out = scratch("never.png");
+  const Result r = run("render " + bad.string() + " -o " + out.string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(bad.string() + ": /objects/0/role: unknown value \"hero\""), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, UnwritableOutputFailsWithoutPartialFiles) {
+  const Result r = run("render " + kData + "/render/plane-facing.json -o /nonexistent-dir/out.png");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("/nonexistent-dir/out.png"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UsageErrors) {
+  EXPECT_EQ(run("").exitCode, 2);
+  EXPECT_EQ(run("frobnicate").exitCode, 2);
+  const Result size = run("render " + kData + "/render/plane-facing.json -o x.png --size 12by3");
+  EXPECT_NE(size.exitCode, 0);
+  EXPECT_NE(size.err.find("--size"), std::string::npos) << size.err;
+  const Result eye = run("render " + kData + "/render/plane-facing.json -o x.png --eye 1,2");
+  EXPECT_EQ(eye.exitCode, 2);
+  EXPECT_NE(eye.err.find("x,y,z"), std::string::npos) << eye.err;
+  EXPECT_FALSE(fs::exists("x.png"));
+}
+
+TEST(Cli, HelpEverywhere) {
+  for (const char* command : {"--help", "render --help", "info --help", "bench --help"}) {
+    const Result r = run(command);
+    EXPECT_EQ(r.exitCode, 0) << command;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << command << ": " << r.out;
+  }
+}
