@@ -34,6 +34,13 @@ struct Context {
 
 std::string typeName(const json& j) { return j.type_name(); }
 
+// A key as one JSON pointer token (RFC 6901): "~" → "~0", "/" → "~1".
+std::string token(const std::string& key) {
+  std::string out;
+  for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return out;
+}
+
 // One JSON object being read: fields are taken by name, and `finish` rejects the rest.
 class ObjectReader {
  public:
@@ -59,7 +66,7 @@ class ObjectReader {
       if (!taken_.count(key)) {
         std::string known;
         for (const auto& k : taken_) known += (known.empty() ? "" : ", ") + k;
-        ctx_.fail(pointer_ + "/" + key, "unknown key \"" + key + "\" (expected one of: " + known + ")");
+        ctx_.fail(pointer_ + "/" + token(key), "unknown key \"" + key + "\" (expected one of: " + known + ")");
       }
   }
 
@@ -201,7 +208,7 @@ ObjectParams params(const Context& ctx, const json& j, const std::string& ptr) {
   if (!j.is_object()) ctx.fail(ptr, "expected an object, got " + typeName(j));
   ObjectParams out;
   for (const auto& [key, value] : j.items()) {
-    const std::string p = ptr + "/" + key;
+    const std::string p = ptr + "/" + token(key);
     const ObjectParamSpec* spec = nullptr;
     for (const auto& s : objectParameterSpecs())
       if (s.name == key) spec = &s;
@@ -458,20 +465,33 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
 Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
                  const std::filesystem::path& baseDir) {
   const Context ctx{displayName.string(), baseDir};
+  // Turn a 1-based byte offset into a line and column a person can find.
+  const auto lineColumn = [&text](std::size_t byte) {
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+      if (text[i] == '\n') ++line, column = 1;
+      else ++column;
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+  };
   json root;
   try {
     root = json::parse(text);
   } catch (const json::parse_error& e) {
-    // Turn the byte offset into a line and column a person can find.
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') ++line, column = 1;
-      else ++column;
-    }
     std::string reason = e.what();
     if (auto p = reason.find(": syntax error"); p != std::string::npos) reason = reason.substr(p + 2);
-    throw Error(ctx.file, "line " + std::to_string(line) + ", column " + std::to_string(column),
-                "invalid JSON: " + reason);
+    throw Error(ctx.file, lineColumn(e.byte), "invalid JSON: " + reason);
+  } catch (const json::exception& e) {
+    // A number too large for a double ("1e999") is out_of_range, not a parse_error, and has
+    // no offset: place it at the first occurrence of the literal the message quotes.
+    std::string reason = e.what();
+    if (auto p = reason.find("] "); p != std::string::npos) reason = reason.substr(p + 2);
+    std::string place;
+    const auto open = reason.find('\''), close = reason.rfind('\'');
+    if (open != std::string::npos && close > open + 1)
+      if (const auto at = text.find(reason.substr(open + 1, close - open - 1)); at != std::string::npos)
+        place = lineColumn(at + (close - open - 1));
+    throw Error(ctx.file, place, "invalid JSON: " + reason);
   }
   Scene scene;
   scene.file = displayName;
