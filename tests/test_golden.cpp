@@ -16,6 +16,8 @@ struct GoldenCase {
   bool orthographic = false;
 };
 
+void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
+
 // Thresholds (per channel, 0–255). The goldens come from Mesa llvmpipe; another CPU or Mesa
 // build may rasterise edge pixels slightly differently: with 4× MSAA a moved sample changes an
 // edge pixel by a quarter of the edge's contrast, two samples by half, hence the maximum of

@@ -64,6 +64,12 @@ std::optional<glm::vec3> rayHit(const Scene& scene, const Camera& c, int x, int 
 
 }  // namespace
 
+std::string planeAovTestName(const ::testing::TestParamInfo<std::tuple<int, std::string>>& info) {
+  const int samples = std::get<0>(info.param);
+  const bool ortho = std::get<1>(info.param).find("orthographic") != std::string::npos;
+  return std::string(ortho ? "orthographic_" : "perspective_") + std::to_string(samples) + "samples";
+}
+
 class PlaneAovTest : public ::testing::TestWithParam<std::tuple<int, std::string>> {};
 
 // Every pixel of the AOVs against the analytic ray–plane intersection.
@@ -108,7 +114,8 @@ INSTANTIATE_TEST_SUITE_P(
         ::testing::Values(1, 4),
         ::testing::Values(R"({"eye": [0, 2, 12], "target": [0, 0, 0], "fov": 50, "near": 2, "far": 30})",
                           R"({"projection": "orthographic", "eye": [1, 3, 12], "target": [0, 0, 0],
-                              "height": 12, "near": 1, "far": 40})")));
+                              "height": 12, "near": 1, "far": 40})")),
+    planeAovTestName);
 
 TEST(Renderer, BackgroundAovsAreMarked) {
   const Scene scene = planeScene(4, R"({"eye": [0, 0, 30], "target": [0, 0, 0], "fov": 60})");

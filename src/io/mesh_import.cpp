@@ -104,6 +104,8 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
         if (!out.color && mesh->mMaterialIndex < scene->mNumMaterials) {
           aiColor4D c;
           const aiMaterial* material = scene->mMaterials[mesh->mMaterialIndex];
+          // Assimp invents "DefaultMaterial" for files without materials: not the file's colour.
+          if (material->GetName() == aiString(AI_DEFAULT_MATERIAL_NAME)) continue;
           if (material->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS ||
               material->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS)
             out.color = glm::clamp(glm::vec3(c.r, c.g, c.b), 0.0f, 1.0f);
