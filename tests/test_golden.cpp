@@ -51,7 +51,10 @@ INSTANTIATE_TEST_SUITE_P(
                       GoldenCase{"bunny", "bunny.json", "", 240, 240},
                       GoldenCase{"bunny-gooch", "bunny.json", "gooch", 240, 240},
                       GoldenCase{"fan-room", "fan-room.json", "", 320, 240},
-                      GoldenCase{"house", "house.json", "", 320, 240}),
+                      GoldenCase{"house", "house.json", "", 320, 240},
+                      GoldenCase{"engine-cutaway", "engine-cutaway.json", "", 320, 240},
+                      GoldenCase{"house-cutaway", "house-cutaway.json", "", 320, 240},
+                      GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');

@@ -108,7 +108,7 @@ const BadScene kBadScenes[] = {
     {"camera_up_parallel.json", "/camera/up", "up is parallel to the viewing direction"},
     {"camera_fit_up_parallel.json", "/camera/up", "up is parallel to the viewing direction"},
     {"camera_far_below_near.json", "/camera/far", "far must be greater than near"},
-    {"camera_without_eye.json", "/camera", "needs \"eye\" and \"target\", or \"fit\": true"},
+    {"camera_without_eye.json", "/camera", "needs \"eye\" and \"target\", a \"path\", or \"fit\": true"},
     {"camera_fov_too_wide.json", "/camera/fov", "value 180 is outside [1, 170]"},
     // Style.
     {"style_unknown_name.json", "/style", "unknown value \"toon\""},

@@ -10,10 +10,12 @@ using namespace cutaway;
 
 TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
   const gl::ProgramDesc desc{.defines = {{"ANSWER", "42"}},
-                             .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"}}};
+                             .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"},
+                                         {"cutter.glsl", "cutters/adaptive/clip.glsl"}}};
   const gl::PreprocessedSource source = gl::preprocess("render/mesh.frag", desc);
   const std::vector<std::string> expected{"render/mesh.frag", "render/frame_uniforms.glsl",
-                                          "styles/surface.glsl", "styles/gooch/gooch.glsl"};
+                                          "styles/surface.glsl", "styles/gooch/gooch.glsl",
+                                          "cutters/adaptive/clip.glsl"};
   EXPECT_EQ(source.files, expected);
   // Defines come right after #version, before any other line.
   EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u) << source.text.substr(0, 80);
@@ -63,7 +65,7 @@ TEST(Shader, CompileErrorNamesFileLineAndLog) {
   // Aliasing the style to the uniform block redeclares it: a genuine compile error.
   const gl::ProgramDesc desc{
       .stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
-      .aliases = {{"style.glsl", "render/frame_uniforms.glsl"}}};
+      .aliases = {{"style.glsl", "render/frame_uniforms.glsl"}, {"cutter.glsl", "cutters/none/none.glsl"}}};
   try {
     (void)gl::buildProgram(desc);
     FAIL() << "expected a compile error";

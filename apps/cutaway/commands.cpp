@@ -1,14 +1,19 @@
 #include "commands.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
 #include <chrono>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <functional>
 #include <regex>
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
+#include "cutaway/fields/cutaway_surface.hpp"
 #include "cutaway/gl/context.hpp"
 #include "cutaway/render/aov.hpp"
 #include "cutaway/render/renderer.hpp"
@@ -61,20 +66,66 @@ Stats stats(std::vector<double> v) {
 
 }  // namespace
 
+// The file name of frame `index` (1-based): a printf pattern in `output`, or the number
+// appended to its stem ("out.png" → "out_0001.png").
+std::string framePath(const std::string& output, int index) {
+  if (output.find('%') != std::string::npos) {
+    char buffer[4096];
+    std::snprintf(buffer, sizeof buffer, output.c_str(), index);
+    return buffer;
+  }
+  std::filesystem::path p(output);
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d", index);
+  return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
+}
+
 int render(const RenderOptions& options) {
   Scene scene = loadScene(options.scene);
   applyOverrides(scene, options.overrides);
+  if (options.frames > 0 && options.output.find('%') != std::string::npos) {
+    static const std::regex patternRe(R"([^%]*%0?\d*d[^%]*)");
+    if (!std::regex_match(options.output, patternRe))
+      throw Error("--output", "", "a frame pattern may hold one %d (e.g. frame_%04d.png)");
+  }
   const auto context = gl::HeadlessContext::create();
   Renderer renderer(scene, context->info());
-  const Camera camera = scene.resolvedCamera();
-  renderer.render(camera);
-  writePng(options.output, renderer.readColor());
-  std::printf("wrote %s (%dx%d, %s, %s)\n", options.output.c_str(), scene.width, scene.height,
-              scene.style.name.c_str(), context->info().renderer.c_str());
-  if (!options.aovDir.empty()) {
-    writeAovs(options.aovDir, renderer.readAovs(), camera, float(scene.width) / float(scene.height));
-    std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
+  const float aspect = float(scene.width) / float(scene.height);
+  auto renderOne = [&](float time, const std::string& out, const std::string& aovDir) {
+    const Camera camera = scene.resolvedCamera(time);
+    renderer.render(camera, time);
+    writePng(out, renderer.readColor());
+    if (!aovDir.empty()) writeAovs(aovDir, renderer.readAovs(), camera, aspect);
+  };
+  if (options.frames == 0) {
+    renderOne(options.time, options.output, options.aovDir);
+    std::printf("wrote %s (%dx%d, %s, %s)\n", options.output.c_str(), scene.width, scene.height,
+                scene.style.name.c_str(), context->info().renderer.c_str());
+    if (!options.aovDir.empty()) std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
+    return 0;
   }
+  const float duration = scene.duration();
+  const bool progress = ::isatty(STDERR_FILENO);
+  for (int i = 0; i < options.frames; ++i) {
+    const float time = options.frames > 1 ? duration * float(i) / float(options.frames - 1) : 0.0f;
+    std::string aovDir;
+    if (!options.aovDir.empty()) {
+      char number[16];
+      std::snprintf(number, sizeof number, "%04d", i + 1);
+      aovDir = (std::filesystem::path(options.aovDir) / number).string();
+    }
+    renderOne(time, framePath(options.output, i + 1), aovDir);
+    if (progress) {
+      const int width = 30, done = (i + 1) * width / options.frames;
+      std::fprintf(stderr, "\r[%s%s] %d/%d  t = %.2f s", std::string(std::size_t(done), '#').c_str(),
+                   std::string(std::size_t(width - done), ' ').c_str(), i + 1, options.frames, time);
+      std::fflush(stderr);
+    }
+  }
+  if (progress) std::fprintf(stderr, "\n");
+  std::printf("wrote %d frames %s … %s (%dx%d, %.2f s of animation)\n", options.frames,
+              framePath(options.output, 1).c_str(), framePath(options.output, options.frames).c_str(),
+              scene.width, scene.height, duration);
   return 0;
 }
 
@@ -120,56 +171,175 @@ int info(const std::string& path) {
   return 0;
 }
 
-int bench(const BenchOptions& options) {
-  Scene scene = loadScene(options.scene);
-  applyOverrides(scene, options.overrides);
-  const auto context = gl::HeadlessContext::create();
-  Renderer renderer(scene, context->info());
+namespace {
+
+struct PassStats {
+  std::string name;
+  Stats gpu, cpu;
+};
+
+struct Measurement {
+  std::string label;
+  const char* computePath = nullptr;  // adaptive cutter: "gpu" / "cpu"
+  std::vector<PassStats> passes;
+  Stats frame;
+  // GPU (or CPU, for the CPU path) time of the cutaway-surface computation alone.
+  double cutawaySurfaceMs = 0;
+};
+
+// Renders `frames` frames (after a warm-up) and gathers per-pass and whole-frame times.
+Measurement measure(const std::string& label, const Scene& scene, const gl::ContextInfo& info,
+                    int frames) {
+  Renderer renderer(scene, info);
   const Camera camera = scene.resolvedCamera();
   renderer.render(camera);  // warm-up: shader compilation, first allocation
   glFinish();
   (void)renderer.timings();
-
-  std::map<std::string, std::vector<double>> passTimes;
-  std::vector<std::string> passOrder;
+  std::vector<std::string> order;
+  std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> times;
   std::vector<double> frameTimes;
-  for (int i = 0; i < options.frames; ++i) {
+  for (int i = 0; i < frames; ++i) {
     const auto start = std::chrono::steady_clock::now();
     renderer.render(camera);
     glFinish();
-    const auto end = std::chrono::steady_clock::now();
-    frameTimes.push_back(std::chrono::duration<double, std::milli>(end - start).count());
+    frameTimes.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     for (const auto& t : renderer.timings()) {
-      if (!passTimes.count(t.name)) passOrder.push_back(t.name);
-      passTimes[t.name].push_back(t.gpuMs);
+      if (!times.count(t.name)) order.push_back(t.name);
+      times[t.name].first.push_back(t.gpuMs);
+      times[t.name].second.push_back(t.cpuMs);
     }
   }
-  const Stats frame = stats(frameTimes);
-  if (options.json) {
-    nlohmann::json passes = nlohmann::json::array();
-    for (const auto& name : passOrder) {
-      const Stats s = stats(passTimes[name]);
-      passes.push_back({{"pass", name}, {"gpuMedianMs", s.median}, {"gpuMinMs", s.min}, {"gpuMaxMs", s.max}});
+  Measurement m{label, renderer.cutawayComputePath(), {}, stats(frameTimes)};
+  for (const auto& name : order) {
+    PassStats p{name, stats(times[name].first), stats(times[name].second)};
+    if (name == "cutawayCpu") m.cutawaySurfaceMs += p.cpu.median;
+    else if (name == "cutawayAnchors" || name.rfind("jumpFlooding", 0) == 0 || name == "cutawayDepth")
+      m.cutawaySurfaceMs += p.gpu.median;
+    m.passes.push_back(std::move(p));
+  }
+  return m;
+}
+
+// CPU reference algorithms (src/fields) on one seed image, median of `runs` (ms).
+double timeMs(int runs, const std::function<void()>& f) {
+  std::vector<double> t;
+  for (int i = 0; i < runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  return stats(t).median;
+}
+
+// The scene's seed image at an n×n cutaway buffer, rendered by the real seed pass.
+fields::SeedImage sceneSeedImage(const Scene& base, const gl::ContextInfo& info, int n) {
+  Scene scene = base;
+  scene.adaptive->bufferSize = n;
+  scene.adaptive->compute = AdaptiveCutawayOptions::Compute::Cpu;
+  Renderer renderer(scene, info);
+  const Camera camera = scene.resolvedCamera();
+  renderer.render(camera);
+  std::vector<float> depth(std::size_t(n) * std::size_t(n)), angle(depth.size());
+  glGetTextureImage(renderer.frame().texture("seedDepth").id(), 0, GL_RED, GL_FLOAT,
+                    GLsizei(depth.size() * sizeof(float)), depth.data());
+  glGetTextureImage(renderer.frame().texture("seedAngle").id(), 0, GL_RED, GL_FLOAT,
+                    GLsizei(angle.size() * sizeof(float)), angle.data());
+  return makeSeedImage(depth, angle, n, *scene.adaptive,
+                       cutawayProjection(camera, float(scene.width) / float(scene.height)));
+}
+
+nlohmann::json statsJson(const Stats& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
+
+}  // namespace
+
+int bench(const BenchOptions& options) {
+  Scene scene = loadScene(options.scene);
+  applyOverrides(scene, options.overrides);
+  const auto context = gl::HeadlessContext::create();
+  const gl::ContextInfo& info = context->info();
+  std::vector<Measurement> runs;
+  nlohmann::json references = nlohmann::json::object();
+  if (!scene.adaptive) {
+    runs.push_back(measure("frame", scene, info, options.frames));
+  } else {
+    // Burns08 Table 1's shape: the model alone, then with the cutaway, in one run; at the
+    // two buffer sizes the issue asks for, on both compute paths.
+    Scene plain = scene;
+    plain.adaptive.reset();
+    runs.push_back(measure("plain", plain, info, options.frames));
+    for (int n : {512, 1024})
+      for (auto compute : {AdaptiveCutawayOptions::Compute::Gpu, AdaptiveCutawayOptions::Compute::Cpu}) {
+        Scene s = scene;
+        s.adaptive->bufferSize = n;
+        s.adaptive->compute = compute;
+        const bool gpu = compute == AdaptiveCutawayOptions::Compute::Gpu;
+        runs.push_back(measure("cutaway " + std::to_string(n) + (gpu ? " gpu" : " cpu"), s, info,
+                               options.frames));
+      }
+    for (int n : {512, 1024}) {
+      const fields::SeedImage seeds = sceneSeedImage(scene, info, n);
+      const std::string size = std::to_string(n);
+      references["jumpFlooding " + size + " (all threads)"] =
+          timeMs(5, [&] { (void)fields::jumpFlooding(seeds, -1.0f, scene.adaptive->variant); });
+      references["jumpFlooding " + size + " (1 thread)"] =
+          timeMs(3, [&] { (void)fields::jumpFlooding(seeds, -1.0f, scene.adaptive->variant, 1); });
+      references["chamfer 3x3 " + size] =
+          timeMs(3, [&] { (void)fields::chamfer(seeds, -1.0f, fields::ChamferKernel::k3x3); });
+      references["chamfer 5x5 " + size] =
+          timeMs(3, [&] { (void)fields::chamfer(seeds, -1.0f, fields::ChamferKernel::k5x5); });
     }
-    const nlohmann::json out = {
-        {"scene", options.scene},
-        {"renderer", context->info().renderer},
-        {"resolution", {scene.width, scene.height}},
-        {"samples", scene.samples},
-        {"frames", options.frames},
-        {"passes", passes},
-        {"frame", {{"medianMs", frame.median}, {"minMs", frame.min}, {"maxMs", frame.max}}}};
+    const fields::SeedImage small = sceneSeedImage(scene, info, 128);
+    references["bruteForce 128"] = timeMs(1, [&] { (void)fields::bruteForce(small, -1.0f); });
+  }
+  const double plainMs = runs.front().frame.median;
+  const char* autoPath = nullptr;
+  if (scene.adaptive) autoPath = cutawayOnCpu(*scene.adaptive, info.software) ? "cpu" : "gpu";
+
+  if (options.json) {
+    nlohmann::json out = {{"scene", options.scene},
+                          {"renderer", info.renderer},
+                          {"resolution", {scene.width, scene.height}},
+                          {"samples", scene.samples},
+                          {"frames", options.frames}};
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& m : runs) {
+      nlohmann::json passes = nlohmann::json::array();
+      for (const auto& p : m.passes)
+        passes.push_back({{"pass", p.name}, {"gpuMs", statsJson(p.gpu)}, {"cpuMs", statsJson(p.cpu)},
+                          {"gpuMedianMs", p.gpu.median}, {"gpuMinMs", p.gpu.min}, {"gpuMaxMs", p.gpu.max}});
+      nlohmann::json entry = {{"label", m.label}, {"passes", passes}, {"frame", statsJson(m.frame)},
+                              {"frameRatioToPlain", m.frame.median / plainMs}};
+      if (m.computePath) entry["cutawaySurfaceMs"] = m.cutawaySurfaceMs, entry["computePath"] = m.computePath;
+      list.push_back(entry);
+    }
+    out["runs"] = list;
+    // The first run's passes at top level, for a quick look.
+    out["passes"] = list.front()["passes"];
+    out["frame"] = {{"medianMs", runs.front().frame.median}, {"minMs", runs.front().frame.min},
+                    {"maxMs", runs.front().frame.max}};
+    if (autoPath) out["autoComputePath"] = autoPath, out["cpuReferencesMs"] = references;
     std::printf("%s\n", out.dump(2).c_str());
     return 0;
   }
   std::printf("%s, %dx%d, %d samples, %d frames on %s\n", options.scene.c_str(), scene.width,
-              scene.height, scene.samples, options.frames, context->info().renderer.c_str());
-  std::printf("%-24s %10s %10s %10s\n", "pass (GPU ms)", "median", "min", "max");
-  for (const auto& name : passOrder) {
-    const Stats s = stats(passTimes[name]);
-    std::printf("%-24s %10.3f %10.3f %10.3f\n", name.c_str(), s.median, s.min, s.max);
+              scene.height, scene.samples, options.frames, info.renderer.c_str());
+  for (const auto& m : runs) {
+    std::printf("\n[%s]\n%-26s %10s %10s %10s %10s\n", m.label.c_str(), "pass", "GPU median",
+                "GPU min", "GPU max", "CPU median");
+    for (const auto& p : m.passes)
+      std::printf("%-26s %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), p.gpu.median, p.gpu.min,
+                  p.gpu.max, p.cpu.median);
+    std::printf("%-26s %10.3f %10.3f %10.3f\n", "frame (wall ms)", m.frame.median, m.frame.min, m.frame.max);
   }
-  std::printf("%-24s %10.3f %10.3f %10.3f\n", "frame (wall ms)", frame.median, frame.min, frame.max);
+  if (autoPath) {
+    std::printf("\n%-18s %12s %12s %18s\n", "summary", "frame ms", "× plain", "cutaway surface ms");
+    for (const auto& m : runs)
+      std::printf("%-18s %12.3f %12.3f %18.3f\n", m.label.c_str(), m.frame.median,
+                  m.frame.median / plainMs, m.cutawaySurfaceMs);
+    std::printf("compute path the scene gets here: %s\n\nCPU references (ms):\n", autoPath);
+    for (const auto& [name, ms] : references.items())
+      std::printf("  %-32s %10.3f\n", name.c_str(), ms.get<double>());
+  }
   return 0;
 }
 

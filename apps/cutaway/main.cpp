@@ -60,7 +60,16 @@ int main(int argc, char** argv) {
   render->add_option("scene", renderOptions.scene, "Scene file (JSON)")->required();
   render->add_option("-o,--output", renderOptions.output, "Output PNG file")->required();
   render->add_option("--aov", renderOptions.aovDir,
-                     "Directory for the frame's intermediate buffers (PFM + aovs.json)");
+                     "Directory for the frame's intermediate buffers (PFM + aovs.json); with "
+                     "--frames, one sub-directory per frame");
+  auto* frames = render->add_option("--frames", renderOptions.frames,
+                                    "Render an animation of N frames spanning the scene's duration; "
+                                    "OUT may hold a printf pattern (frame_%04d.png), else the "
+                                    "frame number is appended to its stem")
+                     ->check(CLI::Range(1, 100000));
+  render->add_option("--time", renderOptions.time, "Render the single instant T (seconds)")
+      ->check(CLI::Range(0.0f, 1e6f))
+      ->excludes(frames);
   addSceneOverrides(render, renderOptions.overrides);
 
   std::string infoScene;

@@ -1,5 +1,6 @@
 #include "cutaway/render/frame.hpp"
 
+#include <chrono>
 #include <set>
 
 #include "cutaway/core/error.hpp"
@@ -96,19 +97,24 @@ void Frame::execute() {
     }
     prepared_ = true;
   }
+  cpuMs_.clear();
   for (auto& pass : passes_) {
+    const auto start = std::chrono::steady_clock::now();
     timer_.begin(pass.desc.name);
     glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.id());
     glViewport(0, 0, pass.width, pass.height);
     pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
     timer_.end();
+    cpuMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 std::vector<PassTiming> Frame::timings() {
   std::vector<PassTiming> out;
-  for (auto& [name, ms] : timer_.collect()) out.push_back({name, ms});
+  const auto gpu = timer_.collect();
+  for (std::size_t i = 0; i < gpu.size(); ++i)
+    out.push_back({gpu[i].first, gpu[i].second, i < cpuMs_.size() ? cpuMs_[i] : 0.0});
   return out;
 }
 

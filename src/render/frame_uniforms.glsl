@@ -4,6 +4,9 @@ layout(std140, binding = 0) uniform FrameUniforms {
   mat4 uView;
   mat4 uProjection;
   mat4 uViewProjection;
+  mat4 uInverseProjection;
+  mat4 uInverseView;
+  vec4 uViewport;                 // width, height, 1/width, 1/height of the final image
   vec4 uEye;                      // world-space eye position
   vec4 uForward;                  // world-space viewing direction (orthographic view rays)
   vec4 uLightVector[kMaxLights];  // w = 0: direction the light travels; w = 1: position

@@ -1,9 +1,9 @@
 #include "cutaway/render/renderer.hpp"
 
-#include <cstring>
-
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
+#include "cutters/adaptive/adaptive_cutaway.hpp"
+#include "render/scene_gpu.hpp"
 
 namespace cutaway {
 
@@ -11,7 +11,8 @@ namespace {
 
 // std140 mirror of src/render/frame_uniforms.glsl.
 struct FrameUniforms {
-  glm::mat4 view, projection, viewProjection;
+  glm::mat4 view, projection, viewProjection, inverseProjection, inverseView;
+  glm::vec4 viewport;
   glm::vec4 eye, forward;
   glm::vec4 lightVector[8];
   glm::vec4 lightColor[8];
@@ -21,88 +22,98 @@ struct FrameUniforms {
   glm::vec4 styleParams;
 };
 
-struct GpuMesh {
-  gl::VertexArray vertexArray;
-  gl::Buffer vertices, indices;
-  GLsizei indexCount = 0;
-};
-
-GpuMesh upload(const Mesh& mesh) {
-  std::vector<float> interleaved;
-  interleaved.reserve(mesh.positions.size() * 6);
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const auto& p = mesh.positions[i];
-    const auto& n = mesh.normals[i];
-    interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
-  }
-  GpuMesh g;
-  g.vertices = gl::Buffer::create(GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
-  g.indices = gl::Buffer::create(GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
-                                 mesh.triangles.data());
-  g.indexCount = GLsizei(mesh.triangles.size() * 3);
-  g.vertexArray = gl::VertexArray::create();
-  const GLuint vao = g.vertexArray.id();
-  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, 6 * sizeof(float));
-  glVertexArrayElementBuffer(vao, g.indices.id());
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(vao, 0, 0);
-  glEnableVertexArrayAttrib(vao, 1);
-  glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float));
-  glVertexArrayAttribBinding(vao, 1, 0);
-  return g;
-}
-
 const char* styleFile(const std::string& style) {
   if (style == "gooch") return "styles/gooch/gooch.glsl";
   if (style == "blinn-phong") return "styles/blinn_phong/blinn_phong.glsl";
   throw Error("style", "", "unknown style \"" + style + "\"");
 }
 
+gl::Program fullscreen(const char* fragment, std::map<std::string, std::string> defines = {}) {
+  return gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"},
+                                      {GL_FRAGMENT_SHADER, fragment}},
+                           .defines = std::move(defines)});
+}
+
+// Mesh uniform locations of src/render/mesh.frag (and ghost.frag for the id).
+constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
+                kClipped = 13, kCutSurface = 14, kCutColor = 15, kGhostDistance = 17;
+
 }  // namespace
 
 struct Renderer::Impl {
-  std::vector<GpuMesh> meshes;  // per scene object; empty for proxies
+  explicit Impl(const Scene& scene) : sceneGpu(scene) {}
+  SceneGpu sceneGpu;
+  std::unique_ptr<AdaptiveCutaway> adaptive;
   gl::Buffer frameUniforms;
   gl::VertexArray emptyVertexArray;
-  gl::Program meshProgram, backgroundProgram, linesProgram, compositeProgram;
+  gl::Program meshProgram, backgroundProgram, linesProgram, ghostProgram, ghostLinesProgram,
+      compositeProgram;
+  bool lines = false, outlines = false, ghosts = false;
+  float ghostDistance = 0;
 };
 
 Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
-    : scene_(scene), impl_(std::make_unique<Impl>()) {
+    : scene_(scene), impl_(std::make_unique<Impl>(scene)) {
   Impl& g = *impl_;
-  for (const auto& object : scene.objects)
-    g.meshes.push_back(object.proxy ? GpuMesh{} : upload(*object.mesh));
-  g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  g.emptyVertexArray = gl::VertexArray::create();
-  g.meshProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
-                                               {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
-                                    .aliases = {{"style.glsl", styleFile(scene.style.name)}}});
-  g.backgroundProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"},
-                                                     {GL_FRAGMENT_SHADER, "render/background.frag"}}});
-  g.compositeProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"},
-                                                    {GL_FRAGMENT_SHADER, "render/composite.frag"}}});
-  const bool lines = scene.style.lines.has_value();
-  if (lines)
-    g.linesProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"},
-                                                  {GL_FRAGMENT_SHADER, "styles/lines/lines.frag"}}});
-
-  const int samples = scene.samples;
   frame_ = std::make_unique<Frame>(scene.width, scene.height, info.software);
   Frame& f = *frame_;
+  const AdaptiveCutawayOptions* adaptive = scene.adaptive ? &*scene.adaptive : nullptr;
+  if (adaptive) g.adaptive = std::make_unique<AdaptiveCutaway>(g.sceneGpu, *adaptive, info, f);
+  g.lines = scene.style.lines.has_value();
+  g.outlines = adaptive && adaptive->outlines;
+  g.ghosts = adaptive && adaptive->ghostLines;
+  if (g.ghosts)
+    g.ghostDistance = adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * scene.bounds().radius();
+
+  g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  g.emptyVertexArray = gl::VertexArray::create();
+  const std::string cutter = adaptive ? "cutters/adaptive/clip.glsl" : "cutters/none/none.glsl";
+  g.meshProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
+                                               {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
+                                    .aliases = {{"style.glsl", styleFile(scene.style.name)},
+                                                {"cutter.glsl", cutter}}});
+  g.backgroundProgram = fullscreen("render/background.frag");
+  g.compositeProgram = fullscreen("render/composite.frag");
+  if (g.lines || g.outlines)
+    g.linesProgram = fullscreen("styles/lines/lines.frag",
+                                g.outlines ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
+                                           : std::map<std::string, std::string>{});
+  if (g.ghosts) {
+    g.ghostProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
+                                                  {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
+    g.ghostLinesProgram = fullscreen("styles/lines/lines.frag");
+  }
+
+  const int samples = scene.samples;
   f.declare("sceneColor", {.format = GL_RGBA8, .samples = samples});
   f.declare("sceneNormal", {.format = GL_RGBA16F, .samples = samples});
   f.declare("scenePosition", {.format = GL_RGBA32F, .samples = samples});
   f.declare("sceneObjectId", {.format = GL_R32I, .samples = samples});
+  f.declare("sceneCutMask", {.format = GL_R8, .samples = samples});
   f.declare("sceneDepth", {.format = GL_DEPTH_COMPONENT32F, .samples = samples});
-  if (lines)
+  if (g.lines || g.outlines)
     f.declare("lines", {.format = GL_R16F,
                         .meaning = "feature-line coverage in [0,1] (silhouettes and creases, "
                                    "fraction of MSAA samples on a line)"});
+  if (g.outlines)
+    f.declare("cutOutlines", {.format = GL_R16F,
+                              .meaning = "cut-outline coverage in [0,1]: boundary of the cut-surface "
+                                         "mask (Burns08 §4.2), fraction of MSAA samples"});
+  if (g.ghosts) {
+    f.declare("ghostNormal", {.format = GL_RGBA16F, .samples = samples});
+    f.declare("ghostPosition", {.format = GL_RGBA32F, .samples = samples});
+    f.declare("ghostObjectId", {.format = GL_R32I, .samples = samples});
+    f.declare("ghostDepth", {.format = GL_DEPTH_COMPONENT32F, .samples = samples});
+    f.declare("ghostLines", {.format = GL_R16F,
+                             .meaning = "ghost-line coverage in [0,1]: feature lines of removed "
+                                        "material, faded with distance in front of the cutaway "
+                                        "surface (Burns08 §4.3)"});
+  }
   f.declare("color", {.format = GL_RGBA8});
   f.declare("normal", {.format = GL_RGBA16F,
                        .meaning = "world-space unit normal of the visible surface, turned towards "
-                                  "the viewer; (0,0,0) on background; sample 0",
+                                  "the viewer (the cutaway surface's on cut surfaces); (0,0,0) on "
+                                  "background; sample 0",
                        .aovChannels = 3});
   f.declare("position", {.format = GL_RGBA32F,
                          .meaning = "world-space position of the visible surface, scene units; "
@@ -117,114 +128,181 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   f.declare("depth", {.format = GL_R32F,
                       .meaning = "window-space depth in [0,1] (OpenGL default depth range, "
                                  "0 = near plane, 1 = far plane and background); sample 0"});
+  f.declare("cutMask", {.format = GL_R32F,
+                        .meaning = "1 where a cut surface is shown (a back face seen through the "
+                                   "cut, Burns08 §4.1), else 0; sample 0"});
 
+  std::vector<std::string> cutawayInputs;
+  if (adaptive) cutawayInputs = {"cutawayDepth", "cutawayDilated"};
   f.addPass({.name = "geometry",
-             .writes = {"sceneColor", "sceneNormal", "scenePosition", "sceneObjectId", "sceneDepth"},
-             .run = [this](const PassContext& pass) {
-               const Impl& g = *impl_;
-               const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
-               const GLint noObject[4] = {-1, 0, 0, 0};
-               glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, 1, zero);
-               glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, 2, zero);
-               glClearNamedFramebufferiv(pass.framebuffer, GL_COLOR, 3, noObject);
-               glClearNamedFramebufferfv(pass.framebuffer, GL_DEPTH, 0, &one);
-               // Background gradient into the colour target only.
-               glDisable(GL_DEPTH_TEST);
-               glDisable(GL_CULL_FACE);
-               glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-               glColorMaski(2, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-               glColorMaski(3, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-               glUseProgram(g.backgroundProgram.id());
-               glBindVertexArray(g.emptyVertexArray.id());
-               glDrawArrays(GL_TRIANGLES, 0, 3);
-               for (GLuint i = 1; i < 4; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-
-               glEnable(GL_DEPTH_TEST);
-               glDepthFunc(GL_LESS);
-               glDepthMask(GL_TRUE);
-               glEnable(GL_MULTISAMPLE);
-               const GLuint program = g.meshProgram.id();
-               glUseProgram(program);
-               for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
-                 const SceneObject& o = scene_.objects[i];
-                 if (o.proxy) continue;
-                 const glm::mat4 normalMatrix = glm::transpose(glm::inverse(o.transform));
-                 glProgramUniformMatrix4fv(program, 0, 1, GL_FALSE, &o.transform[0][0]);
-                 glProgramUniformMatrix4fv(program, 4, 1, GL_FALSE, &normalMatrix[0][0]);
-                 glProgramUniform3fv(program, 8, 1, &o.material.color[0]);
-                 glProgramUniform1f(program, 9, o.material.specular);
-                 glProgramUniform1f(program, 10, o.material.shininess);
-                 glProgramUniform1i(program, 11, int(i));
-                 const auto lines = o.params.find("lines");
-                 const bool objectLines = lines == o.params.end() || std::get<bool>(lines->second);
-                 glProgramUniform1f(program, 12, objectLines ? 1.0f : 0.0f);
-                 glBindVertexArray(g.meshes[i].vertexArray.id());
-                 glDrawElements(GL_TRIANGLES, g.meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
-               }
-             }});
-  if (lines)
-    f.addPass({.name = "lines",
-               .reads = {"sceneNormal", "scenePosition", "sceneObjectId"},
-               .writes = {"lines"},
-               .run = [this](const PassContext&) {
+             .reads = cutawayInputs,
+             .writes = {"sceneColor", "sceneNormal", "scenePosition", "sceneObjectId",
+                        "sceneCutMask", "sceneDepth"},
+             .run = [this](const PassContext& pass) { drawGeometry(pass.framebuffer); }});
+  if (g.ghosts) {
+    f.addPass({.name = "ghostGeometry",
+               .reads = cutawayInputs,
+               .writes = {"ghostNormal", "ghostPosition", "ghostObjectId", "ghostDepth"},
+               .run = [this](const PassContext& pass) {
                  const Impl& g = *impl_;
-                 const LineStyle& l = *scene_.style.lines;
-                 const GLuint program = g.linesProgram.id();
-                 glDisable(GL_DEPTH_TEST);
-                 glUseProgram(program);
-                 glBindTextureUnit(0, frame_->texture("sceneNormal").id());
-                 glBindTextureUnit(1, frame_->texture("scenePosition").id());
-                 glBindTextureUnit(2, frame_->texture("sceneObjectId").id());
-                 glProgramUniform1i(program, 0, scene_.samples);
-                 glProgramUniform1i(program, 1, std::max(1, int(std::lround(l.width))));
-                 glProgramUniform1f(program, 2, std::cos(glm::radians(l.creaseAngle)));
-                 glProgramUniform1f(program, 3, l.depthThreshold);
-                 glProgramUniform1i(program, 4, l.silhouettes ? 1 : 0);
-                 glProgramUniform1i(program, 5, l.creases ? 1 : 0);
-                 glBindVertexArray(g.emptyVertexArray.id());
-                 glDrawArrays(GL_TRIANGLES, 0, 3);
+                 const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+                 const GLint noObject[4] = {-1, 0, 0, 0};
+                 glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, 0, zero);
+                 glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, 1, zero);
+                 glClearNamedFramebufferiv(pass.framebuffer, GL_COLOR, 2, noObject);
+                 glClearNamedFramebufferfv(pass.framebuffer, GL_DEPTH, 0, &one);
+                 glEnable(GL_DEPTH_TEST);
+                 glDepthFunc(GL_LESS);
+                 glDepthMask(GL_TRUE);
+                 g.adaptive->bindForClipping();
+                 const GLuint program = g.ghostProgram.id();
+                 glProgramUniform1f(program, kGhostDistance, g.ghostDistance);
+                 g.sceneGpu.draw(
+                     program, [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; },
+                     [&](const SceneObject&, std::size_t i) { glProgramUniform1i(program, kObjectId, int(i)); });
+               }});
+  }
+  if (g.lines || g.outlines) {
+    std::vector<std::string> reads{"sceneNormal", "scenePosition", "sceneObjectId"};
+    std::vector<std::string> writes{"lines"};
+    if (g.outlines) reads.push_back("sceneCutMask"), writes.push_back("cutOutlines");
+    f.addPass({.name = "lines", .reads = reads, .writes = writes,
+               .run = [this](const PassContext&) {
+                 drawLines(impl_->linesProgram.id(), "scene", scene_.style.lines.has_value());
+               }});
+  }
+  if (g.ghosts)
+    f.addPass({.name = "ghostLines",
+               .reads = {"ghostNormal", "ghostPosition", "ghostObjectId"},
+               .writes = {"ghostLines"},
+               .run = [this](const PassContext&) {
+                 drawLines(impl_->ghostLinesProgram.id(), "ghost", true);
                }});
   std::vector<std::string> compositeReads{"sceneColor", "sceneNormal", "scenePosition",
-                                          "sceneObjectId", "sceneDepth"};
-  if (lines) compositeReads.push_back("lines");
+                                          "sceneObjectId", "sceneDepth", "sceneCutMask"};
+  for (const char* optional : {"lines", "cutOutlines", "ghostLines"})
+    if (f.has(optional)) compositeReads.push_back(optional);
   f.addPass({.name = "composite",
              .reads = compositeReads,
-             .writes = {"color", "normal", "position", "viewDepth", "objectId", "depth"},
-             .run = [this, lines](const PassContext&) {
-               const Impl& g = *impl_;
-               const GLuint program = g.compositeProgram.id();
-               glDisable(GL_DEPTH_TEST);
-               glUseProgram(program);
-               const char* inputs[] = {"sceneColor", "sceneNormal", "scenePosition",
-                                       "sceneObjectId", "sceneDepth"};
-               for (GLuint unit = 0; unit < 5; ++unit)
-                 glBindTextureUnit(unit, frame_->texture(inputs[unit]).id());
-               if (lines) glBindTextureUnit(5, frame_->texture("lines").id());
-               glProgramUniform1i(program, 0, scene_.samples);
-               glProgramUniform1i(program, 1, lines ? 1 : 0);
-               if (lines) glProgramUniform3fv(program, 2, 1, &scene_.style.lines->color[0]);
-               glBindVertexArray(g.emptyVertexArray.id());
-               glDrawArrays(GL_TRIANGLES, 0, 3);
-             }});
+             .writes = {"color", "normal", "position", "viewDepth", "objectId", "depth", "cutMask"},
+             .run = [this](const PassContext&) { composite(); }});
 }
 
 Renderer::~Renderer() = default;
 
-void Renderer::render(const Camera& camera) {
+const char* Renderer::cutawayComputePath() const {
+  return impl_->adaptive ? impl_->adaptive->computePath() : nullptr;
+}
+
+void Renderer::drawGeometry(GLuint framebuffer) {
+  const Impl& g = *impl_;
+  const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+  const GLint noObject[4] = {-1, 0, 0, 0};
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 2, zero);
+  glClearNamedFramebufferiv(framebuffer, GL_COLOR, 3, noObject);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 4, zero);
+  glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
+  // Background gradient into the colour target only.
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  for (GLuint i = 1; i < 5; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glUseProgram(g.backgroundProgram.id());
+  glBindVertexArray(g.emptyVertexArray.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  for (GLuint i = 1; i < 5; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  if (g.adaptive) g.adaptive->bindForClipping();
+  const GLuint program = g.meshProgram.id();
+  const AdaptiveCutawayOptions* adaptive = scene_.adaptive ? &*scene_.adaptive : nullptr;
+  auto setUniforms = [&](const SceneObject& o, std::size_t i) {
+    glProgramUniform3fv(program, kColor, 1, &o.material.color[0]);
+    glProgramUniform1f(program, kSpecular, o.material.specular);
+    glProgramUniform1f(program, kShininess, o.material.shininess);
+    glProgramUniform1i(program, kObjectId, int(i));
+    const auto lines = o.params.find("lines");
+    const bool objectLines = lines == o.params.end() || std::get<bool>(lines->second);
+    glProgramUniform1f(program, kLines, objectLines ? 1.0f : 0.0f);
+    // Objects of interest are never cut (Burns08 §4.1).
+    const bool clipped = adaptive && o.role != Role::Interest;
+    glProgramUniform1i(program, kClipped, clipped);
+    using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
+    const bool cutSurface =
+        adaptive && (adaptive->cutSurfaces == CutSurfaces::All ||
+                     (adaptive->cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight));
+    glProgramUniform1i(program, kCutSurface, cutSurface);
+    const glm::vec3 cutColor = adaptive && adaptive->cutSurfaceColor ? *adaptive->cutSurfaceColor
+                                                                     : o.material.color * 0.8f;
+    glProgramUniform3fv(program, kCutColor, 1, &cutColor[0]);
+  };
+  // Secondary objects first, clipped; then the objects of interest, whole (Burns08 §4.1).
+  g.sceneGpu.draw(program, [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; },
+                  setUniforms);
+  g.sceneGpu.draw(program, [](const SceneObject& o) { return !o.proxy && o.role == Role::Interest; },
+                  setUniforms);
+}
+
+void Renderer::drawLines(GLuint program, const std::string& buffer, bool featureLines) {
+  static const LineStyle kDefault;
+  const LineStyle& l = scene_.style.lines ? *scene_.style.lines : kDefault;
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(program);
+  glBindTextureUnit(0, frame_->texture(buffer + "Normal").id());
+  glBindTextureUnit(1, frame_->texture(buffer + "Position").id());
+  glBindTextureUnit(2, frame_->texture(buffer + "ObjectId").id());
+  if (frame_->has(buffer + "CutMask")) glBindTextureUnit(3, frame_->texture(buffer + "CutMask").id());
+  glProgramUniform1i(program, 0, scene_.samples);
+  glProgramUniform1i(program, 1, std::max(1, int(std::lround(l.width))));
+  glProgramUniform1f(program, 2, std::cos(glm::radians(l.creaseAngle)));
+  glProgramUniform1f(program, 3, l.depthThreshold);
+  glProgramUniform1i(program, 4, featureLines && l.silhouettes);
+  glProgramUniform1i(program, 5, featureLines && l.creases);
+  glBindVertexArray(impl_->emptyVertexArray.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void Renderer::composite() {
+  const Impl& g = *impl_;
+  const GLuint program = g.compositeProgram.id();
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(program);
+  const char* inputs[] = {"sceneColor", "sceneNormal", "scenePosition", "sceneObjectId",
+                          "sceneDepth", "lines", "cutOutlines", "ghostLines", "sceneCutMask"};
+  for (GLuint unit = 0; unit < 9; ++unit)
+    if (frame_->has(inputs[unit])) glBindTextureUnit(unit, frame_->texture(inputs[unit]).id());
+  glProgramUniform1i(program, 0, scene_.samples);
+  glProgramUniform1i(program, 1, g.lines || g.outlines);
+  const glm::vec3 lineColor = scene_.style.lines ? scene_.style.lines->color : glm::vec3(0.0f);
+  glProgramUniform3fv(program, 2, 1, &lineColor[0]);
+  glProgramUniform1i(program, 3, g.outlines);
+  const glm::vec3 outlineColor = scene_.adaptive ? scene_.adaptive->outlineColor : glm::vec3(0.0f);
+  glProgramUniform3fv(program, 4, 1, &outlineColor[0]);
+  glProgramUniform1i(program, 5, g.ghosts);
+  glProgramUniform1f(program, 6, scene_.adaptive ? scene_.adaptive->ghostOpacity : 0.0f);
+  glBindVertexArray(g.emptyVertexArray.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void Renderer::render(const Camera& camera, float time) {
+  impl_->sceneGpu.setTime(time);
   const float aspect = float(scene_.width) / float(scene_.height);
   FrameUniforms u{};
   u.view = camera.view();
   u.projection = camera.projectionMatrix(aspect);
   u.viewProjection = u.projection * u.view;
+  u.inverseProjection = glm::inverse(u.projection);
+  u.inverseView = glm::inverse(u.view);
+  u.viewport = glm::vec4(scene_.width, scene_.height, 1.0f / scene_.width, 1.0f / scene_.height);
   u.eye = glm::vec4(camera.eye, 1.0f);
   u.forward = glm::vec4(glm::normalize(camera.target - camera.eye), 0.0f);
-  const glm::mat4 cameraToWorld = glm::inverse(u.view);
   int count = 0;
   for (const auto& light : scene_.lights) {
-    if (count == 8) break;
     const bool point = light.type == Light::Type::Point;
     glm::vec4 v = point ? glm::vec4(light.position, 1.0f) : glm::vec4(light.direction, 0.0f);
-    if (light.cameraSpace) v = cameraToWorld * v;
+    if (light.cameraSpace) v = u.inverseView * v;
     u.lightVector[count] = v;
     u.lightColor[count] = glm::vec4(light.color * light.intensity, 1.0f);
     ++count;
@@ -237,6 +315,7 @@ void Renderer::render(const Camera& camera) {
   u.styleParams = glm::vec4(scene_.style.blinnPhong.ambient, 0, 0, 0);
   glNamedBufferSubData(impl_->frameUniforms.id(), 0, sizeof u, &u);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, impl_->frameUniforms.id());
+  if (impl_->adaptive) impl_->adaptive->setCamera(camera, aspect);
   frame_->execute();
 }
 

@@ -19,6 +19,8 @@ const std::vector<ObjectParamSpec>& objectParameterSpecs() {
   static const std::vector<ObjectParamSpec> specs{
       {"lines", ObjectParamSpec::Type::Bool, 0, 0,
        "draw silhouette and crease lines on this object (styles/lines)"},
+      {"cutawayAngle", ObjectParamSpec::Type::Number, 0, 90,
+       "local cutaway angle θ in degrees of an object of interest (Burns11 §6.2.1)"},
   };
   return specs;
 }
@@ -26,6 +28,43 @@ const std::vector<ObjectParamSpec>& objectParameterSpecs() {
 const std::vector<std::string>& styleNames() {
   static const std::vector<std::string> names{"gooch", "blinn-phong"};
   return names;
+}
+
+glm::mat4 Trs::matrix() const {
+  return glm::translate(glm::mat4(1.0f), translate) * glm::mat4_cast(rotate) *
+         glm::scale(glm::mat4(1.0f), scale);
+}
+
+glm::mat4 SceneObject::transformAt(float time) const {
+  if (animation.empty()) return transform;
+  if (time <= animation.front().time) return animation.front().trs.matrix() * transform;
+  if (time >= animation.back().time) return animation.back().trs.matrix() * transform;
+  std::size_t i = 1;
+  while (animation[i].time < time) ++i;
+  const Keyframe& a = animation[i - 1];
+  const Keyframe& b = animation[i];
+  const float u = (time - a.time) / (b.time - a.time);
+  const Trs k{glm::mix(a.trs.translate, b.trs.translate, u), glm::slerp(a.trs.rotate, b.trs.rotate, u),
+              glm::mix(a.trs.scale, b.trs.scale, u)};
+  return k.matrix() * transform;
+}
+
+Bounds SceneObject::worldBounds() const {
+  Bounds b;
+  if (!mesh) return b;
+  const Bounds local = mesh->bounds();
+  if (animation.empty()) return local.transformed(transform);
+  // Keyframes bound translation; rotations between them can only sweep so far, so sample.
+  const float start = animation.front().time, end = animation.back().time;
+  for (int i = 0; i <= 32; ++i) b.extend(local.transformed(transformAt(start + (end - start) * float(i) / 32.0f)));
+  return b;
+}
+
+float Scene::duration() const {
+  float d = camera.path.empty() ? 0.0f : camera.path.back().time;
+  for (const auto& o : objects)
+    if (!o.animation.empty()) d = std::max(d, o.animation.back().time);
+  return d;
 }
 
 glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
@@ -51,8 +90,23 @@ const SceneObject* Scene::find(const std::string& name) const {
   return nullptr;
 }
 
-Camera Scene::resolvedCamera() const {
+Camera Scene::resolvedCamera(float time) const {
   Camera c = camera;
+  if (!c.path.empty()) {
+    c.fit = false;
+    const auto& p = c.path;
+    if (time <= p.front().time || p.size() == 1) {
+      c.eye = p.front().eye, c.target = p.front().target;
+    } else if (time >= p.back().time) {
+      c.eye = p.back().eye, c.target = p.back().target;
+    } else {
+      std::size_t i = 1;
+      while (p[i].time < time) ++i;
+      const float u = (time - p[i - 1].time) / (p[i].time - p[i - 1].time);
+      c.eye = glm::mix(p[i - 1].eye, p[i].eye, u);
+      c.target = glm::mix(p[i - 1].target, p[i].target, u);
+    }
+  }
   const Bounds b = bounds();
   const glm::vec3 center = b.empty() ? glm::vec3(0.0f) : b.center();
   const float radius = std::max(b.radius(), 1e-3f);

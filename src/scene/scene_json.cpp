@@ -2,6 +2,7 @@
 // the JSON pointer and the reason; unknown keys are errors.
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -143,6 +144,64 @@ std::regex regex(const Context& ctx, const json& j, const std::string& ptr) {
   }
 }
 
+// translate / rotate / scale keys of a transform or keyframe, read from `r`.
+Trs readTrs(const Context& ctx, ObjectReader& r) {
+  Trs out;
+  if (const json* v = r.take("translate")) out.translate = vec3(ctx, *v, r.at("translate"));
+  if (const json* v = r.take("rotate")) {
+    if (v->is_array()) {  // Euler angles in degrees, applied about x, then y, then z
+      const glm::vec3 e = glm::radians(vec3(ctx, *v, r.at("rotate")));
+      out.rotate = glm::angleAxis(e.z, glm::vec3(0, 0, 1)) * glm::angleAxis(e.y, glm::vec3(0, 1, 0)) *
+                   glm::angleAxis(e.x, glm::vec3(1, 0, 0));
+    } else {
+      ObjectReader rr(ctx, *v, r.at("rotate"));
+      const glm::vec3 axis = direction(ctx, rr.require("axis"), rr.at("axis"));
+      const double degrees = number(ctx, rr.require("degrees"), rr.at("degrees"), -1e6, 1e6);
+      rr.finish();
+      out.rotate = glm::angleAxis(glm::radians(float(degrees)), axis);
+    }
+  }
+  if (const json* v = r.take("scale")) {
+    const glm::vec3 k = v->is_number() ? glm::vec3(float(number(ctx, *v, r.at("scale"), -1e30, 1e30)))
+                                       : vec3(ctx, *v, r.at("scale"));
+    // Per component: the product would reject small uniform scales (0.0001³ < 1e-12).
+    for (int i = 0; i < 3; ++i)
+      if (!(std::abs(k[i]) >= std::numeric_limits<float>::min())) ctx.fail(r.at("scale"), "scale must not be zero");
+    out.scale = k;
+  }
+  return out;
+}
+
+std::vector<Keyframe> animation(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected a non-empty array of keyframes");
+  std::vector<Keyframe> keys;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
+    const float time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
+    if (!keys.empty() && time <= keys.back().time) ctx.fail(r.at("time"), "keyframe times must increase");
+    keys.push_back({time, readTrs(ctx, r)});
+    r.finish();
+  }
+  return keys;
+}
+
+std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected a non-empty array of camera keys");
+  std::vector<CameraKey> keys;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
+    CameraKey k;
+    k.time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
+    if (!keys.empty() && k.time <= keys.back().time) ctx.fail(r.at("time"), "camera key times must increase");
+    k.eye = vec3(ctx, r.require("eye"), r.at("eye"));
+    k.target = vec3(ctx, r.require("target"), r.at("target"));
+    if (glm::length(k.eye - k.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
+    r.finish();
+    keys.push_back(k);
+  }
+  return keys;
+}
+
 glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
   ObjectReader r(ctx, j, ptr);
   if (const json* m = r.take("matrix")) {
@@ -166,34 +225,9 @@ glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
     r.finish();
     return out;
   }
-  glm::mat4 t(1.0f), rot(1.0f), s(1.0f);
-  if (const json* v = r.take("translate")) t = glm::translate(glm::mat4(1.0f), vec3(ctx, *v, r.at("translate")));
-  if (const json* v = r.take("rotate")) {
-    if (v->is_array()) {  // Euler angles in degrees, applied about x, then y, then z
-      const glm::vec3 e = vec3(ctx, *v, r.at("rotate"));
-      for (int axis : {0, 1, 2}) {
-        glm::vec3 a(0.0f);
-        a[axis] = 1.0f;
-        rot = glm::rotate(glm::mat4(1.0f), glm::radians(e[axis]), a) * rot;
-      }
-    } else {
-      ObjectReader rr(ctx, *v, r.at("rotate"));
-      const glm::vec3 axis = direction(ctx, rr.require("axis"), rr.at("axis"));
-      const double degrees = number(ctx, rr.require("degrees"), rr.at("degrees"), -1e6, 1e6);
-      rr.finish();
-      rot = glm::rotate(glm::mat4(1.0f), glm::radians(float(degrees)), axis);
-    }
-  }
-  if (const json* v = r.take("scale")) {
-    glm::vec3 k = v->is_number() ? glm::vec3(float(number(ctx, *v, r.at("scale"), -1e30, 1e30)))
-                                 : vec3(ctx, *v, r.at("scale"));
-    // Per component: the product would reject small uniform scales (0.0001³ < 1e-12).
-    for (int i = 0; i < 3; ++i)
-      if (!(std::abs(k[i]) >= std::numeric_limits<float>::min())) ctx.fail(r.at("scale"), "scale must not be zero");
-    s = glm::scale(glm::mat4(1.0f), k);
-  }
+  const Trs trs = readTrs(ctx, r);
   r.finish();
-  return t * rot * s;
+  return trs.matrix();
 }
 
 Role role(const Context& ctx, const json& j, const std::string& ptr) {
@@ -269,6 +303,7 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
   SceneObject base;
   base.name = name;
   base.transform = m;
+  if (const json* v = r.take("animation")) base.animation = animation(ctx, *v, r.at("animation"));
   const bool colorGiven = r.has("color");
   appearance(ctx, r, base, true);
 
@@ -349,6 +384,7 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
   const json* hullOf = r.take("hullOf");
   if (!!box == !!hullOf) ctx.fail(ptr, "a proxy needs exactly one of \"box\" or \"hullOf\"");
   if (const json* v = r.take("transform")) o.transform = transform(ctx, *v, r.at("transform"));
+  if (const json* v = r.take("animation")) o.animation = animation(ctx, *v, r.at("animation"));
   appearance(ctx, r, o, false);
   r.finish();
   if (box) {
@@ -385,10 +421,12 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
     c.projection = oneOf(ctx, *v, r.at("projection"), {"perspective", "orthographic"}) == "perspective"
                        ? Projection::Perspective : Projection::Orthographic;
   if (const json* v = r.take("fit")) c.fit = boolean(ctx, *v, r.at("fit"));
+  if (const json* v = r.take("path")) c.path = cameraPath(ctx, *v, r.at("path"));
   const json* eye = r.take("eye");
   const json* target = r.take("target");
-  if (!c.fit && (!eye || !target))
-    ctx.fail(ptr, "a camera needs \"eye\" and \"target\", or \"fit\": true");
+  if (!c.fit && c.path.empty() && (!eye || !target))
+    ctx.fail(ptr, "a camera needs \"eye\" and \"target\", a \"path\", or \"fit\": true");
+  if (!c.path.empty() && !eye && !target) c.eye = c.path.front().eye, c.target = c.path.front().target;
   if (eye) c.eye = vec3(ctx, *eye, r.at("eye"));
   if (target) c.target = vec3(ctx, *target, r.at("target"));
   if (eye && target && glm::length(c.eye - c.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
@@ -418,6 +456,64 @@ Light light(const Context& ctx, const json& j, const std::string& ptr) {
   if (const json* v = r.take("space")) l.cameraSpace = oneOf(ctx, *v, r.at("space"), {"camera", "world"}) == "camera";
   r.finish();
   return l;
+}
+
+AdaptiveCutawayOptions adaptiveCutaway(const Context& ctx, const json& j, const std::string& ptr) {
+  AdaptiveCutawayOptions o;
+  if (j.is_boolean()) {
+    if (!j.get<bool>()) ctx.fail(ptr, "use true or an object (leave the key out to disable)");
+    return o;
+  }
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("angle")) o.angle = float(number(ctx, *v, r.at("angle"), 0, 90));
+  if (const json* v = r.take("bufferSize")) o.bufferSize = integer(ctx, *v, r.at("bufferSize"), 16, 8192);
+  if (const json* v = r.take("perspectiveCompensation"))
+    o.perspectiveCompensation = boolean(ctx, *v, r.at("perspectiveCompensation"));
+  if (const json* v = r.take("edgeCompression")) {
+    if (v->is_number()) {
+      o.edgeRegion = float(number(ctx, *v, r.at("edgeCompression"), 1e-3, 1));
+    } else {
+      o.edgeCompression = boolean(ctx, *v, r.at("edgeCompression"));
+    }
+  }
+  if (const json* v = r.take("floorNormal")) {
+    o.directionalConstraint = true;
+    o.floorNormal = direction(ctx, *v, r.at("floorNormal"));
+  }
+  if (const json* v = r.take("directionalConstraint"))
+    o.directionalConstraint = boolean(ctx, *v, r.at("directionalConstraint"));
+  if (const json* v = r.take("jumpFlooding")) {
+    const std::string name = oneOf(ctx, *v, r.at("jumpFlooding"), {"jfa", "jfa+1", "1+jfa", "jfa+2"});
+    fields::parseVariant(name, o.variant);
+  }
+  if (const json* v = r.take("compute")) {
+    const std::string c = oneOf(ctx, *v, r.at("compute"), {"auto", "gpu", "cpu"});
+    o.compute = c == "gpu" ? AdaptiveCutawayOptions::Compute::Gpu
+              : c == "cpu" ? AdaptiveCutawayOptions::Compute::Cpu
+                           : AdaptiveCutawayOptions::Compute::Auto;
+  }
+  if (const json* v = r.take("cutSurfaces")) {
+    const std::string c = oneOf(ctx, *v, r.at("cutSurfaces"), {"all", "watertight", "none"});
+    o.cutSurfaces = c == "all" ? AdaptiveCutawayOptions::CutSurfaces::All
+                  : c == "watertight" ? AdaptiveCutawayOptions::CutSurfaces::Watertight
+                                      : AdaptiveCutawayOptions::CutSurfaces::None;
+  }
+  if (const json* v = r.take("cutSurfaceColor")) o.cutSurfaceColor = color(ctx, *v, r.at("cutSurfaceColor"));
+  if (const json* v = r.take("outlines")) o.outlines = boolean(ctx, *v, r.at("outlines"));
+  if (const json* v = r.take("outlineColor")) o.outlineColor = color(ctx, *v, r.at("outlineColor"));
+  if (const json* v = r.take("ghostLines")) {
+    if (v->is_boolean()) {
+      o.ghostLines = v->get<bool>();
+    } else {
+      ObjectReader g(ctx, *v, r.at("ghostLines"));
+      o.ghostLines = true;
+      if (const json* x = g.take("distance")) o.ghostDistance = float(number(ctx, *x, g.at("distance"), 0, 1e30));
+      if (const json* x = g.take("opacity")) o.ghostOpacity = float(number(ctx, *x, g.at("opacity"), 0, 1));
+      g.finish();
+    }
+  }
+  r.finish();
+  return o;
 }
 
 Style style(const Context& ctx, const json& j, const std::string& ptr) {
@@ -518,6 +614,11 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     }
   }
   if (const json* v = r.take("style")) scene.style = style(ctx, *v, "/style");
+  if (const json* v = r.take("cutters")) {
+    ObjectReader cr(ctx, *v, "/cutters");
+    if (const json* a = cr.take("adaptive")) scene.adaptive = adaptiveCutaway(ctx, *a, "/cutters/adaptive");
+    cr.finish();
+  }
   if (const json* v = r.take("lights")) {
     if (!v->is_array()) ctx.fail("/lights", "expected an array, got " + typeName(*v));
     if (v->size() > kMaxLights)

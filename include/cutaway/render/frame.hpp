@@ -45,7 +45,8 @@ struct PassDesc {
 
 struct PassTiming {
   std::string name;
-  double gpuMs;
+  double gpuMs;  // GL_TIME_ELAPSED
+  double cpuMs;  // wall time of the pass's own code (CPU kernels, command submission)
 };
 
 class Frame {
@@ -84,6 +85,7 @@ class Frame {
   std::map<std::string, Target> targets_;
   std::vector<std::string> order_;
   std::vector<Pass> passes_;
+  std::vector<double> cpuMs_;
   bool prepared_ = false;
 };
 

@@ -38,10 +38,11 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Renders one frame with `camera` (already resolved: near/far set), or the scene's
-  // resolved camera.
-  void render(const Camera& camera);
-  void render() { render(scene_.resolvedCamera()); }
+  // Renders one frame with `camera` (already resolved: near/far set) and the objects'
+  // animation at `time` seconds; or the scene's own camera at `time`.
+  void render(const Camera& camera, float time = 0.0f);
+  void render() { renderAt(0.0f); }
+  void renderAt(float time) { render(scene_.resolvedCamera(time), time); }
 
   Rgba8Image readColor() const;
   std::vector<Aov> readAovs() const;
@@ -49,8 +50,14 @@ class Renderer {
   const Frame& frame() const { return *frame_; }
   // The final colour texture (single sample, RGBA8), e.g. for a window's blit.
   GLuint colorTexture() const;
+  // Where the adaptive cutter's jump flooding runs ("gpu" or "cpu"), or null without it.
+  const char* cutawayComputePath() const;
 
  private:
+  void drawGeometry(GLuint framebuffer);
+  void drawLines(GLuint program, const std::string& buffer, bool featureLines);
+  void composite();
+
   struct Impl;
   const Scene& scene_;
   std::unique_ptr<Impl> impl_;

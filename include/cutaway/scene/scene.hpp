@@ -19,7 +19,9 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
+#include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
@@ -46,6 +48,20 @@ struct ObjectParamSpec {
 };
 const std::vector<ObjectParamSpec>& objectParameterSpecs();
 
+// Translation, rotation, scale; as a matrix T·R·S.
+struct Trs {
+  glm::vec3 translate{0.0f};
+  glm::quat rotate{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 scale{1.0f};
+  glm::mat4 matrix() const;
+};
+
+// A keyframe of an object's motion (Burns08 Fig. 10: objects moving through the scene).
+struct Keyframe {
+  float time;  // seconds
+  Trs trs;
+};
+
 struct SceneObject {
   std::string name;
   std::string group;                // optional group name ("" = none)
@@ -57,11 +73,21 @@ struct SceneObject {
   ObjectParams params;
   std::shared_ptr<const Mesh> mesh; // in object space
   glm::mat4 transform{1.0f};        // object → world
+  // Motion, applied on top of `transform`: world = K(t)·transform, with K interpolated
+  // between keyframes (translation and scale linearly, rotation by slerp), held at the ends.
+  std::vector<Keyframe> animation;
 
-  Bounds worldBounds() const { return mesh ? mesh->bounds().transformed(transform) : Bounds{}; }
+  glm::mat4 transformAt(float time) const;
+  // Bounds in world space over the whole animation (at every keyframe).
+  Bounds worldBounds() const;
 };
 
 enum class Projection { Perspective, Orthographic };
+
+struct CameraKey {
+  float time;
+  glm::vec3 eye, target;
+};
 
 struct Camera {
   Projection projection = Projection::Perspective;
@@ -70,6 +96,7 @@ struct Camera {
   float height = 2.0f;       // world units of the view's height, orthographic
   float near = 0, far = 0;   // 0: derived from the scene bounds
   bool fit = false;          // place eye/target so the scene fills the view
+  std::vector<CameraKey> path;        // eye/target over time (overrides eye, target, fit)
 
   glm::mat4 view() const;
   glm::mat4 projectionMatrix(float aspect) const;
@@ -119,11 +146,16 @@ struct Scene {
   int width = 800, height = 600;
   int samples = 4;  // MSAA samples of the final image
   Style style;
+  std::optional<AdaptiveCutawayOptions> adaptive;  // "cutters": {"adaptive": {…}}
 
   // Bounds of the visible (non-proxy) objects in world space.
   Bounds bounds() const;
   // Resolves "fit" and derived near/far planes into concrete camera values.
-  Camera resolvedCamera() const;
+  Camera resolvedCamera() const { return resolvedCamera(0.0f); }
+  // The same at `time`: the camera path (if any) interpolated, then resolved.
+  Camera resolvedCamera(float time) const;
+  // Length of the animation: the last keyframe or camera key (0 for a still scene).
+  float duration() const;
   const SceneObject* find(const std::string& name) const;
 };
 

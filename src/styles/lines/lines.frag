@@ -2,9 +2,13 @@
 // Image-space feature lines, evaluated per MSAA sample and averaged into a coverage value so
 // the lines come out anti-aliased:
 // - silhouettes: the nearer side of an object-id change, or of a view-depth discontinuity
-//   within one object (second difference of view depth across the pixel above a threshold
-//   relative to the depth, which ignores smooth slopes);
-// - creases: normals of one object meeting at more than the crease angle.
+//   within one object (relative second difference of inverse view depth, or of depth for
+//   orthographic views, across the pixel above a threshold: zero on planes at any slant);
+// - creases: normals of one object meeting at more than the crease angle;
+// - with CUT_OUTLINES, the outline of the cut surfaces (Burns08 §4.2): cut-mask pixels next
+//   to a pixel outside the mask.
+// A line's weight is the normal's w: 0 for objects without lines, a fade for ghost lines.
+#include "../../render/frame_uniforms.glsl"
 layout(binding = 0) uniform sampler2DMS uNormal;     // world normal, w: lines flag
 layout(binding = 1) uniform sampler2DMS uPosition;   // w: linear view depth
 layout(binding = 2) uniform isampler2DMS uObjectId;  // -1: background
@@ -15,6 +19,20 @@ layout(location = 3) uniform float uDepthThreshold;
 layout(location = 4) uniform int uSilhouettes;
 layout(location = 5) uniform int uCreases;
 layout(location = 0) out float outCoverage;
+#ifdef CUT_OUTLINES
+layout(binding = 3) uniform sampler2DMS uCutMask;
+layout(location = 1) out float outOutlineCoverage;
+
+float outline(ivec2 p, int s) {
+  if (texelFetch(uCutMask, p, s).r < 0.5) return 0.0;
+  ivec2 last = textureSize(uCutMask) - 1;
+  const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
+  for (int r = 1; r <= uRadius; ++r)
+    for (int k = 0; k < 4; ++k)
+      if (texelFetch(uCutMask, clamp(p + r * offsets[k], ivec2(0), last), s).r < 0.5) return 1.0;
+  return 0.0;
+}
+#endif
 
 const float kFar = 1e30;
 
@@ -28,7 +46,7 @@ float edge(ivec2 p, int s) {
   float d = viewDepth(p, s, id);
   if (id < 0) return 0.0;
   vec4 n = texelFetch(uNormal, p, s);
-  if (n.w < 0.5) return 0.0;
+  if (n.w <= 0.0) return 0.0;
   ivec2 last = textureSize(uObjectId) - 1;
   const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
   for (int r = 1; r <= uRadius; ++r) {
@@ -37,15 +55,21 @@ float edge(ivec2 p, int s) {
       int idq;
       float dq = viewDepth(q, s, idq);
       if (uSilhouettes != 0 && dq > d) {
-        if (idq != id) return 1.0;
+        // A different object only counts if it is really behind: coplanar objects (a door in
+        // its wall) z-fight, and their ids alternate pixel by pixel.
+        if (idq != id && dq > d * (1.0 + 1e-4)) return n.w;
         int idOpposite;
         float dOpposite = viewDepth(clamp(p - r * offsets[k], ivec2(0), last), s, idOpposite);
-        if (idOpposite == id && abs(dq + dOpposite - 2.0 * d) > uDepthThreshold * d) return 1.0;
+        // On a plane, inverse depth (perspective) or depth (orthographic) is affine in screen
+        // space, so its second difference is zero however grazing the plane, and large across
+        // a depth discontinuity.
+        float jump = uCounts.y == 1 ? (dq + dOpposite) / d - 2.0 : d / dq + d / dOpposite - 2.0;
+        if (idOpposite == id && abs(jump) > uDepthThreshold) return n.w;
       }
       // Creases: compare with the +x and +y neighbours only, so a crease is one line thick.
       if (uCreases != 0 && k < 2 && idq == id &&
           dot(n.xyz, texelFetch(uNormal, q, s).xyz) < uCreaseCos)
-        return 1.0;
+        return n.w;
     }
   }
   return 0.0;
@@ -56,4 +80,9 @@ void main() {
   float coverage = 0.0;
   for (int s = 0; s < uSamples; ++s) coverage += edge(p, s);
   outCoverage = coverage / float(uSamples);
+#ifdef CUT_OUTLINES
+  float outlines = 0.0;
+  for (int s = 0; s < uSamples; ++s) outlines += outline(p, s);
+  outOutlineCoverage = outlines / float(uSamples);
+#endif
 }

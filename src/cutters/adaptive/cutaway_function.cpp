@@ -1,0 +1,94 @@
+// Burns08 / Burns11 cone math for one seed pixel; mirrored line by line in anchors.frag.
+#include <algorithm>
+#include <cmath>
+
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace cutaway {
+
+namespace {
+float clamp01(float x) { return std::clamp(x, 0.0f, 1.0f); }
+float smoothstep(float a, float b, float x) {
+  const float t = clamp01((x - a) / (b - a));
+  return t * t * (3.0f - 2.0f * t);
+}
+constexpr float kPi = 3.14159265358979f;
+// θ = 0 would make the slope infinite: keep a sliver of angle (walls along the view rays).
+constexpr float kMinAngle = 1e-4f;
+constexpr float kFloorMargin = 2.0f * kPi / 180.0f;
+}  // namespace
+
+AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOptions& o,
+                      const CutawayProjection& camera) {
+  const glm::mat4& P = camera.projection;
+  // Burns11 eq. 5.8: narrow cones near the screen edge, so objects entering the view do not
+  // pop in with a full-size cutaway.
+  float thetaE = theta;
+  if (o.edgeCompression)
+    thetaE *= clamp01((1.0f - std::abs(ndc.x)) / o.edgeRegion) *
+              clamp01((1.0f - std::abs(ndc.y)) / o.edgeRegion);
+  float thetaF = thetaE;
+  glm::vec2 floor(0.0f);
+  if (o.directionalConstraint) {
+    const glm::mat4 inverse = glm::inverse(P);
+    const glm::vec4 h = inverse * glm::vec4(ndc, 1.0f);
+    const glm::vec3 point = glm::vec3(h) / h.w;  // view space
+    const glm::vec3 toEye = camera.orthographic ? glm::vec3(0, 0, 1) : glm::normalize(-point);
+    const glm::vec3 n = glm::normalize(camera.viewRotation * o.floorNormal);
+    // Eq. 6.1: φ, the largest angle that keeps the cone off a surface with normal n.
+    // (= asin(n·v), computed as in anchors.frag)
+    const float nv = std::clamp(glm::dot(n, toEye), -1.0f, 1.0f);
+    const float phi = std::atan2(nv, std::sqrt(1.0f - nv * nv));
+    // Eq. 6.2: clamp θ to φ above the floor, open back to θ within 10° below it. The clamp
+    // keeps kFloorMargin below φ: at exactly φ the wall of a seed resting on the floor lies
+    // in the floor plane and the floor flickers between cut and kept (depth precision).
+    thetaF = std::clamp(thetaE, 0.0f, std::max(phi - kFloorMargin, 0.0f)) +
+             thetaE * smoothstep(0.0f, kPi / 18.0f, -phi);
+    // Eq. 6.3's n̂_proj: the screen direction of n at the seed, d/dt of the projection of
+    // point + t·n (quotient rule, no finite difference), in view-plane units.
+    const glm::vec4 c = P * glm::vec4(point, 1.0f), dc = P * glm::vec4(n, 0.0f);
+    const glm::vec2 d = (glm::vec2(dc) * c.w - glm::vec2(c) * dc.w) / glm::vec2(P[0][0], P[1][1]);
+    const float len = glm::length(d);
+    if (len > 1e-9f) floor = d / len;
+  }
+  auto slope = [&](float angle) {
+    const float t = std::tan(std::clamp(angle, kMinAngle, kPi / 2.0f));
+    if (!o.perspectiveCompensation) return P[1][1] / t;  // Burns08 §3: fixed screen-space slope
+    if (camera.orthographic) return std::abs(P[2][2]) / t;  // exact: depth is linear
+    // Burns11 eq. 5.7: m = −(PM_sz + z)/tan θ, PM_sz = (n + f)/(n − f) = P[2][2].
+    return -(P[2][2] + ndc.z) / t;
+  };
+  return {slope(thetaE), slope(thetaF), floor};
+}
+
+bool cutawayOnCpu(const AdaptiveCutawayOptions& options, bool softwareRenderer) {
+  return options.compute == AdaptiveCutawayOptions::Compute::Cpu ||
+         (options.compute == AdaptiveCutawayOptions::Compute::Auto && softwareRenderer);
+}
+
+CutawayProjection cutawayProjection(const Camera& camera, float aspect) {
+  return {camera.projectionMatrix(aspect), glm::mat3(camera.view()),
+          camera.projection == Projection::Orthographic};
+}
+
+fields::SeedImage makeSeedImage(const std::vector<float>& seedDepth,
+                                const std::vector<float>& seedAngle, int n,
+                                const AdaptiveCutawayOptions& options,
+                                const CutawayProjection& camera) {
+  // View-plane units per buffer pixel: Δndc / P00 horizontally, Δndc / P11 vertically.
+  fields::SeedImage seeds(n, n, 2.0f / float(n) / camera.projection[0][0],
+                          2.0f / float(n) / camera.projection[1][1]);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(n) + std::size_t(x);
+      if (seedDepth[i] <= 0.0f) continue;  // cleared to the near plane: no seed
+      const glm::vec3 ndc((float(x) + 0.5f) / float(n) * 2.0f - 1.0f,
+                          (float(y) + 0.5f) / float(n) * 2.0f - 1.0f, seedDepth[i] * 2.0f - 1.0f);
+      const AnchorCone cone = anchorCone(ndc, seedAngle[i], options, camera);
+      seeds.set(x, y, ndc.z, cone.slopeE, cone.slopeF, cone.floor.x, cone.floor.y);
+    }
+  return seeds;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,25 @@
+#version 450 core
+// Ghost geometry (Burns08 §4.3): front faces of removed material up to a distance in front
+// of the cutaway surface, written to a G-buffer whose feature lines are drawn faded. Kept
+// front faces are written too, with weight 0: they fill the G-buffer where the removed layer
+// ends at the cut, so that boundary (already drawn as the cut outline) is no silhouette.
+#include "../../render/frame_uniforms.glsl"
+#include "clip.glsl"
+in vec3 vWorldPosition;
+in vec3 vWorldNormal;
+layout(location = 11) uniform int uObjectId;
+layout(location = 17) uniform float uGhostDistance;
+layout(location = 1) out vec4 outNormal;    // w: fade
+layout(location = 2) out vec4 outPosition;  // w: linear view depth
+layout(location = 3) out int outObjectId;
+void main() {
+  if (!gl_FrontFacing) discard;
+  bool removed = gl_FragCoord.z < texture(uCutawayDepth, gl_FragCoord.xy * uViewport.zw).r;
+  float fade = removed ? ghostFade(vWorldPosition, uGhostDistance) : 0.0;
+  if (removed && fade <= 0.0) discard;  // beyond the ghost distance
+  vec3 n = vWorldNormal;
+  if (dot(n, n) < 1e-12) n = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
+  outNormal = vec4(normalize(n), fade);
+  outPosition = vec4(vWorldPosition, -(uView * vec4(vWorldPosition, 1.0)).z);
+  outObjectId = uObjectId;
+}

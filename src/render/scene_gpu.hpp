@@ -1,0 +1,41 @@
+// The scene's meshes on the GPU, and the one loop that draws them; shared by the geometry
+// pass and the cutters' passes (region-of-interest seeding, ghost geometry).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "cutaway/gl/objects.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace cutaway {
+
+// Uniform locations of src/render/mesh.vert, used by every program drawing scene meshes.
+namespace meshUniform {
+constexpr GLint kModel = 0, kNormalMatrix = 4;
+}
+
+class SceneGpu {
+ public:
+  explicit SceneGpu(const Scene& scene);
+  // Draws, with `program`, every object for which `which` is true: sets the transforms of
+  // meshUniform, then calls `perObject` (index in scene.objects) for the program's own
+  // uniforms. Proxies have meshes too (cutters seed from them).
+  void draw(GLuint program, const std::function<bool(const SceneObject&)>& which,
+            const std::function<void(const SceneObject&, std::size_t)>& perObject) const;
+  const Scene& scene() const { return scene_; }
+  // The animation time at which objects are drawn (SceneObject::transformAt).
+  void setTime(float time) { time_ = time; }
+
+ private:
+  struct Mesh {
+    gl::VertexArray vertexArray;
+    gl::Buffer vertices, indices;
+    GLsizei indexCount = 0;
+  };
+  const Scene& scene_;
+  std::vector<Mesh> meshes_;
+  float time_ = 0.0f;
+};
+
+}  // namespace cutaway
