@@ -173,3 +173,46 @@ TEST(Cli, HelpEverywhere) {
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << command << ": " << r.out;
   }
 }
+
+// --frames renders the animation (Burns08 Fig. 10: a moving object of interest drags its
+// cutaway along); --time renders one instant of it, identical to the matching frame.
+TEST(Cli, FramesAndTimeRenderTheAnimation) {
+  const std::string scene = kData + "/render/moving-box.json";
+  const fs::path pattern = scratch("move_%02d.png");
+  const Result frames = run("render " + scene + " --frames 3 -o " + pattern.string());
+  ASSERT_EQ(frames.exitCode, 0) << frames.err;
+  for (int i = 1; i <= 3; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "move_%02d.png", i);
+    EXPECT_TRUE(fs::exists(scratch(name))) << name;
+  }
+  const fs::path middle = scratch("middle.png");
+  const Result single = run("render " + scene + " --time 1 -o " + middle.string() + " --aov " +
+                            scratch("middle-aovs").string());
+  ASSERT_EQ(single.exitCode, 0) << single.err;
+  EXPECT_EQ(readPng(middle).pixels, readPng(scratch("move_02.png")).pixels);
+  // At t = 1 the box is at x = -0.5…0.5: the wall is cut in front of it, at the centre.
+  const FloatImage id = readPfm(scratch("middle-aovs") / "objectId.pfm");
+  EXPECT_EQ(id.at(24, 16)[0], 1.0f);
+  EXPECT_EQ(id.at(2, 16)[0], 0.0f);
+  const Result bad = run("render " + scene + " --frames 2 -o " + scratch("a_%d_%d.png").string());
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.err.find("one %d"), std::string::npos) << bad.err;
+}
+
+// With a cutter, bench measures the plain frame and the cutaway on both compute paths, at
+// 512² and 1024², with the CPU references and the jump-flooding accuracy.
+TEST(Cli, BenchComparesPlainAndCutaway) {
+  const Result r = run("bench " + kData + "/render/moving-box.json --frames 1 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto result = nlohmann::json::parse(r.out);
+  std::vector<std::string> labels;
+  for (const auto& run : result["runs"]) labels.push_back(run["label"]);
+  EXPECT_EQ(labels, (std::vector<std::string>{"plain", "cutaway 512 gpu", "cutaway 512 cpu",
+                                              "cutaway 1024 gpu", "cutaway 1024 cpu"}));
+  EXPECT_EQ(result["runs"][2]["computePath"], "cpu");
+  EXPECT_GT(result["runs"][2]["cutawaySurfaceMs"].get<double>(), 0.0);
+  for (const char* variant : {"jfa", "jfa+1", "1+jfa", "jfa+2"})
+    EXPECT_LE(result["jumpFloodingErrorFraction"][variant].get<double>(), 0.05) << variant;
+  EXPECT_TRUE(result["cpuReferencesMs"].contains("chamfer 5x5 512"));
+}
