@@ -188,3 +188,28 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
   for (std::size_t i = 0; i < mask.data.size(); ++i)
     if (mask.data[i] > 0.5f) ASSERT_EQ(id.data[i], 0.0f) << i;
 }
+
+// Burns08 §4.3: ghost lines show the silhouettes of removed material near the cut, fading
+// with distance in front of the cutaway surface; nothing is drawn for kept material.
+TEST(AdaptiveCutaway, GhostLinesShowRemovedMaterialOnly) {
+  auto ghostCoverage = [](float distance) {
+    char json[1200];
+    std::snprintf(json, sizeof json, R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
+        "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 40},
+        "cutters": {"adaptive": {"angle": 30, "bufferSize": 128, "ghostLines": {"distance": %g}}},
+        "objects": [
+          {"name": "plate", "file": "meshes/cube.obj", "transform": {"translate": [-0.3, -0.3, 3], "scale": 0.6}},
+          {"name": "cube", "file": "meshes/cube.obj", "role": "interest",
+           "transform": {"translate": [-0.5, -0.5, -0.5]}}]})", distance);
+    const auto aovs = renderAovs(parseScene(json, "ghost.json", kData));
+    double sum = 0;
+    for (float g : find(aovs, "ghostLines").image.data) sum += g;
+    EXPECT_EQ(find(aovs, "objectId").image.at(40, 30)[0], 1.0f);  // the small plate is removed
+    return sum;
+  };
+  // The plate's front face lies ~2.5 units in front of the cutaway surface.
+  EXPECT_EQ(ghostCoverage(0.5f), 0.0);  // beyond the ghost distance: no ghost
+  const double near = ghostCoverage(5.0f), far = ghostCoverage(50.0f);
+  EXPECT_GT(near, 1.0);
+  EXPECT_GT(far, near);  // a longer distance fades less
+}

@@ -174,7 +174,9 @@ TEST(Timer, PassTimesAddUpToWallClock) {
     }
   }
   // A timer cannot measure more than the wall clock (10% + 1 ms for query overhead); on a
-  // software rasteriser the GPU work is the frame, so it must explain at least a third of it.
+  // software rasteriser the GPU work is most of the frame, so it must explain at least a fifth
+  // of it even with another test process competing for the two cores (without the flush the
+  // queries measure next to nothing).
   EXPECT_LE(gpu, wall * 1.1 + 1.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
-  if (test::glContext().info().software) EXPECT_GE(gpu, wall / 3.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
+  if (test::glContext().info().software) EXPECT_GE(gpu, wall / 5.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
 }

@@ -9,11 +9,15 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/fields/cutaway_surface.hpp"
 #include "cutaway/scene/scene.hpp"
 
 // Readable failure messages for glm values (found by argument-dependent lookup).
@@ -110,6 +114,11 @@ const BadScene kBadScenes[] = {
     {"camera_far_below_near.json", "/camera/far", "far must be greater than near"},
     {"camera_without_eye.json", "/camera", "needs \"eye\" and \"target\", a \"path\", or \"fit\": true"},
     {"camera_fov_too_wide.json", "/camera/fov", "value 180 is outside [1, 170]"},
+    // Camera paths.
+    {"camera_path_eye_equals_target.json", "/camera/path/1/eye", "eye and target coincide"},
+    {"camera_path_times_not_increasing.json", "/camera/path/1/time", "camera key times must increase"},
+    {"camera_path_key_without_target.json", "/camera/path/0", "missing required key \"target\""},
+    {"camera_path_empty.json", "/camera/path", "expected a non-empty array of camera keys"},
     // Style.
     {"style_unknown_name.json", "/style", "unknown value \"toon\""},
     {"style_unknown_line_key.json", "/style/lines/thickness", "unknown key \"thickness\""},
@@ -119,6 +128,31 @@ const BadScene kBadScenes[] = {
     {"light_unknown_type.json", "/lights/0/type", "unknown value \"spot\""},
     {"light_point_with_direction.json", "/lights/0/direction", "unknown key \"direction\""},
     {"light_too_many.json", "/lights", "at most 8 lights, got 9"},
+    // Cutters: the adaptive cutaway.
+    {"cutters_unknown_cutter.json", "/cutters/diepstraten", "unknown key \"diepstraten\" (expected one of: adaptive)"},
+    {"cutters_not_an_object.json", "/cutters", "expected an object, got string"},
+    {"adaptive_false.json", "/cutters/adaptive", "use true or an object"},
+    {"adaptive_unknown_key.json", "/cutters/adaptive/anlge", "unknown key \"anlge\""},
+    {"adaptive_angle_95.json", "/cutters/adaptive/angle", "value 95 is outside [0, 90]"},
+    {"adaptive_buffer_size_8.json", "/cutters/adaptive/bufferSize", "value 8 is outside [16, 8192]"},
+    {"adaptive_buffer_size_not_integer.json", "/cutters/adaptive/bufferSize", "expected an integer, got number"},
+    {"adaptive_bad_jump_flooding.json", "/cutters/adaptive/jumpFlooding",
+     "unknown value \"jfa+3\" (expected one of: jfa, jfa+1, 1+jfa, jfa+2)"},
+    {"adaptive_bad_compute.json", "/cutters/adaptive/compute", "unknown value \"cuda\" (expected one of: auto, gpu, cpu)"},
+    {"adaptive_bad_cut_surfaces.json", "/cutters/adaptive/cutSurfaces", "unknown value \"closed\""},
+    {"adaptive_edge_compression_zero.json", "/cutters/adaptive/edgeCompression", "value 0 is outside [0.001, 1]"},
+    {"adaptive_floor_normal_zero.json", "/cutters/adaptive/floorNormal", "must not be the zero vector"},
+    {"adaptive_ghost_lines_unknown_key.json", "/cutters/adaptive/ghostLines/width",
+     "unknown key \"width\" (expected one of: distance, opacity)"},
+    {"adaptive_ghost_opacity_above_one.json", "/cutters/adaptive/ghostLines/opacity", "value 1.5 is outside [0, 1]"},
+    {"object_cutaway_angle_120.json", "/objects/0/params/cutawayAngle", "value 120 is outside [0, 90]"},
+    // Animation.
+    {"animation_times_not_increasing.json", "/objects/0/animation/1/time", "keyframe times must increase"},
+    {"animation_keyframe_without_time.json", "/objects/0/animation/1", "missing required key \"time\""},
+    {"animation_empty.json", "/objects/0/animation", "expected a non-empty array of keyframes"},
+    {"animation_negative_time.json", "/objects/0/animation/0/time", "value -1 is outside [0, 1e+06]"},
+    {"animation_keyframe_matrix.json", "/objects/0/animation/0/matrix", "unknown key \"matrix\""},
+    {"animation_proxy_zero_scale.json", "/proxies/0/animation/1/scale", "scale must not be zero"},
 };
 
 void PrintTo(const BadScene& bad, std::ostream* os) { *os << bad.file; }
@@ -247,6 +281,10 @@ TEST(SceneLoad, MinimalSceneGetsTheDefaults) {
   EXPECT_FLOAT_EQ(s.camera.fovY, 40.0f);
   EXPECT_EQ(s.camera.near, 0.0f);
   EXPECT_EQ(s.camera.far, 0.0f);
+  EXPECT_TRUE(s.camera.path.empty());
+  // No cutter, no motion.
+  EXPECT_FALSE(s.adaptive.has_value());
+  EXPECT_EQ(s.duration(), 0.0f);
 
   ASSERT_EQ(s.objects.size(), 1u);
   const SceneObject& o = s.objects[0];
@@ -258,6 +296,8 @@ TEST(SceneLoad, MinimalSceneGetsTheDefaults) {
   EXPECT_FALSE(o.proxy);
   EXPECT_TRUE(o.params.empty());
   EXPECT_EQ(o.transform, glm::mat4(1.0f));
+  EXPECT_TRUE(o.animation.empty());
+  EXPECT_EQ(o.transformAt(5.0f), o.transform);
   EXPECT_FLOAT_EQ(o.material.specular, 0.25f);
   EXPECT_FLOAT_EQ(o.material.shininess, 32.0f);
   ASSERT_TRUE(o.mesh);
@@ -537,6 +577,240 @@ TEST(SceneLoad, WatertightnessReports) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// "cutters": {"adaptive": …}: the adaptive cutaway's options (Burns08; Burns11 ch. 4–6).
+
+// Every field of `o` equals the documented default (docs/scene-format.md, cutters.adaptive).
+void expectAdaptiveDefaults(const AdaptiveCutawayOptions& o, const std::string& label) {
+  SCOPED_TRACE(label);
+  EXPECT_FLOAT_EQ(o.angle, 45.0f);
+  EXPECT_EQ(o.bufferSize, 512);
+  EXPECT_TRUE(o.perspectiveCompensation);
+  EXPECT_TRUE(o.edgeCompression);
+  EXPECT_FLOAT_EQ(o.edgeRegion, 0.1f);
+  EXPECT_FALSE(o.directionalConstraint);
+  EXPECT_EQ(o.floorNormal, glm::vec3(0, 1, 0));
+  EXPECT_EQ(o.variant, fields::JumpFloodingVariant::jfaPlus1);
+  EXPECT_STREQ(fields::variantName(o.variant), "jfa+1");
+  EXPECT_EQ(o.compute, AdaptiveCutawayOptions::Compute::Auto);
+  EXPECT_EQ(o.cutSurfaces, AdaptiveCutawayOptions::CutSurfaces::All);
+  EXPECT_FALSE(o.cutSurfaceColor.has_value());
+  EXPECT_TRUE(o.outlines);
+  EXPECT_EQ(o.outlineColor, glm::vec3(0.0f));
+  EXPECT_FALSE(o.ghostLines);
+  EXPECT_EQ(o.ghostDistance, 0.0f);
+  EXPECT_FLOAT_EQ(o.ghostOpacity, 0.4f);
+}
+
+TEST(SceneAdaptive, TrueAndAnEmptyObjectGiveTheDefaults) {
+  const Scene on = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+                             "cutters": {"adaptive": true}})");
+  ASSERT_TRUE(on.adaptive.has_value());
+  expectAdaptiveDefaults(*on.adaptive, "adaptive: true");
+  const Scene empty = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+                                "cutters": {"adaptive": {}}})");
+  ASSERT_TRUE(empty.adaptive.has_value());
+  expectAdaptiveDefaults(*empty.adaptive, "adaptive: {}");
+  // The parser's defaults are the struct's.
+  expectAdaptiveDefaults(AdaptiveCutawayOptions{}, "AdaptiveCutawayOptions{}");
+  // "cutters": {} names no cutter: none runs.
+  const Scene none = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {}})");
+  EXPECT_FALSE(none.adaptive.has_value());
+}
+
+TEST(SceneAdaptive, EveryKeyIsRead) {
+  const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+    "cutters": {"adaptive": {
+      "angle": 30, "bufferSize": 256, "perspectiveCompensation": false, "edgeCompression": 0.25,
+      "floorNormal": [0, 0, 2], "directionalConstraint": true, "jumpFlooding": "jfa+2",
+      "compute": "cpu", "cutSurfaces": "watertight", "cutSurfaceColor": [0.9, 0.1, 0.1],
+      "outlines": false, "outlineColor": [0.2, 0.3, 0.4],
+      "ghostLines": {"distance": 0.5, "opacity": 0.7}}}})");
+  ASSERT_TRUE(s.adaptive.has_value());
+  const AdaptiveCutawayOptions& o = *s.adaptive;
+  EXPECT_FLOAT_EQ(o.angle, 30.0f);
+  EXPECT_EQ(o.bufferSize, 256);
+  EXPECT_FALSE(o.perspectiveCompensation);
+  EXPECT_TRUE(o.edgeCompression);  // a number sets r and keeps compression on
+  EXPECT_FLOAT_EQ(o.edgeRegion, 0.25f);
+  EXPECT_TRUE(o.directionalConstraint);
+  EXPECT_VEC3_NEAR(o.floorNormal, glm::vec3(0, 0, 1), 1e-6f);  // normalised
+  EXPECT_EQ(o.variant, fields::JumpFloodingVariant::jfaPlus2);
+  EXPECT_EQ(o.compute, AdaptiveCutawayOptions::Compute::Cpu);
+  EXPECT_EQ(o.cutSurfaces, AdaptiveCutawayOptions::CutSurfaces::Watertight);
+  ASSERT_TRUE(o.cutSurfaceColor.has_value());
+  EXPECT_EQ(*o.cutSurfaceColor, glm::vec3(0.9f, 0.1f, 0.1f));
+  EXPECT_FALSE(o.outlines);
+  EXPECT_EQ(o.outlineColor, glm::vec3(0.2f, 0.3f, 0.4f));
+  EXPECT_TRUE(o.ghostLines);
+  EXPECT_FLOAT_EQ(o.ghostDistance, 0.5f);
+  EXPECT_FLOAT_EQ(o.ghostOpacity, 0.7f);
+}
+
+TEST(SceneAdaptive, ShortFormsAndInteractions) {
+  const auto adaptive = [](const std::string& body) {
+    const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": )" +
+                          body + "}}");
+    EXPECT_TRUE(s.adaptive.has_value()) << body;
+    return s.adaptive.value_or(AdaptiveCutawayOptions{});
+  };
+  // edgeCompression: false turns eq. 5.8 off and leaves r alone.
+  const AdaptiveCutawayOptions noEdge = adaptive(R"({"edgeCompression": false})");
+  EXPECT_FALSE(noEdge.edgeCompression);
+  EXPECT_FLOAT_EQ(noEdge.edgeRegion, 0.1f);
+  EXPECT_TRUE(adaptive(R"({"edgeCompression": true})").edgeCompression);
+  EXPECT_FLOAT_EQ(adaptive(R"({"edgeCompression": 1})").edgeRegion, 1.0f);
+  // floorNormal alone enables the directional constraint; an explicit false wins whatever
+  // the order of the keys; directionalConstraint alone uses the default floor normal +y.
+  const AdaptiveCutawayOptions floor = adaptive(R"({"floorNormal": [0, 0, -3]})");
+  EXPECT_TRUE(floor.directionalConstraint);
+  EXPECT_VEC3_NEAR(floor.floorNormal, glm::vec3(0, 0, -1), 1e-6f);
+  for (const char* body : {R"({"floorNormal": [0, 0, 1], "directionalConstraint": false})",
+                           R"({"directionalConstraint": false, "floorNormal": [0, 0, 1]})"}) {
+    const AdaptiveCutawayOptions off = adaptive(body);
+    EXPECT_FALSE(off.directionalConstraint) << body;
+    EXPECT_VEC3_NEAR(off.floorNormal, glm::vec3(0, 0, 1), 1e-6f);
+  }
+  const AdaptiveCutawayOptions plain = adaptive(R"({"directionalConstraint": true})");
+  EXPECT_TRUE(plain.directionalConstraint);
+  EXPECT_EQ(plain.floorNormal, glm::vec3(0, 1, 0));
+  // ghostLines: true, or an object (even an empty one), turns them on with the defaults for
+  // what it leaves out; false keeps them off.
+  for (const char* body : {R"({"ghostLines": true})", R"({"ghostLines": {}})"}) {
+    const AdaptiveCutawayOptions g = adaptive(body);
+    EXPECT_TRUE(g.ghostLines) << body;
+    EXPECT_EQ(g.ghostDistance, 0.0f) << body;  // 0: 5% of the scene radius, chosen by the renderer
+    EXPECT_FLOAT_EQ(g.ghostOpacity, 0.4f) << body;
+  }
+  EXPECT_FLOAT_EQ(adaptive(R"({"ghostLines": {"opacity": 1}})").ghostDistance, 0.0f);
+  EXPECT_FALSE(adaptive(R"({"ghostLines": false})").ghostLines);
+  // Range ends are allowed.
+  EXPECT_FLOAT_EQ(adaptive(R"({"angle": 0})").angle, 0.0f);
+  EXPECT_FLOAT_EQ(adaptive(R"({"angle": 90})").angle, 90.0f);
+  EXPECT_EQ(adaptive(R"({"bufferSize": 16})").bufferSize, 16);
+  EXPECT_EQ(adaptive(R"({"bufferSize": 8192})").bufferSize, 8192);
+  EXPECT_FLOAT_EQ(adaptive(R"({"edgeCompression": 0.001})").edgeRegion, 0.001f);
+}
+
+TEST(SceneAdaptive, EnumeratedValues) {
+  const auto adaptive = [](const std::string& key, const std::string& value) {
+    const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": {")" +
+                          key + "\": \"" + value + "\"}}}");
+    return s.adaptive.value_or(AdaptiveCutawayOptions{});
+  };
+  using V = fields::JumpFloodingVariant;
+  const std::pair<const char*, V> variants[] = {
+      {"jfa", V::jfa}, {"jfa+1", V::jfaPlus1}, {"1+jfa", V::onePlusJfa}, {"jfa+2", V::jfaPlus2}};
+  for (const auto& [name, variant] : variants) {
+    EXPECT_EQ(adaptive("jumpFlooding", name).variant, variant) << name;
+    EXPECT_STREQ(fields::variantName(variant), name);
+  }
+  using C = AdaptiveCutawayOptions::Compute;
+  EXPECT_EQ(adaptive("compute", "auto").compute, C::Auto);
+  EXPECT_EQ(adaptive("compute", "gpu").compute, C::Gpu);
+  EXPECT_EQ(adaptive("compute", "cpu").compute, C::Cpu);
+  using S = AdaptiveCutawayOptions::CutSurfaces;
+  EXPECT_EQ(adaptive("cutSurfaces", "all").cutSurfaces, S::All);
+  EXPECT_EQ(adaptive("cutSurfaces", "watertight").cutSurfaces, S::Watertight);
+  EXPECT_EQ(adaptive("cutSurfaces", "none").cutSurfaces, S::None);
+}
+
+TEST(SceneAdaptive, CutawayAngleIsAPerObjectNumber) {
+  const Scene s = parse(R"({
+    "objects": [{"name": "parts", "file": "two_parts.obj", "split": "nodes", "role": "interest",
+                 "params": {"cutawayAngle": 20},
+                 "overrides": [{"match": "pin", "params": {"cutawayAngle": 60}}]}],
+    "proxies": [{"name": "roi", "box": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                 "params": {"cutawayAngle": 90}}],
+    "cutters": {"adaptive": {"angle": 35}}})");
+  ASSERT_TRUE(s.find("parts/body") && s.find("parts/pin") && s.find("roi"));
+  EXPECT_EQ(std::get<double>(s.find("parts/body")->params.at("cutawayAngle")), 20.0);
+  EXPECT_EQ(std::get<double>(s.find("parts/pin")->params.at("cutawayAngle")), 60.0);
+  EXPECT_EQ(std::get<double>(s.find("roi")->params.at("cutawayAngle")), 90.0);
+  // Declared among the object parameters, with its range.
+  const auto& specs = objectParameterSpecs();
+  const auto spec = std::find_if(specs.begin(), specs.end(), [](const ObjectParamSpec& p) { return p.name == "cutawayAngle"; });
+  ASSERT_NE(spec, specs.end());
+  EXPECT_EQ(spec->type, ObjectParamSpec::Type::Number);
+  EXPECT_EQ(spec->min, 0.0);
+  EXPECT_EQ(spec->max, 90.0);
+}
+
+// ---------------------------------------------------------------------------------------------
+// "animation": keyframes K(t) on top of the static transform, world = K(t) · transform.
+
+TEST(SceneAnimation, TransformAtKeyframesBetweenThemAndPastTheEnds) {
+  // Static transform: uniform scale 2. Keyframes at t = 1 (identity) and t = 3 (translate
+  // (4,0,0), 90° about z, scale 3).
+  const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj",
+      "transform": {"scale": 2},
+      "animation": [{"time": 1},
+                    {"time": 3, "translate": [4, 0, 0], "rotate": {"axis": [0, 0, 1], "degrees": 90},
+                     "scale": 3}]}]})");
+  const SceneObject& o = s.objects[0];
+  ASSERT_EQ(o.animation.size(), 2u);
+  EXPECT_EQ(o.animation[0].time, 1.0f);
+  EXPECT_EQ(o.animation[1].time, 3.0f);
+  EXPECT_EQ(o.animation[0].trs.matrix(), glm::mat4(1.0f));  // a keyframe without TRS keys is identity
+  EXPECT_VEC3_NEAR(apply(o.transform, {1, 0, 0}), glm::vec3(2, 0, 0), kEps);  // static part unchanged
+
+  // At the keyframes: K(1) = I, so (1,0,0) → S2 (2,0,0). K(3): (2,0,0) → S3 (6,0,0) →
+  // Rz(90°) (0,6,0) → T (4,6,0). (transform · K would give (8,12,0) instead.)
+  EXPECT_VEC3_NEAR(apply(o.transformAt(1.0f), {1, 0, 0}), glm::vec3(2, 0, 0), kEps);
+  EXPECT_VEC3_NEAR(apply(o.transformAt(3.0f), {1, 0, 0}), glm::vec3(4, 6, 0), kEps);
+  // Held before the first keyframe and after the last.
+  EXPECT_EQ(o.transformAt(0.0f), o.transformAt(1.0f));
+  EXPECT_EQ(o.transformAt(100.0f), o.transformAt(3.0f));
+
+  // Halfway (t = 2): translation (2,0,0), scale 2, rotation 45°: (1,0,0) → S2 (2,0,0) →
+  // S2 (4,0,0) → Rz(45°) (2√2, 2√2, 0) → T (2 + 2√2, 2√2, 0).
+  const float r2 = std::sqrt(2.0f);
+  EXPECT_VEC3_NEAR(apply(o.transformAt(2.0f), {1, 0, 0}), glm::vec3(2 + 2 * r2, 2 * r2, 0), 1e-4f);
+  EXPECT_VEC3_NEAR(apply(o.transformAt(2.0f), {0, 0, 0}), glm::vec3(2, 0, 0), 1e-5f);  // translation only
+
+  // A quarter of the way (t = 1.5): slerp turns by exactly 22.5° at constant speed (nlerp of
+  // the quaternions would give 21.6°, a lerp of matrices would also shrink the vertex).
+  // Translation (1,0,0) and scale 1.5 are linear: (1,0,0) → S2 → S1.5 (3,0,0) → Rz(22.5°) → +T.
+  const glm::vec3 v = apply(o.transformAt(1.5f), {1, 0, 0}) - glm::vec3(1, 0, 0);
+  EXPECT_NEAR(glm::degrees(std::atan2(v.y, v.x)), 22.5f, 1e-3f);
+  EXPECT_NEAR(glm::length(v), 3.0f, 1e-5f);
+  EXPECT_NEAR(v.z, 0.0f, 1e-6f);
+}
+
+TEST(SceneAnimation, RotationTakesTheShorterArcAndEulerKeysWork) {
+  // Keys 270° apart about z: slerp goes the short way (−90°), so halfway is −45°.
+  const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj",
+      "animation": [{"time": 0, "rotate": [0, 0, 0]}, {"time": 1, "rotate": [0, 0, 270]}]}]})");
+  const float h = std::sqrt(0.5f);
+  EXPECT_VEC3_NEAR(apply(s.objects[0].transformAt(0.5f), {1, 0, 0}), glm::vec3(h, -h, 0), 1e-5f);
+  EXPECT_VEC3_NEAR(apply(s.objects[0].transformAt(1.0f), {1, 0, 0}), glm::vec3(0, -1, 0), 1e-5f);
+}
+
+TEST(SceneAnimation, ProxiesAndSplitNodesAreAnimatedAndBoundsCoverTheMotion) {
+  const Scene s = parse(R"({
+    "objects": [{"name": "parts", "file": "two_parts.obj", "split": "nodes",
+                 "animation": [{"time": 0}, {"time": 2, "translate": [0, 10, 0]}]}],
+    "proxies": [{"name": "roi", "box": {"min": [0, 0, 0], "max": [1, 1, 1]},
+                 "transform": {"translate": [5, 0, 0]},
+                 "animation": [{"time": 0.5, "scale": [1, 1, 1]}, {"time": 4, "scale": [3, 1, 1]}]}]})");
+  // Every node of a split file gets the object's animation.
+  for (const char* name : {"parts/body", "parts/pin"}) {
+    const SceneObject* o = s.find(name);
+    ASSERT_TRUE(o) << name;
+    ASSERT_EQ(o->animation.size(), 2u) << name;
+    EXPECT_VEC3_NEAR(apply(o->transformAt(1.0f), {0, 0, 0}), glm::vec3(0, 5, 0), 1e-5f);
+  }
+  // The proxy: K(t) · T(5,0,0); scale along x is linear, 2 at t = 2.25.
+  const SceneObject* roi = s.find("roi");
+  ASSERT_TRUE(roi);
+  EXPECT_VEC3_NEAR(apply(roi->transformAt(2.25f), {1, 0, 0}), glm::vec3(12, 0, 0), 1e-4f);
+  // Bounds span the whole motion (the still bounds are x ∈ [0, 4], y, z ∈ [0, 1]).
+  const Bounds b = s.bounds();
+  EXPECT_VEC3_NEAR(b.min, glm::vec3(0, 0, 0), kEps);
+  EXPECT_VEC3_NEAR(b.max, glm::vec3(4, 11, 1), kEps);
+  EXPECT_FLOAT_EQ(s.duration(), 4.0f);  // the proxy's last keyframe counts
+}
+
+// ---------------------------------------------------------------------------------------------
 // resolvedCamera(): "fit" frames the scene, and derived near/far planes enclose it.
 
 // The bounds' corners inside the view volume (clip-space |x|, |y|, |z| ≤ w), and the bounding
@@ -613,6 +887,81 @@ TEST(SceneCamera, DerivedPlanesEncloseTheSceneWithoutFit) {
   EXPECT_EQ(c.target, s.camera.target);
   EXPECT_LT(c.near, c.far);
   checkFramed(s, c, "explicit camera");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Camera paths and the scene's duration.
+
+TEST(SceneCamera, PathIsInterpolatedLinearlyAndHeldAtTheEnds) {
+  const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+    "camera": {"fov": 30, "path": [
+      {"time": 1, "eye": [0, 0, 10], "target": [0, 0, 0]},
+      {"time": 3, "eye": [10, 0, 0], "target": [2, 0, 0]},
+      {"time": 4, "eye": [10, 0, 10], "target": [2, 0, 0]}]}})");
+  ASSERT_EQ(s.camera.path.size(), 3u);
+  EXPECT_FALSE(s.camera.fit);
+  // No eye/target of its own: the static camera takes the first key's.
+  EXPECT_EQ(s.camera.eye, glm::vec3(0, 0, 10));
+  EXPECT_EQ(s.camera.target, glm::vec3(0, 0, 0));
+  struct Expect { float time; glm::vec3 eye, target; };
+  const Expect expected[] = {
+      {0.0f, {0, 0, 10}, {0, 0, 0}},   // before the first key: held
+      {1.0f, {0, 0, 10}, {0, 0, 0}},   // at a key
+      {2.0f, {5, 0, 5}, {1, 0, 0}},    // halfway between keys 0 and 1
+      {2.5f, {7.5f, 0, 2.5f}, {1.5f, 0, 0}},
+      {3.0f, {10, 0, 0}, {2, 0, 0}},
+      {3.5f, {10, 0, 5}, {2, 0, 0}},
+      {4.0f, {10, 0, 10}, {2, 0, 0}},
+      {50.0f, {10, 0, 10}, {2, 0, 0}},  // after the last key: held
+  };
+  const Bounds b = s.bounds();
+  for (const auto& e : expected) {
+    const Camera c = s.resolvedCamera(e.time);
+    const std::string label = "t = " + std::to_string(e.time);
+    SCOPED_TRACE(label);
+    EXPECT_VEC3_NEAR(c.eye, e.eye, 1e-5f);
+    EXPECT_VEC3_NEAR(c.target, e.target, 1e-5f);
+    EXPECT_FLOAT_EQ(c.fovY, 30.0f) << label;
+    EXPECT_EQ(c.up, glm::vec3(0, 1, 0)) << label;
+    // Near and far are derived again at every instant, around the scene's bounding sphere.
+    const float d = glm::length(b.center() - c.eye);
+    EXPECT_GT(c.near, 0.0f) << label;
+    EXPECT_NEAR(c.near, d - 1.05f * b.radius(), 1e-4f) << label;
+    EXPECT_NEAR(c.far, d + 1.05f * b.radius(), 1e-4f) << label;
+  }
+  // resolvedCamera() is the camera at t = 0.
+  EXPECT_EQ(s.resolvedCamera().eye, s.resolvedCamera(0.0f).eye);
+  EXPECT_FLOAT_EQ(s.duration(), 4.0f);
+}
+
+TEST(SceneCamera, PathOverridesEyeTargetAndFit) {
+  const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+    "camera": {"fit": true, "eye": [3, 3, 3], "target": [1, 1, 1],
+               "path": [{"time": 2, "eye": [0, 1, 8], "target": [0, 1, 0]}]}})");
+  EXPECT_TRUE(s.camera.fit);                      // kept as written…
+  EXPECT_EQ(s.camera.eye, glm::vec3(3, 3, 3));
+  for (float t : {0.0f, 2.0f, 9.0f}) {            // …but the single path key decides
+    const Camera c = s.resolvedCamera(t);
+    EXPECT_FALSE(c.fit);
+    EXPECT_EQ(c.eye, glm::vec3(0, 1, 8));
+    EXPECT_EQ(c.target, glm::vec3(0, 1, 0));
+  }
+  EXPECT_FLOAT_EQ(s.duration(), 2.0f);
+}
+
+TEST(SceneCamera, DurationIsTheLastKeyOfAnyObjectOrTheCameraPath) {
+  const std::string cube = R"({"name": "cube", "file": "cube.obj"})";
+  EXPECT_EQ(parse(R"({"objects": [)" + cube + "]}").duration(), 0.0f);
+  // A single keyframe at t = 0 moves nothing and lasts nothing.
+  EXPECT_EQ(parse(R"({"objects": [{"name": "cube", "file": "cube.obj",
+                                   "animation": [{"time": 0, "translate": [1, 0, 0]}]}]})").duration(), 0.0f);
+  EXPECT_FLOAT_EQ(parse(R"({"objects": [)" + cube + R"(],
+      "camera": {"path": [{"time": 0.5, "eye": [0, 0, 5], "target": [0, 0, 0]},
+                          {"time": 2.5, "eye": [5, 0, 5], "target": [0, 0, 0]}]}})").duration(), 2.5f);
+  EXPECT_FLOAT_EQ(parse(R"({"objects": [)" + cube + R"(,
+      {"name": "moving", "file": "tetra.obj", "animation": [{"time": 1}, {"time": 7, "translate": [0, 1, 0]}]}],
+      "camera": {"path": [{"time": 0, "eye": [0, 0, 5], "target": [0, 0, 0]},
+                          {"time": 4, "eye": [5, 0, 5], "target": [0, 0, 0]}]}})").duration(), 7.0f);
 }
 
 }  // namespace

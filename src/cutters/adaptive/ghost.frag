@@ -9,9 +9,9 @@ in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 layout(location = 11) uniform int uObjectId;
 layout(location = 17) uniform float uGhostDistance;
-layout(location = 1) out vec4 outNormal;    // w: fade
-layout(location = 2) out vec4 outPosition;  // w: linear view depth
-layout(location = 3) out int outObjectId;
+layout(location = 0) out vec4 outNormal;    // w: fade
+layout(location = 1) out vec4 outPosition;  // w: linear view depth
+layout(location = 2) out int outObjectId;
 void main() {
   if (!gl_FrontFacing) discard;
   bool removed = gl_FragCoord.z < texture(uCutawayDepth, gl_FragCoord.xy * uViewport.zw).r;
