@@ -39,6 +39,7 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.eye) c.eye = *o.eye;
   if (o.target) c.target = *o.target;
   if ((o.eye || o.target) && !o.fit) c.fit = false;
+  if (o.eye || o.target || o.fit) c.path.clear();  // an explicit camera replaces the path
   if (o.fit) c.fit = true;
   if (o.up) c.up = *o.up;
   if (o.fov) c.fovY = *o.fov;

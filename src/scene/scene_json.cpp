@@ -431,6 +431,9 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
   if (target) c.target = vec3(ctx, *target, r.at("target"));
   if (eye && target && glm::length(c.eye - c.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
   if (const json* v = r.take("up")) c.up = direction(ctx, *v, r.at("up"));
+  for (std::size_t i = 0; i < c.path.size(); ++i)
+    if (glm::length(glm::cross(glm::normalize(c.path[i].eye - c.path[i].target), c.up)) < 1e-6f)
+      ctx.fail(r.at("path") + "/" + std::to_string(i), "up is parallel to the viewing direction");
   // Checked on the defaults too: "fit" keeps the direction eye − target, whichever gave it.
   if (glm::length(c.eye - c.target) >= 1e-9f &&
       glm::length(glm::cross(glm::normalize(c.eye - c.target), c.up)) < 1e-6f)

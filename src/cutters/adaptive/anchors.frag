@@ -17,7 +17,7 @@ const float kMinAngle = 1e-4;
 const float kFloorMargin = 2.0 * kPi / 180.0;
 
 float slope(float angle, float z) {
-  float t = tan(clamp(angle, kMinAngle, kPi / 2.0));
+  float t = tan(clamp(angle, kMinAngle, kPi / 2.0 - kMinAngle));
   if (uCompensation == 0) return uProjection[1][1] / t;   // Burns08 §3
   if (uOrthographic != 0) return abs(uProjection[2][2]) / t;
   return -(uProjection[2][2] + z) / t;                     // Burns11 eq. 5.7

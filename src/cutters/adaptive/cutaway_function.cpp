@@ -14,7 +14,8 @@ float smoothstep(float a, float b, float x) {
   return t * t * (3.0f - 2.0f * t);
 }
 constexpr float kPi = 3.14159265358979f;
-// θ = 0 would make the slope infinite: keep a sliver of angle (walls along the view rays).
+// θ = 0 would make the slope infinite and tan(float(π/2)) is negative: keep a sliver of
+// angle away from both ends.
 constexpr float kMinAngle = 1e-4f;
 constexpr float kFloorMargin = 2.0f * kPi / 180.0f;
 }  // namespace
@@ -53,7 +54,7 @@ AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOp
     if (len > 1e-9f) floor = d / len;
   }
   auto slope = [&](float angle) {
-    const float t = std::tan(std::clamp(angle, kMinAngle, kPi / 2.0f));
+    const float t = std::tan(std::clamp(angle, kMinAngle, kPi / 2.0f - kMinAngle));
     if (!o.perspectiveCompensation) return P[1][1] / t;  // Burns08 §3: fixed screen-space slope
     if (camera.orthographic) return std::abs(P[2][2]) / t;  // exact: depth is linear
     // Burns11 eq. 5.7: m = −(PM_sz + z)/tan θ, PM_sz = (n + f)/(n − f) = P[2][2].
