@@ -1,10 +1,12 @@
 // cutaway/render/renderer.hpp — renders a Scene headless (or into a window's context).
 //
-// The frame: "geometry" draws the visible objects with the scene's style into multisampled
-// targets (colour, normal, world position + view depth, object id, depth); "lines" finds
-// silhouettes and creases per sample (styles/lines); "composite" resolves the samples into
-// the final colour with lines and copies sample 0 of every intermediate buffer into
-// single-sample AOVs.
+// The frame: with the adaptive cutter, its preparation passes first (seed, jump flooding,
+// dilation: src/cutters/adaptive/README.md); "geometry" draws the visible objects with the
+// scene's style and the cutter's clipping into multisampled targets (colour, normal, world
+// position + view depth, object id, cut mask, depth); "ghostGeometry" / "ghostLines" draw
+// removed material as faded lines; "lines" finds silhouettes, creases and cut outlines per
+// sample (styles/lines); "composite" resolves the samples into the final colour and copies
+// sample 0 of every intermediate buffer into single-sample AOVs.
 //
 //   auto context = cutaway::gl::HeadlessContext::create();
 //   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");
