@@ -298,6 +298,9 @@ struct JfaCase {
   int width, height;
   bool directional;
 };
+void PrintTo(const JfaCase& c, std::ostream* os) {
+  *os << c.width << "x" << c.height << (c.directional ? " directional" : "");
+}
 class JumpFloodingAgainstBruteForce : public ::testing::TestWithParam<JfaCase> {};
 
 TEST_P(JumpFloodingAgainstBruteForce, RarelyOffAndNeverAbove) {

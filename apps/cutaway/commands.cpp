@@ -160,14 +160,23 @@ int info(const std::string& path) {
                        {"normalsComputed", r.normalsComputed}});
   }
   const Camera c = scene.resolvedCamera();
-  const nlohmann::json out = {
+  nlohmann::json out = {
       {"scene", path},
       {"resolution", {scene.width, scene.height}},
       {"style", scene.style.name},
       {"triangles", triangles},
       {"bounds", boundsJson(scene.bounds())},
       {"camera", {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"near", c.near}, {"far", c.far}}},
+      {"duration", scene.duration()},
       {"objects", objects}};
+  if (const auto& a = scene.adaptive)
+    out["cutters"]["adaptive"] = {{"angle", a->angle},
+                                  {"bufferSize", a->bufferSize},
+                                  {"perspectiveCompensation", a->perspectiveCompensation},
+                                  {"edgeCompression", a->edgeCompression ? a->edgeRegion : 0.0f},
+                                  {"directionalConstraint", a->directionalConstraint},
+                                  {"jumpFlooding", fields::variantName(a->variant)},
+                                  {"ghostLines", a->ghostLines}};
   std::printf("%s\n", out.dump(2).c_str());
   return 0;
 }
@@ -343,10 +352,10 @@ int bench(const BenchOptions& options) {
   std::printf("%s, %dx%d, %d samples, %d frames on %s\n", options.scene.c_str(), scene.width,
               scene.height, scene.samples, options.frames, info.renderer.c_str());
   for (const auto& m : runs) {
-    // CPU: wall time inside the pass's code; for GPU passes on a software rasteriser it also
-    // holds waits for earlier passes.
-    std::printf("\n[%s]\n%-26s %10s %10s %10s %10s\n", m.label.c_str(), "pass", "GPU median",
-                "GPU min", "GPU max", "CPU median");
+    // CPU: wall time inside the pass's own code. On a software rasteriser a pass's commands
+    // run when the next pass flushes, so a GPU pass's CPU time holds the previous pass's work.
+    std::printf("\n[%s]\n%-26s %10s %10s %10s %10s\n", m.label.c_str(), "pass (ms)", "GPU median",
+                "GPU min", "GPU max", "CPU wall");
     for (const auto& p : m.passes)
       std::printf("%-26s %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), p.gpu.median, p.gpu.min,
                   p.gpu.max, p.cpu.median);

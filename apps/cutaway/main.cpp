@@ -26,9 +26,9 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
   auto vecOption = [&](const char* name, std::optional<glm::vec3>& target, const char* help) {
     command->add_option_function<std::string>(
         name,
-        [&target](const std::string& s) {
+        [&target, name](const std::string& s) {
           glm::vec3 v;
-          if (auto e = parseVec3(s, v); !e.empty()) throw CLI::ValidationError(e);
+          if (auto e = parseVec3(s, v); !e.empty()) throw CLI::ValidationError(name, e);
           target = v;
         },
         help);
@@ -81,7 +81,11 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "Render frames and report per-pass GPU times and "
                                             "frame times");
   bench->add_option("scene", benchOptions.scene, "Scene file (JSON)")->required();
-  bench->add_option("--frames", benchOptions.frames, "Frames to time (after one warm-up frame)")
+  bench->add_option("--frames", benchOptions.frames,
+                    "Frames to time per run (after one warm-up frame). With a cutter, bench runs "
+                    "the plain frame and the cutaway at 512² and 1024² on GPU and CPU paths, the "
+                    "CPU reference kernels and the jump-flooding accuracy: minutes on llvmpipe")
+      ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   bench->add_flag("--json", benchOptions.json, "Print JSON instead of a table");
   addSceneOverrides(bench, benchOptions.overrides);
