@@ -8,8 +8,8 @@
 
 namespace cutaway::test {
 
-GoldenResult compareWithGolden(const std::string& name, const Rgba8Image& image,
-                               int maxDifference, double meanDifference) {
+GoldenResult compareWithGolden(const std::string& name, const Rgba8Image& image, int maxDifference,
+                               double meanDifference) {
   const std::filesystem::path golden =
       std::filesystem::path(CUTAWAY_SOURCE_DIR) / "tests" / "golden" / (name + ".png");
   const char* regenerate = std::getenv("CUTAWAY_REGENERATE_GOLDENS");
@@ -38,8 +38,8 @@ GoldenResult compareWithGolden(const std::string& name, const Rgba8Image& image,
   }
   const double mean = sum / double(image.pixels.size());
   std::ostringstream message;
-  message << name << ": max difference " << maxSeen << " (allowed " << maxDifference
-          << "), mean " << mean << " (allowed " << meanDifference << ")";
+  message << name << ": max difference " << maxSeen << " (allowed " << maxDifference << "), mean "
+          << mean << " (allowed " << meanDifference << ")";
   const bool ok = maxSeen <= maxDifference && mean <= meanDifference;
   if (!ok) {
     const std::filesystem::path dir = "golden-failures";

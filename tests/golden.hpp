@@ -19,7 +19,7 @@ struct GoldenResult {
   std::string message;
 };
 
-GoldenResult compareWithGolden(const std::string& name, const Rgba8Image& image,
-                               int maxDifference, double meanDifference);
+GoldenResult compareWithGolden(const std::string& name, const Rgba8Image& image, int maxDifference,
+                               double meanDifference);
 
 }  // namespace cutaway::test

@@ -28,23 +28,29 @@ std::string randomBoxesScene(unsigned seed, bool directional, bool orthographic,
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::string proxies;
   for (int i = 0; i < 6; ++i) {
-    const float x = 3.0f * u(rng), y = 2.0f * u(rng), z = 2.0f * u(rng), s = 0.3f + 0.3f * (u(rng) + 1.0f);
+    const float x = 3.0f * u(rng), y = 2.0f * u(rng), z = 2.0f * u(rng),
+                s = 0.3f + 0.3f * (u(rng) + 1.0f);
     char box[400];
     std::snprintf(box, sizeof box,
                   R"(%s{"name": "box%d", "box": {"min": [%g, %g, %g], "max": [%g, %g, %g]},
                       "params": {"cutawayAngle": %g}})",
-                  i ? "," : "", i, x - s, y - s, z - s, x + s, y + s, z + s, 20.0f + 25.0f * (u(rng) + 1.0f));
+                  i ? "," : "", i, x - s, y - s, z - s, x + s, y + s, z + s,
+                  20.0f + 25.0f * (u(rng) + 1.0f));
     proxies += box;
   }
-  return std::string(R"({"resolution": [96, 64], "samples": 1, "style": {"name": "gooch", "lines": false},
-      "camera": {"projection": ")") + (orthographic ? "orthographic" : "perspective") +
+  return std::string(
+             R"({"resolution": [96, 64], "samples": 1, "style": {"name": "gooch", "lines": false},
+      "camera": {"projection": ")") +
+         (orthographic ? "orthographic" : "perspective") +
          R"(", "eye": [2, 5, 14], "target": [0, 0, 0], "fov": 45, "height": 12, "near": 4, "far": 30},
-      "cutters": {"adaptive": {"angle": 40, "bufferSize": )" + std::to_string(buffer) +
-         R"(, "jumpFlooding": ")" + variant + R"(", "directionalConstraint": )" +
-         (directional ? "true" : "false") + R"(, "ghostLines": false}},
+      "cutters": {"adaptive": {"angle": 40, "bufferSize": )" +
+         std::to_string(buffer) + R"(, "jumpFlooding": ")" + variant +
+         R"(", "directionalConstraint": )" + (directional ? "true" : "false") +
+         R"(, "ghostLines": false}},
       "objects": [{"name": "wall", "file": "render/plane.obj",
                    "transform": {"translate": [0, 0, -4]}}],
-      "proxies": [)" + proxies + "]}";
+      "proxies": [)" +
+         proxies + "]}";
 }
 
 std::vector<Aov> renderAovs(const Scene& scene) {
@@ -61,7 +67,8 @@ class GpuCpuCutaway : public ::testing::TestWithParam<std::tuple<unsigned, bool,
 
 TEST_P(GpuCpuCutaway, CutawayDepthsAgree) {
   const auto [seed, directional, orthographic] = GetParam();
-  Scene gpuScene = parseScene(randomBoxesScene(seed, directional, orthographic, 64), "boxes.json", kData);
+  Scene gpuScene =
+      parseScene(randomBoxesScene(seed, directional, orthographic, 64), "boxes.json", kData);
   Scene cpuScene = gpuScene;
   gpuScene.adaptive->compute = AdaptiveCutawayOptions::Compute::Gpu;
   cpuScene.adaptive->compute = AdaptiveCutawayOptions::Compute::Cpu;
@@ -79,7 +86,8 @@ TEST_P(GpuCpuCutaway, CutawayDepthsAgree) {
     // directional constraint's atan and tan add a few ulps more.
     if (std::abs(a.data[i] - b.data[i]) > (directional ? 1e-5f : 2e-6f)) {
       if (++mismatched <= 5)
-        ADD_FAILURE() << "pixel " << i % 64 << "," << i / 64 << ": gpu " << a.data[i] << " cpu " << b.data[i];
+        ADD_FAILURE() << "pixel " << i % 64 << "," << i / 64 << ": gpu " << a.data[i] << " cpu "
+                      << b.data[i];
     }
   }
   EXPECT_EQ(mismatched, 0);
@@ -100,13 +108,15 @@ namespace {
 // centre row, right of a small seed box at the screen centre, at camera distance `distance`.
 double wallAngle(float distance, bool compensation, float theta) {
   char json[1400];
-  std::snprintf(json, sizeof json, R"({"resolution": [128, 128], "samples": 1, "style": {"name": "gooch", "lines": false},
+  std::snprintf(
+      json, sizeof json,
+      R"({"resolution": [128, 128], "samples": 1, "style": {"name": "gooch", "lines": false},
       "camera": {"eye": [0, 0, %g], "target": [0, 0, 0], "fov": 40, "near": %g, "far": %g},
       "cutters": {"adaptive": {"angle": %g, "bufferSize": 256, "perspectiveCompensation": %s,
                                "edgeCompression": false, "ghostLines": false}},
       "objects": [{"name": "wall", "file": "render/plane.obj", "transform": {"translate": [0, 0, -2]}}],
       "proxies": [{"name": "seed", "box": {"min": [-0.05, -0.05, -0.5], "max": [0.05, 0.05, -0.4]}}]})",
-                distance, distance * 0.25f, distance * 2.0f, theta, compensation ? "true" : "false");
+      distance, distance * 0.25f, distance * 2.0f, theta, compensation ? "true" : "false");
   const Scene scene = parseScene(json, "angle.json", kData);
   const auto aovs = renderAovs(scene);
   const FloatImage& c = find(aovs, "cutawayDepth").image;  // rows top to bottom
@@ -114,13 +124,15 @@ double wallAngle(float distance, bool compensation, float theta) {
   const glm::mat4 inverse = glm::inverse(camera.projectionMatrix(1.0f));
   auto viewPoint = [&](int x) {
     const int y = c.height / 2;
-    const glm::vec4 ndc((x + 0.5f) / c.width * 2 - 1, 1 - (y + 0.5f) / c.height * 2, c.at(x, y)[0] * 2 - 1, 1);
+    const glm::vec4 ndc((x + 0.5f) / c.width * 2 - 1, 1 - (y + 0.5f) / c.height * 2,
+                        c.at(x, y)[0] * 2 - 1, 1);
     const glm::vec4 h = inverse * ndc;
     return glm::vec3(h) / h.w;
   };
   // Walk right from the seed until the wall leaves it; use the middle of that stretch.
   int first = c.width / 2;
-  while (first < c.width - 1 && c.at(first, c.height / 2)[0] >= c.at(c.width / 2, c.height / 2)[0]) ++first;
+  while (first < c.width - 1 && c.at(first, c.height / 2)[0] >= c.at(c.width / 2, c.height / 2)[0])
+    ++first;
   int last = first;
   while (last < c.width - 1 && c.at(last + 1, c.height / 2)[0] > 0.0f) ++last;
   const int a = first + (last - first) / 4, b = first + 3 * (last - first) / 4;
@@ -141,21 +153,23 @@ TEST(PerspectiveCompensation, WallKeepsTheAngleAtEveryZoom) {
       EXPECT_NEAR(with, theta, 2.0) << "θ " << theta << ", camera distance " << distance;
       worstWithout = std::max(worstWithout, std::abs(wallAngle(distance, false, theta) - theta));
     }
-    EXPECT_GT(worstWithout, 2.0) << "θ " << theta << ": without compensation the angle should drift";
+    EXPECT_GT(worstWithout, 2.0) << "θ " << theta
+                                 << ": without compensation the angle should drift";
   }
 }
 
 // The wall (secondary) in front of an object of interest is cut away where it hides it, and
 // kept elsewhere; the object of interest itself is never cut.
 TEST(AdaptiveCutaway, ExposesTheObjectOfInterest) {
-  const Scene scene = parseScene(R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
+  const Scene scene = parseScene(
+      R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
       "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 40},
       "cutters": {"adaptive": {"angle": 30, "bufferSize": 128}},
       "objects": [
         {"name": "wall", "file": "render/plane.obj", "transform": {"translate": [0, 0, 2]}},
         {"name": "cube", "file": "meshes/cube.obj", "role": "interest",
          "transform": {"translate": [-0.5, -0.5, -0.5]}}]})",
-                                 "expose.json", kData);
+      "expose.json", kData);
   const auto aovs = renderAovs(scene);
   const FloatImage& id = find(aovs, "objectId").image;
   EXPECT_EQ(id.at(40, 30)[0], 1.0f);  // the cube, through the hole in the wall
@@ -166,14 +180,15 @@ TEST(AdaptiveCutaway, ExposesTheObjectOfInterest) {
 // Burns08 §4.1: the walls of a watertight box around the object of interest show cut
 // surfaces (back faces seen through the cut), outlined (§4.2).
 TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
-  const Scene scene = parseScene(R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
+  const Scene scene = parseScene(
+      R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
       "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
       "cutters": {"adaptive": {"angle": 35, "bufferSize": 128}},
       "objects": [
         {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
         {"name": "core", "file": "meshes/cube.obj", "role": "interest",
          "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
-                                 "shell.json", kData);
+      "shell.json", kData);
   const auto aovs = renderAovs(scene);
   const FloatImage& mask = find(aovs, "cutMask").image;
   const FloatImage& id = find(aovs, "objectId").image;
@@ -194,13 +209,16 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
 TEST(AdaptiveCutaway, GhostLinesShowRemovedMaterialOnly) {
   auto ghostCoverage = [](float distance) {
     char json[1200];
-    std::snprintf(json, sizeof json, R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
+    std::snprintf(
+        json, sizeof json,
+        R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
         "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 40},
         "cutters": {"adaptive": {"angle": 30, "bufferSize": 128, "ghostLines": {"distance": %g}}},
         "objects": [
           {"name": "plate", "file": "meshes/cube.obj", "transform": {"translate": [-0.3, -0.3, 3], "scale": 0.6}},
           {"name": "cube", "file": "meshes/cube.obj", "role": "interest",
-           "transform": {"translate": [-0.5, -0.5, -0.5]}}]})", distance);
+           "transform": {"translate": [-0.5, -0.5, -0.5]}}]})",
+        distance);
     const auto aovs = renderAovs(parseScene(json, "ghost.json", kData));
     double sum = 0;
     for (float g : find(aovs, "ghostLines").image.data) sum += g;

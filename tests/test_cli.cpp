@@ -26,7 +26,8 @@ struct Result {
 
 // Runs `cutaway ARGS` capturing stdout and stderr separately.
 Result run(const std::string& args) {
-  const fs::path errFile = fs::temp_directory_path() / ("cutaway-test-err-" + std::to_string(::getpid()));
+  const fs::path errFile =
+      fs::temp_directory_path() / ("cutaway-test-err-" + std::to_string(::getpid()));
   const std::string command = kBinary + " " + args + " 2>" + errFile.string();
   FILE* pipe = popen(command.c_str(), "r");
   std::string out;
@@ -46,13 +47,16 @@ fs::path scratch(const std::string& name) {
   return dir / name;
 }
 
-int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
+int lines(const std::string& s) {
+  return int(std::count(s.begin(), s.end(), '\n'));
+}
 
 }  // namespace
 
 TEST(Cli, RenderWritesThePngAndSaysWhere) {
   const fs::path out = scratch("engine.png");
-  const Result r = run("render " + kSource + "/examples/engine.json -o " + out.string() + " --size 160x120");
+  const Result r =
+      run("render " + kSource + "/examples/engine.json -o " + out.string() + " --size 160x120");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("wrote " + out.string()), std::string::npos) << r.out;
   const Rgba8Image image = readPng(out);
@@ -68,8 +72,8 @@ TEST(Cli, RenderWritesThePngAndSaysWhere) {
 
 TEST(Cli, AovRoundTripMatchesTheCamera) {
   const fs::path dir = scratch("aovs");
-  const Result r = run("render " + kData + "/render/plane-facing.json -o " + scratch("plane.png").string() +
-                    " --aov " + dir.string());
+  const Result r = run("render " + kData + "/render/plane-facing.json -o " +
+                       scratch("plane.png").string() + " --aov " + dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   std::ifstream indexFile(dir / "aovs.json");
   const auto index = nlohmann::json::parse(indexFile);
@@ -143,7 +147,9 @@ TEST(Cli, BadSceneIsOneLineErrorAndNoOutput) {
   const Result r = run("render " + bad.string() + " -o " + out.string());
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_EQ(lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find(bad.string() + ": /objects/0/role: unknown value \"hero\""), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(bad.string() + ": /objects/0/role: unknown value \"hero\""),
+            std::string::npos)
+      << r.err;
   EXPECT_FALSE(fs::exists(out));
 }
 

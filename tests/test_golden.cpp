@@ -16,7 +16,9 @@ struct GoldenCase {
   bool orthographic = false;
 };
 
-void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const GoldenCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 // Thresholds (per channel, 0–255). The goldens come from Mesa llvmpipe; another CPU or Mesa
 // build may rasterise edge pixels slightly differently: with 4× MSAA a moved sample changes an
@@ -40,14 +42,16 @@ TEST_P(GoldenTest, MatchesGolden) {
   if (c.orthographic) scene.camera.projection = Projection::Orthographic;
   Renderer renderer(scene, test::glContext().info());
   renderer.render();
-  const auto result = test::compareWithGolden(c.name, renderer.readColor(), kMaxDifference, kMeanDifference);
+  const auto result =
+      test::compareWithGolden(c.name, renderer.readColor(), kMaxDifference, kMeanDifference);
   EXPECT_TRUE(result.ok) << result.message;
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Examples, GoldenTest,
     ::testing::Values(GoldenCase{"engine", "engine.json", "", 320, 240},
-                      GoldenCase{"engine-blinn-phong-ortho", "engine.json", "blinn-phong", 320, 240, true},
+                      GoldenCase{"engine-blinn-phong-ortho", "engine.json", "blinn-phong", 320, 240,
+                                 true},
                       GoldenCase{"bunny", "bunny.json", "", 240, 240},
                       GoldenCase{"bunny-gooch", "bunny.json", "gooch", 240, 240},
                       GoldenCase{"fan-room", "fan-room.json", "", 320, 240},

@@ -11,7 +11,8 @@ TEST(Mesh, BoxIsWatertightWithOutwardNormals) {
   for (const auto& t : box.triangles) {
     const glm::vec3 c = glm::cross(box.positions[t.y] - box.positions[t.x],
                                    box.positions[t.z] - box.positions[t.x]);
-    const glm::vec3 centroid = (box.positions[t.x] + box.positions[t.y] + box.positions[t.z]) / 3.0f;
+    const glm::vec3 centroid =
+        (box.positions[t.x] + box.positions[t.y] + box.positions[t.z]) / 3.0f;
     EXPECT_GT(glm::dot(c, centroid - glm::vec3(0.5f, 1.0f, 1.5f)), 0.0f);
   }
 }

@@ -20,7 +20,8 @@ Scene planeScene(int samples, const std::string& cameraJson) {
                         R"(, "style": {"name": "blinn-phong", "lines": false},
       "objects": [{"name": "plane", "file": "render/plane.obj",
                    "transform": {"rotate": {"axis": [1, 0, 0], "degrees": -35}}}],
-      "camera": )" + cameraJson + "}",
+      "camera": )" + cameraJson +
+                        "}",
                     "plane.json", kData);
 }
 
@@ -67,7 +68,8 @@ std::optional<glm::vec3> rayHit(const Scene& scene, const Camera& c, int x, int 
 std::string planeAovTestName(const ::testing::TestParamInfo<std::tuple<int, std::string>>& info) {
   const int samples = std::get<0>(info.param);
   const bool ortho = std::get<1>(info.param).find("orthographic") != std::string::npos;
-  return std::string(ortho ? "orthographic_" : "perspective_") + std::to_string(samples) + "samples";
+  return std::string(ortho ? "orthographic_" : "perspective_") + std::to_string(samples) +
+         "samples";
 }
 
 class PlaneAovTest : public ::testing::TestWithParam<std::tuple<int, std::string>> {};
@@ -103,7 +105,8 @@ TEST_P(PlaneAovTest, AovsMatchTheCamera) {
       ASSERT_EQ(objectId.at(x, y)[0], 0.0f) << x << "," << y;
       ASSERT_NEAR(viewDepth.at(x, y)[0], -eyeSpace.z, 1e-4f * camera.far) << x << "," << y;
       ASSERT_NEAR(depth.at(x, y)[0], windowDepth, 1e-5f) << x << "," << y;
-      for (int i = 0; i < 3; ++i) ASSERT_NEAR(position.at(x, y)[i], (*hit)[i], 1e-3f) << x << "," << y;
+      for (int i = 0; i < 3; ++i)
+        ASSERT_NEAR(position.at(x, y)[i], (*hit)[i], 1e-3f) << x << "," << y;
     }
   EXPECT_GT(checked, scene.width * scene.height / 4);
 }
@@ -112,8 +115,9 @@ INSTANTIATE_TEST_SUITE_P(
     Cameras, PlaneAovTest,
     ::testing::Combine(
         ::testing::Values(1, 4),
-        ::testing::Values(R"({"eye": [0, 2, 12], "target": [0, 0, 0], "fov": 50, "near": 2, "far": 30})",
-                          R"({"projection": "orthographic", "eye": [1, 3, 12], "target": [0, 0, 0],
+        ::testing::Values(
+            R"({"eye": [0, 2, 12], "target": [0, 0, 0], "fov": 50, "near": 2, "far": 30})",
+            R"({"projection": "orthographic", "eye": [1, 3, 12], "target": [0, 0, 0],
                               "height": 12, "near": 1, "far": 40})")),
     planeAovTestName);
 
@@ -134,14 +138,18 @@ TEST(Frame, RejectsReadBeforeWrite) {
   Frame frame(8, 8, false);
   frame.declare("a", {.format = GL_RGBA8});
   frame.declare("b", {.format = GL_RGBA8});
-  frame.addPass({.name = "first", .reads = {"b"}, .writes = {"a"}, .run = [](const PassContext&) {}});
-  frame.addPass({.name = "second", .reads = {"a"}, .writes = {"b"}, .run = [](const PassContext&) {}});
+  frame.addPass(
+      {.name = "first", .reads = {"b"}, .writes = {"a"}, .run = [](const PassContext&) {}});
+  frame.addPass(
+      {.name = "second", .reads = {"a"}, .writes = {"b"}, .run = [](const PassContext&) {}});
   try {
     frame.execute();
     FAIL() << "expected an error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("first"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("reads \"b\" before any pass writes it"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("reads \"b\" before any pass writes it"),
+              std::string::npos)
+        << e.what();
   }
 }
 
@@ -157,7 +165,8 @@ TEST(Frame, RejectsUndeclaredTarget) {
 TEST(Timer, PassTimesAddUpToWallClock) {
   Scene scene = parseScene(R"({"resolution": [256, 256], "samples": 4,
       "objects": [{"name": "plane", "file": "render/plane.obj"}],
-      "camera": {"eye": [0, 0, 20], "target": [0, 0, 0], "fov": 40}})", "timer.json", kData);
+      "camera": {"eye": [0, 0, 20], "target": [0, 0, 0], "fov": 40}})",
+                           "timer.json", kData);
   Renderer renderer(scene, test::glContext().info());
   renderer.render();
   glFinish();
@@ -167,7 +176,8 @@ TEST(Timer, PassTimesAddUpToWallClock) {
     const auto start = std::chrono::steady_clock::now();
     renderer.render();
     glFinish();
-    wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    wall +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     for (const auto& t : renderer.timings()) {
       EXPECT_GE(t.gpuMs, 0.0) << t.name;
       gpu += t.gpuMs;
@@ -178,5 +188,6 @@ TEST(Timer, PassTimesAddUpToWallClock) {
   // software rasteriser the GPU work is most of the frame, so it must explain at least a fifth
   // of it even with another test process competing for the two cores.
   EXPECT_LE(gpu, wall * 1.25 + 2.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
-  if (test::glContext().info().software) EXPECT_GE(gpu, wall / 5.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
+  if (test::glContext().info().software)
+    EXPECT_GE(gpu, wall / 5.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
 }

@@ -22,7 +22,9 @@
 
 // Readable failure messages for glm values (found by argument-dependent lookup).
 namespace glm {
-inline void PrintTo(const vec3& v, std::ostream* os) { *os << "(" << v.x << ", " << v.y << ", " << v.z << ")"; }
+inline void PrintTo(const vec3& v, std::ostream* os) {
+  *os << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+}
 }  // namespace glm
 
 using namespace cutaway;
@@ -33,19 +35,23 @@ const std::filesystem::path kData = CUTAWAY_TEST_DATA;
 const std::filesystem::path kMeshes = kData / "meshes";
 
 // Parses `text` as if it were a file in tests/data/meshes, so that "cube.obj" resolves.
-Scene parse(const std::string& text) { return parseScene(text, "inline.json", kMeshes); }
+Scene parse(const std::string& text) {
+  return parseScene(text, "inline.json", kMeshes);
+}
 
-glm::vec3 apply(const glm::mat4& m, const glm::vec3& p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
+glm::vec3 apply(const glm::mat4& m, const glm::vec3& p) {
+  return glm::vec3(m * glm::vec4(p, 1.0f));
+}
 
 // Tolerance for transformed unit-sized coordinates: a few float ulps of cos/sin(90°).
 constexpr float kEps = 1e-5f;
 
-#define EXPECT_VEC3_NEAR(actual, expected, eps)                                         \
-  do {                                                                                  \
-    const glm::vec3 a_ = (actual), e_ = (expected);                                     \
-    EXPECT_NEAR(a_.x, e_.x, eps) << "x of " #actual;                                    \
-    EXPECT_NEAR(a_.y, e_.y, eps) << "y of " #actual;                                    \
-    EXPECT_NEAR(a_.z, e_.z, eps) << "z of " #actual;                                    \
+#define EXPECT_VEC3_NEAR(actual, expected, eps)      \
+  do {                                               \
+    const glm::vec3 a_ = (actual), e_ = (expected);  \
+    EXPECT_NEAR(a_.x, e_.x, eps) << "x of " #actual; \
+    EXPECT_NEAR(a_.y, e_.y, eps) << "y of " #actual; \
+    EXPECT_NEAR(a_.z, e_.z, eps) << "z of " #actual; \
   } while (0)
 
 // ---------------------------------------------------------------------------------------------
@@ -53,9 +59,9 @@ constexpr float kEps = 1e-5f;
 // errors, the line and column) and a substring of the reason that the error must carry.
 
 struct BadScene {
-  const char* file;     // under tests/data/bad
-  const char* place;    // Error::place(): a JSON pointer, or "line L, column C"
-  const char* reason;   // substring of Error::reason()
+  const char* file;    // under tests/data/bad
+  const char* place;   // Error::place(): a JSON pointer, or "line L, column C"
+  const char* reason;  // substring of Error::reason()
 };
 
 const BadScene kBadScenes[] = {
@@ -66,7 +72,8 @@ const BadScene kBadScenes[] = {
     {"number_overflow.json", "line 2, column 18", "invalid JSON: number overflow parsing '1e999'"},
     // Top level.
     {"unknown_top_level_key.json", "/colour", "unknown key \"colour\""},
-    {"unknown_key_with_slash.json", "/style~1name", "unknown key \"style/name\""},  // RFC 6901 escape
+    {"unknown_key_with_slash.json", "/style~1name",
+     "unknown key \"style/name\""},  // RFC 6901 escape
     {"missing_objects.json", "/", "missing required key \"objects\""},
     {"empty_objects.json", "/objects", "a scene needs at least one object"},
     {"objects_not_array.json", "/objects", "expected an array, got object"},
@@ -83,24 +90,29 @@ const BadScene kBadScenes[] = {
     {"wrong_type_importance.json", "/objects/0/importance", "expected a number, got string"},
     {"importance_out_of_range.json", "/objects/0/importance", "value 1.5 is outside [0, 1]"},
     {"bad_role.json", "/objects/0/role", "unknown value \"focus\""},
-    {"color_four_elements.json", "/objects/0/color", "expected an array of 3 numbers, got 4 elements"},
+    {"color_four_elements.json", "/objects/0/color",
+     "expected an array of 3 numbers, got 4 elements"},
     {"color_above_one.json", "/objects/0/color/0", "value 255 is outside [0, 1]"},
     {"bad_split.json", "/objects/0/split", "unknown value \"parts\""},
     {"bad_regex.json", "/objects/0/nodes", "invalid regular expression \"(body\""},
     {"nodes_match_nothing.json", "/objects/0/nodes", "no mesh node of"},
     {"duplicate_names.json", "/objects", "two objects are named \"cube\""},
     {"unknown_object_param.json", "/objects/0/params/glow", "unknown object parameter \"glow\""},
-    {"object_param_wrong_type.json", "/objects/0/params/lines", "expected true or false, got number"},
+    {"object_param_wrong_type.json", "/objects/0/params/lines",
+     "expected true or false, got number"},
     {"override_without_split.json", "/objects/0/overrides", "overrides need \"split\": \"nodes\""},
     {"override_without_match.json", "/objects/0/overrides/0", "missing required key \"match\""},
     {"override_unknown_key.json", "/objects/0/overrides/0/file", "unknown key \"file\""},
     // Transforms.
-    {"transform_matrix_and_translate.json", "/objects/0/transform/translate", "\"matrix\" excludes"},
+    {"transform_matrix_and_translate.json", "/objects/0/transform/translate",
+     "\"matrix\" excludes"},
     {"transform_singular_matrix.json", "/objects/0/transform/matrix", "the matrix is singular"},
-    {"transform_projective_matrix.json", "/objects/0/transform/matrix", "the last row must be 0, 0, 0, 1"},
+    {"transform_projective_matrix.json", "/objects/0/transform/matrix",
+     "the last row must be 0, 0, 0, 1"},
     {"transform_matrix_15.json", "/objects/0/transform/matrix", "expected 16 numbers"},
     {"transform_zero_scale.json", "/objects/0/transform/scale", "scale must not be zero"},
-    {"transform_rotate_zero_axis.json", "/objects/0/transform/rotate/axis", "must not be the zero vector"},
+    {"transform_rotate_zero_axis.json", "/objects/0/transform/rotate/axis",
+     "must not be the zero vector"},
     // Proxies.
     {"proxy_box_and_hull.json", "/proxies/0", "exactly one of \"box\" or \"hullOf\""},
     {"proxy_box_min_above_max.json", "/proxies/0/box", "box min must be below max"},
@@ -112,11 +124,13 @@ const BadScene kBadScenes[] = {
     {"camera_up_parallel.json", "/camera/up", "up is parallel to the viewing direction"},
     {"camera_fit_up_parallel.json", "/camera/up", "up is parallel to the viewing direction"},
     {"camera_far_below_near.json", "/camera/far", "far must be greater than near"},
-    {"camera_without_eye.json", "/camera", "needs \"eye\" and \"target\", a \"path\", or \"fit\": true"},
+    {"camera_without_eye.json", "/camera",
+     "needs \"eye\" and \"target\", a \"path\", or \"fit\": true"},
     {"camera_fov_too_wide.json", "/camera/fov", "value 180 is outside [1, 170]"},
     // Camera paths.
     {"camera_path_eye_equals_target.json", "/camera/path/1/eye", "eye and target coincide"},
-    {"camera_path_times_not_increasing.json", "/camera/path/1/time", "camera key times must increase"},
+    {"camera_path_times_not_increasing.json", "/camera/path/1/time",
+     "camera key times must increase"},
     {"camera_path_key_without_target.json", "/camera/path/0", "missing required key \"target\""},
     {"camera_path_empty.json", "/camera/path", "expected a non-empty array of camera keys"},
     // Style.
@@ -129,33 +143,46 @@ const BadScene kBadScenes[] = {
     {"light_point_with_direction.json", "/lights/0/direction", "unknown key \"direction\""},
     {"light_too_many.json", "/lights", "at most 8 lights, got 9"},
     // Cutters: the adaptive cutaway.
-    {"cutters_unknown_cutter.json", "/cutters/diepstraten", "unknown key \"diepstraten\" (expected one of: adaptive)"},
+    {"cutters_unknown_cutter.json", "/cutters/diepstraten",
+     "unknown key \"diepstraten\" (expected one of: adaptive)"},
     {"cutters_not_an_object.json", "/cutters", "expected an object, got string"},
     {"adaptive_false.json", "/cutters/adaptive", "use true or an object"},
     {"adaptive_unknown_key.json", "/cutters/adaptive/anlge", "unknown key \"anlge\""},
     {"adaptive_angle_95.json", "/cutters/adaptive/angle", "value 95 is outside [0, 90]"},
-    {"adaptive_buffer_size_8.json", "/cutters/adaptive/bufferSize", "value 8 is outside [16, 8192]"},
-    {"adaptive_buffer_size_not_integer.json", "/cutters/adaptive/bufferSize", "expected an integer, got number"},
+    {"adaptive_buffer_size_8.json", "/cutters/adaptive/bufferSize",
+     "value 8 is outside [16, 8192]"},
+    {"adaptive_buffer_size_not_integer.json", "/cutters/adaptive/bufferSize",
+     "expected an integer, got number"},
     {"adaptive_bad_jump_flooding.json", "/cutters/adaptive/jumpFlooding",
      "unknown value \"jfa+3\" (expected one of: jfa, jfa+1, 1+jfa, jfa+2)"},
-    {"adaptive_bad_compute.json", "/cutters/adaptive/compute", "unknown value \"cuda\" (expected one of: auto, gpu, cpu)"},
+    {"adaptive_bad_compute.json", "/cutters/adaptive/compute",
+     "unknown value \"cuda\" (expected one of: auto, gpu, cpu)"},
     {"adaptive_bad_cut_surfaces.json", "/cutters/adaptive/cutSurfaces", "unknown value \"closed\""},
-    {"adaptive_edge_compression_zero.json", "/cutters/adaptive/edgeCompression", "value 0 is outside [0.001, 1]"},
-    {"adaptive_floor_normal_zero.json", "/cutters/adaptive/floorNormal", "must not be the zero vector"},
+    {"adaptive_edge_compression_zero.json", "/cutters/adaptive/edgeCompression",
+     "value 0 is outside [0.001, 1]"},
+    {"adaptive_floor_normal_zero.json", "/cutters/adaptive/floorNormal",
+     "must not be the zero vector"},
     {"adaptive_ghost_lines_unknown_key.json", "/cutters/adaptive/ghostLines/width",
      "unknown key \"width\" (expected one of: distance, opacity)"},
-    {"adaptive_ghost_opacity_above_one.json", "/cutters/adaptive/ghostLines/opacity", "value 1.5 is outside [0, 1]"},
-    {"object_cutaway_angle_120.json", "/objects/0/params/cutawayAngle", "value 120 is outside [0, 90]"},
+    {"adaptive_ghost_opacity_above_one.json", "/cutters/adaptive/ghostLines/opacity",
+     "value 1.5 is outside [0, 1]"},
+    {"object_cutaway_angle_120.json", "/objects/0/params/cutawayAngle",
+     "value 120 is outside [0, 90]"},
     // Animation.
-    {"animation_times_not_increasing.json", "/objects/0/animation/1/time", "keyframe times must increase"},
-    {"animation_keyframe_without_time.json", "/objects/0/animation/1", "missing required key \"time\""},
+    {"animation_times_not_increasing.json", "/objects/0/animation/1/time",
+     "keyframe times must increase"},
+    {"animation_keyframe_without_time.json", "/objects/0/animation/1",
+     "missing required key \"time\""},
     {"animation_empty.json", "/objects/0/animation", "expected a non-empty array of keyframes"},
-    {"animation_negative_time.json", "/objects/0/animation/0/time", "value -1 is outside [0, 1e+06]"},
+    {"animation_negative_time.json", "/objects/0/animation/0/time",
+     "value -1 is outside [0, 1e+06]"},
     {"animation_keyframe_matrix.json", "/objects/0/animation/0/matrix", "unknown key \"matrix\""},
     {"animation_proxy_zero_scale.json", "/proxies/0/animation/1/scale", "scale must not be zero"},
 };
 
-void PrintTo(const BadScene& bad, std::ostream* os) { *os << bad.file; }
+void PrintTo(const BadScene& bad, std::ostream* os) {
+  *os << bad.file;
+}
 
 class SceneBadFile : public ::testing::TestWithParam<BadScene> {};
 
@@ -501,7 +528,7 @@ TEST(SceneLoad, NodeFilterAndMergedFile) {
   EXPECT_EQ(s.objects[1].name, "merged");
   EXPECT_EQ(s.objects[1].source, (kMeshes / "two_parts.obj").string());
   EXPECT_EQ(s.objects[1].mesh->triangles.size(), 16u);
-  EXPECT_TRUE(s.objects[1].mesh->report.watertight);  // two closed parts
+  EXPECT_TRUE(s.objects[1].mesh->report.watertight);                      // two closed parts
   EXPECT_VEC3_NEAR(s.objects[1].material.color, glm::vec3(0.5f), 1e-6f);  // first node's colour
   EXPECT_EQ(s.objects[2].mesh->triangles.size(), 4u);
   EXPECT_VEC3_NEAR(s.objects[2].material.color, glm::vec3(0.8f, 0.1f, 0.1f), 1e-6f);
@@ -549,8 +576,8 @@ TEST(SceneLoad, BoxProxyHasTwelveTrianglesAndDefaults) {
   const SceneObject* roi = s.find("roi");
   ASSERT_TRUE(roi);
   EXPECT_TRUE(roi->proxy);
-  EXPECT_EQ(roi->role, Role::Interest);       // proxy default
-  EXPECT_FLOAT_EQ(roi->importance, 1.0f);     // proxy default
+  EXPECT_EQ(roi->role, Role::Interest);    // proxy default
+  EXPECT_FLOAT_EQ(roi->importance, 1.0f);  // proxy default
   EXPECT_EQ(roi->mesh->triangles.size(), 12u);
   EXPECT_TRUE(roi->mesh->report.watertight);
   EXPECT_EQ(roi->mesh->bounds().min, glm::vec3(-1, -2, -3));
@@ -648,8 +675,9 @@ TEST(SceneAdaptive, EveryKeyIsRead) {
 
 TEST(SceneAdaptive, ShortFormsAndInteractions) {
   const auto adaptive = [](const std::string& body) {
-    const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": )" +
-                          body + "}}");
+    const Scene s =
+        parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": )" +
+              body + "}}");
     EXPECT_TRUE(s.adaptive.has_value()) << body;
     return s.adaptive.value_or(AdaptiveCutawayOptions{});
   };
@@ -693,8 +721,9 @@ TEST(SceneAdaptive, ShortFormsAndInteractions) {
 
 TEST(SceneAdaptive, EnumeratedValues) {
   const auto adaptive = [](const std::string& key, const std::string& value) {
-    const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": {")" +
-                          key + "\": \"" + value + "\"}}}");
+    const Scene s =
+        parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": {")" +
+              key + "\": \"" + value + "\"}}}");
     return s.adaptive.value_or(AdaptiveCutawayOptions{});
   };
   using V = fields::JumpFloodingVariant;
@@ -728,7 +757,8 @@ TEST(SceneAdaptive, CutawayAngleIsAPerObjectNumber) {
   EXPECT_EQ(std::get<double>(s.find("roi")->params.at("cutawayAngle")), 90.0);
   // Declared among the object parameters, with its range.
   const auto& specs = objectParameterSpecs();
-  const auto spec = std::find_if(specs.begin(), specs.end(), [](const ObjectParamSpec& p) { return p.name == "cutawayAngle"; });
+  const auto spec = std::find_if(specs.begin(), specs.end(),
+                                 [](const ObjectParamSpec& p) { return p.name == "cutawayAngle"; });
   ASSERT_NE(spec, specs.end());
   EXPECT_EQ(spec->type, ObjectParamSpec::Type::Number);
   EXPECT_EQ(spec->min, 0.0);
@@ -750,8 +780,10 @@ TEST(SceneAnimation, TransformAtKeyframesBetweenThemAndPastTheEnds) {
   ASSERT_EQ(o.animation.size(), 2u);
   EXPECT_EQ(o.animation[0].time, 1.0f);
   EXPECT_EQ(o.animation[1].time, 3.0f);
-  EXPECT_EQ(o.animation[0].trs.matrix(), glm::mat4(1.0f));  // a keyframe without TRS keys is identity
-  EXPECT_VEC3_NEAR(apply(o.transform, {1, 0, 0}), glm::vec3(2, 0, 0), kEps);  // static part unchanged
+  EXPECT_EQ(o.animation[0].trs.matrix(),
+            glm::mat4(1.0f));  // a keyframe without TRS keys is identity
+  EXPECT_VEC3_NEAR(apply(o.transform, {1, 0, 0}), glm::vec3(2, 0, 0),
+                   kEps);  // static part unchanged
 
   // At the keyframes: K(1) = I, so (1,0,0) → S2 (2,0,0). K(3): (2,0,0) → S3 (6,0,0) →
   // Rz(90°) (0,6,0) → T (4,6,0). (transform · K would give (8,12,0) instead.)
@@ -765,7 +797,8 @@ TEST(SceneAnimation, TransformAtKeyframesBetweenThemAndPastTheEnds) {
   // S2 (4,0,0) → Rz(45°) (2√2, 2√2, 0) → T (2 + 2√2, 2√2, 0).
   const float r2 = std::sqrt(2.0f);
   EXPECT_VEC3_NEAR(apply(o.transformAt(2.0f), {1, 0, 0}), glm::vec3(2 + 2 * r2, 2 * r2, 0), 1e-4f);
-  EXPECT_VEC3_NEAR(apply(o.transformAt(2.0f), {0, 0, 0}), glm::vec3(2, 0, 0), 1e-5f);  // translation only
+  EXPECT_VEC3_NEAR(apply(o.transformAt(2.0f), {0, 0, 0}), glm::vec3(2, 0, 0),
+                   1e-5f);  // translation only
 
   // A quarter of the way (t = 1.5): slerp turns by exactly 22.5° at constant speed (nlerp of
   // the quaternions would give 21.6°, a lerp of matrices would also shrink the vertex).
@@ -845,7 +878,12 @@ TEST(SceneCamera, FitFramesTheWholeSceneFromAnyDirection) {
       {"name": "tetra", "file": "tetra.obj", "transform": {"translate": [-3, 5, 1]}}],
       "camera": {"fit": true, "projection": "%s", "eye": [%g, %g, %g], "target": [0, 0, 0],
                  "fov": %g}})";
-  struct Case { int w, h; const char* projection; glm::vec3 eye; float fov; };
+  struct Case {
+    int w, h;
+    const char* projection;
+    glm::vec3 eye;
+    float fov;
+  };
   const Case cases[] = {
       {800, 600, "perspective", {1, 0.8f, 1.4f}, 40}, {600, 800, "perspective", {0, 0, 1}, 40},
       {1600, 400, "perspective", {-2, 1, -0.5f}, 25}, {400, 1600, "perspective", {0.1f, -3, 1}, 90},
@@ -853,7 +891,8 @@ TEST(SceneCamera, FitFramesTheWholeSceneFromAnyDirection) {
   };
   for (const auto& k : cases) {
     char text[1024];
-    std::snprintf(text, sizeof text, scene, k.w, k.h, k.projection, k.eye.x, k.eye.y, k.eye.z, k.fov);
+    std::snprintf(text, sizeof text, scene, k.w, k.h, k.projection, k.eye.x, k.eye.y, k.eye.z,
+                  k.fov);
     const std::string label = std::string(k.projection) + " " + std::to_string(k.w) + "x" +
                               std::to_string(k.h) + " from (" + std::to_string(k.eye.x) + ", " +
                               std::to_string(k.eye.y) + ", " + std::to_string(k.eye.z) + ")";
@@ -903,15 +942,16 @@ TEST(SceneCamera, PathIsInterpolatedLinearlyAndHeldAtTheEnds) {
   // No eye/target of its own: the static camera takes the first key's.
   EXPECT_EQ(s.camera.eye, glm::vec3(0, 0, 10));
   EXPECT_EQ(s.camera.target, glm::vec3(0, 0, 0));
-  struct Expect { float time; glm::vec3 eye, target; };
+  struct Expect {
+    float time;
+    glm::vec3 eye, target;
+  };
   const Expect expected[] = {
-      {0.0f, {0, 0, 10}, {0, 0, 0}},   // before the first key: held
-      {1.0f, {0, 0, 10}, {0, 0, 0}},   // at a key
-      {2.0f, {5, 0, 5}, {1, 0, 0}},    // halfway between keys 0 and 1
-      {2.5f, {7.5f, 0, 2.5f}, {1.5f, 0, 0}},
-      {3.0f, {10, 0, 0}, {2, 0, 0}},
-      {3.5f, {10, 0, 5}, {2, 0, 0}},
-      {4.0f, {10, 0, 10}, {2, 0, 0}},
+      {0.0f, {0, 0, 10}, {0, 0, 0}},  // before the first key: held
+      {1.0f, {0, 0, 10}, {0, 0, 0}},  // at a key
+      {2.0f, {5, 0, 5}, {1, 0, 0}},   // halfway between keys 0 and 1
+      {2.5f, {7.5f, 0, 2.5f}, {1.5f, 0, 0}}, {3.0f, {10, 0, 0}, {2, 0, 0}},
+      {3.5f, {10, 0, 5}, {2, 0, 0}},         {4.0f, {10, 0, 10}, {2, 0, 0}},
       {50.0f, {10, 0, 10}, {2, 0, 0}},  // after the last key: held
   };
   const Bounds b = s.bounds();
@@ -938,9 +978,9 @@ TEST(SceneCamera, PathOverridesEyeTargetAndFit) {
   const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
     "camera": {"fit": true, "eye": [3, 3, 3], "target": [1, 1, 1],
                "path": [{"time": 2, "eye": [0, 1, 8], "target": [0, 1, 0]}]}})");
-  EXPECT_TRUE(s.camera.fit);                      // kept as written…
+  EXPECT_TRUE(s.camera.fit);  // kept as written…
   EXPECT_EQ(s.camera.eye, glm::vec3(3, 3, 3));
-  for (float t : {0.0f, 2.0f, 9.0f}) {            // …but the single path key decides
+  for (float t : {0.0f, 2.0f, 9.0f}) {  // …but the single path key decides
     const Camera c = s.resolvedCamera(t);
     EXPECT_FALSE(c.fit);
     EXPECT_EQ(c.eye, glm::vec3(0, 1, 8));
@@ -954,14 +994,20 @@ TEST(SceneCamera, DurationIsTheLastKeyOfAnyObjectOrTheCameraPath) {
   EXPECT_EQ(parse(R"({"objects": [)" + cube + "]}").duration(), 0.0f);
   // A single keyframe at t = 0 moves nothing and lasts nothing.
   EXPECT_EQ(parse(R"({"objects": [{"name": "cube", "file": "cube.obj",
-                                   "animation": [{"time": 0, "translate": [1, 0, 0]}]}]})").duration(), 0.0f);
+                                   "animation": [{"time": 0, "translate": [1, 0, 0]}]}]})")
+                .duration(),
+            0.0f);
   EXPECT_FLOAT_EQ(parse(R"({"objects": [)" + cube + R"(],
       "camera": {"path": [{"time": 0.5, "eye": [0, 0, 5], "target": [0, 0, 0]},
-                          {"time": 2.5, "eye": [5, 0, 5], "target": [0, 0, 0]}]}})").duration(), 2.5f);
+                          {"time": 2.5, "eye": [5, 0, 5], "target": [0, 0, 0]}]}})")
+                      .duration(),
+                  2.5f);
   EXPECT_FLOAT_EQ(parse(R"({"objects": [)" + cube + R"(,
       {"name": "moving", "file": "tetra.obj", "animation": [{"time": 1}, {"time": 7, "translate": [0, 1, 0]}]}],
       "camera": {"path": [{"time": 0, "eye": [0, 0, 5], "target": [0, 0, 0]},
-                          {"time": 4, "eye": [5, 0, 5], "target": [0, 0, 0]}]}})").duration(), 7.0f);
+                          {"time": 4, "eye": [5, 0, 5], "target": [0, 0, 0]}]}})")
+                      .duration(),
+                  7.0f);
 }
 
 }  // namespace

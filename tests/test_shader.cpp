@@ -18,11 +18,13 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                                           "cutters/adaptive/clip.glsl"};
   EXPECT_EQ(source.files, expected);
   // Defines come right after #version, before any other line.
-  EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u) << source.text.substr(0, 80);
+  EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u)
+      << source.text.substr(0, 80);
   EXPECT_EQ(source.text.find("#include"), std::string::npos);
   // Every output line maps back to its file and line.
   std::vector<std::string> lines;
-  for (std::size_t start = 0, end; (end = source.text.find('\n', start)) != std::string::npos; start = end + 1)
+  for (std::size_t start = 0, end; (end = source.text.find('\n', start)) != std::string::npos;
+       start = end + 1)
     lines.push_back(source.text.substr(start, end - start));
   ASSERT_EQ(lines.size(), source.origins.size());
   for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -31,7 +33,8 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
     const std::string raw(gl::embeddedShaders().at(source.files[std::size_t(origin.file)]));
     std::size_t start = 0;
     for (int l = 1; l < origin.line; ++l) start = raw.find('\n', start) + 1;
-    EXPECT_EQ(raw.substr(start, raw.find('\n', start) - start), lines[i]) << "output line " << i + 1;
+    EXPECT_EQ(raw.substr(start, raw.find('\n', start) - start), lines[i])
+        << "output line " << i + 1;
   }
   EXPECT_EQ(source.files[std::size_t(source.origins[0].file)], "render/mesh.frag");
 }
@@ -65,7 +68,8 @@ TEST(Shader, CompileErrorNamesFileLineAndLog) {
   // Aliasing the style to the uniform block redeclares it: a genuine compile error.
   const gl::ProgramDesc desc{
       .stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
-      .aliases = {{"style.glsl", "render/frame_uniforms.glsl"}, {"cutter.glsl", "cutters/none/none.glsl"}}};
+      .aliases = {{"style.glsl", "render/frame_uniforms.glsl"},
+                  {"cutter.glsl", "cutters/none/none.glsl"}}};
   try {
     (void)gl::buildProgram(desc);
     FAIL() << "expected a compile error";

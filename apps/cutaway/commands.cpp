@@ -3,12 +3,12 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <filesystem>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <functional>
 #include <regex>
 
 #include "cutaway/core/error.hpp"
@@ -44,7 +44,8 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.up) c.up = *o.up;
   if (o.fov) c.fovY = *o.fov;
   if (!o.projection.empty())
-    c.projection = o.projection == "orthographic" ? Projection::Orthographic : Projection::Perspective;
+    c.projection =
+        o.projection == "orthographic" ? Projection::Orthographic : Projection::Perspective;
   if (glm::length(c.eye - c.target) < 1e-9f) throw Error("--eye", "", "eye and target coincide");
   if (glm::length(glm::cross(glm::normalize(c.eye - c.target), glm::normalize(c.up))) < 1e-6f)
     throw Error("--up", "", "up is parallel to the viewing direction");
@@ -52,8 +53,12 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.samples) scene.samples = *o.samples;
 }
 
-nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
-nlohmann::json boundsJson(const Bounds& b) { return {{"min", vec(b.min)}, {"max", vec(b.max)}}; }
+nlohmann::json vec(const glm::vec3& v) {
+  return {v.x, v.y, v.z};
+}
+nlohmann::json boundsJson(const Bounds& b) {
+  return {{"min", vec(b.min)}, {"max", vec(b.max)}};
+}
 
 struct Stats {
   double median, min, max;
@@ -102,7 +107,8 @@ int render(const RenderOptions& options) {
     renderOne(options.time, options.output, options.aovDir);
     std::printf("wrote %s (%dx%d, %s, %s)\n", options.output.c_str(), scene.width, scene.height,
                 scene.style.name.c_str(), context->info().renderer.c_str());
-    if (!options.aovDir.empty()) std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
+    if (!options.aovDir.empty())
+      std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
     return 0;
   }
   const float duration = scene.duration();
@@ -118,15 +124,17 @@ int render(const RenderOptions& options) {
     renderOne(time, framePath(options.output, i + 1), aovDir);
     if (progress) {
       const int width = 30, done = (i + 1) * width / options.frames;
-      std::fprintf(stderr, "\r[%s%s] %d/%d  t = %.2f s", std::string(std::size_t(done), '#').c_str(),
-                   std::string(std::size_t(width - done), ' ').c_str(), i + 1, options.frames, time);
+      std::fprintf(
+          stderr, "\r[%s%s] %d/%d  t = %.2f s", std::string(std::size_t(done), '#').c_str(),
+          std::string(std::size_t(width - done), ' ').c_str(), i + 1, options.frames, time);
       std::fflush(stderr);
     }
   }
   if (progress) std::fprintf(stderr, "\n");
   std::printf("wrote %d frames %s … %s (%dx%d, %.2f s of animation)\n", options.frames,
-              framePath(options.output, 1).c_str(), framePath(options.output, options.frames).c_str(),
-              scene.width, scene.height, duration);
+              framePath(options.output, 1).c_str(),
+              framePath(options.output, options.frames).c_str(), scene.width, scene.height,
+              duration);
   return 0;
 }
 
@@ -139,8 +147,7 @@ int info(const std::string& path) {
     const MeshReport& r = o.mesh->report;
     triangles += o.proxy ? 0 : o.mesh->triangles.size();
     nlohmann::json params = nlohmann::json::object();
-    for (const auto& [k, v] : o.params)
-      std::visit([&](auto value) { params[k] = value; }, v);
+    for (const auto& [k, v] : o.params) std::visit([&](auto value) { params[k] = value; }, v);
     objects.push_back({{"index", i},
                        {"name", o.name},
                        {"source", o.source},
@@ -166,7 +173,8 @@ int info(const std::string& path) {
       {"style", scene.style.name},
       {"triangles", triangles},
       {"bounds", boundsJson(scene.bounds())},
-      {"camera", {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"near", c.near}, {"far", c.far}}},
+      {"camera",
+       {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"near", c.near}, {"far", c.far}}},
       {"duration", scene.duration()},
       {"objects", objects}};
   if (const auto& a = scene.adaptive)
@@ -212,7 +220,9 @@ Measurement measure(const std::string& label, const Scene& scene, const gl::Cont
     const auto start = std::chrono::steady_clock::now();
     renderer.render(camera);
     glFinish();
-    frameTimes.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    frameTimes.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
     for (const auto& t : renderer.timings()) {
       if (!times.count(t.name)) order.push_back(t.name);
       times[t.name].first.push_back(t.gpuMs);
@@ -222,8 +232,10 @@ Measurement measure(const std::string& label, const Scene& scene, const gl::Cont
   Measurement m{label, renderer.cutawayComputePath(), {}, stats(frameTimes)};
   for (const auto& name : order) {
     PassStats p{name, stats(times[name].first), stats(times[name].second)};
-    if (name == "cutawayCpu") m.cutawaySurfaceMs += p.cpu.median;
-    else if (name == "cutawayAnchors" || name.rfind("jumpFlooding", 0) == 0 || name == "cutawayDepth")
+    if (name == "cutawayCpu")
+      m.cutawaySurfaceMs += p.cpu.median;
+    else if (name == "cutawayAnchors" || name.rfind("jumpFlooding", 0) == 0 ||
+             name == "cutawayDepth")
       m.cutawaySurfaceMs += p.gpu.median;
     m.passes.push_back(std::move(p));
   }
@@ -236,7 +248,8 @@ double timeMs(int runs, const std::function<void()>& f) {
   for (int i = 0; i < runs; ++i) {
     const auto start = std::chrono::steady_clock::now();
     f();
-    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count());
   }
   return stats(t).median;
 }
@@ -258,7 +271,9 @@ fields::SeedImage sceneSeedImage(const Scene& base, const gl::ContextInfo& info,
                        cutawayProjection(camera, float(scene.width) / float(scene.height)));
 }
 
-nlohmann::json statsJson(const Stats& s) { return {{"median", s.median}, {"min", s.min}, {"max", s.max}}; }
+nlohmann::json statsJson(const Stats& s) {
+  return {{"median", s.median}, {"min", s.min}, {"max", s.max}};
+}
 
 }  // namespace
 
@@ -279,7 +294,8 @@ int bench(const BenchOptions& options) {
     plain.adaptive.reset();
     runs.push_back(measure("plain", plain, info, options.frames));
     for (int n : {512, 1024})
-      for (auto compute : {AdaptiveCutawayOptions::Compute::Gpu, AdaptiveCutawayOptions::Compute::Cpu}) {
+      for (auto compute :
+           {AdaptiveCutawayOptions::Compute::Gpu, AdaptiveCutawayOptions::Compute::Cpu}) {
         Scene s = scene;
         s.adaptive->bufferSize = n;
         s.adaptive->compute = compute;
@@ -305,8 +321,9 @@ int bench(const BenchOptions& options) {
     // seed image: the share of pixels off by more than 1e-4 of the depth range.
     const fields::SeedImage seeds = sceneSeedImage(scene, info, kAccuracySize);
     const fields::CutawayField exact = fields::bruteForce(seeds, -1.0f);
-    for (auto variant : {fields::JumpFloodingVariant::jfa, fields::JumpFloodingVariant::jfaPlus1,
-                         fields::JumpFloodingVariant::onePlusJfa, fields::JumpFloodingVariant::jfaPlus2}) {
+    for (auto variant :
+         {fields::JumpFloodingVariant::jfa, fields::JumpFloodingVariant::jfaPlus1,
+          fields::JumpFloodingVariant::onePlusJfa, fields::JumpFloodingVariant::jfaPlus2}) {
       const fields::CutawayField f = fields::jumpFlooding(seeds, -1.0f, variant);
       std::size_t off = 0;
       for (std::size_t i = 0; i < f.depth.size(); ++i)
@@ -328,17 +345,25 @@ int bench(const BenchOptions& options) {
     for (const auto& m : runs) {
       nlohmann::json passes = nlohmann::json::array();
       for (const auto& p : m.passes)
-        passes.push_back({{"pass", p.name}, {"gpuMs", statsJson(p.gpu)}, {"cpuMs", statsJson(p.cpu)},
-                          {"gpuMedianMs", p.gpu.median}, {"gpuMinMs", p.gpu.min}, {"gpuMaxMs", p.gpu.max}});
-      nlohmann::json entry = {{"label", m.label}, {"passes", passes}, {"frame", statsJson(m.frame)},
+        passes.push_back({{"pass", p.name},
+                          {"gpuMs", statsJson(p.gpu)},
+                          {"cpuMs", statsJson(p.cpu)},
+                          {"gpuMedianMs", p.gpu.median},
+                          {"gpuMinMs", p.gpu.min},
+                          {"gpuMaxMs", p.gpu.max}});
+      nlohmann::json entry = {{"label", m.label},
+                              {"passes", passes},
+                              {"frame", statsJson(m.frame)},
                               {"frameRatioToPlain", m.frame.median / plainMs}};
-      if (m.computePath) entry["cutawaySurfaceMs"] = m.cutawaySurfaceMs, entry["computePath"] = m.computePath;
+      if (m.computePath)
+        entry["cutawaySurfaceMs"] = m.cutawaySurfaceMs, entry["computePath"] = m.computePath;
       list.push_back(entry);
     }
     out["runs"] = list;
     // The first run's passes at top level, for a quick look.
     out["passes"] = list.front()["passes"];
-    out["frame"] = {{"medianMs", runs.front().frame.median}, {"minMs", runs.front().frame.min},
+    out["frame"] = {{"medianMs", runs.front().frame.median},
+                    {"minMs", runs.front().frame.min},
                     {"maxMs", runs.front().frame.max}};
     if (autoPath) {
       out["autoComputePath"] = autoPath;
@@ -359,7 +384,8 @@ int bench(const BenchOptions& options) {
     for (const auto& p : m.passes)
       std::printf("%-26s %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), p.gpu.median, p.gpu.min,
                   p.gpu.max, p.cpu.median);
-    std::printf("%-26s %10.3f %10.3f %10.3f\n", "frame (wall ms)", m.frame.median, m.frame.min, m.frame.max);
+    std::printf("%-26s %10.3f %10.3f %10.3f\n", "frame (wall ms)", m.frame.median, m.frame.min,
+                m.frame.max);
   }
   if (autoPath) {
     std::printf("\n%-18s %12s %12s %18s\n", "summary", "frame ms", "× plain", "cutaway surface ms");
@@ -369,8 +395,9 @@ int bench(const BenchOptions& options) {
     std::printf("compute path the scene gets here: %s\n\nCPU references (ms):\n", autoPath);
     for (const auto& [name, ms] : references.items())
       std::printf("  %-32s %10.3f\n", name.c_str(), ms.get<double>());
-    std::printf("\nJump flooding vs brute force at %d² (pixels off by > 1e-4 of the depth range):\n",
-                kAccuracySize);
+    std::printf(
+        "\nJump flooding vs brute force at %d² (pixels off by > 1e-4 of the depth range):\n",
+        kAccuracySize);
     for (const auto& [name, fraction] : accuracy.items())
       std::printf("  %-8s %9.4f%%\n", name.c_str(), 100.0 * fraction.get<double>());
   }

@@ -21,8 +21,8 @@ struct SceneOverrides {
 
 struct RenderOptions {
   std::string scene, output, aovDir;
-  int frames = 0;        // > 0: an animation sequence of that many frames
-  float time = 0.0f;     // the instant of a single frame, seconds
+  int frames = 0;     // > 0: an animation sequence of that many frames
+  float time = 0.0f;  // the instant of a single frame, seconds
   SceneOverrides overrides;
 };
 int render(const RenderOptions& options);

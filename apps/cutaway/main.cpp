@@ -36,15 +36,18 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
   vecOption("--eye", o.eye, "Camera position x,y,z");
   vecOption("--target", o.target, "Camera target x,y,z");
   vecOption("--up", o.up, "Camera up vector x,y,z");
-  command->add_option_function<float>("--fov", [&o](float f) { o.fov = f; },
-                                      "Vertical field of view in degrees")
+  command
+      ->add_option_function<float>(
+          "--fov", [&o](float f) { o.fov = f; }, "Vertical field of view in degrees")
       ->check(CLI::Range(1.0f, 170.0f));
   command->add_option("--projection", o.projection, "Camera projection")
       ->check(CLI::IsMember({"perspective", "orthographic"}));
   command->add_flag("--fit", o.fit, "Fit the camera to the scene (keeps the viewing direction)");
-  command->add_option("--style", o.style, "Shading style")->check(CLI::IsMember({"gooch", "blinn-phong"}));
-  command->add_option_function<int>("--samples", [&o](int s) { o.samples = s; },
-                                    "MSAA samples (1, 2, 4, 8, 16)")
+  command->add_option("--style", o.style, "Shading style")
+      ->check(CLI::IsMember({"gooch", "blinn-phong"}));
+  command
+      ->add_option_function<int>(
+          "--samples", [&o](int s) { o.samples = s; }, "MSAA samples (1, 2, 4, 8, 16)")
       ->check(CLI::IsMember({1, 2, 4, 8, 16}));
 }
 
@@ -62,10 +65,11 @@ int main(int argc, char** argv) {
   render->add_option("--aov", renderOptions.aovDir,
                      "Directory for the frame's intermediate buffers (PFM + aovs.json); with "
                      "--frames, one sub-directory per frame");
-  auto* frames = render->add_option("--frames", renderOptions.frames,
-                                    "Render an animation of N frames spanning the scene's duration; "
-                                    "OUT may hold a printf pattern (frame_%04d.png), else the "
-                                    "frame number is appended to its stem")
+  auto* frames = render
+                     ->add_option("--frames", renderOptions.frames,
+                                  "Render an animation of N frames spanning the scene's duration; "
+                                  "OUT may hold a printf pattern (frame_%04d.png), else the "
+                                  "frame number is appended to its stem")
                      ->check(CLI::Range(1, 100000));
   render->add_option("--time", renderOptions.time, "Render the single instant T (seconds)")
       ->check(CLI::Range(0.0f, 1e6f))
@@ -73,18 +77,21 @@ int main(int argc, char** argv) {
   addSceneOverrides(render, renderOptions.overrides);
 
   std::string infoScene;
-  auto* info = app.add_subcommand("info", "Print the scene's objects, triangle counts, bounds "
-                                          "and watertightness as JSON");
+  auto* info = app.add_subcommand("info",
+                                  "Print the scene's objects, triangle counts, bounds "
+                                  "and watertightness as JSON");
   info->add_option("scene", infoScene, "Scene file (JSON)")->required();
 
   cutaway::cli::BenchOptions benchOptions;
-  auto* bench = app.add_subcommand("bench", "Render frames and report per-pass GPU times and "
-                                            "frame times");
+  auto* bench = app.add_subcommand("bench",
+                                   "Render frames and report per-pass GPU times and "
+                                   "frame times");
   bench->add_option("scene", benchOptions.scene, "Scene file (JSON)")->required();
-  bench->add_option("--frames", benchOptions.frames,
-                    "Frames to time per run (after one warm-up frame). With a cutter, bench runs "
-                    "the plain frame and the cutaway at 512² and 1024² on GPU and CPU paths, the "
-                    "CPU reference kernels and the jump-flooding accuracy: minutes on llvmpipe")
+  bench
+      ->add_option("--frames", benchOptions.frames,
+                   "Frames to time per run (after one warm-up frame). With a cutter, bench runs "
+                   "the plain frame and the cutaway at 512² and 1024² on GPU and CPU paths, the "
+                   "CPU reference kernels and the jump-flooding accuracy: minutes on llvmpipe")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   bench->add_flag("--json", benchOptions.json, "Print JSON instead of a table");

@@ -33,8 +33,12 @@ using File = std::unique_ptr<std::FILE, FileCloser>;
 
 }  // namespace
 
-void Rgba8Image::flipVertically() { flipRows(pixels, std::size_t(width) * 4, height); }
-void FloatImage::flipVertically() { flipRows(data, std::size_t(width) * channels, height); }
+void Rgba8Image::flipVertically() {
+  flipRows(pixels, std::size_t(width) * 4, height);
+}
+void FloatImage::flipVertically() {
+  flipRows(data, std::size_t(width) * channels, height);
+}
 
 void writePng(const std::filesystem::path& path, const Rgba8Image& image) {
   replaceFileAtomically(path, [&](const std::filesystem::path& tmp) {
@@ -71,8 +75,8 @@ Rgba8Image readPng(const std::filesystem::path& path) {
 
 void writePfm(const std::filesystem::path& path, const FloatImage& image) {
   if (image.channels != 1 && image.channels != 3)
-    throw Error(path.string(), "", "PFM holds 1 or 3 channels, not " +
-                                       std::to_string(image.channels));
+    throw Error(path.string(), "",
+                "PFM holds 1 or 3 channels, not " + std::to_string(image.channels));
   writeFileAtomically(path, [&](std::ostream& os) {
     // Negative scale marks little-endian data.
     os << (image.channels == 3 ? "PF" : "Pf") << "\n"
@@ -96,8 +100,8 @@ FloatImage readPfm(const std::filesystem::path& path) {
   if (!is || (magic != "PF" && magic != "Pf"))
     throw Error(path.string(), "header", "not a PFM file (expected PF or Pf)");
   if (w <= 0 || h <= 0 || w > 65536 || h > 65536)
-    throw Error(path.string(), "header", "invalid size " + std::to_string(w) + "x" +
-                                             std::to_string(h));
+    throw Error(path.string(), "header",
+                "invalid size " + std::to_string(w) + "x" + std::to_string(h));
   if (scale >= 0) throw Error(path.string(), "header", "big-endian PFM is not supported");
   is.get();  // the single whitespace character after the scale
   FloatImage image(w, h, magic == "PF" ? 3 : 1);

@@ -28,8 +28,8 @@ Mesh convexHull(const std::vector<glm::vec3>& points) {
   qh_zero(qh, errorStream);
   // Qt: triangulated facets; the hull is a closed triangle mesh.
   char options[] = "qhull Qt";
-  const int status = qh_new_qhull(qh, 3, int(points.size()), coords.data(), False, options,
-                                  nullptr, errorStream);
+  const int status =
+      qh_new_qhull(qh, 3, int(points.size()), coords.data(), False, options, nullptr, errorStream);
   Mesh hull;
   if (status == 0) {
     std::unordered_map<int, unsigned> vertexIndex;

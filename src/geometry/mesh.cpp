@@ -80,8 +80,8 @@ void computeVertexNormals(Mesh& mesh, float creaseAngle) {
       for (unsigned g : facesOf[v])
         if (glm::dot(unit(faceNormals[g]), own) >= cosCrease) sum += faceNormals[g];
       const glm::vec3 n = glm::length(sum) > 0.0f ? unit(sum) : own;
-      const auto [it, inserted] = corners.emplace(std::make_pair(v, std::array<float, 3>{n.x, n.y, n.z}),
-                                                  unsigned(positions.size()));
+      const auto [it, inserted] = corners.emplace(
+          std::make_pair(v, std::array<float, 3>{n.x, n.y, n.z}), unsigned(positions.size()));
       if (inserted) {
         positions.push_back(mesh.positions[v]);
         normals.push_back(n);
@@ -125,9 +125,12 @@ void analyzeTopology(Mesh& mesh) {
   r.boundaryEdges = r.nonManifoldEdges = r.misorientedEdges = 0;
   for (const auto& [edge, uses] : edges) {
     const int total = uses[0] + uses[1];
-    if (total == 1) ++r.boundaryEdges;
-    else if (total > 2) ++r.nonManifoldEdges;
-    else if (uses[0] != 1) ++r.misorientedEdges;
+    if (total == 1)
+      ++r.boundaryEdges;
+    else if (total > 2)
+      ++r.nonManifoldEdges;
+    else if (uses[0] != 1)
+      ++r.misorientedEdges;
   }
   r.watertight = !mesh.triangles.empty() && r.boundaryEdges == 0 && r.nonManifoldEdges == 0 &&
                  r.misorientedEdges == 0;
@@ -137,12 +140,13 @@ Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi) {
   Mesh m;
   // Each face: outward normal n and in-plane axes un, vn = n × un, so un × vn = n and the
   // quad winds counter-clockwise seen from outside.
-  const glm::vec3 normals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const glm::vec3 normals[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
   const glm::vec3 center = (lo + hi) * 0.5f, half = (hi - lo) * 0.5f;
   for (const auto& n : normals) {
-    const glm::vec3 un = glm::abs(n.x) > 0.5f ? glm::vec3(0, 1, 0) * n.x
-                       : glm::abs(n.y) > 0.5f ? glm::vec3(0, 0, 1) * n.y
-                                              : glm::vec3(1, 0, 0) * n.z;
+    const glm::vec3 un = glm::abs(n.x) > 0.5f   ? glm::vec3(0, 1, 0) * n.x
+                         : glm::abs(n.y) > 0.5f ? glm::vec3(0, 0, 1) * n.y
+                                                : glm::vec3(1, 0, 0) * n.z;
     const glm::vec3 vn = glm::cross(n, un);
     const auto base = unsigned(m.positions.size());
     const glm::vec2 corners[4] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};

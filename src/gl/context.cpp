@@ -86,12 +86,14 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create() {
   EGLint configCount = 0;
   const bool noConfig =
       hasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_no_config_context");
-  if (!noConfig && (!eglChooseConfig(display, configAttributes, &config, 1, &configCount) ||
-                    configCount == 0))
+  if (!noConfig &&
+      (!eglChooseConfig(display, configAttributes, &config, 1, &configCount) || configCount == 0))
     throw Error("EGL has no config for desktop OpenGL");
 
-  const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                      EGL_CONTEXT_MINOR_VERSION, 5,
+  const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                      4,
+                                      EGL_CONTEXT_MINOR_VERSION,
+                                      5,
                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                       EGL_NONE};

@@ -68,7 +68,8 @@ struct Expander {
         if (!includedFrom.empty())
           throw Error(file, "line " + std::to_string(number), "#version in an included file");
         emit(line, number);
-        for (const auto& [name, value] : desc.defines) emit("#define " + name + " " + value, number);
+        for (const auto& [name, value] : desc.defines)
+          emit("#define " + name + " " + value, number);
       } else if (std::regex_match(line, m, includeRe)) {
         expand(resolveInclude(file, m[1].str(), desc), file, number);
       } else {
@@ -81,19 +82,28 @@ struct Expander {
 
 const char* stageName(GLenum stage) {
   switch (stage) {
-    case GL_VERTEX_SHADER: return "vertex";
-    case GL_FRAGMENT_SHADER: return "fragment";
-    case GL_GEOMETRY_SHADER: return "geometry";
-    case GL_TESS_CONTROL_SHADER: return "tessellation control";
-    case GL_TESS_EVALUATION_SHADER: return "tessellation evaluation";
-    case GL_COMPUTE_SHADER: return "compute";
-    default: return "unknown";
+    case GL_VERTEX_SHADER:
+      return "vertex";
+    case GL_FRAGMENT_SHADER:
+      return "fragment";
+    case GL_GEOMETRY_SHADER:
+      return "geometry";
+    case GL_TESS_CONTROL_SHADER:
+      return "tessellation control";
+    case GL_TESS_EVALUATION_SHADER:
+      return "tessellation evaluation";
+    case GL_COMPUTE_SHADER:
+      return "compute";
+    default:
+      return "unknown";
   }
 }
 
 }  // namespace
 
-bool hasShader(const std::string& name) { return embeddedShaders().count(name) != 0; }
+bool hasShader(const std::string& name) {
+  return embeddedShaders().count(name) != 0;
+}
 
 PreprocessedSource preprocess(const std::string& file, const ProgramDesc& desc) {
   PreprocessedSource out;
@@ -156,7 +166,8 @@ Program buildProgram(const ProgramDesc& desc) {
     glGetProgramInfoLog(program.id(), length, nullptr, log.data());
     std::string names;
     for (const auto& f : allFiles) names += (names.empty() ? "" : " + ") + f;
-    throw Error(names, "program", "link failed: " + annotateInfoLog(log.c_str(), PreprocessedSource{}));
+    throw Error(names, "program",
+                "link failed: " + annotateInfoLog(log.c_str(), PreprocessedSource{}));
   }
   for (const auto& s : shaders) glDetachShader(program.id(), s.id());
   return program;

@@ -31,8 +31,8 @@ std::vector<char> readGzip(const std::filesystem::path& file) {
 
 glm::mat4 toGlm(const aiMatrix4x4& m) {
   // Assimp matrices are row-major; glm is column-major.
-  return glm::transpose(glm::mat4(m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2,
-                                  m.c3, m.c4, m.d1, m.d2, m.d3, m.d4));
+  return glm::transpose(glm::mat4(m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3,
+                                  m.c4, m.d1, m.d2, m.d3, m.d4));
 }
 
 // One aiMesh as a cutaway Mesh: triangles only (points and lines were sorted out), normals
@@ -72,7 +72,8 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
     throw Error(file.string(), "", "mesh file not found");
   Assimp::Importer importer;
   // Points and lines carry no surface: drop them rather than fail.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned flags =
       aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices;
   const aiScene* scene = nullptr;

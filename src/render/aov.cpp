@@ -13,11 +13,13 @@ nlohmann::json matrixRows(const glm::mat4& m) {
   for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
   return rows;
 }
-nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::json vec(const glm::vec3& v) {
+  return {v.x, v.y, v.z};
+}
 }  // namespace
 
-void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs,
-               const Camera& camera, float aspect) {
+void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
+               float aspect) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir.string(), "", "cannot create AOV directory: " + ec.message());

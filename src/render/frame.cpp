@@ -65,7 +65,8 @@ void Frame::prepare(Pass& pass) {
       throw Error("frame", pass.desc.name, "writes render targets of different sizes");
     first = false;
     if (isDepthFormat(d.format)) {
-      glNamedFramebufferTexture(pass.framebuffer.id(), GL_DEPTH_ATTACHMENT, it->second.texture.id(), 0);
+      glNamedFramebufferTexture(pass.framebuffer.id(), GL_DEPTH_ATTACHMENT, it->second.texture.id(),
+                                0);
     } else {
       const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(drawBuffers.size());
       glNamedFramebufferTexture(pass.framebuffer.id(), attachment, it->second.texture.id(), 0);
@@ -105,7 +106,9 @@ void Frame::execute() {
     glViewport(0, 0, pass.width, pass.height);
     pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
     timer_.end();
-    cpuMs_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    cpuMs_.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

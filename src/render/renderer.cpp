@@ -29,9 +29,9 @@ const char* styleFile(const std::string& style) {
 }
 
 gl::Program fullscreen(const char* fragment, std::map<std::string, std::string> defines = {}) {
-  return gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"},
-                                      {GL_FRAGMENT_SHADER, fragment}},
-                           .defines = std::move(defines)});
+  return gl::buildProgram(
+      {.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}},
+       .defines = std::move(defines)});
 }
 
 // Mesh uniform locations of src/render/mesh.frag (and ghost.frag for the id).
@@ -63,24 +63,26 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   g.outlines = adaptive && adaptive->outlines;
   g.ghosts = adaptive && adaptive->ghostLines;
   if (g.ghosts)
-    g.ghostDistance = adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * scene.bounds().radius();
+    g.ghostDistance =
+        adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * scene.bounds().radius();
 
   g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
   g.emptyVertexArray = gl::VertexArray::create();
   const std::string cutter = adaptive ? "cutters/adaptive/clip.glsl" : "cutters/none/none.glsl";
-  g.meshProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
-                                               {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
-                                    .aliases = {{"style.glsl", styleFile(scene.style.name)},
-                                                {"cutter.glsl", cutter}}});
+  g.meshProgram = gl::buildProgram(
+      {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
+       .aliases = {{"style.glsl", styleFile(scene.style.name)}, {"cutter.glsl", cutter}}});
   g.backgroundProgram = fullscreen("render/background.frag");
   g.compositeProgram = fullscreen("render/composite.frag");
   if (g.lines || g.outlines)
-    g.linesProgram = fullscreen("styles/lines/lines.frag",
-                                g.outlines ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
-                                           : std::map<std::string, std::string>{});
+    g.linesProgram =
+        fullscreen("styles/lines/lines.frag",
+                   g.outlines ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
+                              : std::map<std::string, std::string>{});
   if (g.ghosts) {
-    g.ghostProgram = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
-                                                  {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
+    g.ghostProgram =
+        gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
+                                     {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
     g.ghostLinesProgram = fullscreen("styles/lines/lines.frag");
   }
 
@@ -96,9 +98,10 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                         .meaning = "feature-line coverage in [0,1] (silhouettes and creases, "
                                    "fraction of MSAA samples on a line)"});
   if (g.outlines)
-    f.declare("cutOutlines", {.format = GL_R16F,
-                              .meaning = "cut-outline coverage in [0,1]: boundary of the cut-surface "
-                                         "mask (Burns08 §4.2), fraction of MSAA samples"});
+    f.declare("cutOutlines",
+              {.format = GL_R16F,
+               .meaning = "cut-outline coverage in [0,1]: boundary of the cut-surface "
+                          "mask (Burns08 §4.2), fraction of MSAA samples"});
   if (g.ghosts) {
     f.declare("ghostNormal", {.format = GL_RGBA16F, .samples = samples});
     f.declare("ghostPosition", {.format = GL_RGBA32F, .samples = samples});
@@ -158,18 +161,21 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                  const GLuint program = g.ghostProgram.id();
                  glProgramUniform1f(program, kGhostDistance, g.ghostDistance);
                  g.sceneGpu.draw(
-                     program, [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; },
-                     [&](const SceneObject&, std::size_t i) { glProgramUniform1i(program, kObjectId, int(i)); });
+                     program,
+                     [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; },
+                     [&](const SceneObject&, std::size_t i) {
+                       glProgramUniform1i(program, kObjectId, int(i));
+                     });
                }});
   }
   if (g.lines || g.outlines) {
     std::vector<std::string> reads{"sceneNormal", "scenePosition", "sceneObjectId"};
     std::vector<std::string> writes{"lines"};
     if (g.outlines) reads.push_back("sceneCutMask"), writes.push_back("cutOutlines");
-    f.addPass({.name = "lines", .reads = reads, .writes = writes,
-               .run = [this](const PassContext&) {
-                 drawLines(impl_->linesProgram.id(), "scene", scene_.style.lines.has_value());
-               }});
+    f.addPass(
+        {.name = "lines", .reads = reads, .writes = writes, .run = [this](const PassContext&) {
+           drawLines(impl_->linesProgram.id(), "scene", scene_.style.lines.has_value());
+         }});
   }
   if (g.ghosts)
     f.addPass({.name = "ghostLines",
@@ -178,8 +184,8 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                .run = [this](const PassContext&) {
                  drawLines(impl_->ghostLinesProgram.id(), "ghost", true);
                }});
-  std::vector<std::string> compositeReads{"sceneColor", "sceneNormal", "scenePosition",
-                                          "sceneObjectId", "sceneDepth", "sceneCutMask"};
+  std::vector<std::string> compositeReads{"sceneColor",    "sceneNormal", "scenePosition",
+                                          "sceneObjectId", "sceneDepth",  "sceneCutMask"};
   for (const char* optional : {"lines", "cutOutlines", "ghostLines"})
     if (f.has(optional)) compositeReads.push_back(optional);
   f.addPass({.name = "composite",
@@ -231,18 +237,21 @@ void Renderer::drawGeometry(GLuint framebuffer) {
     glProgramUniform1i(program, kClipped, clipped);
     using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
     const bool cutSurface =
-        adaptive && (adaptive->cutSurfaces == CutSurfaces::All ||
-                     (adaptive->cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight));
+        adaptive &&
+        (adaptive->cutSurfaces == CutSurfaces::All ||
+         (adaptive->cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight));
     glProgramUniform1i(program, kCutSurface, cutSurface);
     const glm::vec3 cutColor = adaptive && adaptive->cutSurfaceColor ? *adaptive->cutSurfaceColor
                                                                      : o.material.color * 0.8f;
     glProgramUniform3fv(program, kCutColor, 1, &cutColor[0]);
   };
   // Secondary objects first, clipped; then the objects of interest, whole (Burns08 §4.1).
-  g.sceneGpu.draw(program, [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; },
-                  setUniforms);
-  g.sceneGpu.draw(program, [](const SceneObject& o) { return !o.proxy && o.role == Role::Interest; },
-                  setUniforms);
+  g.sceneGpu.draw(
+      program, [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; },
+      setUniforms);
+  g.sceneGpu.draw(
+      program, [](const SceneObject& o) { return !o.proxy && o.role == Role::Interest; },
+      setUniforms);
 }
 
 void Renderer::drawLines(GLuint program, const std::string& buffer, bool featureLines) {
@@ -253,7 +262,8 @@ void Renderer::drawLines(GLuint program, const std::string& buffer, bool feature
   glBindTextureUnit(0, frame_->texture(buffer + "Normal").id());
   glBindTextureUnit(1, frame_->texture(buffer + "Position").id());
   glBindTextureUnit(2, frame_->texture(buffer + "ObjectId").id());
-  if (frame_->has(buffer + "CutMask")) glBindTextureUnit(3, frame_->texture(buffer + "CutMask").id());
+  if (frame_->has(buffer + "CutMask"))
+    glBindTextureUnit(3, frame_->texture(buffer + "CutMask").id());
   glProgramUniform1i(program, 0, scene_.samples);
   glProgramUniform1i(program, 1, std::max(1, int(std::lround(l.width))));
   glProgramUniform1f(program, 2, std::cos(glm::radians(l.creaseAngle)));
@@ -269,8 +279,9 @@ void Renderer::composite() {
   const GLuint program = g.compositeProgram.id();
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
-  const char* inputs[] = {"sceneColor", "sceneNormal", "scenePosition", "sceneObjectId",
-                          "sceneDepth", "lines", "cutOutlines", "ghostLines", "sceneCutMask"};
+  const char* inputs[] = {"sceneColor",    "sceneNormal", "scenePosition",
+                          "sceneObjectId", "sceneDepth",  "lines",
+                          "cutOutlines",   "ghostLines",  "sceneCutMask"};
   for (GLuint unit = 0; unit < 9; ++unit)
     if (frame_->has(inputs[unit])) glBindTextureUnit(unit, frame_->texture(inputs[unit]).id());
   glProgramUniform1i(program, 0, scene_.samples);
@@ -319,7 +330,9 @@ void Renderer::render(const Camera& camera, float time) {
   frame_->execute();
 }
 
-GLuint Renderer::colorTexture() const { return frame_->texture("color").id(); }
+GLuint Renderer::colorTexture() const {
+  return frame_->texture("color").id();
+}
 
 Rgba8Image Renderer::readColor() const {
   Rgba8Image image(frame_->width(), frame_->height());

@@ -13,7 +13,8 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
       interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
     }
     Mesh g;
-    g.vertices = gl::Buffer::create(GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
+    g.vertices =
+        gl::Buffer::create(GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
     g.indices = gl::Buffer::create(GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
                                    mesh.triangles.data());
     g.indexCount = GLsizei(mesh.triangles.size() * 3);
@@ -23,7 +24,8 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
     glVertexArrayElementBuffer(vao, g.indices.id());
     for (GLuint attribute : {0u, 1u}) {
       glEnableVertexArrayAttrib(vao, attribute);
-      glVertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE, attribute * 3 * sizeof(float));
+      glVertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE,
+                                attribute * 3 * sizeof(float));
       glVertexArrayAttribBinding(vao, attribute, 0);
     }
     meshes_.push_back(std::move(g));
@@ -39,7 +41,8 @@ void SceneGpu::draw(GLuint program, const std::function<bool(const SceneObject&)
     const glm::mat4 model = o.transformAt(time_);
     const glm::mat4 normalMatrix = glm::transpose(glm::inverse(model));
     glProgramUniformMatrix4fv(program, meshUniform::kModel, 1, GL_FALSE, &model[0][0]);
-    glProgramUniformMatrix4fv(program, meshUniform::kNormalMatrix, 1, GL_FALSE, &normalMatrix[0][0]);
+    glProgramUniformMatrix4fv(program, meshUniform::kNormalMatrix, 1, GL_FALSE,
+                              &normalMatrix[0][0]);
     perObject(o, i);
     glBindVertexArray(meshes_[i].vertexArray.id());
     glDrawElements(GL_TRIANGLES, meshes_[i].indexCount, GL_UNSIGNED_INT, nullptr);

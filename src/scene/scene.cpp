@@ -7,10 +7,14 @@ namespace cutaway {
 
 const char* roleName(Role role) {
   switch (role) {
-    case Role::Context: return "context";
-    case Role::Interest: return "interest";
-    case Role::Exterior: return "exterior";
-    case Role::Interior: return "interior";
+    case Role::Context:
+      return "context";
+    case Role::Interest:
+      return "interest";
+    case Role::Exterior:
+      return "exterior";
+    case Role::Interior:
+      return "interior";
   }
   return "?";
 }
@@ -44,8 +48,8 @@ glm::mat4 SceneObject::transformAt(float time) const {
   const Keyframe& a = animation[i - 1];
   const Keyframe& b = animation[i];
   const float u = (time - a.time) / (b.time - a.time);
-  const Trs k{glm::mix(a.trs.translate, b.trs.translate, u), glm::slerp(a.trs.rotate, b.trs.rotate, u),
-              glm::mix(a.trs.scale, b.trs.scale, u)};
+  const Trs k{glm::mix(a.trs.translate, b.trs.translate, u),
+              glm::slerp(a.trs.rotate, b.trs.rotate, u), glm::mix(a.trs.scale, b.trs.scale, u)};
   return k.matrix() * transform;
 }
 
@@ -56,7 +60,8 @@ Bounds SceneObject::worldBounds() const {
   if (animation.empty()) return local.transformed(transform);
   // Keyframes bound translation; rotations between them can only sweep so far, so sample.
   const float start = animation.front().time, end = animation.back().time;
-  for (int i = 0; i <= 32; ++i) b.extend(local.transformed(transformAt(start + (end - start) * float(i) / 32.0f)));
+  for (int i = 0; i <= 32; ++i)
+    b.extend(local.transformed(transformAt(start + (end - start) * float(i) / 32.0f)));
   return b;
 }
 
@@ -67,7 +72,9 @@ float Scene::duration() const {
   return d;
 }
 
-glm::mat4 Camera::view() const { return glm::lookAt(eye, target, up); }
+glm::mat4 Camera::view() const {
+  return glm::lookAt(eye, target, up);
+}
 
 glm::mat4 Camera::projectionMatrix(float aspect) const {
   if (projection == Projection::Orthographic) {
@@ -146,8 +153,7 @@ Camera Scene::resolvedCamera(float time) const {
   const float distance = glm::length(center - c.eye);
   if (c.near <= 0.0f) {
     const float n = distance - radius * 1.05f;
-    c.near = c.projection == Projection::Perspective ? std::max(n, radius * 1e-3f)
-                                                     : n;
+    c.near = c.projection == Projection::Perspective ? std::max(n, radius * 1e-3f) : n;
   }
   if (c.far <= 0.0f) c.far = distance + radius * 1.05f;
   if (c.far <= c.near) c.far = c.near + radius * 2.0f;

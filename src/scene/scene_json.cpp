@@ -33,7 +33,9 @@ struct Context {
   }
 };
 
-std::string typeName(const json& j) { return j.type_name(); }
+std::string typeName(const json& j) {
+  return j.type_name();
+}
 
 // A key as one JSON pointer token (RFC 6901): "~" → "~0", "/" → "~1".
 std::string token(const std::string& key) {
@@ -67,7 +69,8 @@ class ObjectReader {
       if (!taken_.count(key)) {
         std::string known;
         for (const auto& k : taken_) known += (known.empty() ? "" : ", ") + k;
-        ctx_.fail(pointer_ + "/" + token(key), "unknown key \"" + key + "\" (expected one of: " + known + ")");
+        ctx_.fail(pointer_ + "/" + token(key),
+                  "unknown key \"" + key + "\" (expected one of: " + known + ")");
       }
   }
 
@@ -114,8 +117,8 @@ std::string oneOf(const Context& ctx, const json& j, const std::string& ptr,
   ctx.fail(ptr, "unknown value \"" + v + "\" (expected one of: " + list + ")");
 }
 
-glm::vec3 vec3(const Context& ctx, const json& j, const std::string& ptr,
-               double lo = -1e30, double hi = 1e30) {
+glm::vec3 vec3(const Context& ctx, const json& j, const std::string& ptr, double lo = -1e30,
+               double hi = 1e30) {
   if (!j.is_array() || j.size() != 3)
     ctx.fail(ptr, "expected an array of 3 numbers, got " +
                       (j.is_array() ? std::to_string(j.size()) + " elements" : typeName(j)));
@@ -151,7 +154,8 @@ Trs readTrs(const Context& ctx, ObjectReader& r) {
   if (const json* v = r.take("rotate")) {
     if (v->is_array()) {  // Euler angles in degrees, applied about x, then y, then z
       const glm::vec3 e = glm::radians(vec3(ctx, *v, r.at("rotate")));
-      out.rotate = glm::angleAxis(e.z, glm::vec3(0, 0, 1)) * glm::angleAxis(e.y, glm::vec3(0, 1, 0)) *
+      out.rotate = glm::angleAxis(e.z, glm::vec3(0, 0, 1)) *
+                   glm::angleAxis(e.y, glm::vec3(0, 1, 0)) *
                    glm::angleAxis(e.x, glm::vec3(1, 0, 0));
     } else {
       ObjectReader rr(ctx, *v, r.at("rotate"));
@@ -162,11 +166,13 @@ Trs readTrs(const Context& ctx, ObjectReader& r) {
     }
   }
   if (const json* v = r.take("scale")) {
-    const glm::vec3 k = v->is_number() ? glm::vec3(float(number(ctx, *v, r.at("scale"), -1e30, 1e30)))
-                                       : vec3(ctx, *v, r.at("scale"));
+    const glm::vec3 k = v->is_number()
+                            ? glm::vec3(float(number(ctx, *v, r.at("scale"), -1e30, 1e30)))
+                            : vec3(ctx, *v, r.at("scale"));
     // Per component: the product would reject small uniform scales (0.0001³ < 1e-12).
     for (int i = 0; i < 3; ++i)
-      if (!(std::abs(k[i]) >= std::numeric_limits<float>::min())) ctx.fail(r.at("scale"), "scale must not be zero");
+      if (!(std::abs(k[i]) >= std::numeric_limits<float>::min()))
+        ctx.fail(r.at("scale"), "scale must not be zero");
     out.scale = k;
   }
   return out;
@@ -178,7 +184,8 @@ std::vector<Keyframe> animation(const Context& ctx, const json& j, const std::st
   for (std::size_t i = 0; i < j.size(); ++i) {
     ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
     const float time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
-    if (!keys.empty() && time <= keys.back().time) ctx.fail(r.at("time"), "keyframe times must increase");
+    if (!keys.empty() && time <= keys.back().time)
+      ctx.fail(r.at("time"), "keyframe times must increase");
     keys.push_back({time, readTrs(ctx, r)});
     r.finish();
   }
@@ -192,7 +199,8 @@ std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::
     ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
     CameraKey k;
     k.time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
-    if (!keys.empty() && k.time <= keys.back().time) ctx.fail(r.at("time"), "camera key times must increase");
+    if (!keys.empty() && k.time <= keys.back().time)
+      ctx.fail(r.at("time"), "camera key times must increase");
     k.eye = vec3(ctx, r.require("eye"), r.at("eye"));
     k.target = vec3(ctx, r.require("target"), r.at("target"));
     if (glm::length(k.eye - k.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
@@ -211,8 +219,9 @@ glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
     glm::mat4 out;
     for (int row = 0; row < 4; ++row)
       for (int col = 0; col < 4; ++col)  // written row-major, as one reads a matrix
-        out[col][row] = float(number(ctx, (*m)[std::size_t(row * 4 + col)],
-                                     r.at("matrix") + "/" + std::to_string(row * 4 + col), -1e30, 1e30));
+        out[col][row] =
+            float(number(ctx, (*m)[std::size_t(row * 4 + col)],
+                         r.at("matrix") + "/" + std::to_string(row * 4 + col), -1e30, 1e30));
     // The renderer and the bounds use the matrix as an affine map (w stays 1).
     if (glm::vec4(out[0][3], out[1][3], out[2][3], out[3][3]) != glm::vec4(0, 0, 0, 1))
       ctx.fail(r.at("matrix"), "the last row must be 0, 0, 0, 1 (an affine transform)");
@@ -251,8 +260,10 @@ ObjectParams params(const Context& ctx, const json& j, const std::string& ptr) {
       for (const auto& s : objectParameterSpecs()) known += (known.empty() ? "" : ", ") + s.name;
       ctx.fail(p, "unknown object parameter \"" + key + "\" (known: " + known + ")");
     }
-    if (spec->type == ObjectParamSpec::Type::Bool) out[key] = boolean(ctx, value, p);
-    else out[key] = number(ctx, value, p, spec->min, spec->max);
+    if (spec->type == ObjectParamSpec::Type::Bool)
+      out[key] = boolean(ctx, value, p);
+    else
+      out[key] = number(ctx, value, p, spec->min, spec->max);
   }
   return out;
 }
@@ -260,15 +271,18 @@ ObjectParams params(const Context& ctx, const json& j, const std::string& ptr) {
 // The keys every object, override and proxy may set about itself.
 void appearance(const Context& ctx, ObjectReader& r, SceneObject& o, bool visible) {
   if (const json* v = r.take("role")) o.role = role(ctx, *v, r.at("role"));
-  if (const json* v = r.take("importance")) o.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
+  if (const json* v = r.take("importance"))
+    o.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
   if (const json* v = r.take("group")) o.group = string(ctx, *v, r.at("group"));
   if (const json* v = r.take("params")) {
     for (auto& [k, value] : params(ctx, *v, r.at("params"))) o.params[k] = value;
   }
   if (!visible) return;
   if (const json* v = r.take("color")) o.material.color = color(ctx, *v, r.at("color"));
-  if (const json* v = r.take("specular")) o.material.specular = float(number(ctx, *v, r.at("specular"), 0, 1));
-  if (const json* v = r.take("shininess")) o.material.shininess = float(number(ctx, *v, r.at("shininess"), 1, 10000));
+  if (const json* v = r.take("specular"))
+    o.material.specular = float(number(ctx, *v, r.at("specular"), 0, 1));
+  if (const json* v = r.take("shininess"))
+    o.material.shininess = float(number(ctx, *v, r.at("shininess"), 1, 10000));
 }
 
 class MeshCache {
@@ -277,7 +291,10 @@ class MeshCache {
   std::shared_ptr<const std::vector<ImportedNode>> get(const std::filesystem::path& file) {
     auto it = files_.find(file);
     if (it == files_.end())
-      it = files_.emplace(file, std::make_shared<const std::vector<ImportedNode>>(importMeshNodes(file))).first;
+      it = files_
+               .emplace(file,
+                        std::make_shared<const std::vector<ImportedNode>>(importMeshNodes(file)))
+               .first;
     return it->second;
   }
 
@@ -293,7 +310,8 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
   const std::string fileText = string(ctx, r.require("file"), r.at("file"));
   std::filesystem::path file = fileText;
   if (file.is_relative()) file = ctx.baseDir / file;
-  const bool split = r.has("split") && oneOf(ctx, *r.take("split"), r.at("split"), {"file", "nodes"}) == "nodes";
+  const bool split =
+      r.has("split") && oneOf(ctx, *r.take("split"), r.at("split"), {"file", "nodes"}) == "nodes";
   r.take("split");
   std::optional<std::regex> nodeFilter;
   if (const json* v = r.take("nodes")) nodeFilter = regex(ctx, *v, r.at("nodes"));
@@ -392,7 +410,8 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
     const glm::vec3 lo = vec3(ctx, br.require("min"), br.at("min"));
     const glm::vec3 hi = vec3(ctx, br.require("max"), br.at("max"));
     br.finish();
-    if (!glm::all(glm::lessThan(lo, hi))) ctx.fail(r.at("box"), "box min must be below max on every axis");
+    if (!glm::all(glm::lessThan(lo, hi)))
+      ctx.fail(r.at("box"), "box min must be below max on every axis");
     o.mesh = std::make_shared<Mesh>(makeBox(lo, hi));
   } else {
     const std::regex pattern = regex(ctx, *hullOf, r.at("hullOf"));
@@ -401,7 +420,8 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
     for (const auto& other : objects) {
       if (other.proxy || !std::regex_match(other.name, pattern)) continue;
       ++matched;
-      for (const auto& p : other.mesh->positions) points.push_back(glm::vec3(other.transform * glm::vec4(p, 1.0f)));
+      for (const auto& p : other.mesh->positions)
+        points.push_back(glm::vec3(other.transform * glm::vec4(p, 1.0f)));
     }
     if (matched == 0) ctx.fail(r.at("hullOf"), "no object name matches");
     try {
@@ -418,18 +438,22 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
   ObjectReader r(ctx, j, ptr);
   Camera c;
   if (const json* v = r.take("projection"))
-    c.projection = oneOf(ctx, *v, r.at("projection"), {"perspective", "orthographic"}) == "perspective"
-                       ? Projection::Perspective : Projection::Orthographic;
+    c.projection =
+        oneOf(ctx, *v, r.at("projection"), {"perspective", "orthographic"}) == "perspective"
+            ? Projection::Perspective
+            : Projection::Orthographic;
   if (const json* v = r.take("fit")) c.fit = boolean(ctx, *v, r.at("fit"));
   if (const json* v = r.take("path")) c.path = cameraPath(ctx, *v, r.at("path"));
   const json* eye = r.take("eye");
   const json* target = r.take("target");
   if (!c.fit && c.path.empty() && (!eye || !target))
     ctx.fail(ptr, "a camera needs \"eye\" and \"target\", a \"path\", or \"fit\": true");
-  if (!c.path.empty() && !eye && !target) c.eye = c.path.front().eye, c.target = c.path.front().target;
+  if (!c.path.empty() && !eye && !target)
+    c.eye = c.path.front().eye, c.target = c.path.front().target;
   if (eye) c.eye = vec3(ctx, *eye, r.at("eye"));
   if (target) c.target = vec3(ctx, *target, r.at("target"));
-  if (eye && target && glm::length(c.eye - c.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
+  if (eye && target && glm::length(c.eye - c.target) < 1e-9f)
+    ctx.fail(r.at("eye"), "eye and target coincide");
   if (const json* v = r.take("up")) c.up = direction(ctx, *v, r.at("up"));
   for (std::size_t i = 0; i < c.path.size(); ++i)
     if (glm::length(glm::cross(glm::normalize(c.path[i].eye - c.path[i].target), c.up)) < 1e-6f)
@@ -439,10 +463,12 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
       glm::length(glm::cross(glm::normalize(c.eye - c.target), c.up)) < 1e-6f)
     ctx.fail(r.at("up"), "up is parallel to the viewing direction");
   if (const json* v = r.take("fov")) c.fovY = float(number(ctx, *v, r.at("fov"), 1, 170));
-  if (const json* v = r.take("height")) c.height = float(number(ctx, *v, r.at("height"), 1e-9, 1e30));
+  if (const json* v = r.take("height"))
+    c.height = float(number(ctx, *v, r.at("height"), 1e-9, 1e30));
   if (const json* v = r.take("near")) c.near = float(number(ctx, *v, r.at("near"), 1e-9, 1e30));
   if (const json* v = r.take("far")) c.far = float(number(ctx, *v, r.at("far"), 1e-9, 1e30));
-  if (c.near > 0 && c.far > 0 && c.far <= c.near) ctx.fail(r.at("far"), "far must be greater than near");
+  if (c.near > 0 && c.far > 0 && c.far <= c.near)
+    ctx.fail(r.at("far"), "far must be greater than near");
   r.finish();
   return c;
 }
@@ -451,12 +477,17 @@ Light light(const Context& ctx, const json& j, const std::string& ptr) {
   ObjectReader r(ctx, j, ptr);
   Light l;
   l.type = oneOf(ctx, r.require("type"), r.at("type"), {"directional", "point"}) == "point"
-               ? Light::Type::Point : Light::Type::Directional;
-  if (l.type == Light::Type::Directional) l.direction = direction(ctx, r.require("direction"), r.at("direction"));
-  else l.position = vec3(ctx, r.require("position"), r.at("position"));
+               ? Light::Type::Point
+               : Light::Type::Directional;
+  if (l.type == Light::Type::Directional)
+    l.direction = direction(ctx, r.require("direction"), r.at("direction"));
+  else
+    l.position = vec3(ctx, r.require("position"), r.at("position"));
   if (const json* v = r.take("color")) l.color = color(ctx, *v, r.at("color"));
-  if (const json* v = r.take("intensity")) l.intensity = float(number(ctx, *v, r.at("intensity"), 0, 1e6));
-  if (const json* v = r.take("space")) l.cameraSpace = oneOf(ctx, *v, r.at("space"), {"camera", "world"}) == "camera";
+  if (const json* v = r.take("intensity"))
+    l.intensity = float(number(ctx, *v, r.at("intensity"), 0, 1e6));
+  if (const json* v = r.take("space"))
+    l.cameraSpace = oneOf(ctx, *v, r.at("space"), {"camera", "world"}) == "camera";
   r.finish();
   return l;
 }
@@ -469,7 +500,8 @@ AdaptiveCutawayOptions adaptiveCutaway(const Context& ctx, const json& j, const 
   }
   ObjectReader r(ctx, j, ptr);
   if (const json* v = r.take("angle")) o.angle = float(number(ctx, *v, r.at("angle"), 0, 90));
-  if (const json* v = r.take("bufferSize")) o.bufferSize = integer(ctx, *v, r.at("bufferSize"), 16, 8192);
+  if (const json* v = r.take("bufferSize"))
+    o.bufferSize = integer(ctx, *v, r.at("bufferSize"), 16, 8192);
   if (const json* v = r.take("perspectiveCompensation"))
     o.perspectiveCompensation = boolean(ctx, *v, r.at("perspectiveCompensation"));
   if (const json* v = r.take("edgeCompression")) {
@@ -486,22 +518,24 @@ AdaptiveCutawayOptions adaptiveCutaway(const Context& ctx, const json& j, const 
   if (const json* v = r.take("directionalConstraint"))
     o.directionalConstraint = boolean(ctx, *v, r.at("directionalConstraint"));
   if (const json* v = r.take("jumpFlooding")) {
-    const std::string name = oneOf(ctx, *v, r.at("jumpFlooding"), {"jfa", "jfa+1", "1+jfa", "jfa+2"});
+    const std::string name =
+        oneOf(ctx, *v, r.at("jumpFlooding"), {"jfa", "jfa+1", "1+jfa", "jfa+2"});
     fields::parseVariant(name, o.variant);
   }
   if (const json* v = r.take("compute")) {
     const std::string c = oneOf(ctx, *v, r.at("compute"), {"auto", "gpu", "cpu"});
-    o.compute = c == "gpu" ? AdaptiveCutawayOptions::Compute::Gpu
-              : c == "cpu" ? AdaptiveCutawayOptions::Compute::Cpu
-                           : AdaptiveCutawayOptions::Compute::Auto;
+    o.compute = c == "gpu"   ? AdaptiveCutawayOptions::Compute::Gpu
+                : c == "cpu" ? AdaptiveCutawayOptions::Compute::Cpu
+                             : AdaptiveCutawayOptions::Compute::Auto;
   }
   if (const json* v = r.take("cutSurfaces")) {
     const std::string c = oneOf(ctx, *v, r.at("cutSurfaces"), {"all", "watertight", "none"});
-    o.cutSurfaces = c == "all" ? AdaptiveCutawayOptions::CutSurfaces::All
-                  : c == "watertight" ? AdaptiveCutawayOptions::CutSurfaces::Watertight
-                                      : AdaptiveCutawayOptions::CutSurfaces::None;
+    o.cutSurfaces = c == "all"          ? AdaptiveCutawayOptions::CutSurfaces::All
+                    : c == "watertight" ? AdaptiveCutawayOptions::CutSurfaces::Watertight
+                                        : AdaptiveCutawayOptions::CutSurfaces::None;
   }
-  if (const json* v = r.take("cutSurfaceColor")) o.cutSurfaceColor = color(ctx, *v, r.at("cutSurfaceColor"));
+  if (const json* v = r.take("cutSurfaceColor"))
+    o.cutSurfaceColor = color(ctx, *v, r.at("cutSurfaceColor"));
   if (const json* v = r.take("outlines")) o.outlines = boolean(ctx, *v, r.at("outlines"));
   if (const json* v = r.take("outlineColor")) o.outlineColor = color(ctx, *v, r.at("outlineColor"));
   if (const json* v = r.take("ghostLines")) {
@@ -510,8 +544,10 @@ AdaptiveCutawayOptions adaptiveCutaway(const Context& ctx, const json& j, const 
     } else {
       ObjectReader g(ctx, *v, r.at("ghostLines"));
       o.ghostLines = true;
-      if (const json* x = g.take("distance")) o.ghostDistance = float(number(ctx, *x, g.at("distance"), 0, 1e30));
-      if (const json* x = g.take("opacity")) o.ghostOpacity = float(number(ctx, *x, g.at("opacity"), 0, 1));
+      if (const json* x = g.take("distance"))
+        o.ghostDistance = float(number(ctx, *x, g.at("distance"), 0, 1e30));
+      if (const json* x = g.take("opacity"))
+        o.ghostOpacity = float(number(ctx, *x, g.at("opacity"), 0, 1));
       g.finish();
     }
   }
@@ -533,11 +569,15 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
     } else {
       ObjectReader lr(ctx, *v, r.at("lines"));
       LineStyle& l = *s.lines;
-      if (const json* x = lr.take("silhouettes")) l.silhouettes = boolean(ctx, *x, lr.at("silhouettes"));
+      if (const json* x = lr.take("silhouettes"))
+        l.silhouettes = boolean(ctx, *x, lr.at("silhouettes"));
       if (const json* x = lr.take("creases")) l.creases = boolean(ctx, *x, lr.at("creases"));
-      if (const json* x = lr.take("creaseAngle")) l.creaseAngle = float(number(ctx, *x, lr.at("creaseAngle"), 0, 180));
-      if (const json* x = lr.take("depthThreshold")) l.depthThreshold = float(number(ctx, *x, lr.at("depthThreshold"), 0, 1));
-      if (const json* x = lr.take("width")) l.width = float(number(ctx, *x, lr.at("width"), 0.5, 8));
+      if (const json* x = lr.take("creaseAngle"))
+        l.creaseAngle = float(number(ctx, *x, lr.at("creaseAngle"), 0, 180));
+      if (const json* x = lr.take("depthThreshold"))
+        l.depthThreshold = float(number(ctx, *x, lr.at("depthThreshold"), 0, 1));
+      if (const json* x = lr.take("width"))
+        l.width = float(number(ctx, *x, lr.at("width"), 0.5, 8));
       if (const json* x = lr.take("color")) l.color = color(ctx, *x, lr.at("color"));
       lr.finish();
     }
@@ -546,13 +586,15 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
     ObjectReader gr(ctx, *v, r.at("gooch"));
     if (const json* x = gr.take("cool")) s.gooch.cool = color(ctx, *x, gr.at("cool"));
     if (const json* x = gr.take("warm")) s.gooch.warm = color(ctx, *x, gr.at("warm"));
-    if (const json* x = gr.take("alpha")) s.gooch.alpha = float(number(ctx, *x, gr.at("alpha"), 0, 1));
+    if (const json* x = gr.take("alpha"))
+      s.gooch.alpha = float(number(ctx, *x, gr.at("alpha"), 0, 1));
     if (const json* x = gr.take("beta")) s.gooch.beta = float(number(ctx, *x, gr.at("beta"), 0, 1));
     gr.finish();
   }
   if (const json* v = r.take("blinnPhong")) {
     ObjectReader br(ctx, *v, r.at("blinnPhong"));
-    if (const json* x = br.take("ambient")) s.blinnPhong.ambient = float(number(ctx, *x, br.at("ambient"), 0, 1));
+    if (const json* x = br.take("ambient"))
+      s.blinnPhong.ambient = float(number(ctx, *x, br.at("ambient"), 0, 1));
     br.finish();
   }
   r.finish();
@@ -568,8 +610,10 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   const auto lineColumn = [&text](std::size_t byte) {
     std::size_t line = 1, column = 1;
     for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-      if (text[i] == '\n') ++line, column = 1;
-      else ++column;
+      if (text[i] == '\n')
+        ++line, column = 1;
+      else
+        ++column;
     }
     return "line " + std::to_string(line) + ", column " + std::to_string(column);
   };
@@ -578,7 +622,8 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     root = json::parse(text);
   } catch (const json::parse_error& e) {
     std::string reason = e.what();
-    if (auto p = reason.find(": syntax error"); p != std::string::npos) reason = reason.substr(p + 2);
+    if (auto p = reason.find(": syntax error"); p != std::string::npos)
+      reason = reason.substr(p + 2);
     throw Error(ctx.file, lineColumn(e.byte), "invalid JSON: " + reason);
   } catch (const json::exception& e) {
     // A number too large for a double ("1e999") is out_of_range, not a parse_error, and has
@@ -588,7 +633,8 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     std::string place;
     const auto open = reason.find('\''), close = reason.rfind('\'');
     if (open != std::string::npos && close > open + 1)
-      if (const auto at = text.find(reason.substr(open + 1, close - open - 1)); at != std::string::npos)
+      if (const auto at = text.find(reason.substr(open + 1, close - open - 1));
+          at != std::string::npos)
         place = lineColumn(at + (close - open - 1));
     throw Error(ctx.file, place, "invalid JSON: " + reason);
   }
@@ -604,7 +650,8 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   }
   if (const json* v = r.take("samples")) {
     scene.samples = integer(ctx, *v, "/samples", 1, 16);
-    if (scene.samples & (scene.samples - 1)) ctx.fail("/samples", "samples must be 1, 2, 4, 8 or 16");
+    if (scene.samples & (scene.samples - 1))
+      ctx.fail("/samples", "samples must be 1, 2, 4, 8 or 16");
   }
   if (const json* v = r.take("background")) {
     if (v->is_array()) {
@@ -619,13 +666,15 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   if (const json* v = r.take("style")) scene.style = style(ctx, *v, "/style");
   if (const json* v = r.take("cutters")) {
     ObjectReader cr(ctx, *v, "/cutters");
-    if (const json* a = cr.take("adaptive")) scene.adaptive = adaptiveCutaway(ctx, *a, "/cutters/adaptive");
+    if (const json* a = cr.take("adaptive"))
+      scene.adaptive = adaptiveCutaway(ctx, *a, "/cutters/adaptive");
     cr.finish();
   }
   if (const json* v = r.take("lights")) {
     if (!v->is_array()) ctx.fail("/lights", "expected an array, got " + typeName(*v));
     if (v->size() > kMaxLights)
-      ctx.fail("/lights", "at most " + std::to_string(kMaxLights) + " lights, got " + std::to_string(v->size()));
+      ctx.fail("/lights", "at most " + std::to_string(kMaxLights) + " lights, got " +
+                              std::to_string(v->size()));
     for (std::size_t i = 0; i < v->size(); ++i)
       scene.lights.push_back(light(ctx, (*v)[i], "/lights/" + std::to_string(i)));
   } else {
@@ -645,10 +694,13 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   }
   std::set<std::string> names;
   for (const auto& o : scene.objects)
-    if (!names.insert(o.name).second) ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+    if (!names.insert(o.name).second)
+      ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
   // The camera may "fit" to the objects, so it is read after them.
-  if (const json* v = r.take("camera")) scene.camera = camera(ctx, *v, "/camera");
-  else scene.camera.fit = true;
+  if (const json* v = r.take("camera"))
+    scene.camera = camera(ctx, *v, "/camera");
+  else
+    scene.camera.fit = true;
   r.finish();
   return scene;
 }

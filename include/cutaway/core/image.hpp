@@ -22,9 +22,7 @@ struct Rgba8Image {
   Rgba8Image() = default;
   Rgba8Image(int w, int h) : width(w), height(h), pixels(std::size_t(w) * h * 4, 0) {}
   std::uint8_t* at(int x, int y) { return &pixels[(std::size_t(y) * width + x) * 4]; }
-  const std::uint8_t* at(int x, int y) const {
-    return &pixels[(std::size_t(y) * width + x) * 4];
-  }
+  const std::uint8_t* at(int x, int y) const { return &pixels[(std::size_t(y) * width + x) * 4]; }
   void flipVertically();
 };
 

@@ -20,27 +20,28 @@
 namespace cutaway {
 
 struct AdaptiveCutawayOptions {
-  float angle = 45.0f;                  // θ in degrees, [0, 90] (per object: param "cutawayAngle")
-  int bufferSize = 512;                 // cutaway buffer is bufferSize² (Burns08 §6), independent of the screen
-  bool perspectiveCompensation = true;  // Burns08 eq. 3 / Burns11 eq. 5.7
-  bool edgeCompression = true;          // Burns11 eq. 5.8
-  float edgeRegion = 0.1f;              // r of eq. 5.8
-  bool directionalConstraint = false;   // Burns11 eqs. 6.1–6.4
+  float angle = 45.0f;   // θ in degrees, [0, 90] (per object: param "cutawayAngle")
+  int bufferSize = 512;  // cutaway buffer is bufferSize² (Burns08 §6), independent of the screen
+  bool perspectiveCompensation = true;      // Burns08 eq. 3 / Burns11 eq. 5.7
+  bool edgeCompression = true;              // Burns11 eq. 5.8
+  float edgeRegion = 0.1f;                  // r of eq. 5.8
+  bool directionalConstraint = false;       // Burns11 eqs. 6.1–6.4
   glm::vec3 floorNormal{0.0f, 1.0f, 0.0f};  // world space
   fields::JumpFloodingVariant variant = fields::JumpFloodingVariant::jfaPlus1;
   enum class Compute { Auto, Gpu, Cpu } compute = Compute::Auto;
   enum class CutSurfaces { All, Watertight, None } cutSurfaces = CutSurfaces::All;
   std::optional<glm::vec3> cutSurfaceColor;  // default: the object's colour, slightly darker
-  bool outlines = true;                  // cut outlines (Burns08 §4.2)
+  bool outlines = true;                      // cut outlines (Burns08 §4.2)
   glm::vec3 outlineColor{0.0f};
-  bool ghostLines = false;               // Burns08 §4.3 (opt-in: a style choice)
-  float ghostDistance = 0.0f;            // world units in front of the cutaway surface; 0: 5% of the scene radius
+  bool ghostLines = false;  // Burns08 §4.3 (opt-in: a style choice)
+  float ghostDistance =
+      0.0f;  // world units in front of the cutaway surface; 0: 5% of the scene radius
   float ghostOpacity = 0.4f;
 };
 
 // The camera quantities the cone math needs.
 struct CutawayProjection {
-  glm::mat4 projection;  // OpenGL projection matrix
+  glm::mat4 projection;    // OpenGL projection matrix
   glm::mat3 viewRotation;  // world → view rotation (for the floor normal)
   bool orthographic = false;
 };

@@ -42,8 +42,8 @@ struct SeedImage {
 
 struct CutawayField {
   int width = 0, height = 0;
-  std::vector<float> depth;   // C(p), NDC
-  std::vector<int> anchor;    // maximising seed index, −1 = none
+  std::vector<float> depth;  // C(p), NDC
+  std::vector<int> anchor;   // maximising seed index, −1 = none
 };
 
 // Exact: every pixel against every seed, O(pixels × seeds). For tests and error measurement.
@@ -67,7 +67,7 @@ CutawayField chamfer(const SeedImage& seeds, float nearDepth, ChamferKernel kern
 // strictly greater. Every step reads the previous step's anchors (double buffering). This
 // order is shared with the GPU shader so both produce the same result up to float rounding.
 enum class JumpFloodingVariant { jfa, jfaPlus1, onePlusJfa, jfaPlus2 };
-const char* variantName(JumpFloodingVariant v);            // "jfa", "jfa+1", "1+jfa", "jfa+2"
+const char* variantName(JumpFloodingVariant v);  // "jfa", "jfa+1", "1+jfa", "jfa+2"
 bool parseVariant(const std::string& name, JumpFloodingVariant& out);
 std::vector<int> stepSizes(int width, int height, JumpFloodingVariant variant);
 

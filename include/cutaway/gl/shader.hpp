@@ -8,9 +8,9 @@
 // Compile and link errors throw cutaway::Error naming the file and line, with the info log.
 //
 //   cutaway::gl::ProgramDesc desc{
-//       .stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
-//       .defines = {{"LINES", "1"}},
-//       .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"}}};
+//       .stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER,
+//       "render/mesh.frag"}}, .defines = {{"LINES", "1"}}, .aliases = {{"style.glsl",
+//       "styles/gooch/gooch.glsl"}}};
 //   cutaway::gl::Program program = cutaway::gl::buildProgram(desc);
 #pragma once
 

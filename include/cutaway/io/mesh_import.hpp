@@ -19,9 +19,9 @@
 namespace cutaway {
 
 struct ImportedNode {
-  std::string name;                  // node name, made unique within the file
-  Mesh mesh;                         // in file space
-  std::optional<glm::vec3> color;    // diffuse / base colour of its first material
+  std::string name;                // node name, made unique within the file
+  Mesh mesh;                       // in file space
+  std::optional<glm::vec3> color;  // diffuse / base colour of its first material
 };
 
 // Throws cutaway::Error naming the file and the reason.

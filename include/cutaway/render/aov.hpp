@@ -14,7 +14,7 @@
 
 namespace cutaway {
 
-void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs,
-               const Camera& camera, float aspect);
+void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
+               float aspect);
 
 }  // namespace cutaway

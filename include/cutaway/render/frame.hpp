@@ -8,8 +8,8 @@
 //
 //   cutaway::Frame frame(640, 480, context.info().software);
 //   frame.declare("color", {.format = GL_RGBA8});
-//   frame.addPass({.name = "background", .writes = {"color"}, .run = [](const PassContext&) { ... }});
-//   frame.execute();
+//   frame.addPass({.name = "background", .writes = {"color"}, .run = [](const PassContext&) { ...
+//   }}); frame.execute();
 #pragma once
 
 #include <functional>
@@ -25,7 +25,7 @@ namespace cutaway {
 
 struct TargetDesc {
   GLenum format = GL_RGBA8;
-  int samples = 0;  // 0: a plain 2-D texture; ≥ 1: a multisample texture
+  int samples = 0;            // 0: a plain 2-D texture; ≥ 1: a multisample texture
   int width = 0, height = 0;  // 0: the frame's size
   // For AOV dumps: what a texel means (units, conventions); empty = not an AOV.
   std::string meaning;

@@ -64,15 +64,15 @@ struct Keyframe {
 
 struct SceneObject {
   std::string name;
-  std::string group;                // optional group name ("" = none)
-  std::string source;               // "file" or "file#node" it came from, or "proxy"
+  std::string group;   // optional group name ("" = none)
+  std::string source;  // "file" or "file#node" it came from, or "proxy"
   Role role = Role::Context;
-  float importance = 0.5f;          // in [0, 1]
-  bool proxy = false;               // invisible: seen only by cutters (Burns11 §4.2.2)
+  float importance = 0.5f;  // in [0, 1]
+  bool proxy = false;       // invisible: seen only by cutters (Burns11 §4.2.2)
   Material material;
   ObjectParams params;
-  std::shared_ptr<const Mesh> mesh; // in object space
-  glm::mat4 transform{1.0f};        // object → world
+  std::shared_ptr<const Mesh> mesh;  // in object space
+  glm::mat4 transform{1.0f};         // object → world
   // Motion, applied on top of `transform`: world = K(t)·transform, with K interpolated
   // between keyframes (translation and scale linearly, rotation by slerp), held at the ends.
   std::vector<Keyframe> animation;
@@ -92,11 +92,11 @@ struct CameraKey {
 struct Camera {
   Projection projection = Projection::Perspective;
   glm::vec3 eye{0, 0, 5}, target{0, 0, 0}, up{0, 1, 0};
-  float fovY = 40.0f;        // degrees, perspective
-  float height = 2.0f;       // world units of the view's height, orthographic
-  float near = 0, far = 0;   // 0: derived from the scene bounds
-  bool fit = false;          // place eye/target so the scene fills the view
-  std::vector<CameraKey> path;        // eye/target over time (overrides eye, target, fit)
+  float fovY = 40.0f;           // degrees, perspective
+  float height = 2.0f;          // world units of the view's height, orthographic
+  float near = 0, far = 0;      // 0: derived from the scene bounds
+  bool fit = false;             // place eye/target so the scene fills the view
+  std::vector<CameraKey> path;  // eye/target over time (overrides eye, target, fit)
 
   glm::mat4 view() const;
   glm::mat4 projectionMatrix(float aspect) const;
@@ -108,15 +108,15 @@ struct Light {
   glm::vec3 position{0.0f};                  // point lights
   glm::vec3 color{1.0f};
   float intensity = 1.0f;
-  bool cameraSpace = true;                    // direction/position given in eye space
+  bool cameraSpace = true;  // direction/position given in eye space
 };
 
 struct LineStyle {
-  bool silhouettes = true;  // object and depth discontinuities
-  bool creases = true;      // normal discontinuities within an object
-  float creaseAngle = 45.0f;  // degrees
+  bool silhouettes = true;       // object and depth discontinuities
+  bool creases = true;           // normal discontinuities within an object
+  float creaseAngle = 45.0f;     // degrees
   float depthThreshold = 0.01f;  // relative view-depth jump that counts as a silhouette
-  float width = 1.0f;       // pixels
+  float width = 1.0f;            // pixels
   glm::vec3 color{0.0f};
 };
 
@@ -130,7 +130,7 @@ struct BlinnPhongStyle {
 };
 
 struct Style {
-  std::string name = "gooch";  // "gooch" or "blinn-phong"
+  std::string name = "gooch";                    // "gooch" or "blinn-phong"
   std::optional<LineStyle> lines = LineStyle{};  // nullopt: no lines
   GoochStyle gooch;
   BlinnPhongStyle blinnPhong;

@@ -14,8 +14,8 @@ struct AdaptiveCutaway::Programs {
 namespace {
 
 gl::Program fullscreen(const char* fragment) {
-  return gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"},
-                                      {GL_FRAGMENT_SHADER, fragment}}});
+  return gl::buildProgram(
+      {.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}});
 }
 
 }  // namespace
@@ -33,19 +33,33 @@ AdaptiveCutaway::AdaptiveCutaway(const SceneGpu& sceneGpu, const AdaptiveCutaway
   p.dilate = fullscreen("cutters/adaptive/dilate.frag");
   const int n = options.bufferSize;
   const std::string size = " (" + std::to_string(n) + "x" + std::to_string(n) + " cutaway buffer)";
-  frame.declare("seedDepth", {.format = GL_R32F, .width = n, .height = n,
-                              .meaning = "window depth in [0,1] of the region of interest's rear hull "
-                                         "(greater-than depth test); 0 = near plane, no seed" + size});
-  frame.declare("seedAngle", {.format = GL_R32F, .width = n, .height = n,
-                              .meaning = "local cutaway angle θ of the seeding object, radians" + size});
+  frame.declare("seedDepth",
+                {.format = GL_R32F,
+                 .width = n,
+                 .height = n,
+                 .meaning = "window depth in [0,1] of the region of interest's rear hull "
+                            "(greater-than depth test); 0 = near plane, no seed" +
+                            size});
+  frame.declare("seedAngle",
+                {.format = GL_R32F,
+                 .width = n,
+                 .height = n,
+                 .meaning = "local cutaway angle θ of the seeding object, radians" + size});
   frame.declare("seedDepthTest", {.format = GL_DEPTH_COMPONENT32F, .width = n, .height = n});
-  frame.declare("cutawayDepth", {.format = GL_R32F, .width = n, .height = n,
-                                 .meaning = "cutaway surface C(p) as window depth in [0,1] (0 = near "
-                                            "plane: nothing cut); fragments nearer than it are "
-                                            "removed" + size});
-  frame.declare("cutawayDilated", {.format = GL_R32F, .width = n, .height = n,
+  frame.declare("cutawayDepth",
+                {.format = GL_R32F,
+                 .width = n,
+                 .height = n,
+                 .meaning = "cutaway surface C(p) as window depth in [0,1] (0 = near "
+                            "plane: nothing cut); fragments nearer than it are "
+                            "removed" +
+                            size});
+  frame.declare("cutawayDilated", {.format = GL_R32F,
+                                   .width = n,
+                                   .height = n,
                                    .meaning = "1-pixel minimum of cutawayDepth, window depth, used "
-                                              "for back faces" + size});
+                                              "for back faces" +
+                                              size});
   for (const char* name : {"cutawayDepth", "cutawayDilated"}) {
     const GLuint id = frame.texture(name).id();
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // Burns08 §6: interpolated
@@ -69,8 +83,10 @@ AdaptiveCutaway::AdaptiveCutaway(const SceneGpu& sceneGpu, const AdaptiveCutaway
                    });
                    glDepthFunc(GL_LESS);
                  }});
-  if (cpu_) addCpuPass(frame);
-  else addGpuPasses(frame);
+  if (cpu_)
+    addCpuPass(frame);
+  else
+    addGpuPasses(frame);
   frame.addPass({.name = "cutawayDilate",
                  .reads = {"cutawayDepth"},
                  .writes = {"cutawayDilated"},
@@ -131,7 +147,8 @@ void AdaptiveCutaway::addGpuPasses(Frame& frame) {
                    glUseProgram(program);
                    glBindTextureUnit(0, frame_.texture("seedDepth").id());
                    glBindTextureUnit(1, frame_.texture("seedAngle").id());
-                   const glm::vec3 floor = glm::normalize(camera_.viewRotation * options_.floorNormal);
+                   const glm::vec3 floor =
+                       glm::normalize(camera_.viewRotation * options_.floorNormal);
                    glProgramUniform1i(program, 0, options_.edgeCompression);
                    glProgramUniform1f(program, 1, options_.edgeRegion);
                    glProgramUniform1i(program, 2, options_.directionalConstraint);
@@ -193,8 +210,8 @@ void AdaptiveCutaway::computeOnCpu(Frame& frame) {
                     GLsizei(depth.size() * sizeof(float)), depth.data());
   glGetTextureImage(frame.texture("seedAngle").id(), 0, GL_RED, GL_FLOAT,
                     GLsizei(angle.size() * sizeof(float)), angle.data());
-  fields::CutawayField field =
-      fields::jumpFlooding(makeSeedImage(depth, angle, n, options_, camera_), -1.0f, options_.variant);
+  fields::CutawayField field = fields::jumpFlooding(
+      makeSeedImage(depth, angle, n, options_, camera_), -1.0f, options_.variant);
   for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
   glTextureSubImage2D(frame.texture("cutawayDepth").id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
                       field.depth.data());

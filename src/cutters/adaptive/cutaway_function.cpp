@@ -8,7 +8,9 @@
 namespace cutaway {
 
 namespace {
-float clamp01(float x) { return std::clamp(x, 0.0f, 1.0f); }
+float clamp01(float x) {
+  return std::clamp(x, 0.0f, 1.0f);
+}
 float smoothstep(float a, float b, float x) {
   const float t = clamp01((x - a) / (b - a));
   return t * t * (3.0f - 2.0f * t);
@@ -55,7 +57,7 @@ AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOp
   }
   auto slope = [&](float angle) {
     const float t = std::tan(std::clamp(angle, kMinAngle, kPi / 2.0f - kMinAngle));
-    if (!o.perspectiveCompensation) return P[1][1] / t;  // Burns08 §3: fixed screen-space slope
+    if (!o.perspectiveCompensation) return P[1][1] / t;     // Burns08 §3: fixed screen-space slope
     if (camera.orthographic) return std::abs(P[2][2]) / t;  // exact: depth is linear
     // Burns11 eq. 5.7: m = −(PM_sz + z)/tan θ, PM_sz = (n + f)/(n − f) = P[2][2].
     return -(P[2][2] + ndc.z) / t;
