@@ -222,3 +222,21 @@ TEST(Cli, BenchComparesPlainAndCutaway) {
     EXPECT_LE(result["jumpFloodingErrorFraction"][variant].get<double>(), 0.05) << variant;
   EXPECT_TRUE(result["cpuReferencesMs"].contains("chamfer 5x5 512"));
 }
+
+// The cutter can be switched from the command line: --no-cutaway shows the wall in front of
+// the object of interest, --cutaway-angle opens it again.
+TEST(Cli, CutawayOptionsOverrideTheScene) {
+  const std::string scene = kData + "/render/moving-box.json";
+  auto centreId = [&](const std::string& options) {
+    const fs::path dir = scratch("cutaway-options");
+    const Result r = run("render " + scene + " --time 1 -o " + scratch("c.png").string() +
+                         " --aov " + dir.string() + " " + options);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return readPfm(dir / "objectId.pfm").at(24, 16)[0];
+  };
+  EXPECT_EQ(centreId("--no-cutaway"), 0.0f);
+  EXPECT_EQ(centreId("--cutaway-angle 10"), 1.0f);
+  const Result both = run("render " + scene + " -o x.png --no-cutaway --cutaway-angle 10");
+  EXPECT_NE(both.exitCode, 0);
+  EXPECT_NE(both.err.find("--no-cutaway"), std::string::npos) << both.err;
+}

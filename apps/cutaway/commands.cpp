@@ -51,6 +51,13 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     throw Error("--up", "", "up is parallel to the viewing direction");
   if (!o.style.empty()) scene.style.name = o.style;
   if (o.samples) scene.samples = *o.samples;
+  if (o.noCutaway && o.cutawayAngle)
+    throw Error("--no-cutaway", "", "cannot be combined with --cutaway-angle");
+  if (o.noCutaway) scene.adaptive.reset();
+  if (o.cutawayAngle) {
+    if (!scene.adaptive) scene.adaptive.emplace();
+    scene.adaptive->angle = *o.cutawayAngle;
+  }
 }
 
 nlohmann::json vec(const glm::vec3& v) {

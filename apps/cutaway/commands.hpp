@@ -17,6 +17,8 @@ struct SceneOverrides {
   bool fit = false;
   std::string style;
   std::optional<int> samples;
+  std::optional<float> cutawayAngle;  // adaptive cutter θ, degrees
+  bool noCutaway = false;
 };
 
 struct RenderOptions {

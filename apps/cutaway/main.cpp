@@ -49,6 +49,12 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
       ->add_option_function<int>(
           "--samples", [&o](int s) { o.samples = s; }, "MSAA samples (1, 2, 4, 8, 16)")
       ->check(CLI::IsMember({1, 2, 4, 8, 16}));
+  command
+      ->add_option_function<float>(
+          "--cutaway-angle", [&o](float a) { o.cutawayAngle = a; },
+          "Adaptive cutaway angle θ in degrees (adds the cutter if the scene has none)")
+      ->check(CLI::Range(0.0f, 90.0f));
+  command->add_flag("--no-cutaway", o.noCutaway, "Render without the scene's adaptive cutaway");
 }
 
 }  // namespace
