@@ -269,12 +269,8 @@ fields::SeedImage sceneSeedImage(const Scene& base, const gl::ContextInfo& info,
   Renderer renderer(scene, info);
   const Camera camera = scene.resolvedCamera();
   renderer.render(camera);
-  std::vector<float> depth(std::size_t(n) * std::size_t(n)), angle(depth.size());
-  glGetTextureImage(renderer.frame().texture("seedDepth").id(), 0, GL_RED, GL_FLOAT,
-                    GLsizei(depth.size() * sizeof(float)), depth.data());
-  glGetTextureImage(renderer.frame().texture("seedAngle").id(), 0, GL_RED, GL_FLOAT,
-                    GLsizei(angle.size() * sizeof(float)), angle.data());
-  return makeSeedImage(depth, angle, n, *scene.adaptive,
+  return makeSeedImage(renderer.frame().read("seedDepth", 1), renderer.frame().read("seedAngle", 1),
+                       n, *scene.adaptive,
                        cutawayProjection(camera, float(scene.width) / float(scene.height)));
 }
 

@@ -36,6 +36,14 @@ const gl::Texture& Frame::texture(const std::string& name) const {
   return it->second.texture;
 }
 
+std::vector<float> Frame::read(const std::string& name, int channels) const {
+  const TargetDesc& d = desc(name);
+  std::vector<float> texels(std::size_t(d.width) * std::size_t(d.height) * std::size_t(channels));
+  glGetTextureImage(texture(name).id(), 0, channels == 3 ? GL_RGB : GL_RED, GL_FLOAT,
+                    GLsizei(texels.size() * sizeof(float)), texels.data());
+  return texels;
+}
+
 const TargetDesc& Frame::desc(const std::string& name) const {
   const auto it = targets_.find(name);
   if (it == targets_.end()) throw Error("frame", name, "no such render target");

@@ -3,6 +3,7 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
 #include "cutters/adaptive/adaptive_cutaway.hpp"
+#include "render/fullscreen.hpp"
 #include "render/scene_gpu.hpp"
 
 namespace cutaway {
@@ -28,12 +29,6 @@ const char* styleFile(const std::string& style) {
   throw Error("style", "", "unknown style \"" + style + "\"");
 }
 
-gl::Program fullscreen(const char* fragment, std::map<std::string, std::string> defines = {}) {
-  return gl::buildProgram(
-      {.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}},
-       .defines = std::move(defines)});
-}
-
 // Mesh uniform locations of src/render/mesh.frag (and ghost.frag for the id).
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
                 kClipped = 13, kCutSurface = 14, kCutColor = 15, kGhostDistance = 17;
@@ -45,7 +40,7 @@ struct Renderer::Impl {
   SceneGpu sceneGpu;
   std::unique_ptr<AdaptiveCutaway> adaptive;
   gl::Buffer frameUniforms;
-  gl::VertexArray emptyVertexArray;
+  FullscreenTriangle fullscreen;
   gl::Program meshProgram, backgroundProgram, linesProgram, ghostProgram, ghostLinesProgram,
       compositeProgram;
   bool lines = false, outlines = false, ghosts = false;
@@ -67,23 +62,22 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
         adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * scene.bounds().radius();
 
   g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  g.emptyVertexArray = gl::VertexArray::create();
   const std::string cutter = adaptive ? "cutters/adaptive/clip.glsl" : "cutters/none/none.glsl";
   g.meshProgram = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
        .aliases = {{"style.glsl", styleFile(scene.style.name)}, {"cutter.glsl", cutter}}});
-  g.backgroundProgram = fullscreen("render/background.frag");
-  g.compositeProgram = fullscreen("render/composite.frag");
+  g.backgroundProgram = buildFullscreenProgram("render/background.frag");
+  g.compositeProgram = buildFullscreenProgram("render/composite.frag");
   if (g.lines || g.outlines)
-    g.linesProgram =
-        fullscreen("styles/lines/lines.frag",
-                   g.outlines ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
-                              : std::map<std::string, std::string>{});
+    g.linesProgram = buildFullscreenProgram(
+        "styles/lines/lines.frag", g.outlines
+                                       ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
+                                       : std::map<std::string, std::string>{});
   if (g.ghosts) {
     g.ghostProgram =
         gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
                                      {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
-    g.ghostLinesProgram = fullscreen("styles/lines/lines.frag");
+    g.ghostLinesProgram = buildFullscreenProgram("styles/lines/lines.frag");
   }
 
   const int samples = scene.samples;
@@ -214,8 +208,7 @@ void Renderer::drawGeometry(GLuint framebuffer) {
   glDisable(GL_CULL_FACE);
   for (GLuint i = 1; i < 5; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glUseProgram(g.backgroundProgram.id());
-  glBindVertexArray(g.emptyVertexArray.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  g.fullscreen.draw();
   for (GLuint i = 1; i < 5; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
   glEnable(GL_DEPTH_TEST);
@@ -270,8 +263,7 @@ void Renderer::drawLines(GLuint program, const std::string& buffer, bool feature
   glProgramUniform1f(program, 3, l.depthThreshold);
   glProgramUniform1i(program, 4, featureLines && l.silhouettes);
   glProgramUniform1i(program, 5, featureLines && l.creases);
-  glBindVertexArray(impl_->emptyVertexArray.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  impl_->fullscreen.draw();
 }
 
 void Renderer::composite() {
@@ -293,8 +285,7 @@ void Renderer::composite() {
   glProgramUniform3fv(program, 4, 1, &outlineColor[0]);
   glProgramUniform1i(program, 5, g.ghosts);
   glProgramUniform1f(program, 6, scene_.adaptive ? scene_.adaptive->ghostOpacity : 0.0f);
-  glBindVertexArray(g.emptyVertexArray.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  g.fullscreen.draw();
 }
 
 void Renderer::render(const Camera& camera, float time) {
@@ -348,8 +339,7 @@ std::vector<Aov> Renderer::readAovs() const {
     const TargetDesc& d = frame_->desc(name);
     const int channels = d.aovChannels ? d.aovChannels : 1;
     FloatImage image(d.width, d.height, channels);
-    glGetTextureImage(frame_->texture(name).id(), 0, channels == 3 ? GL_RGB : GL_RED, GL_FLOAT,
-                      GLsizei(image.data.size() * sizeof(float)), image.data.data());
+    image.data = frame_->read(name, channels);
     image.flipVertically();
     aovs.push_back({name, d.meaning, std::move(image)});
   }

@@ -61,6 +61,9 @@ class Frame {
   std::vector<PassTiming> timings();
 
   const gl::Texture& texture(const std::string& name) const;
+  // A single-sample target's texels as floats, `channels` (1: red, 3: RGB) per texel, rows
+  // bottom to top as OpenGL stores them.
+  std::vector<float> read(const std::string& name, int channels) const;
   const TargetDesc& desc(const std::string& name) const;
   bool has(const std::string& name) const { return targets_.count(name) != 0; }
   // Targets with a meaning, in declaration order.

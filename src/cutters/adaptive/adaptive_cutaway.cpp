@@ -2,23 +2,14 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "cutaway/gl/shader.hpp"
+#include "render/fullscreen.hpp"
 
 namespace cutaway {
 
 struct AdaptiveCutaway::Programs {
   gl::Program seed, anchors, jfaInit, jumpFlooding, cutawayDepth, dilate;
-  gl::VertexArray empty = gl::VertexArray::create();
+  FullscreenTriangle fullscreen;
 };
-
-namespace {
-
-gl::Program fullscreen(const char* fragment) {
-  return gl::buildProgram(
-      {.stages = {{GL_VERTEX_SHADER, "render/fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}});
-}
-
-}  // namespace
 
 AdaptiveCutaway::AdaptiveCutaway(const SceneGpu& sceneGpu, const AdaptiveCutawayOptions& options,
                                  const gl::ContextInfo& info, Frame& frame)
@@ -30,7 +21,7 @@ AdaptiveCutaway::AdaptiveCutaway(const SceneGpu& sceneGpu, const AdaptiveCutaway
   Programs& p = *programs_;
   p.seed = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
                                         {GL_FRAGMENT_SHADER, "cutters/adaptive/seed.frag"}}});
-  p.dilate = fullscreen("cutters/adaptive/dilate.frag");
+  p.dilate = buildFullscreenProgram("cutters/adaptive/dilate.frag");
   const int n = options.bufferSize;
   const std::string size = " (" + std::to_string(n) + "x" + std::to_string(n) + " cutaway buffer)";
   frame.declare("seedDepth",
@@ -84,9 +75,9 @@ AdaptiveCutaway::AdaptiveCutaway(const SceneGpu& sceneGpu, const AdaptiveCutaway
                    glDepthFunc(GL_LESS);
                  }});
   if (cpu_)
-    addCpuPass(frame);
+    addCpuPass();
   else
-    addGpuPasses(frame);
+    addGpuPasses();
   frame.addPass({.name = "cutawayDilate",
                  .reads = {"cutawayDepth"},
                  .writes = {"cutawayDilated"},
@@ -94,8 +85,7 @@ AdaptiveCutaway::AdaptiveCutaway(const SceneGpu& sceneGpu, const AdaptiveCutaway
                    glDisable(GL_DEPTH_TEST);
                    glUseProgram(programs_->dilate.id());
                    glBindTextureUnit(0, frame_.texture("cutawayDepth").id());
-                   glBindVertexArray(programs_->empty.id());
-                   glDrawArrays(GL_TRIANGLES, 0, 3);
+                   programs_->fullscreen.draw();
                  }});
 }
 
@@ -116,12 +106,13 @@ void AdaptiveCutaway::bindForClipping() const {
   glBindTextureUnit(9, frame_.texture("cutawayDilated").id());
 }
 
-void AdaptiveCutaway::addGpuPasses(Frame& frame) {
+void AdaptiveCutaway::addGpuPasses() {
+  Frame& frame = frame_;
   Programs& p = *programs_;
-  p.anchors = fullscreen("cutters/adaptive/anchors.frag");
-  p.jfaInit = fullscreen("cutters/adaptive/jfa_init.frag");
-  p.jumpFlooding = fullscreen("cutters/adaptive/jump_flooding.frag");
-  p.cutawayDepth = fullscreen("cutters/adaptive/cutaway_depth.frag");
+  p.anchors = buildFullscreenProgram("cutters/adaptive/anchors.frag");
+  p.jfaInit = buildFullscreenProgram("cutters/adaptive/jfa_init.frag");
+  p.jumpFlooding = buildFullscreenProgram("cutters/adaptive/jump_flooding.frag");
+  p.cutawayDepth = buildFullscreenProgram("cutters/adaptive/cutaway_depth.frag");
   const int n = options_.bufferSize;
   frame.declare("anchorCone", {.format = GL_RGBA32F, .width = n, .height = n});
   frame.declare("anchorFloor", {.format = GL_RG32F, .width = n, .height = n});
@@ -136,7 +127,6 @@ void AdaptiveCutaway::addGpuPasses(Frame& frame) {
     const float n = float(options_.bufferSize);
     glProgramUniform2f(program, 0, 2.0f / n / camera_.projection[0][0],
                        2.0f / n / camera_.projection[1][1]);
-    glBindVertexArray(programs_->empty.id());
     glDisable(GL_DEPTH_TEST);
   };
   frame.addPass({.name = "cutawayAnchors",
@@ -155,9 +145,8 @@ void AdaptiveCutaway::addGpuPasses(Frame& frame) {
                    glProgramUniform3fv(program, 3, 1, &floor[0]);
                    glProgramUniform1i(program, 4, options_.perspectiveCompensation);
                    glProgramUniform1i(program, 5, camera_.orthographic);
-                   glBindVertexArray(programs_->empty.id());
                    glDisable(GL_DEPTH_TEST);
-                   glDrawArrays(GL_TRIANGLES, 0, 3);
+                   programs_->fullscreen.draw();
                  }});
   frame.addPass({.name = "jumpFloodingInit",
                  .reads = {"anchorCone"},
@@ -165,9 +154,8 @@ void AdaptiveCutaway::addGpuPasses(Frame& frame) {
                  .run = [this](const PassContext&) {
                    glUseProgram(programs_->jfaInit.id());
                    glBindTextureUnit(0, frame_.texture("anchorCone").id());
-                   glBindVertexArray(programs_->empty.id());
                    glDisable(GL_DEPTH_TEST);
-                   glDrawArrays(GL_TRIANGLES, 0, 3);
+                   programs_->fullscreen.draw();
                  }});
   // One pass per step, ping-ponging the anchor buffers.
   std::string current = "anchorsA", next = "anchorsB";
@@ -180,7 +168,7 @@ void AdaptiveCutaway::addGpuPasses(Frame& frame) {
                      bindCone(program);
                      glBindTextureUnit(2, frame_.texture(current).id());
                      glProgramUniform1i(program, 1, step);
-                     glDrawArrays(GL_TRIANGLES, 0, 3);
+                     programs_->fullscreen.draw();
                    }});
     std::swap(current, next);
   }
@@ -190,30 +178,26 @@ void AdaptiveCutaway::addGpuPasses(Frame& frame) {
                  .run = [this, bindCone, current](const PassContext&) {
                    bindCone(programs_->cutawayDepth.id());
                    glBindTextureUnit(2, frame_.texture(current).id());
-                   glDrawArrays(GL_TRIANGLES, 0, 3);
+                   programs_->fullscreen.draw();
                  }});
 }
 
-void AdaptiveCutaway::addCpuPass(Frame& frame) {
-  frame.addPass({.name = "cutawayCpu",
-                 .reads = {"seedDepth", "seedAngle"},
-                 .writes = {"cutawayDepth"},
-                 .run = [this](const PassContext&) { computeOnCpu(frame_); }});
+void AdaptiveCutaway::addCpuPass() {
+  frame_.addPass({.name = "cutawayCpu",
+                  .reads = {"seedDepth", "seedAngle"},
+                  .writes = {"cutawayDepth"},
+                  .run = [this](const PassContext&) { computeOnCpu(); }});
 }
 
 // The same computation as the GPU passes: the seed read back, cones from anchorCone()
 // (cutaway_function.cpp mirrors anchors.frag), fields::jumpFlooding, and the result uploaded.
-void AdaptiveCutaway::computeOnCpu(Frame& frame) {
+void AdaptiveCutaway::computeOnCpu() {
   const int n = options_.bufferSize;
-  std::vector<float> depth(std::size_t(n) * std::size_t(n)), angle(depth.size());
-  glGetTextureImage(frame.texture("seedDepth").id(), 0, GL_RED, GL_FLOAT,
-                    GLsizei(depth.size() * sizeof(float)), depth.data());
-  glGetTextureImage(frame.texture("seedAngle").id(), 0, GL_RED, GL_FLOAT,
-                    GLsizei(angle.size() * sizeof(float)), angle.data());
   fields::CutawayField field = fields::jumpFlooding(
-      makeSeedImage(depth, angle, n, options_, camera_), -1.0f, options_.variant);
+      makeSeedImage(frame_.read("seedDepth", 1), frame_.read("seedAngle", 1), n, options_, camera_),
+      -1.0f, options_.variant);
   for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
-  glTextureSubImage2D(frame.texture("cutawayDepth").id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
+  glTextureSubImage2D(frame_.texture("cutawayDepth").id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
                       field.depth.data());
 }
 

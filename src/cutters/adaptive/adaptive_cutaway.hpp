@@ -33,9 +33,9 @@ class AdaptiveCutaway {
   static bool seedsCutaway(const SceneObject& object) { return object.role == Role::Interest; }
 
  private:
-  void addGpuPasses(Frame& frame);
-  void addCpuPass(Frame& frame);
-  void computeOnCpu(Frame& frame);
+  void addGpuPasses();
+  void addCpuPass();
+  void computeOnCpu();
 
   const SceneGpu& sceneGpu_;
   AdaptiveCutawayOptions options_;
