@@ -10,12 +10,13 @@ using namespace cutaway;
 
 TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
   const gl::ProgramDesc desc{.defines = {{"ANSWER", "42"}},
-                             .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"},
-                                         {"cutter.glsl", "cutters/adaptive/clip.glsl"}}};
+                             .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"}}};
   const gl::PreprocessedSource source = gl::preprocess("render/mesh.frag", desc);
-  const std::vector<std::string> expected{"render/mesh.frag", "render/frame_uniforms.glsl",
-                                          "styles/surface.glsl", "styles/gooch/gooch.glsl",
-                                          "cutters/adaptive/clip.glsl"};
+  // Every cutter's file is expanded; its #ifdef decides whether it is compiled.
+  const std::vector<std::string> expected{
+      "render/mesh.frag",           "render/frame_uniforms.glsl", "styles/surface.glsl",
+      "styles/gooch/gooch.glsl",    "cutters/cutters.glsl",       "cutters/fate.glsl",
+      "cutters/adaptive/clip.glsl", "cutters/cutout/cutout.glsl", "cutters/breakaway/breakaway.glsl"};
   EXPECT_EQ(source.files, expected);
   // Defines come right after #version, before any other line.
   EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u)
@@ -68,8 +69,7 @@ TEST(Shader, CompileErrorNamesFileLineAndLog) {
   // Aliasing the style to the uniform block redeclares it: a genuine compile error.
   const gl::ProgramDesc desc{
       .stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
-      .aliases = {{"style.glsl", "render/frame_uniforms.glsl"},
-                  {"cutter.glsl", "cutters/none/none.glsl"}}};
+      .aliases = {{"style.glsl", "render/frame_uniforms.glsl"}}};
   try {
     (void)gl::buildProgram(desc);
     FAIL() << "expected a compile error";

@@ -12,6 +12,10 @@ layout(binding = 5) uniform sampler2D uLineCoverage;
 layout(binding = 6) uniform sampler2D uOutlineCoverage;
 layout(binding = 7) uniform sampler2D uGhostCoverage;
 layout(binding = 8) uniform sampler2DMS uCutMask;
+#ifdef CUTTER_CUTOUT
+layout(binding = 9) uniform sampler2DMS uCutoutDistance;
+layout(location = 7) out float outCutoutDistance;
+#endif
 layout(location = 0) uniform int uSamples;
 layout(location = 1) uniform int uHasLines;
 layout(location = 2) uniform vec3 uLineColor;
@@ -44,4 +48,7 @@ void main() {
   outObjectId = float(id);
   outDepth = texelFetch(uDepth, p, 0).r;
   outCutMask = texelFetch(uCutMask, p, 0).r;
+#ifdef CUTTER_CUTOUT
+  outCutoutDistance = texelFetch(uCutoutDistance, p, 0).r;
+#endif
 }

@@ -39,7 +39,10 @@ const gl::Texture& Frame::texture(const std::string& name) const {
 std::vector<float> Frame::read(const std::string& name, int channels) const {
   const TargetDesc& d = desc(name);
   std::vector<float> texels(std::size_t(d.width) * std::size_t(d.height) * std::size_t(channels));
-  glGetTextureImage(texture(name).id(), 0, channels == 3 ? GL_RGB : GL_RED, GL_FLOAT,
+  const GLenum format = isDepthFormat(d.format) ? GL_DEPTH_COMPONENT
+                        : channels == 3            ? GL_RGB
+                                                   : GL_RED;
+  glGetTextureImage(texture(name).id(), 0, format, GL_FLOAT,
                     GLsizei(texels.size() * sizeof(float)), texels.data());
   return texels;
 }

@@ -4,7 +4,7 @@
 #include "frame_uniforms.glsl"
 #include "../styles/surface.glsl"
 #include "style.glsl"
-#include "cutter.glsl"
+#include "../cutters/cutters.glsl"
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 layout(location = 8) uniform vec3 uColor;
@@ -12,17 +12,21 @@ layout(location = 9) uniform float uSpecular;
 layout(location = 10) uniform float uShininess;
 layout(location = 11) uniform int uObjectId;
 layout(location = 12) uniform float uLines;  // 1: this object takes feature lines
-layout(location = 13) uniform int uClipped;     // 0 for objects of interest: never cut
-layout(location = 14) uniform int uCutSurface;  // 1: show back faces through the cut as solid
+layout(location = 13) uniform int uCutBy;       // which cutters cut this object (fate.glsl bits)
+layout(location = 14) uniform int uCutSurface;  // 1: a solid: back faces seen through a cut are its cut surface
 layout(location = 15) uniform vec3 uCutColor;
+layout(location = 16) uniform vec3 uBackColor;  // back faces that are no cut surface (an open or hollow inside)
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outNormal;     // world normal, w: lines flag
 layout(location = 2) out vec4 outPosition;   // world position, w: linear view depth
 layout(location = 3) out int outObjectId;
 layout(location = 4) out float outCutMask;    // 1 on cut surfaces
+#ifdef CUTTER_CUTOUT
+layout(location = 5) out float outCutoutDistance;  // Diepstraten03 §4.5 signed distance
+#endif
 void main() {
   vec3 cutPosition, cutNormal;
-  int fate = uClipped != 0 ? cutFragment(gl_FrontFacing, cutPosition, cutNormal) : kKeep;
+  int fate = cutFragment(uCutBy, vWorldPosition, gl_FrontFacing, cutPosition, cutNormal);
   if (fate == kDiscard) discard;
   bool cut = fate == kCutSurface && uCutSurface != 0;
   vec3 n = vWorldNormal;
@@ -33,7 +37,7 @@ void main() {
   s.position = cut ? cutPosition : vWorldPosition;
   s.normal = cut ? cutNormal : gl_FrontFacing ? n : -n;  // two-sided: open meshes show their inside
   s.toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - s.position);
-  s.baseColor = cut ? uCutColor : uColor;
+  s.baseColor = cut ? uCutColor : gl_FrontFacing ? uColor : uBackColor;
   s.specular = uSpecular;
   s.shininess = uShininess;
   outColor = vec4(shadeSurface(s), 1.0);
@@ -41,4 +45,9 @@ void main() {
   outPosition = vec4(s.position, -(uView * vec4(s.position, 1.0)).z);
   outObjectId = uObjectId;
   outCutMask = cut ? 1.0 : 0.0;
+#ifdef CUTTER_CUTOUT
+  outCutoutDistance = (uCutBy & kCutByCutout) != 0 && uCutoutPlaneCount > 0
+                          ? cutoutDistance(vWorldPosition)
+                          : uintBitsToFloat(0x7fc00000u);  // NaN: no exterior surface here
+#endif
 }

@@ -1,8 +1,12 @@
 #include "cutaway/render/renderer.hpp"
 
+#include <cmath>
+
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
 #include "cutters/adaptive/adaptive_cutaway.hpp"
+#include "cutters/breakaway/breakaway.hpp"
+#include "cutters/cutout/cutout.hpp"
 #include "render/fullscreen.hpp"
 #include "render/scene_gpu.hpp"
 
@@ -31,7 +35,10 @@ const char* styleFile(const std::string& style) {
 
 // Mesh uniform locations of src/render/mesh.frag (and ghost.frag for the id).
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
-                kClipped = 13, kCutSurface = 14, kCutColor = 15, kGhostDistance = 17;
+                kCutBy = 13, kCutSurface = 14, kCutColor = 15, kBackColor = 16,
+                kGhostDistance = 17, kClipPlane = 18;
+// Bits of src/cutters/fate.glsl.
+constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4;
 
 }  // namespace
 
@@ -39,6 +46,8 @@ struct Renderer::Impl {
   explicit Impl(const Scene& scene) : sceneGpu(scene) {}
   SceneGpu sceneGpu;
   std::unique_ptr<AdaptiveCutaway> adaptive;
+  std::unique_ptr<Cutout> cutout;
+  std::unique_ptr<Breakaway> breakaway;
   gl::Buffer frameUniforms;
   FullscreenTriangle fullscreen;
   gl::Program meshProgram, backgroundProgram, linesProgram, ghostProgram, ghostLinesProgram,
@@ -54,20 +63,27 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   Frame& f = *frame_;
   const AdaptiveCutawayOptions* adaptive = scene.adaptive ? &*scene.adaptive : nullptr;
   if (adaptive) g.adaptive = std::make_unique<AdaptiveCutaway>(g.sceneGpu, *adaptive, info, f);
+  if (scene.cutout) g.cutout = std::make_unique<Cutout>(scene, *scene.cutout);
+  if (scene.breakaway) g.breakaway = std::make_unique<Breakaway>(scene, *scene.breakaway, f);
   g.lines = scene.style.lines.has_value();
-  g.outlines = adaptive && adaptive->outlines;
+  // Cut outlines: the adaptive cutter's option; the Diepstraten03 cutters outline their walls.
+  g.outlines = (adaptive && adaptive->outlines) || g.cutout || g.breakaway;
   g.ghosts = adaptive && adaptive->ghostLines;
   if (g.ghosts)
     g.ghostDistance =
         adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * scene.bounds().radius();
 
   g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  const std::string cutter = adaptive ? "cutters/adaptive/clip.glsl" : "cutters/none/none.glsl";
+  std::map<std::string, std::string> cutters;
+  if (adaptive) cutters["CUTTER_ADAPTIVE"] = "1";
+  if (g.cutout) cutters["CUTTER_CUTOUT"] = "1";
+  if (g.breakaway) cutters["CUTTER_BREAKAWAY"] = "1";
   g.meshProgram = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
-       .aliases = {{"style.glsl", styleFile(scene.style.name)}, {"cutter.glsl", cutter}}});
+       .defines = cutters,
+       .aliases = {{"style.glsl", styleFile(scene.style.name)}}});
   g.backgroundProgram = buildFullscreenProgram("render/background.frag");
-  g.compositeProgram = buildFullscreenProgram("render/composite.frag");
+  g.compositeProgram = buildFullscreenProgram("render/composite.frag", cutters);
   if (g.lines || g.outlines)
     g.linesProgram = buildFullscreenProgram(
         "styles/lines/lines.frag", g.outlines
@@ -87,6 +103,15 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   f.declare("sceneObjectId", {.format = GL_R32I, .samples = samples});
   f.declare("sceneCutMask", {.format = GL_R8, .samples = samples});
   f.declare("sceneDepth", {.format = GL_DEPTH_COMPONENT32F, .samples = samples});
+  if (g.cutout) {
+    f.declare("sceneCutoutDistance", {.format = GL_R32F, .samples = samples});
+    f.declare("cutoutDistance",
+              {.format = GL_R32F,
+               .meaning = "signed distance of the visible exterior surface to the cutout wedge, "
+                          "perturbed by the jitter (Diepstraten03 §4.5), scene units; > 0 would "
+                          "be removed, so visible surfaces are <= 0; NaN where no exterior "
+                          "object is visible; sample 0"});
+  }
   if (g.lines || g.outlines)
     f.declare("lines", {.format = GL_R16F,
                         .meaning = "feature-line coverage in [0,1] (silhouettes and creases, "
@@ -126,15 +151,23 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                       .meaning = "window-space depth in [0,1] (OpenGL default depth range, "
                                  "0 = near plane, 1 = far plane and background); sample 0"});
   f.declare("cutMask", {.format = GL_R32F,
-                        .meaning = "1 where a cut surface is shown (a back face seen through the "
-                                   "cut, Burns08 §4.1), else 0; sample 0"});
+                        .meaning = "1 where a cut surface or cut wall is shown (a back face of a "
+                                   "solid seen through the cut: Burns08 §4.1, Diepstraten03 "
+                                   "rule 5), else 0; sample 0"});
 
   std::vector<std::string> cutawayInputs;
   if (adaptive) cutawayInputs = {"cutawayDepth", "cutawayDilated"};
+  std::vector<std::string> geometryInputs = cutawayInputs;
+  if (g.breakaway)
+    for (const char* t : {"breakawayClipDepth", "breakawayInnerDepth", "breakawayHullNormal"})
+      geometryInputs.push_back(t);
+  std::vector<std::string> geometryOutputs{"sceneColor",    "sceneNormal",  "scenePosition",
+                                           "sceneObjectId", "sceneCutMask"};
+  if (g.cutout) geometryOutputs.push_back("sceneCutoutDistance");
+  geometryOutputs.push_back("sceneDepth");
   f.addPass({.name = "geometry",
-             .reads = cutawayInputs,
-             .writes = {"sceneColor", "sceneNormal", "scenePosition", "sceneObjectId",
-                        "sceneCutMask", "sceneDepth"},
+             .reads = geometryInputs,
+             .writes = geometryOutputs,
              .run = [this](const PassContext& pass) { drawGeometry(pass.framebuffer); }});
   if (g.ghosts) {
     f.addPass({.name = "ghostGeometry",
@@ -180,11 +213,14 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                }});
   std::vector<std::string> compositeReads{"sceneColor",    "sceneNormal", "scenePosition",
                                           "sceneObjectId", "sceneDepth",  "sceneCutMask"};
-  for (const char* optional : {"lines", "cutOutlines", "ghostLines"})
+  for (const char* optional : {"lines", "cutOutlines", "ghostLines", "sceneCutoutDistance"})
     if (f.has(optional)) compositeReads.push_back(optional);
+  std::vector<std::string> compositeWrites{"color",    "normal", "position", "viewDepth",
+                                           "objectId", "depth",  "cutMask"};
+  if (g.cutout) compositeWrites.push_back("cutoutDistance");
   f.addPass({.name = "composite",
              .reads = compositeReads,
-             .writes = {"color", "normal", "position", "viewDepth", "objectId", "depth", "cutMask"},
+             .writes = compositeWrites,
              .run = [this](const PassContext&) { composite(); }});
 }
 
@@ -202,21 +238,36 @@ void Renderer::drawGeometry(GLuint framebuffer) {
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 2, zero);
   glClearNamedFramebufferiv(framebuffer, GL_COLOR, 3, noObject);
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 4, zero);
+  if (g.cutout) {
+    const float nan[4] = {std::nanf(""), 0, 0, 0};
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 5, nan);
+  }
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
   // Background gradient into the colour target only.
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  for (GLuint i = 1; i < 5; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  const GLuint attachments = g.cutout ? 6 : 5;
+  for (GLuint i = 1; i < attachments; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   glUseProgram(g.backgroundProgram.id());
   g.fullscreen.draw();
-  for (GLuint i = 1; i < 5; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  for (GLuint i = 1; i < attachments; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   if (g.adaptive) g.adaptive->bindForClipping();
+  if (g.cutout) g.cutout->bind();
+  if (g.breakaway) g.breakaway->bind();
   const GLuint program = g.meshProgram.id();
   const AdaptiveCutawayOptions* adaptive = scene_.adaptive ? &*scene_.adaptive : nullptr;
+  const bool clipPlanes = g.cutout && scene_.cutout->method == CutoutOptions::Method::ClipPlanes;
+  // Diepstraten03's cutters cut only exterior objects (rule 1); their walls and insides take
+  // the cutter's colours.
+  const std::optional<glm::vec3> wallColor =
+      g.cutout ? scene_.cutout->wallColor : g.breakaway ? scene_.breakaway->wallColor : std::nullopt;
+  const std::optional<glm::vec3> insideColor = g.cutout      ? scene_.cutout->insideColor
+                                               : g.breakaway ? scene_.breakaway->insideColor
+                                                             : std::nullopt;
   auto setUniforms = [&](const SceneObject& o, std::size_t i) {
     glProgramUniform3fv(program, kColor, 1, &o.material.color[0]);
     glProgramUniform1f(program, kSpecular, o.material.specular);
@@ -226,22 +277,54 @@ void Renderer::drawGeometry(GLuint framebuffer) {
     const bool objectLines = lines == o.params.end() || std::get<bool>(lines->second);
     glProgramUniform1f(program, kLines, objectLines ? 1.0f : 0.0f);
     // Objects of interest are never cut (Burns08 §4.1).
-    const bool clipped = adaptive && o.role != Role::Interest;
-    glProgramUniform1i(program, kClipped, clipped);
+    const bool adaptiveCut = adaptive && o.role != Role::Interest;
+    const bool exterior = o.role == Role::Exterior;
+    const int cutBy = (adaptiveCut ? kCutByAdaptive : 0) |
+                      (g.cutout && exterior && !clipPlanes ? kCutByCutout : 0) |
+                      (g.breakaway && exterior ? kCutByBreakaway : 0);
+    glProgramUniform1i(program, kCutBy, cutBy);
     using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
+    const bool diepstraten = exterior && (g.cutout || g.breakaway);
     const bool cutSurface =
-        adaptive &&
-        (adaptive->cutSurfaces == CutSurfaces::All ||
-         (adaptive->cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight));
+        (adaptiveCut &&
+         (adaptive->cutSurfaces == CutSurfaces::All ||
+          (adaptive->cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight))) ||
+        (diepstraten && o.solid());
     glProgramUniform1i(program, kCutSurface, cutSurface);
-    const glm::vec3 cutColor = adaptive && adaptive->cutSurfaceColor ? *adaptive->cutSurfaceColor
-                                                                     : o.material.color * 0.8f;
+    const glm::vec3 cutColor = diepstraten ? wallColor.value_or(kDefaultWallColor)
+                               : adaptive && adaptive->cutSurfaceColor ? *adaptive->cutSurfaceColor
+                                                                       : o.material.color * 0.8f;
     glProgramUniform3fv(program, kCutColor, 1, &cutColor[0]);
+    const glm::vec3 backColor =
+        diepstraten ? insideColor.value_or(o.material.color * 0.55f) : o.material.color;
+    glProgramUniform3fv(program, kBackColor, 1, &backColor[0]);
+    if (g.cutout) g.cutout->setUniforms(program, i);
   };
   // Secondary objects first, clipped; then the objects of interest, whole (Burns08 §4.1).
   g.sceneGpu.draw(
-      program, [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; },
+      program,
+      [&](const SceneObject& o) {
+        return !o.proxy && o.role != Role::Interest && !(clipPlanes && o.role == Role::Exterior);
+      },
       setUniforms);
+  if (clipPlanes) {
+    // Diepstraten03 §4.3: the exterior drawn once per plane, each time keeping the far side
+    // of that plane (n·x + w <= 0); the union of the passes is everything outside the wedge.
+    glEnable(GL_CLIP_DISTANCE0);
+    for (int k = 0; k < kMaxCutoutPlanes; ++k)
+      g.sceneGpu.draw(
+          program,
+          [&](const SceneObject& o) { return !o.proxy && o.role == Role::Exterior; },
+          [&](const SceneObject& o, std::size_t i) {
+            setUniforms(o, i);
+            const CutoutWedge* w = g.cutout->wedgeOf(i);
+            // A wedge with fewer planes clips this pass away entirely.
+            const glm::vec4 keep =
+                w && k < int(w->planes.size()) ? -w->planes[std::size_t(k)] : glm::vec4(0, 0, 0, -1);
+            glProgramUniform4fv(program, kClipPlane, 1, &keep[0]);
+          });
+    glDisable(GL_CLIP_DISTANCE0);
+  }
   g.sceneGpu.draw(
       program, [](const SceneObject& o) { return !o.proxy && o.role == Role::Interest; },
       setUniforms);
@@ -271,10 +354,10 @@ void Renderer::composite() {
   const GLuint program = g.compositeProgram.id();
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
-  const char* inputs[] = {"sceneColor",    "sceneNormal", "scenePosition",
-                          "sceneObjectId", "sceneDepth",  "lines",
-                          "cutOutlines",   "ghostLines",  "sceneCutMask"};
-  for (GLuint unit = 0; unit < 9; ++unit)
+  const char* inputs[] = {"sceneColor",  "sceneNormal", "scenePosition", "sceneObjectId",
+                          "sceneDepth",  "lines",       "cutOutlines",   "ghostLines",
+                          "sceneCutMask", "sceneCutoutDistance"};
+  for (GLuint unit = 0; unit < 10; ++unit)
     if (frame_->has(inputs[unit])) glBindTextureUnit(unit, frame_->texture(inputs[unit]).id());
   glProgramUniform1i(program, 0, scene_.samples);
   glProgramUniform1i(program, 1, g.lines || g.outlines);
@@ -318,6 +401,7 @@ void Renderer::render(const Camera& camera, float time) {
   glNamedBufferSubData(impl_->frameUniforms.id(), 0, sizeof u, &u);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, impl_->frameUniforms.id());
   if (impl_->adaptive) impl_->adaptive->setCamera(camera, aspect);
+  if (impl_->cutout) impl_->cutout->setCamera(camera);
   frame_->execute();
 }
 

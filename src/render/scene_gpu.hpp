@@ -15,6 +15,20 @@ namespace meshUniform {
 constexpr GLint kModel = 0, kNormalMatrix = 4;
 }
 
+// One triangle mesh on the GPU: interleaved positions and normals (attributes 0 and 1 of
+// render/mesh.vert) and indices.
+class GpuMesh {
+ public:
+  GpuMesh() = default;
+  explicit GpuMesh(const cutaway::Mesh& mesh);
+  void draw() const;
+
+ private:
+  gl::VertexArray vertexArray_;
+  gl::Buffer vertices_, indices_;
+  GLsizei indexCount_ = 0;
+};
+
 class SceneGpu {
  public:
   explicit SceneGpu(const Scene& scene);
@@ -28,13 +42,8 @@ class SceneGpu {
   void setTime(float time) { time_ = time; }
 
  private:
-  struct Mesh {
-    gl::VertexArray vertexArray;
-    gl::Buffer vertices, indices;
-    GLsizei indexCount = 0;
-  };
   const Scene& scene_;
-  std::vector<Mesh> meshes_;
+  std::vector<GpuMesh> meshes_;
   float time_ = 0.0f;
 };
 

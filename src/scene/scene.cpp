@@ -25,6 +25,9 @@ const std::vector<ObjectParamSpec>& objectParameterSpecs() {
        "draw silhouette and crease lines on this object (styles/lines)"},
       {"cutawayAngle", ObjectParamSpec::Type::Number, 0, 90,
        "local cutaway angle θ in degrees of an object of interest (Burns11 §6.2.1)"},
+      {"solid", ObjectParamSpec::Type::Bool, 0, 0,
+       "whether a cut shows this object's inside as a solid cut wall (default: when the mesh "
+       "is watertight); false for hollow shells such as rooms (Diepstraten03 rule 5)"},
   };
   return specs;
 }
@@ -37,6 +40,11 @@ const std::vector<std::string>& styleNames() {
 glm::mat4 Trs::matrix() const {
   return glm::translate(glm::mat4(1.0f), translate) * glm::mat4_cast(rotate) *
          glm::scale(glm::mat4(1.0f), scale);
+}
+
+bool SceneObject::solid() const {
+  const auto it = params.find("solid");
+  return it != params.end() ? std::get<bool>(it->second) : mesh->report.watertight;
 }
 
 glm::mat4 SceneObject::transformAt(float time) const {

@@ -1,5 +1,6 @@
 // The JSON scene format (docs/scene-format.md): strict parsing, every error names the file,
 // the JSON pointer and the reason; unknown keys are errors.
+#include <algorithm>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -555,6 +556,89 @@ AdaptiveCutawayOptions adaptiveCutaway(const Context& ctx, const json& j, const 
   return o;
 }
 
+// Cut-wall and inside colours shared by the Diepstraten03 cutters.
+template <class Options>
+void wallColors(const Context& ctx, ObjectReader& r, Options& o) {
+  if (const json* v = r.take("wallColor")) o.wallColor = color(ctx, *v, r.at("wallColor"));
+  if (const json* v = r.take("insideColor")) o.insideColor = color(ctx, *v, r.at("insideColor"));
+}
+
+CutoutOptions cutout(const Context& ctx, const json& j, const std::string& ptr) {
+  CutoutOptions o;
+  if (j.is_boolean()) {
+    if (!j.get<bool>()) ctx.fail(ptr, "use true or an object (leave the key out to disable)");
+    return o;
+  }
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("method"))
+    o.method = oneOf(ctx, *v, r.at("method"), {"texture", "clipPlanes"}) == "clipPlanes"
+                   ? CutoutOptions::Method::ClipPlanes
+                   : CutoutOptions::Method::Texture;
+  if (const json* v = r.take("angle")) o.angle = float(number(ctx, *v, r.at("angle"), 1, 180));
+  if (const json* v = r.take("rotation"))
+    o.rotation = float(number(ctx, *v, r.at("rotation"), -360, 360));
+  if (const json* v = r.take("axialRange")) {
+    if (!v->is_array() || v->size() != 2) ctx.fail(r.at("axialRange"), "expected [from, to]");
+    const float from = float(number(ctx, (*v)[0], r.at("axialRange") + "/0", 0, 1));
+    const float to = float(number(ctx, (*v)[1], r.at("axialRange") + "/1", 0, 1));
+    if (to <= from) ctx.fail(r.at("axialRange"), "the range must not be empty (from < to)");
+    o.axialRange = glm::vec2(from, to);
+  }
+  if (const json* v = r.take("jitter")) {
+    ObjectReader jr(ctx, *v, r.at("jitter"));
+    const std::string pattern =
+        oneOf(ctx, jr.require("pattern"), jr.at("pattern"), {"none", "sawtooth", "noise", "image"});
+    using P = CutoutJitter::Pattern;
+    o.jitter.pattern = pattern == "sawtooth" ? P::Sawtooth
+                       : pattern == "noise"  ? P::Noise
+                       : pattern == "image"  ? P::Image
+                                             : P::None;
+    if (const json* x = jr.take("amplitude"))
+      o.jitter.amplitude = float(number(ctx, *x, jr.at("amplitude"), 0, 1));
+    if (const json* x = jr.take("frequency"))
+      o.jitter.frequency = float(number(ctx, *x, jr.at("frequency"), 1e-3, 1e4));
+    if (const json* x = jr.take("octaves")) o.jitter.octaves = integer(ctx, *x, jr.at("octaves"), 1, 8);
+    if (const json* x = jr.take("image")) {
+      if (!x->is_string()) ctx.fail(jr.at("image"), "expected a file name, got " + typeName(*x));
+      o.jitter.image = ctx.baseDir / x->get<std::string>();
+      if (!std::filesystem::is_regular_file(o.jitter.image))
+        ctx.fail(jr.at("image"), "no such image file: " + o.jitter.image.string());
+      try {
+        o.jitter.imageData = loadPerturbationImage(o.jitter.image);
+      } catch (const Error& e) {
+        ctx.fail(jr.at("image"), e.reason() + " (" + o.jitter.image.string() + ")");
+      }
+    }
+    if (o.jitter.pattern == P::Image && o.jitter.image.empty())
+      ctx.fail(r.at("jitter"), "pattern \"image\" needs an \"image\" file (a PNG)");
+    jr.finish();
+  }
+  if (o.method == CutoutOptions::Method::ClipPlanes && o.jitter.pattern != CutoutJitter::Pattern::None)
+    ctx.fail(r.at("jitter"), "the clip-plane method cannot jitter (Diepstraten03 §4.3); use "
+                             "\"method\": \"texture\"");
+  wallColors(ctx, r, o);
+  r.finish();
+  return o;
+}
+
+BreakawayOptions breakaway(const Context& ctx, const json& j, const std::string& ptr) {
+  BreakawayOptions o;
+  if (j.is_boolean()) {
+    if (!j.get<bool>()) ctx.fail(ptr, "use true or an object (leave the key out to disable)");
+    return o;
+  }
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("offset")) o.offset = float(number(ctx, *v, r.at("offset"), 0, 1e30));
+  if (const json* v = r.take("wallThickness"))
+    o.wallThickness = float(number(ctx, *v, r.at("wallThickness"), 0, 1e30));
+  if (o.offset && o.wallThickness && *o.wallThickness > *o.offset)
+    ctx.fail(r.at("wallThickness"), "the wall thickness must not exceed the offset (the back-face "
+                                    "hull is the outer hull shrunk by it)");
+  wallColors(ctx, r, o);
+  r.finish();
+  return o;
+}
+
 Style style(const Context& ctx, const json& j, const std::string& ptr) {
   Style s;
   if (j.is_string()) {
@@ -668,6 +752,9 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     ObjectReader cr(ctx, *v, "/cutters");
     if (const json* a = cr.take("adaptive"))
       scene.adaptive = adaptiveCutaway(ctx, *a, "/cutters/adaptive");
+    if (const json* a = cr.take("cutout")) scene.cutout = cutout(ctx, *a, "/cutters/cutout");
+    if (const json* a = cr.take("breakaway"))
+      scene.breakaway = breakaway(ctx, *a, "/cutters/breakaway");
     cr.finish();
   }
   if (const json* v = r.take("lights")) {
@@ -696,6 +783,20 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   for (const auto& o : scene.objects)
     if (!names.insert(o.name).second)
       ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+  // Diepstraten03 rule 1: the cutters need the inside/outside classification.
+  const auto hasRole = [&](Role role) {
+    return std::any_of(scene.objects.begin(), scene.objects.end(),
+                       [&](const SceneObject& o) { return !o.proxy && o.role == role; });
+  };
+  for (const auto& [cutter, on] : {std::pair{"cutout", scene.cutout.has_value()},
+                                  std::pair{"breakaway", scene.breakaway.has_value()}})
+    if (on && !hasRole(Role::Exterior))
+      ctx.fail(std::string("/cutters/") + cutter,
+               "no object has role \"exterior\": nothing to cut (give the outside objects that "
+               "role, or match them by name with \"overrides\")");
+  if (scene.breakaway && !hasRole(Role::Interior))
+    ctx.fail("/cutters/breakaway",
+             "no object has role \"interior\": the breakaway hull is built around them");
   // The camera may "fit" to the objects, so it is read after them.
   if (const json* v = r.take("camera"))
     scene.camera = camera(ctx, *v, "/camera");

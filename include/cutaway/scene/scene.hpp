@@ -22,6 +22,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/cutters/breakaway.hpp"
+#include "cutaway/cutters/cutout.hpp"
 #include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
@@ -78,6 +80,8 @@ struct SceneObject {
   std::vector<Keyframe> animation;
 
   glm::mat4 transformAt(float time) const;
+  // Whether a cut shows the inside as solid material: param "solid", else watertightness.
+  bool solid() const;
   // Bounds in world space over the whole animation (at every keyframe).
   Bounds worldBounds() const;
 };
@@ -147,6 +151,8 @@ struct Scene {
   int samples = 4;  // MSAA samples of the final image
   Style style;
   std::optional<AdaptiveCutawayOptions> adaptive;  // "cutters": {"adaptive": {…}}
+  std::optional<CutoutOptions> cutout;             // "cutters": {"cutout": {…}}
+  std::optional<BreakawayOptions> breakaway;       // "cutters": {"breakaway": {…}}
 
   // Bounds of the visible (non-proxy) objects in world space.
   Bounds bounds() const;

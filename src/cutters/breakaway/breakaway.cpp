@@ -1,0 +1,136 @@
+#include "cutters/breakaway/breakaway.hpp"
+
+#include <map>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/geometry/convex_hull.hpp"
+#include "cutaway/gl/shader.hpp"
+
+namespace cutaway {
+
+Mesh inflatedHull(const std::vector<glm::vec3>& points, float offset) {
+  if (offset <= 0.0f) return convexHull(points);
+  // The 12 vertices and 30 edge midpoints of an icosahedron, on the unit sphere: the hull of
+  // p + offset·d over these 42 directions never reaches beyond the exact offset body and
+  // contains every point within 0.9·offset of the points (tests/test_cutout.cpp measures it).
+  const float phi = (1.0f + std::sqrt(5.0f)) * 0.5f;
+  std::vector<glm::vec3> ico;
+  for (const float a : {-1.0f, 1.0f})
+    for (const float b : {-phi, phi}) {
+      ico.push_back(glm::normalize(glm::vec3(0, a, b)));
+      ico.push_back(glm::normalize(glm::vec3(a, b, 0)));
+      ico.push_back(glm::normalize(glm::vec3(b, 0, a)));
+    }
+  std::vector<glm::vec3> directions = ico;
+  for (std::size_t i = 0; i < ico.size(); ++i)
+    for (std::size_t j = i + 1; j < ico.size(); ++j)
+      if (glm::dot(ico[i], ico[j]) > 0.4f)  // neighbours: cos 63.4° = 0.447
+        directions.push_back(glm::normalize(ico[i] + ico[j]));
+  // Only the hull's own vertices matter.
+  const Mesh hull = convexHull(points);
+  std::vector<glm::vec3> grown;
+  grown.reserve(hull.positions.size() * directions.size());
+  for (const auto& p : hull.positions)
+    for (const auto& d : directions) grown.push_back(p + offset * d);
+  return convexHull(grown);
+}
+
+BreakawayExtent breakawayExtent(const Scene& scene, const BreakawayOptions& options) {
+  Bounds interior;
+  for (const auto& o : scene.objects)
+    if (!o.proxy && o.role == Role::Interior) interior.extend(o.worldBounds());
+  const float offset = options.offset ? *options.offset : 0.05f * interior.radius();
+  const float thickness = options.wallThickness ? *options.wallThickness : 0.5f * offset;
+  return {offset, std::min(thickness, offset)};
+}
+
+std::vector<BreakawayCluster> breakawayClusters(const Scene& scene,
+                                                const BreakawayOptions& options) {
+  std::vector<BreakawayCluster> clusters;
+  std::map<std::string, std::size_t> clusterOfGroup;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& o = scene.objects[i];
+    if (o.proxy || o.role != Role::Interior) continue;
+    const auto [it, added] = clusterOfGroup.emplace(o.group, clusters.size());
+    if (added) clusters.push_back({o.group, {}, {}, {}});
+    clusters[it->second].objects.push_back(i);
+  }
+  const BreakawayExtent extent = breakawayExtent(scene, options);
+  for (auto& c : clusters) {
+    std::vector<glm::vec3> points;
+    for (const std::size_t i : c.objects) {
+      const glm::mat4 m = scene.objects[i].transformAt(0.0f);
+      for (const auto& p : scene.objects[i].mesh->positions)
+        points.push_back(glm::vec3(m * glm::vec4(p, 1.0f)));
+    }
+    const std::string name = c.group.empty() ? "the ungrouped interior objects" : c.group;
+    try {
+      c.outerHull = inflatedHull(points, extent.offset);
+      c.innerHull = inflatedHull(points, extent.offset - extent.wallThickness);
+    } catch (const Error& e) {
+      throw Error(scene.file.string(), "interior cluster \"" + name + "\"",
+                  "no breakaway hull: " + e.reason() +
+                      " (give the breakaway an offset > 0 for flat interior objects)");
+    }
+  }
+  return clusters;
+}
+
+Breakaway::Breakaway(const Scene& scene, const BreakawayOptions& options, Frame& frame)
+    : frame_(frame), clusters_(breakawayClusters(scene, options)) {
+  for (const auto& c : clusters_) {
+    outer_.emplace_back(c.outerHull);
+    inner_.emplace_back(c.innerHull);
+  }
+  hullProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
+                                              {GL_FRAGMENT_SHADER, "cutters/breakaway/hull.frag"}}});
+  const glm::mat4 identity(1.0f);
+  glProgramUniformMatrix4fv(hullProgram_.id(), meshUniform::kModel, 1, GL_FALSE, &identity[0][0]);
+  glProgramUniformMatrix4fv(hullProgram_.id(), meshUniform::kNormalMatrix, 1, GL_FALSE,
+                            &identity[0][0]);
+  frame.declare("breakawayClipDepth",
+                {.format = GL_DEPTH_COMPONENT32F,
+                 .meaning = "window depth in [0,1] of the foremost surface of the interior "
+                            "objects' inflated convex hulls (Diepstraten03 §5); exterior front "
+                            "faces at or in front of it are removed; 0 where no hull covers the "
+                            "pixel"});
+  frame.declare("breakawayInnerDepth",
+                {.format = GL_DEPTH_COMPONENT32F,
+                 .meaning = "the same for the smaller hulls (offset minus wall thickness) that "
+                            "clip exterior back faces"});
+  frame.declare("breakawayHullNormal", {.format = GL_RGBA16F});
+  frame.declare("breakawayInnerNormal", {.format = GL_RGBA16F});
+  frame.addPass({.name = "breakawayClip",
+                 .writes = {"breakawayHullNormal", "breakawayClipDepth"},
+                 .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, outer_); }});
+  frame.addPass({.name = "breakawayInnerClip",
+                 .writes = {"breakawayInnerNormal", "breakawayInnerDepth"},
+                 .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, inner_); }});
+}
+
+void Breakaway::drawClipDepth(GLuint framebuffer, const std::vector<GpuMesh>& hulls) const {
+  const float zero[4] = {0, 0, 0, 0}, near = 0.0f;
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, zero);
+  // Diepstraten03 §5: depth cleared to 0 (the near plane); the hulls drawn with a greater-than
+  // test leave their rear depth, then with a less-than test their foremost depth; pixels no
+  // hull covers keep 0 and clip nothing.
+  glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &near);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(hullProgram_.id());
+  glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDepthFunc(GL_GREATER);
+  for (const auto& h : hulls) h.draw();
+  glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthFunc(GL_LESS);
+  for (const auto& h : hulls) h.draw();
+}
+
+void Breakaway::bind() const {
+  glBindTextureUnit(11, frame_.texture("breakawayClipDepth").id());
+  glBindTextureUnit(12, frame_.texture("breakawayInnerDepth").id());
+  glBindTextureUnit(13, frame_.texture("breakawayHullNormal").id());
+}
+
+}  // namespace cutaway

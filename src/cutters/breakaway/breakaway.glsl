@@ -1,0 +1,25 @@
+// Diepstraten03 §5 breakaway: exterior fragments in front of the foremost surface of the
+// inflated convex hull of the interior objects are removed; back faces are clipped by a
+// slightly smaller hull so the cut shows a wall of finite thickness. Needs
+// frame_uniforms.glsl.
+#include "../fate.glsl"
+// Window depth of the hulls' foremost surface (0 where no hull covers the pixel: nothing is
+// clipped there), and the outer hull's world normal there.
+layout(binding = 11) uniform sampler2D uBreakawayClipDepth;
+layout(binding = 12) uniform sampler2D uBreakawayInnerDepth;
+layout(binding = 13) uniform sampler2D uBreakawayHullNormal;
+
+int breakawayFragment(bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  float outer = texelFetch(uBreakawayClipDepth, p, 0).r;
+  float clip = frontFacing ? outer : texelFetch(uBreakawayInnerDepth, p, 0).r;
+  if (gl_FragCoord.z <= clip) return kDiscard;
+  // A back face behind the hole is seen through the removed material: there the wall lies
+  // on the outer hull's foremost surface.
+  if (frontFacing || outer <= 0.0) return kKeep;
+  vec4 ndc = vec4(gl_FragCoord.xy * uViewport.zw * 2.0 - 1.0, outer * 2.0 - 1.0, 1.0);
+  vec4 world = uInverseView * (uInverseProjection * ndc);
+  cutPosition = world.xyz / world.w;
+  cutNormal = texelFetch(uBreakawayHullNormal, p, 0).xyz;
+  return kCutSurface;
+}

@@ -1,0 +1,107 @@
+// Diepstraten03 §4.5 texture-based cutout: per-fragment signed distances to the wedge's
+// planes, perturbed by a jitter pattern; mirrors src/cutters/cutout/cutout_function.cpp.
+// Needs frame_uniforms.glsl.
+#include "../fate.glsl"
+layout(location = 20) uniform vec4 uCutoutPlanes[4];  // n·x + w > 0 on the removed side
+layout(location = 24) uniform int uCutoutPlaneCount;   // 0: this object has no wedge
+layout(location = 25) uniform vec4 uCutoutOrigin;      // xyz: origin on the main axis, w: axis length
+layout(location = 26) uniform vec3 uCutoutAxis;
+// x: pattern (0 none, 1 sawtooth, 2 noise, 3 image), y: amplitude (world units),
+// z: frequency (per world unit), w: noise octaves
+layout(location = 27) uniform vec4 uCutoutJitter;
+layout(binding = 10) uniform sampler2D uCutoutImage;  // grey levels, repeat, bilinear
+
+float cutoutLatticeValue(int ix, int iy) {
+  uint h = uint(ix) * 0x8da6b343u + uint(iy) * 0xd8163841u;
+  h ^= h >> 15;
+  h *= 0x2c1b3c6du;
+  h ^= h >> 12;
+  h *= 0x297a2d39u;
+  h ^= h >> 15;
+  return float(h >> 8) * (1.0 / 16777216.0);
+}
+
+float cutoutValueNoise(vec2 p) {
+  vec2 i = floor(p), f = p - i;
+  vec2 s = f * f * (3.0 - 2.0 * f);
+  int ix = int(i.x), iy = int(i.y);
+  float a = cutoutLatticeValue(ix, iy), b = cutoutLatticeValue(ix + 1, iy);
+  float c = cutoutLatticeValue(ix, iy + 1), d = cutoutLatticeValue(ix + 1, iy + 1);
+  return mix(mix(a, b, s.x), mix(c, d, s.x), s.y);
+}
+
+float cutoutFractalNoise(vec2 p, int octaves) {
+  float sum = 0.0, weight = 1.0, total = 0.0;
+  for (int o = 0; o < octaves; ++o) {
+    sum += weight * (2.0 * cutoutValueNoise(p) - 1.0);
+    total += weight;
+    weight *= 0.5;
+    p *= 2.0;
+  }
+  return sum / total;
+}
+
+float cutoutTriangleWave(float t) {
+  return 4.0 * abs(t - floor(t) - 0.5) - 1.0;
+}
+
+// The jitter displacement in [−1, 1] at world point x (Diepstraten03 §4.5).
+float cutoutPerturbation(vec3 x) {
+  vec3 d = x - uCutoutOrigin.xyz;
+  float along = dot(d, uCutoutAxis);
+  float radial = length(d - along * uCutoutAxis);
+  vec2 uv = vec2(along, radial) * uCutoutJitter.z;
+  int pattern = int(uCutoutJitter.x);
+  if (pattern == 1) return 0.5 * (cutoutTriangleWave(uv.x) + cutoutTriangleWave(uv.y));
+  if (pattern == 2) return cutoutFractalNoise(uv, int(uCutoutJitter.w));
+  if (pattern == 3) return 2.0 * texture(uCutoutImage, uv).r - 1.0;
+  return 0.0;
+}
+
+// Signed distance to the removed region, perturbed: > 0 removed.
+float cutoutDistance(vec3 x) {
+  float d = 1e30;
+  for (int i = 0; i < uCutoutPlaneCount; ++i) d = min(d, dot(uCutoutPlanes[i].xyz, x) + uCutoutPlanes[i].w);
+  if (uCutoutJitter.x == 0.0) return d;
+  return d + uCutoutJitter.y * cutoutPerturbation(x);
+}
+
+// kDiscard inside the wedge; a back face outside it is seen through the cut (Diepstraten03
+// rule 5: the cut wall is visible): the wall lies where the view ray leaves the wedge.
+int cutoutFragment(vec3 x, bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
+  if (uCutoutPlaneCount == 0) return kKeep;
+  if (cutoutDistance(x) > 0.0) return kDiscard;
+  if (frontFacing) return kKeep;
+  vec3 from = uCounts.y == 1 ? x - uForward.xyz * dot(x - uEye.xyz, uForward.xyz) : uEye.xyz;
+  vec3 v = x - from;
+  // Clip the segment from → x against every half-space: [tIn, tOut] inside the wedge.
+  float tIn = 0.0, tOut = 1.0;
+  int exitPlane = 0, keeper = 0;
+  for (int i = 0; i < uCutoutPlaneCount; ++i) {
+    float d0 = dot(uCutoutPlanes[i].xyz, from) + uCutoutPlanes[i].w;
+    float dv = dot(uCutoutPlanes[i].xyz, v);
+    if (dv > 0.0) {
+      tIn = max(tIn, -d0 / dv);
+    } else if (dv < 0.0) {
+      float t = -d0 / dv;
+      if (t < tOut) tOut = t, exitPlane = i;
+    } else if (d0 <= 0.0) {
+      tOut = -1.0;
+    }
+  }
+  if (tIn < tOut) {
+    cutPosition = from + tOut * v;
+    cutNormal = uCutoutPlanes[exitPlane].xyz;
+  } else {
+    // Jitter moved the boundary past the planes: the wall at the fragment, facing the
+    // plane that keeps it.
+    float least = 1e30;
+    for (int i = 0; i < uCutoutPlaneCount; ++i) {
+      float di = dot(uCutoutPlanes[i].xyz, x) + uCutoutPlanes[i].w;
+      if (di < least) least = di, keeper = i;
+    }
+    cutPosition = x;
+    cutNormal = uCutoutPlanes[keeper].xyz;
+  }
+  return kCutSurface;
+}

@@ -1,0 +1,143 @@
+// Diepstraten03 §4 cutout: the wedge's half-spaces and the perturbed signed distance, in C++
+// for tests and the CLI; src/cutters/cutout/cutout.glsl is the same arithmetic per fragment.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/cutters/cutout.hpp"
+
+namespace cutaway {
+
+CutoutWedge cutoutWedge(const PrincipalAxes& axes, const CutoutOptions& options,
+                        const glm::vec3& towardsViewer) {
+  CutoutWedge w;
+  w.origin = axes.center;
+  w.axis = axes.axes[0];
+  w.axisLength = std::max(axes.extentMax - axes.extentMin, 1e-6f);
+  const glm::vec3 a = w.axis;
+  // The wedge's bisector b ⟂ a: at the user's rotation from the second axis, or facing the
+  // viewer (Diepstraten03 §4.2: the rotation about the axis is the free parameter).
+  glm::vec3 b;
+  if (options.rotation) {
+    const float phi = glm::radians(*options.rotation);
+    b = std::cos(phi) * axes.axes[1] + std::sin(phi) * axes.axes[2];
+  } else {
+    b = towardsViewer - glm::dot(towardsViewer, a) * a;
+    b = glm::dot(b, b) > 1e-12f * glm::dot(towardsViewer, towardsViewer) ? glm::normalize(b)
+                                                                          : axes.axes[1];
+  }
+  const glm::vec3 t = glm::cross(a, b);
+  // Two planes through the axis, each at half the relative angle from b; their inward
+  // normals point into the wedge (rule 2: an intersection of half-spaces, rule 3: on the
+  // main axis).
+  const float half = glm::radians(options.angle) * 0.5f;
+  for (const float side : {-1.0f, 1.0f}) {
+    const glm::vec3 n = std::sin(half) * b + side * std::cos(half) * t;
+    w.planes.emplace_back(n, -glm::dot(n, w.origin));
+  }
+  if (options.axialRange) {
+    const float sLo = axes.extentMin + options.axialRange->x * w.axisLength;
+    const float sHi = axes.extentMin + options.axialRange->y * w.axisLength;
+    w.planes.emplace_back(a, -glm::dot(a, w.origin) - sLo);   // s > sLo
+    w.planes.emplace_back(-a, glm::dot(a, w.origin) + sHi);   // s < sHi
+  }
+  return w;
+}
+
+namespace {
+
+// Integer hash of a lattice point into [0, 1): the same bit operations as hash2 in cutout.glsl.
+float latticeValue(std::int32_t ix, std::int32_t iy) {
+  std::uint32_t h = std::uint32_t(ix) * 0x8da6b343u + std::uint32_t(iy) * 0xd8163841u;
+  h ^= h >> 15;
+  h *= 0x2c1b3c6du;
+  h ^= h >> 12;
+  h *= 0x297a2d39u;
+  h ^= h >> 15;
+  return float(h >> 8) * (1.0f / 16777216.0f);
+}
+
+float valueNoise(glm::vec2 p) {
+  const glm::vec2 i = glm::floor(p), f = p - i;
+  const glm::vec2 s = f * f * (3.0f - 2.0f * f);
+  const auto ix = std::int32_t(i.x), iy = std::int32_t(i.y);
+  const float a = latticeValue(ix, iy), b = latticeValue(ix + 1, iy);
+  const float c = latticeValue(ix, iy + 1), d = latticeValue(ix + 1, iy + 1);
+  return glm::mix(glm::mix(a, b, s.x), glm::mix(c, d, s.x), s.y);
+}
+
+// Fractal sum of octaves of value noise, in [−1, 1] (Diepstraten03 §4.5: "fractals,
+// synthetic procedural textures like clouds").
+float fractalNoise(glm::vec2 p, int octaves) {
+  float sum = 0.0f, weight = 1.0f, total = 0.0f;
+  for (int o = 0; o < octaves; ++o) {
+    sum += weight * (2.0f * valueNoise(p) - 1.0f);
+    total += weight;
+    weight *= 0.5f;
+    p *= 2.0f;
+  }
+  return sum / total;
+}
+
+// Triangle wave in [−1, 1]: a two-texel texture repeated under bilinear filtering
+// (Diepstraten03 §4.5, the "tiny texture" that gives sawtooth boundaries).
+float triangleWave(float t) {
+  return 4.0f * std::abs(t - std::floor(t) - 0.5f) - 1.0f;
+}
+
+// GL_LINEAR with GL_REPEAT at texture coordinate uv.
+float bilinearRepeat(const PerturbationImage& image, glm::vec2 uv) {
+  const float x = uv.x * float(image.width) - 0.5f, y = uv.y * float(image.height) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float ax = x - fx, ay = y - fy;
+  auto texel = [&](float i, float j) {
+    const int u = int(i - float(image.width) * std::floor(i / float(image.width)));
+    const int v = int(j - float(image.height) * std::floor(j / float(image.height)));
+    return image.texels[std::size_t(v) * std::size_t(image.width) + std::size_t(u)];
+  };
+  return glm::mix(glm::mix(texel(fx, fy), texel(fx + 1, fy), ax),
+                  glm::mix(texel(fx, fy + 1), texel(fx + 1, fy + 1), ax), ay);
+}
+
+}  // namespace
+
+float cutoutPerturbation(const CutoutWedge& wedge, const CutoutJitter& jitter, const glm::vec3& x) {
+  // Pattern coordinates on the cut: along the axis and away from it, so the boundary is
+  // perturbed both on the sides (constant radius) and on end caps (constant axial position).
+  const glm::vec3 d = x - wedge.origin;
+  const float along = glm::dot(d, wedge.axis);
+  const float radial = glm::length(d - along * wedge.axis);
+  const glm::vec2 uv = glm::vec2(along, radial) * (jitter.frequency / wedge.axisLength);
+  switch (jitter.pattern) {
+    case CutoutJitter::Pattern::None: return 0.0f;
+    case CutoutJitter::Pattern::Sawtooth: return 0.5f * (triangleWave(uv.x) + triangleWave(uv.y));
+    case CutoutJitter::Pattern::Noise: return fractalNoise(uv, jitter.octaves);
+    case CutoutJitter::Pattern::Image: return 2.0f * bilinearRepeat(jitter.imageData, uv) - 1.0f;
+  }
+  return 0.0f;
+}
+
+float cutoutDistance(const CutoutWedge& wedge, const CutoutJitter& jitter, const glm::vec3& x) {
+  float d = 1e30f;
+  for (const auto& p : wedge.planes) d = std::min(d, glm::dot(glm::vec3(p), x) + p.w);
+  if (jitter.pattern == CutoutJitter::Pattern::None) return d;
+  return d + jitter.amplitude * wedge.axisLength * cutoutPerturbation(wedge, jitter, x);
+}
+
+PerturbationImage loadPerturbationImage(const std::filesystem::path& path) {
+  const Rgba8Image rgba = readPng(path);
+  PerturbationImage image{rgba.width, rgba.height, {}};
+  image.texels.resize(std::size_t(rgba.width) * std::size_t(rgba.height));
+  // readPng gives rows top to bottom; textures store rows bottom to top.
+  for (int y = 0; y < rgba.height; ++y)
+    for (int x = 0; x < rgba.width; ++x) {
+      const auto* p = &rgba.pixels[(std::size_t(rgba.height - 1 - y) * std::size_t(rgba.width) +
+                                    std::size_t(x)) * 4];
+      image.texels[std::size_t(y) * std::size_t(rgba.width) + std::size_t(x)] =
+          (float(p[0]) + float(p[1]) + float(p[2])) / (3.0f * 255.0f);
+    }
+  return image;
+}
+
+}  // namespace cutaway

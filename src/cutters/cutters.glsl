@@ -1,0 +1,44 @@
+// The active cutters composed into one per-fragment decision for the geometry pass; each is
+// compiled in by its define (CUTTER_ADAPTIVE, CUTTER_CUTOUT, CUTTER_BREAKAWAY). A fragment is
+// removed when any cutter that cuts its object removes it; a back face seen through a cut
+// takes the first cutter's cut surface. Needs frame_uniforms.glsl.
+#include "fate.glsl"
+#ifdef CUTTER_ADAPTIVE
+#include "adaptive/clip.glsl"
+#endif
+#ifdef CUTTER_CUTOUT
+#include "cutout/cutout.glsl"
+#endif
+#ifdef CUTTER_BREAKAWAY
+#include "breakaway/breakaway.glsl"
+#endif
+
+int cutFragment(int cutBy, vec3 x, bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
+  cutPosition = vec3(0.0);
+  cutNormal = vec3(0.0);
+  int fate = kKeep;
+  vec3 p, n;
+  int f;
+#ifdef CUTTER_ADAPTIVE
+  if ((cutBy & kCutByAdaptive) != 0) {
+    f = adaptiveFragment(frontFacing, p, n);
+    if (f == kDiscard) return kDiscard;
+    if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
+  }
+#endif
+#ifdef CUTTER_CUTOUT
+  if ((cutBy & kCutByCutout) != 0) {
+    f = cutoutFragment(x, frontFacing, p, n);
+    if (f == kDiscard) return kDiscard;
+    if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
+  }
+#endif
+#ifdef CUTTER_BREAKAWAY
+  if ((cutBy & kCutByBreakaway) != 0) {
+    f = breakawayFragment(frontFacing, p, n);
+    if (f == kDiscard) return kDiscard;
+    if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
+  }
+#endif
+  return fate;
+}
