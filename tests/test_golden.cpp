@@ -58,7 +58,18 @@ INSTANTIATE_TEST_SUITE_P(
                       GoldenCase{"house", "house.json", "", 320, 240},
                       GoldenCase{"engine-cutaway", "engine-cutaway.json", "", 320, 240},
                       GoldenCase{"house-cutaway", "house-cutaway.json", "", 320, 240},
-                      GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240}),
+                      GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240},
+                      // Diepstraten03 cutout and breakaway, each in two styles.
+                      GoldenCase{"engine-cutout", "engine-cutout.json", "", 320, 240},
+                      GoldenCase{"engine-cutout-blinn-phong", "engine-cutout.json", "blinn-phong",
+                                 320, 240},
+                      GoldenCase{"engine-breakaway", "engine-breakaway.json", "", 320, 240},
+                      GoldenCase{"bunny-box-cutout", "bunny-box-cutout.json", "", 240, 240},
+                      GoldenCase{"bunny-box-breakaway-blinn-phong", "bunny-box-breakaway.json",
+                                 "blinn-phong", 240, 240},
+                      GoldenCase{"fan-room-breakaway", "fan-room-breakaway.json", "", 320, 240},
+                      GoldenCase{"fan-room-breakaway-blinn-phong", "fan-room-breakaway.json",
+                                 "blinn-phong", 320, 240}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');

@@ -93,9 +93,23 @@ std::string framePath(const std::string& output, int index) {
   return (p.parent_path() / (p.stem().string() + number + p.extension().string())).string();
 }
 
+// Diepstraten03 rule 5 needs solids: a cut through an open exterior shows its inside, not a
+// wall. Said once, so an illustrator knows why no wall appears and how to choose.
+void warnAboutOpenExteriors(const Scene& scene) {
+  if (!scene.cutout && !scene.breakaway) return;
+  for (const auto& o : scene.objects)
+    if (o.role == Role::Exterior && !o.proxy && !o.mesh->report.watertight &&
+        !o.params.count("solid"))
+      std::fprintf(stderr,
+                   "warning: %s: exterior \"%s\" is not watertight; its cut shows the inside "
+                   "instead of a cut wall (set its param \"solid\" to choose)\n",
+                   scene.file.string().c_str(), o.name.c_str());
+}
+
 int render(const RenderOptions& options) {
   Scene scene = loadScene(options.scene);
   applyOverrides(scene, options.overrides);
+  warnAboutOpenExteriors(scene);
   if (options.frames > 0 && options.output.find('%') != std::string::npos) {
     static const std::regex patternRe(R"([^%]*%0?\d*d[^%]*)");
     if (!std::regex_match(options.output, patternRe))
@@ -192,6 +206,36 @@ int info(const std::string& path) {
                                   {"directionalConstraint", a->directionalConstraint},
                                   {"jumpFlooding", fields::variantName(a->variant)},
                                   {"ghostLines", a->ghostLines}};
+  // Diepstraten03 §4.2: each exterior unit's main axis (hull-surface covariance).
+  for (const auto& unit : exteriorUnits(scene)) {
+    const PrincipalAxes& a = unit.axes;
+    nlohmann::json members = nlohmann::json::array();
+    for (const std::size_t i : unit.objects) members.push_back(scene.objects[i].name);
+    out["exteriors"].push_back({{"name", unit.name},
+                                {"objects", members},
+                                {"centre", vec(a.center)},
+                                {"mainAxis", vec(a.axes[0])},
+                                {"axes", {vec(a.axes[0]), vec(a.axes[1]), vec(a.axes[2])}},
+                                {"eigenvalues", a.eigenvalues},
+                                {"extentAlongMainAxis", {a.extentMin, a.extentMax}}});
+  }
+  if (const auto& c = scene.cutout)
+    out["cutters"]["cutout"] = {
+        {"method", c->method == CutoutOptions::Method::Texture ? "texture" : "clipPlanes"},
+        {"angle", c->angle},
+        {"rotation", c->rotation ? nlohmann::json(*c->rotation) : nlohmann::json("facing the camera")},
+        {"planes", c->axialRange ? 4 : 2}};
+  if (const auto& b = scene.breakaway) {
+    const BreakawayExtent extent = breakawayExtent(scene, *b);
+    nlohmann::json clusters = nlohmann::json::array();
+    for (const auto& c : breakawayClusters(scene, *b))
+      clusters.push_back({{"group", c.group},
+                          {"objects", c.objects.size()},
+                          {"hullTriangles", c.outerHull.triangles.size()}});
+    out["cutters"]["breakaway"] = {{"offset", extent.offset},
+                                   {"wallThickness", extent.wallThickness},
+                                   {"clusters", clusters}};
+  }
   std::printf("%s\n", out.dump(2).c_str());
   return 0;
 }
