@@ -240,3 +240,68 @@ TEST(Cli, CutawayOptionsOverrideTheScene) {
   EXPECT_NE(both.exitCode, 0);
   EXPECT_NE(both.err.find("--no-cutaway"), std::string::npos) << both.err;
 }
+
+TEST(Cli, CutoutAndBreakawayRenderWithTheirAovs) {
+  for (const std::string scene : {"bunny-box-cutout", "bunny-box-breakaway"}) {
+    const fs::path out = scratch(scene + ".png"), aovs = scratch(scene + "-aovs");
+    const Result r = run("render " + kSource + "/examples/" + scene + ".json -o " + out.string() +
+                         " --size 96x96 --aov " + aovs.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "") << "a watertight exterior needs no warning";
+    EXPECT_EQ(readPng(out).width, 96);
+    std::ifstream sidecar(aovs / "aovs.json");
+    const auto meta = nlohmann::json::parse(sidecar);
+    const std::string expected =
+        scene == "bunny-box-cutout" ? "cutoutDistance" : "breakawayClipDepth";
+    bool found = false;
+    for (const auto& entry : meta["aovs"]) found |= entry["name"] == expected;
+    EXPECT_TRUE(found) << meta.dump();
+    EXPECT_TRUE(fs::exists(aovs / (expected + ".pfm")));
+  }
+}
+
+TEST(Cli, InfoPrintsTheExteriorMainAxis) {
+  const Result r = run("info " + kSource + "/examples/bunny-box-cutout.json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto info = nlohmann::json::parse(r.out);
+  ASSERT_EQ(info["exteriors"].size(), 1u);
+  const auto& box = info["exteriors"][0];
+  EXPECT_EQ(box["name"], "box");
+  // The hollow box is longest along x (2.5 × 2.4 × 2).
+  EXPECT_NEAR(std::abs(box["mainAxis"][0].get<double>()), 1.0, 1e-4);
+  EXPECT_GT(box["eigenvalues"][0].get<double>(), box["eigenvalues"][1].get<double>());
+  EXPECT_EQ(info["cutters"]["cutout"]["angle"], 90.0);
+}
+
+TEST(Cli, OpenExteriorWarnsAndFlatObjectsFailClearly) {
+  const Result warn = run("render " + kSource + "/examples/fan-room-breakaway.json -o " +
+                          scratch("room.png").string() + " --size 64x48");
+  EXPECT_EQ(warn.exitCode, 0) << warn.err;
+  EXPECT_EQ(warn.err, "") << "the room says \"solid\": false, so nothing to warn about";
+  const Result open = run("render " + kData + "/render/cutout_open_exterior.json -o " +
+                          scratch("open.png").string() + " --size 64x48");
+  EXPECT_EQ(open.exitCode, 0) << open.err;
+  EXPECT_NE(open.err.find("exterior \"open\" is not watertight"), std::string::npos) << open.err;
+  for (const std::string flat : {"cutout_flat_exterior", "breakaway_flat_interior"}) {
+    const fs::path out = scratch(flat + ".png");
+    const Result r = run("render " + kData + "/render/" + flat + ".json -o " + out.string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(flat + ".json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("convex hull failed"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+TEST(Cli, BenchComparesPlainCutoutAndBreakawayPerStyle) {
+  const Result r =
+      run("bench " + kSource + "/examples/bunny-box-cutout.json --frames 1 --size 64x64 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto bench = nlohmann::json::parse(r.out);
+  std::vector<std::string> labels;
+  for (const auto& run : bench["runs"]) labels.push_back(run["label"]);
+  for (const std::string style : {"gooch", "blinn-phong"})
+    for (const std::string what : {"plain", "cutout", "breakaway"})
+      EXPECT_NE(std::find(labels.begin(), labels.end(), what + " " + style), labels.end())
+          << what << " " << style;
+}
