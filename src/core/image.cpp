@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -71,6 +72,50 @@ Rgba8Image readPng(const std::filesystem::path& path) {
     throw Error(path.string(), "", "cannot decode PNG: " + reason);
   }
   return image;
+}
+
+FloatImage readPngGray(const std::filesystem::path& path) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, path.c_str())) {
+    std::string reason = png.message;
+    png_image_free(&png);
+    throw Error(path.string(), "", "cannot read PNG: " + reason);
+  }
+  // libpng marks 16-bit files linear; reading them as 16-bit linear grey keeps every level.
+  const bool sixteen = (png.format & PNG_FORMAT_FLAG_LINEAR) != 0;
+  png.format = sixteen ? PNG_FORMAT_LINEAR_Y : PNG_FORMAT_GRAY;
+  FloatImage image(int(png.width), int(png.height), 1);
+  std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) {
+    std::string reason = png.message;
+    png_image_free(&png);
+    throw Error(path.string(), "", "cannot decode PNG: " + reason);
+  }
+  for (std::size_t i = 0; i < image.data.size(); ++i) {
+    if (sixteen) {
+      std::uint16_t v;
+      std::memcpy(&v, &bytes[2 * i], 2);
+      image.data[i] = float(v) / 65535.0f;
+    } else {
+      image.data[i] = float(bytes[i]) / 255.0f;
+    }
+  }
+  return image;
+}
+
+float sampleRepeat(const FloatImage& image, float u, float v, int c) {
+  const float x = u * float(image.width) - 0.5f, y = v * float(image.height) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float ax = x - fx, ay = y - fy;
+  auto texel = [&](float i, float j) {
+    const int col = int(i - float(image.width) * std::floor(i / float(image.width)));
+    const int row = int(j - float(image.height) * std::floor(j / float(image.height)));
+    return image.at(col, row)[c];
+  };
+  const float bottom = texel(fx, fy) * (1.0f - ax) + texel(fx + 1, fy) * ax;
+  const float top = texel(fx, fy + 1) * (1.0f - ax) + texel(fx + 1, fy + 1) * ax;
+  return bottom * (1.0f - ay) + top * ay;
 }
 
 void writePfm(const std::filesystem::path& path, const FloatImage& image) {

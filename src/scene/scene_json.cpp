@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/core/image.hpp"
 #include "cutaway/geometry/convex_hull.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/scene/scene.hpp"
@@ -604,7 +605,7 @@ CutoutOptions cutout(const Context& ctx, const json& j, const std::string& ptr) 
       if (!std::filesystem::is_regular_file(o.jitter.image))
         ctx.fail(jr.at("image"), "no such image file: " + o.jitter.image.string());
       try {
-        o.jitter.imageData = loadPerturbationImage(o.jitter.image);
+        o.jitter.imageData = readPngGray(o.jitter.image);
       } catch (const Error& e) {
         ctx.fail(jr.at("image"), e.reason() + " (" + o.jitter.image.string() + ")");
       }

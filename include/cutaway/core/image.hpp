@@ -43,6 +43,16 @@ void writePng(const std::filesystem::path& path, const Rgba8Image& image);
 // Reads any PNG (gray, RGB, palette, 8 or 16 bit) converted to 8-bit RGBA.
 Rgba8Image readPng(const std::filesystem::path& path);
 
+// A PNG's grey levels in [0, 1] with the file's precision: 8-bit files as stored (value / 255),
+// 16-bit files as stored (value / 65535); colour files are converted to grey by libpng. For
+// height and offset maps. One channel, rows top to bottom.
+FloatImage readPngGray(const std::filesystem::path& path);
+
+// Bilinear sample of channel `c` at texture coordinate uv with wrap-around, as OpenGL's
+// GL_LINEAR + GL_REPEAT does: texel centres at (i + 0.5) / size, and uv (0, 0) at the
+// first stored row (upload the image as it is stored, so row 0 is the texture's t = 0).
+float sampleRepeat(const FloatImage& image, float u, float v, int c = 0);
+
 // Portable float map: 1 channel ("Pf") or 3 channels ("PF"), little-endian, rows stored
 // bottom to top on disk as the format requires.
 void writePfm(const std::filesystem::path& path, const FloatImage& image);

@@ -24,12 +24,6 @@
 
 namespace cutaway {
 
-// A perturbation pattern as grey levels in [0, 1], rows bottom to top.
-struct PerturbationImage {
-  int width = 0, height = 0;
-  std::vector<float> texels;
-};
-
 struct CutoutJitter {
   // Diepstraten03 §4.5: the signed distance is displaced by a perturbation texture. Sawtooth:
   // the paper's tiny repeated texture under bilinear filtering (a triangle wave); noise:
@@ -39,7 +33,7 @@ struct CutoutJitter {
   float frequency = 12.0f;  // pattern repeats per main-axis extent
   int octaves = 4;          // noise
   std::filesystem::path image;  // Image: the PNG it was loaded from
-  PerturbationImage imageData;  // Image: loaded with the scene (loadPerturbationImage)
+  FloatImage imageData;         // Image: its grey levels, loaded with the scene (readPngGray)
 };
 
 struct CutoutOptions {
@@ -94,8 +88,5 @@ struct ExteriorUnit {
   PrincipalAxes axes;
 };
 std::vector<ExteriorUnit> exteriorUnits(const struct Scene& scene);
-
-// Loads a perturbation image (any PNG; the grey level of its RGB); throws cutaway::Error.
-PerturbationImage loadPerturbationImage(const std::filesystem::path& path);
 
 }  // namespace cutaway

@@ -43,12 +43,12 @@ Cutout::Cutout(const Scene& scene, const CutoutOptions& options)
     for (const std::size_t i : units_[u].objects) unitOfObject_[i] = int(u);
   wedges_.resize(units_.size());
   if (options.jitter.pattern == CutoutJitter::Pattern::Image) {
-    const PerturbationImage& image = options.jitter.imageData;
+    const FloatImage& image = options.jitter.imageData;
     imageTexture_ = gl::Texture::create(GL_TEXTURE_2D);
     const GLuint id = imageTexture_.id();
     glTextureStorage2D(id, 1, GL_R32F, image.width, image.height);
     glTextureSubImage2D(id, 0, 0, 0, image.width, image.height, GL_RED, GL_FLOAT,
-                        image.texels.data());
+                        image.data.data());
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);

@@ -86,20 +86,6 @@ float triangleWave(float t) {
   return 4.0f * std::abs(t - std::floor(t) - 0.5f) - 1.0f;
 }
 
-// GL_LINEAR with GL_REPEAT at texture coordinate uv.
-float bilinearRepeat(const PerturbationImage& image, glm::vec2 uv) {
-  const float x = uv.x * float(image.width) - 0.5f, y = uv.y * float(image.height) - 0.5f;
-  const float fx = std::floor(x), fy = std::floor(y);
-  const float ax = x - fx, ay = y - fy;
-  auto texel = [&](float i, float j) {
-    const int u = int(i - float(image.width) * std::floor(i / float(image.width)));
-    const int v = int(j - float(image.height) * std::floor(j / float(image.height)));
-    return image.texels[std::size_t(v) * std::size_t(image.width) + std::size_t(u)];
-  };
-  return glm::mix(glm::mix(texel(fx, fy), texel(fx + 1, fy), ax),
-                  glm::mix(texel(fx, fy + 1), texel(fx + 1, fy + 1), ax), ay);
-}
-
 }  // namespace
 
 float cutoutPerturbation(const CutoutWedge& wedge, const CutoutJitter& jitter, const glm::vec3& x) {
@@ -113,7 +99,7 @@ float cutoutPerturbation(const CutoutWedge& wedge, const CutoutJitter& jitter, c
     case CutoutJitter::Pattern::None: return 0.0f;
     case CutoutJitter::Pattern::Sawtooth: return 0.5f * (triangleWave(uv.x) + triangleWave(uv.y));
     case CutoutJitter::Pattern::Noise: return fractalNoise(uv, jitter.octaves);
-    case CutoutJitter::Pattern::Image: return 2.0f * bilinearRepeat(jitter.imageData, uv) - 1.0f;
+    case CutoutJitter::Pattern::Image: return 2.0f * sampleRepeat(jitter.imageData, uv.x, uv.y) - 1.0f;
   }
   return 0.0f;
 }
@@ -123,21 +109,6 @@ float cutoutDistance(const CutoutWedge& wedge, const CutoutJitter& jitter, const
   for (const auto& p : wedge.planes) d = std::min(d, glm::dot(glm::vec3(p), x) + p.w);
   if (jitter.pattern == CutoutJitter::Pattern::None) return d;
   return d + jitter.amplitude * wedge.axisLength * cutoutPerturbation(wedge, jitter, x);
-}
-
-PerturbationImage loadPerturbationImage(const std::filesystem::path& path) {
-  const Rgba8Image rgba = readPng(path);
-  PerturbationImage image{rgba.width, rgba.height, {}};
-  image.texels.resize(std::size_t(rgba.width) * std::size_t(rgba.height));
-  // readPng gives rows top to bottom; textures store rows bottom to top.
-  for (int y = 0; y < rgba.height; ++y)
-    for (int x = 0; x < rgba.width; ++x) {
-      const auto* p = &rgba.pixels[(std::size_t(rgba.height - 1 - y) * std::size_t(rgba.width) +
-                                    std::size_t(x)) * 4];
-      image.texels[std::size_t(y) * std::size_t(rgba.width) + std::size_t(x)] =
-          (float(p[0]) + float(p[1]) + float(p[2])) / (3.0f * 255.0f);
-    }
-  return image;
 }
 
 }  // namespace cutaway
