@@ -1,5 +1,6 @@
 // The active cutters composed into one per-fragment decision for the geometry pass; each is
-// compiled in by its define (CUTTER_ADAPTIVE, CUTTER_CUTOUT, CUTTER_BREAKAWAY). A fragment is
+// compiled in by its define (CUTTER_ADAPTIVE, CUTTER_CUTOUT, CUTTER_BREAKAWAY,
+// CUTTER_CLIP_SURFACES). A fragment is
 // removed when any cutter that cuts its object removes it; a back face seen through a cut
 // takes the first cutter's cut surface. Needs frame_uniforms.glsl.
 #include "fate.glsl"
@@ -11,6 +12,9 @@
 #endif
 #ifdef CUTTER_BREAKAWAY
 #include "breakaway/breakaway.glsl"
+#endif
+#ifdef CUTTER_CLIP_SURFACES
+#include "clip_surfaces/clip_fragment.glsl"
 #endif
 
 int cutFragment(int cutBy, vec3 x, bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
@@ -39,6 +43,10 @@ int cutFragment(int cutBy, vec3 x, bool frontFacing, out vec3 cutPosition, out v
     if (f == kDiscard) return kDiscard;
     if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
   }
+#endif
+#ifdef CUTTER_CLIP_SURFACES
+  // Trapp13 clips the solid; its cut is covered by the caps, not by cut surfaces.
+  if ((cutBy & kCutByClipSurfaces) != 0 && clipSurfacesFragment(x) == kDiscard) return kDiscard;
 #endif
   return fate;
 }

@@ -47,7 +47,7 @@ void main() {
   outViewDepth = background ? 0.0 : position.w;
   outObjectId = float(id);
   outDepth = texelFetch(uDepth, p, 0).r;
-  outCutMask = texelFetch(uCutMask, p, 0).r;
+  outCutMask = texelFetch(uCutMask, p, 0).r >= 0.25 ? 1.0 : 0.0;  // cut surfaces, walls, caps
 #ifdef CUTTER_CUTOUT
   outCutoutDistance = texelFetch(uCutoutDistance, p, 0).r;
 #endif

@@ -1,5 +1,6 @@
 #include "cutaway/render/frame.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <set>
 
@@ -39,6 +40,13 @@ const gl::Texture& Frame::texture(const std::string& name) const {
 std::vector<float> Frame::read(const std::string& name, int channels) const {
   const TargetDesc& d = desc(name);
   std::vector<float> texels(std::size_t(d.width) * std::size_t(d.height) * std::size_t(channels));
+  if (d.format == GL_R32UI) {  // counters and flags written by image stores
+    std::vector<GLuint> values(texels.size());
+    glGetTextureImage(texture(name).id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      GLsizei(values.size() * sizeof(GLuint)), values.data());
+    std::copy(values.begin(), values.end(), texels.begin());
+    return texels;
+  }
   const GLenum format = isDepthFormat(d.format) ? GL_DEPTH_COMPONENT
                         : channels == 3            ? GL_RGB
                                                    : GL_RED;

@@ -5,6 +5,7 @@
 #include "../styles/surface.glsl"
 #include "style.glsl"
 #include "../cutters/cutters.glsl"
+#include "gbuffer.glsl"
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 layout(location = 8) uniform vec3 uColor;
@@ -16,14 +17,6 @@ layout(location = 13) uniform int uCutBy;       // which cutters cut this object
 layout(location = 14) uniform int uCutSurface;  // 1: a solid: back faces seen through a cut are its cut surface
 layout(location = 15) uniform vec3 uCutColor;
 layout(location = 16) uniform vec3 uBackColor;  // back faces that are no cut surface (an open or hollow inside)
-layout(location = 0) out vec4 outColor;
-layout(location = 1) out vec4 outNormal;     // world normal, w: lines flag
-layout(location = 2) out vec4 outPosition;   // world position, w: linear view depth
-layout(location = 3) out int outObjectId;
-layout(location = 4) out float outCutMask;    // 1 on cut surfaces
-#ifdef CUTTER_CUTOUT
-layout(location = 5) out float outCutoutDistance;  // Diepstraten03 §4.5 signed distance
-#endif
 void main() {
   vec3 cutPosition, cutNormal;
   int fate = cutFragment(uCutBy, vWorldPosition, gl_FrontFacing, cutPosition, cutNormal);
@@ -40,11 +33,7 @@ void main() {
   s.baseColor = cut ? uCutColor : gl_FrontFacing ? uColor : uBackColor;
   s.specular = uSpecular;
   s.shininess = uShininess;
-  outColor = vec4(shadeSurface(s), 1.0);
-  outNormal = vec4(s.normal, uLines);
-  outPosition = vec4(s.position, -(uView * vec4(s.position, 1.0)).z);
-  outObjectId = uObjectId;
-  outCutMask = cut ? 1.0 : 0.0;
+  writeGBuffer(s, shadeSurface(s), uLines, uObjectId, cut, false);
 #ifdef CUTTER_CUTOUT
   outCutoutDistance = (uCutBy & kCutByCutout) != 0 && uCutoutPlaneCount > 0
                           ? cutoutDistance(vWorldPosition)

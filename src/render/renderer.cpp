@@ -6,6 +6,7 @@
 #include "cutaway/gl/shader.hpp"
 #include "cutters/adaptive/adaptive_cutaway.hpp"
 #include "cutters/breakaway/breakaway.hpp"
+#include "cutters/clip_surfaces/clip_surfaces.hpp"
 #include "cutters/cutout/cutout.hpp"
 #include "render/fullscreen.hpp"
 #include "render/scene_gpu.hpp"
@@ -38,7 +39,7 @@ constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLin
                 kCutBy = 13, kCutSurface = 14, kCutColor = 15, kBackColor = 16,
                 kGhostDistance = 17, kClipPlane = 18;
 // Bits of src/cutters/fate.glsl.
-constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4;
+constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4, kCutByClipSurfaces = 8;
 
 }  // namespace
 
@@ -48,6 +49,8 @@ struct Renderer::Impl {
   std::unique_ptr<AdaptiveCutaway> adaptive;
   std::unique_ptr<Cutout> cutout;
   std::unique_ptr<Breakaway> breakaway;
+  std::unique_ptr<ClipSurfaceCutter> clipSurfaces;
+  gl::Program capProgram, capMaskProgram;
   gl::Buffer frameUniforms;
   FullscreenTriangle fullscreen;
   gl::Program meshProgram, backgroundProgram, linesProgram, ghostProgram, ghostLinesProgram,
@@ -65,6 +68,8 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   if (adaptive) g.adaptive = std::make_unique<AdaptiveCutaway>(g.sceneGpu, *adaptive, info, f);
   if (scene.cutout) g.cutout = std::make_unique<Cutout>(scene, *scene.cutout);
   if (scene.breakaway) g.breakaway = std::make_unique<Breakaway>(scene, *scene.breakaway, f);
+  if (scene.clipSurfaces)
+    g.clipSurfaces = std::make_unique<ClipSurfaceCutter>(g.sceneGpu, *scene.clipSurfaces, f);
   g.lines = scene.style.lines.has_value();
   // Cut outlines: the adaptive cutter's option; the Diepstraten03 cutters outline their walls.
   g.outlines = (adaptive && adaptive->outlines) || g.cutout || g.breakaway;
@@ -78,12 +83,21 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   if (adaptive) cutters["CUTTER_ADAPTIVE"] = "1";
   if (g.cutout) cutters["CUTTER_CUTOUT"] = "1";
   if (g.breakaway) cutters["CUTTER_BREAKAWAY"] = "1";
+  if (g.clipSurfaces) cutters["CUTTER_CLIP_SURFACES"] = "1";
   g.meshProgram = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
        .defines = cutters,
        .aliases = {{"style.glsl", styleFile(scene.style.name)}}});
   g.backgroundProgram = buildFullscreenProgram("render/background.frag");
   g.compositeProgram = buildFullscreenProgram("render/composite.frag", cutters);
+  if (g.clipSurfaces) {
+    g.capProgram = gl::buildProgram(
+        {.stages = {{GL_VERTEX_SHADER, "cutters/clip_surfaces/cap.vert"},
+                    {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/cap.frag"}},
+         .defines = cutters,
+         .aliases = {{"style.glsl", styleFile(scene.style.name)}}});
+    g.capMaskProgram = buildFullscreenProgram("cutters/clip_surfaces/cap_mask.frag");
+  }
   if (g.lines || g.outlines)
     g.linesProgram = buildFullscreenProgram(
         "styles/lines/lines.frag", g.outlines
@@ -169,6 +183,20 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
              .reads = geometryInputs,
              .writes = geometryOutputs,
              .run = [this](const PassContext& pass) { drawGeometry(pass.framebuffer); }});
+  if (g.clipSurfaces) {
+    f.declare("capMask", {.format = GL_R32F,
+                          .meaning = "1 where a cap surface covers a clip surface's cut (Trapp13 "
+                                     "§5), else 0; sample 0"});
+    f.addPass({.name = "capMask",
+               .reads = {"sceneCutMask"},
+               .writes = {"capMask"},
+               .run = [this](const PassContext&) {
+                 glDisable(GL_DEPTH_TEST);
+                 glUseProgram(impl_->capMaskProgram.id());
+                 glBindTextureUnit(0, frame_->texture("sceneCutMask").id());
+                 impl_->fullscreen.draw();
+               }});
+  }
   if (g.ghosts) {
     f.addPass({.name = "ghostGeometry",
                .reads = cutawayInputs,
@@ -258,6 +286,7 @@ void Renderer::drawGeometry(GLuint framebuffer) {
   if (g.adaptive) g.adaptive->bindForClipping();
   if (g.cutout) g.cutout->bind();
   if (g.breakaway) g.breakaway->bind();
+  if (g.clipSurfaces) g.clipSurfaces->clearMasks(), g.clipSurfaces->bind();
   const GLuint program = g.meshProgram.id();
   const AdaptiveCutawayOptions* adaptive = scene_.adaptive ? &*scene_.adaptive : nullptr;
   const bool clipPlanes = g.cutout && scene_.cutout->method == CutoutOptions::Method::ClipPlanes;
@@ -281,7 +310,8 @@ void Renderer::drawGeometry(GLuint framebuffer) {
     const bool exterior = o.role == Role::Exterior;
     const int cutBy = (adaptiveCut ? kCutByAdaptive : 0) |
                       (g.cutout && exterior && !clipPlanes ? kCutByCutout : 0) |
-                      (g.breakaway && exterior ? kCutByBreakaway : 0);
+                      (g.breakaway && exterior ? kCutByBreakaway : 0) |
+                      (g.clipSurfaces && o.role != Role::Interest ? kCutByClipSurfaces : 0);
     glProgramUniform1i(program, kCutBy, cutBy);
     using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
     const bool diepstraten = exterior && (g.cutout || g.breakaway);
@@ -328,6 +358,8 @@ void Renderer::drawGeometry(GLuint framebuffer) {
   g.sceneGpu.draw(
       program, [](const SceneObject& o) { return !o.proxy && o.role == Role::Interest; },
       setUniforms);
+  // Trapp13 §5: the caps close the clipped solids.
+  if (g.clipSurfaces) g.clipSurfaces->drawCaps(g.capProgram.id(), g.sceneGpu.time());
 }
 
 void Renderer::drawLines(GLuint program, const std::string& buffer, bool featureLines) {
@@ -419,6 +451,8 @@ Rgba8Image Renderer::readColor() const {
 
 std::vector<Aov> Renderer::readAovs() const {
   std::vector<Aov> aovs;
+  // Image stores (clip mask, cap parity) must land before the read-back.
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
   for (const auto& name : frame_->aovNames()) {
     const TargetDesc& d = frame_->desc(name);
     const int channels = d.aovChannels ? d.aovChannels : 1;
@@ -427,6 +461,8 @@ std::vector<Aov> Renderer::readAovs() const {
     image.flipVertically();
     aovs.push_back({name, d.meaning, std::move(image)});
   }
+  if (impl_->clipSurfaces)
+    for (auto& aov : impl_->clipSurfaces->spriteAovs()) aovs.push_back(std::move(aov));
   return aovs;
 }
 

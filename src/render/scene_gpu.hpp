@@ -38,6 +38,8 @@ class SceneGpu {
   void draw(GLuint program, const std::function<bool(const SceneObject&)>& which,
             const std::function<void(const SceneObject&, std::size_t)>& perObject) const;
   const Scene& scene() const { return scene_; }
+  const GpuMesh& mesh(std::size_t object) const { return meshes_[object]; }
+  float time() const { return time_; }
   // The animation time at which objects are drawn (SceneObject::transformAt).
   void setTime(float time) { time_ = time; }
 

@@ -640,6 +640,106 @@ BreakawayOptions breakaway(const Context& ctx, const json& j, const std::string&
   return o;
 }
 
+// An offset map (Trapp13 §4.2): a PNG file, a procedural recipe, or a blend of two maps.
+FloatImage offsetMap(const Context& ctx, const json& j, const std::string& ptr) {
+  if (j.is_string()) {
+    const std::filesystem::path file = ctx.baseDir / j.get<std::string>();
+    if (!std::filesystem::is_regular_file(file))
+      ctx.fail(ptr, "no such offset map: " + file.string());
+    try {
+      FloatImage map = readPngGray(file);
+      map.flipVertically();  // the image's bottom row is t = 0
+      return map;
+    } catch (const Error& e) {
+      ctx.fail(ptr, e.reason() + " (" + file.string() + ")");
+    }
+  }
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("blend")) {
+    static const std::vector<std::string> ops{"add", "multiply", "max", "min", "mix", "screen"};
+    const std::string op = oneOf(ctx, *v, r.at("blend"), ops);
+    const json& layers = r.require("layers");
+    if (!layers.is_array() || layers.size() != 2)
+      ctx.fail(r.at("layers"), "expected two offset maps to blend");
+    float weight = 0.5f;
+    if (const json* w = r.take("weight")) weight = float(number(ctx, *w, r.at("weight"), 0, 1));
+    r.finish();
+    const auto index = std::size_t(std::find(ops.begin(), ops.end(), op) - ops.begin());
+    return blendOffsetMaps(offsetMap(ctx, layers[0], r.at("layers") + "/0"),
+                           offsetMap(ctx, layers[1], r.at("layers") + "/1"), OffsetBlend(index),
+                           weight);
+  }
+  OffsetMapRecipe recipe;
+  const std::string pattern =
+      oneOf(ctx, r.require("pattern"), r.at("pattern"), {"flat", "sawtooth", "noise", "ridged"});
+  recipe.pattern = pattern == "flat"       ? OffsetPattern::Flat
+                   : pattern == "sawtooth" ? OffsetPattern::Sawtooth
+                   : pattern == "noise"    ? OffsetPattern::Noise
+                                           : OffsetPattern::Ridged;
+  if (const json* v = r.take("size")) recipe.size = integer(ctx, *v, r.at("size"), 2, 4096);
+  if (const json* v = r.take("frequency"))
+    recipe.frequency = integer(ctx, *v, r.at("frequency"), 1, 1024);
+  if (const json* v = r.take("octaves")) recipe.octaves = integer(ctx, *v, r.at("octaves"), 1, 10);
+  if (const json* v = r.take("seed")) recipe.seed = unsigned(integer(ctx, *v, r.at("seed"), 0, 1 << 30));
+  r.finish();
+  return makeOffsetMap(recipe);
+}
+
+ClipSurfaceOptions clipSurfaces(const Context& ctx, const json& j, const std::string& ptr) {
+  ClipSurfaceOptions o;
+  ObjectReader r(ctx, j, ptr);
+  const json& list = r.require("surfaces");
+  if (!list.is_array() || list.empty() || list.size() > std::size_t(kMaxClipSurfaces))
+    ctx.fail(r.at("surfaces"), "expected 1 to " + std::to_string(kMaxClipSurfaces) +
+                                   " clip surfaces, evaluated in one pass (Trapp13 §4.5)");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string p = r.at("surfaces") + "/" + std::to_string(i);
+    ObjectReader sr(ctx, list[i], p);
+    ClipSurface cs;
+    cs.origin = vec3(ctx, sr.require("origin"), sr.at("origin"));
+    cs.u = vec3(ctx, sr.require("u"), sr.at("u"));
+    cs.v = vec3(ctx, sr.require("v"), sr.at("v"));
+    const float lu = glm::length(cs.u), lv = glm::length(cs.v);
+    if (lu <= 0.0f || lv <= 0.0f) ctx.fail(p, "u and v must not be zero vectors");
+    if (std::abs(glm::dot(cs.u, cs.v)) > 1e-4f * lu * lv)
+      ctx.fail(sr.at("v"), "u and v must be orthogonal (Trapp13 §4.1)");
+    if (const json* v = sr.take("scale")) {
+      cs.scale = vec3(ctx, *v, sr.at("scale"));
+      if (cs.scale.x <= 0.0f || cs.scale.y <= 0.0f || cs.scale.z < 0.0f)
+        ctx.fail(sr.at("scale"), "repeats (x, y) must be > 0 and the height (z) >= 0");
+    }
+    if (const json* v = sr.take("offsetMap")) cs.offsetMap = offsetMap(ctx, *v, sr.at("offsetMap"));
+    if (const json* v = sr.take("enabled")) cs.enabled = boolean(ctx, *v, sr.at("enabled"));
+    if (const json* v = sr.take("capColor")) cs.capColor = color(ctx, *v, sr.at("capColor"));
+    sr.finish();
+    o.surfaces.push_back(std::move(cs));
+  }
+  if (const json* v = r.take("combine"))
+    o.combine = oneOf(ctx, *v, r.at("combine"), {"union", "intersection"}) == "intersection"
+                    ? ClipSurfaceOptions::Combine::Intersection
+                    : ClipSurfaceOptions::Combine::Union;
+  if (const json* v = r.take("caps")) o.caps = boolean(ctx, *v, r.at("caps"));
+  if (const json* v = r.take("parity"))
+    o.parity = oneOf(ctx, *v, r.at("parity"), {"static", "perFrame"}) == "perFrame"
+                   ? ClipSurfaceOptions::Parity::PerFrame
+                   : ClipSurfaceOptions::Parity::Static;
+  if (const json* v = r.take("depthSpriteResolution"))
+    o.depthSpriteResolution = integer(ctx, *v, r.at("depthSpriteResolution"), 16, 4096);
+  if (const json* v = r.take("capStyle")) {
+    ObjectReader cr(ctx, *v, r.at("capStyle"));
+    if (const json* x = cr.take("normalMap")) o.capNormalMap = boolean(ctx, *x, cr.at("normalMap"));
+    if (const json* x = cr.take("occlusion"))
+      o.capOcclusion = float(number(ctx, *x, cr.at("occlusion"), 0, 1));
+    if (const json* x = cr.take("solidTexture"))
+      o.capSolidTexture = boolean(ctx, *x, cr.at("solidTexture"));
+    if (const json* x = cr.take("solidTextureScale"))
+      o.solidTextureScale = float(number(ctx, *x, cr.at("solidTextureScale"), 1e-3, 1e4));
+    cr.finish();
+  }
+  r.finish();
+  return o;
+}
+
 Style style(const Context& ctx, const json& j, const std::string& ptr) {
   Style s;
   if (j.is_string()) {
@@ -756,6 +856,8 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     if (const json* a = cr.take("cutout")) scene.cutout = cutout(ctx, *a, "/cutters/cutout");
     if (const json* a = cr.take("breakaway"))
       scene.breakaway = breakaway(ctx, *a, "/cutters/breakaway");
+    if (const json* a = cr.take("clipSurfaces"))
+      scene.clipSurfaces = clipSurfaces(ctx, *a, "/cutters/clipSurfaces");
     cr.finish();
   }
   if (const json* v = r.take("lights")) {

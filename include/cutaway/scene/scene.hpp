@@ -23,6 +23,7 @@
 
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/cutters/breakaway.hpp"
+#include "cutaway/cutters/clip_surfaces.hpp"
 #include "cutaway/cutters/cutout.hpp"
 #include "cutaway/geometry/mesh.hpp"
 
@@ -153,6 +154,7 @@ struct Scene {
   std::optional<AdaptiveCutawayOptions> adaptive;  // "cutters": {"adaptive": {…}}
   std::optional<CutoutOptions> cutout;             // "cutters": {"cutout": {…}}
   std::optional<BreakawayOptions> breakaway;       // "cutters": {"breakaway": {…}}
+  std::optional<ClipSurfaceOptions> clipSurfaces;  // "cutters": {"clipSurfaces": {…}}
 
   // Bounds of the visible (non-proxy) objects in world space.
   Bounds bounds() const;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "cutaway/core/error.hpp"
+#include "cutaway/core/noise.hpp"
 #include "cutaway/cutters/cutout.hpp"
 
 namespace cutaway {
@@ -47,32 +47,12 @@ CutoutWedge cutoutWedge(const PrincipalAxes& axes, const CutoutOptions& options,
 
 namespace {
 
-// Integer hash of a lattice point into [0, 1): the same bit operations as hash2 in cutout.glsl.
-float latticeValue(std::int32_t ix, std::int32_t iy) {
-  std::uint32_t h = std::uint32_t(ix) * 0x8da6b343u + std::uint32_t(iy) * 0xd8163841u;
-  h ^= h >> 15;
-  h *= 0x2c1b3c6du;
-  h ^= h >> 12;
-  h *= 0x297a2d39u;
-  h ^= h >> 15;
-  return float(h >> 8) * (1.0f / 16777216.0f);
-}
-
-float valueNoise(glm::vec2 p) {
-  const glm::vec2 i = glm::floor(p), f = p - i;
-  const glm::vec2 s = f * f * (3.0f - 2.0f * f);
-  const auto ix = std::int32_t(i.x), iy = std::int32_t(i.y);
-  const float a = latticeValue(ix, iy), b = latticeValue(ix + 1, iy);
-  const float c = latticeValue(ix, iy + 1), d = latticeValue(ix + 1, iy + 1);
-  return glm::mix(glm::mix(a, b, s.x), glm::mix(c, d, s.x), s.y);
-}
-
 // Fractal sum of octaves of value noise, in [−1, 1] (Diepstraten03 §4.5: "fractals,
 // synthetic procedural textures like clouds").
 float fractalNoise(glm::vec2 p, int octaves) {
   float sum = 0.0f, weight = 1.0f, total = 0.0f;
   for (int o = 0; o < octaves; ++o) {
-    sum += weight * (2.0f * valueNoise(p) - 1.0f);
+    sum += weight * (2.0f * valueNoise(p.x, p.y) - 1.0f);
     total += weight;
     weight *= 0.5f;
     p *= 2.0f;

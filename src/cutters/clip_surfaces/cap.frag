@@ -1,0 +1,86 @@
+#version 450 core
+// Trapp13 §5.1, §5.3–5.4, §6.1: a cap fragment is kept only inside the capped solid (the
+// volumetric parity test against its layered depth image) and where no other clip surface
+// removes it; it is shaded with the active style from the relief's normal, occlusion and an
+// optional solid texture.
+#include "../../render/frame_uniforms.glsl"
+#include "../../styles/surface.glsl"
+#include "style.glsl"
+#include "clip_surfaces.glsl"
+#include "parity.glsl"
+#include "../../render/gbuffer.glsl"
+in vec3 vWorldPosition;
+in vec2 vST;
+layout(location = 11) uniform int uObjectId;
+layout(location = 40) uniform int uCapSurface;
+layout(location = 41) uniform mat4 uCapToTexture;  // world → LDI space of the capped solid
+layout(location = 45) uniform int uDepthComplexity;
+layout(location = 46) uniform vec3 uCapColor;
+// Per pixel, the parity results of cap fragments: 1 = one was outside, 2 = one was inside.
+layout(binding = 1, r32ui) uniform coherent uimage2D uCapParity;
+
+// A procedural solid texture (Trapp13 Fig. 11): marble-like veins from 3-D value noise.
+float solidHash(ivec3 c) {
+  uint h = uint(c.x) * 0x8da6b343u + uint(c.y) * 0xd8163841u + uint(c.z) * 0xcb1ab31fu;
+  h ^= h >> 15;
+  h *= 0x2c1b3c6du;
+  h ^= h >> 12;
+  h *= 0x297a2d39u;
+  h ^= h >> 15;
+  return float(h >> 8) * (1.0 / 16777216.0);
+}
+float solidNoise(vec3 p) {
+  vec3 i = floor(p), f = p - i, s = f * f * (3.0 - 2.0 * f);
+  ivec3 c = ivec3(i);
+  float x00 = mix(solidHash(c), solidHash(c + ivec3(1, 0, 0)), s.x);
+  float x10 = mix(solidHash(c + ivec3(0, 1, 0)), solidHash(c + ivec3(1, 1, 0)), s.x);
+  float x01 = mix(solidHash(c + ivec3(0, 0, 1)), solidHash(c + ivec3(1, 0, 1)), s.x);
+  float x11 = mix(solidHash(c + ivec3(0, 1, 1)), solidHash(c + ivec3(1, 1, 1)), s.x);
+  return mix(mix(x00, x10, s.y), mix(x01, x11, s.y), s.z);
+}
+float marble(vec3 p) {
+  float turbulence = 0.0, weight = 0.5;
+  vec3 q = p;
+  for (int o = 0; o < 4; ++o, weight *= 0.5, q *= 2.0) turbulence += weight * solidNoise(q);
+  return 0.5 + 0.5 * sin(p.x + 6.0 * turbulence);
+}
+
+void main() {
+  vec4 t = uCapToTexture * vec4(vWorldPosition, 1.0);
+  bool inside = volumetricParityTest(t.xyz / t.w, uDepthComplexity);
+  imageAtomicMax(uCapParity, ivec2(gl_FragCoord.xy), inside ? 2u : 1u);
+  if (!inside) discard;
+  // The cap of surface i bounds the clipped region where the other surfaces leave it: under a
+  // union where none of them clips, under an intersection where all of them do.
+  if (uClipCount.x > 1) {
+    bool others = clippedBySurfaces(vWorldPosition, uCapSurface);
+    if (uClipCount.y == 1 ? !others : others) discard;
+  }
+  int i = uCapSurface;
+  vec3 n = clipSurfaceNormal(i);
+  vec4 relief = texture(uClipRelief[i], vST * uClipScale[i].xy);
+  vec3 normal = -n;  // the cap faces the clipped side
+  if (uClipCount.z != 0) {
+    // Tangents of X(s,t) = O + sU + tV − S_z h(s S_x, t S_y) N.
+    vec3 ds = uClipU[i].xyz - uClipScale[i].z * uClipScale[i].x * relief.g * n;
+    vec3 dt = uClipV[i].xyz - uClipScale[i].z * uClipScale[i].y * relief.b * n;
+    normal = normalize(cross(ds, dt));
+    if (dot(normal, n) > 0.0) normal = -normal;
+  }
+  vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - vWorldPosition);
+  if (dot(normal, toEye) < 0.0) normal = -normal;  // seen from the kept side through a gap
+  vec3 base = uCapColor;
+  if (uCapStyle.y != 0.0) base *= mix(0.55, 1.1, marble(vWorldPosition * uCapStyle.z));
+  SurfacePoint s;
+  s.position = vWorldPosition;
+  s.normal = normal;
+  s.toEye = toEye;
+  s.baseColor = base;
+  s.specular = 0.05;
+  s.shininess = 16.0;
+  float occlusion = mix(1.0, relief.a, uCapStyle.x);
+  writeGBuffer(s, shadeSurface(s) * occlusion, 1.0, uObjectId, false, true);
+#ifdef CUTTER_CUTOUT
+  outCutoutDistance = uintBitsToFloat(0x7fc00000u);
+#endif
+}

@@ -1,0 +1,302 @@
+#include "cutters/clip_surfaces/clip_surfaces.hpp"
+
+#include <algorithm>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/gl/shader.hpp"
+
+namespace cutaway {
+
+namespace {
+
+// std140 mirror of the ClipSurfaces block in clip_surfaces.glsl.
+struct ClipSurfaceBlock {
+  glm::vec4 origin[kMaxClipSurfaces], u[kMaxClipSurfaces], v[kMaxClipSurfaces],
+      scale[kMaxClipSurfaces];
+  glm::ivec4 count;
+  glm::vec4 capStyle;
+};
+
+// A cap grid: (n+1)² vertices at (s, t) ∈ [0,1]², two triangles per cell.
+struct CapGrid {
+  gl::VertexArray vertexArray;
+  gl::Buffer vertices, indices;
+  GLsizei indexCount = 0;
+};
+
+CapGrid makeCapGrid(int n) {
+  std::vector<glm::vec2> st;
+  st.reserve(std::size_t(n + 1) * std::size_t(n + 1));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) st.emplace_back(float(i) / float(n), float(j) / float(n));
+  std::vector<GLuint> idx;
+  idx.reserve(std::size_t(n) * std::size_t(n) * 6);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const GLuint a = GLuint(j * (n + 1) + i), b = a + 1, c = a + GLuint(n + 1), d = c + 1;
+      idx.insert(idx.end(), {a, b, d, a, d, c});
+    }
+  CapGrid g;
+  g.vertices = gl::Buffer::create(GLsizeiptr(st.size() * sizeof(glm::vec2)), st.data());
+  g.indices = gl::Buffer::create(GLsizeiptr(idx.size() * sizeof(GLuint)), idx.data());
+  g.indexCount = GLsizei(idx.size());
+  g.vertexArray = gl::VertexArray::create();
+  const GLuint vao = g.vertexArray.id();
+  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(glm::vec2));
+  glVertexArrayElementBuffer(vao, g.indices.id());
+  glEnableVertexArrayAttrib(vao, 0);
+  glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao, 0, 0);
+  return g;
+}
+
+}  // namespace
+
+glm::mat4 depthSpriteFrame(const Bounds& box, const glm::mat3& basis, int resolution) {
+  // One texel of margin around the box on every side keeps silhouettes off the border.
+  const glm::vec3 size = glm::max(box.max - box.min, glm::vec3(1e-6f));
+  const glm::vec3 pad = size / float(resolution - 2);
+  const glm::vec3 lo = box.min - pad, extent = size + 2.0f * pad;
+  // T = S · (Bᵀ x − lo): into the basis, then onto [0,1]³.
+  glm::mat4 toBasis(glm::transpose(basis));
+  return glm::scale(glm::mat4(1.0f), 1.0f / extent) * glm::translate(glm::mat4(1.0f), -lo) * toBasis;
+}
+
+gl::Program buildDepthPeelProgram() {
+  return gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "cutters/clip_surfaces/depth_peel.vert"},
+                                      {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/depth_peel.frag"}}});
+}
+
+DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const glm::mat4& toTexture,
+                                int resolution, bool readBack, int maxLayers) {
+  const int n = resolution;
+  gl::Texture previous = gl::Texture::create2D(GL_R32F, n, n);
+  gl::Texture depth = gl::Texture::create2D(GL_DEPTH_COMPONENT32F, n, n);
+  gl::Framebuffer fbo = gl::Framebuffer::create();
+  glNamedFramebufferTexture(fbo.id(), GL_DEPTH_ATTACHMENT, depth.id(), 0);
+  gl::Query query = gl::Query::create(GL_ANY_SAMPLES_PASSED);
+  const float before = -1.0f, empty = 1.0f;
+  glClearTexImage(previous.id(), 0, GL_RED, GL_FLOAT, &before);
+
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glViewport(0, 0, n, n);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(peelProgram);
+  glProgramUniformMatrix4fv(peelProgram, 0, 1, GL_FALSE, &toTexture[0][0]);
+  std::vector<gl::Texture> layers;
+  for (int i = 0; i < maxLayers; ++i) {
+    gl::Texture layer = gl::Texture::create2D(GL_R32F, n, n);
+    glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, layer.id(), 0);
+    glNamedFramebufferDrawBuffer(fbo.id(), GL_COLOR_ATTACHMENT0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+    glClearNamedFramebufferfv(fbo.id(), GL_COLOR, 0, &empty);
+    glClearNamedFramebufferfv(fbo.id(), GL_DEPTH, 0, &empty);
+    glBindTextureUnit(0, previous.id());
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, query.id());
+    mesh.draw();
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    GLuint any = 0;
+    glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &any);
+    if (!any) break;  // nothing left behind the last layer: that is the depth complexity
+    glCopyImageSubData(layer.id(), GL_TEXTURE_2D, 0, 0, 0, 0, previous.id(), GL_TEXTURE_2D, 0, 0,
+                       0, 0, n, n, 1);
+    layers.push_back(std::move(layer));
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+
+  DepthSpriteGpu out;
+  VolumetricDepthSprite& s = out.sprite;
+  s.toTexture = toTexture;
+  s.width = s.height = n;
+  s.depthComplexity = int(layers.size());
+  out.layers = gl::Texture::create(GL_TEXTURE_2D_ARRAY);
+  glTextureStorage3D(out.layers.id(), 1, GL_R32F, n, n, std::max(1, s.depthComplexity));
+  glTextureParameteri(out.layers.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(out.layers.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  if (layers.empty()) glClearTexImage(out.layers.id(), 0, GL_RED, GL_FLOAT, &empty);
+  for (int i = 0; i < s.depthComplexity; ++i)
+    glCopyImageSubData(layers[std::size_t(i)].id(), GL_TEXTURE_2D, 0, 0, 0, 0, out.layers.id(),
+                       GL_TEXTURE_2D_ARRAY, 0, 0, 0, i, n, n, 1);
+  if (readBack && s.depthComplexity > 0) {
+    s.layers.resize(std::size_t(n) * std::size_t(n) * std::size_t(s.depthComplexity));
+    glGetTextureImage(out.layers.id(), 0, GL_RED, GL_FLOAT, GLsizei(s.layers.size() * sizeof(float)),
+                      s.layers.data());
+  }
+  return out;
+}
+
+struct ClipSurfaceCutter::Gpu {
+  gl::Program peel = buildDepthPeelProgram();
+  gl::Buffer block;
+  std::vector<gl::Texture> relief;
+  std::vector<CapGrid> grids;
+  std::vector<DepthSpriteGpu> sprites;  // one per capped object
+  std::vector<glm::vec3> capColors;     // one per capped object
+};
+
+ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurfaceOptions& options,
+                                     Frame& frame)
+    : sceneGpu_(sceneGpu), options_(options), frame_(frame), gpu_(std::make_unique<Gpu>()) {
+  Gpu& g = *gpu_;
+  ClipSurfaceBlock block{};
+  for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
+    const ClipSurface& cs = options.surfaces[i];
+    block.origin[i] = glm::vec4(cs.origin, cs.enabled ? 1.0f : 0.0f);
+    block.u[i] = glm::vec4(cs.u, 0.0f);
+    block.v[i] = glm::vec4(cs.v, 0.0f);
+    block.scale[i] = glm::vec4(cs.scale, 0.0f);
+    // §4.2: normal and occlusion maps derived from the offset map, once.
+    const FloatImage relief = deriveReliefMaps(cs);
+    gl::Texture t = gl::Texture::create(GL_TEXTURE_2D);
+    glTextureStorage2D(t.id(), 1, GL_RGBA32F, relief.width, relief.height);
+    glTextureSubImage2D(t.id(), 0, 0, 0, relief.width, relief.height, GL_RGBA, GL_FLOAT,
+                        relief.data.data());
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    g.relief.push_back(std::move(t));
+    // §5.1: the cap grid refined to the offset map's resolution over the surface's extent.
+    const int cells = int(std::clamp(std::max(float(cs.offsetMap.width) * cs.scale.x,
+                                              float(cs.offsetMap.height) * cs.scale.y),
+                                     8.0f, 1024.0f));
+    g.grids.push_back(makeCapGrid(cells));
+  }
+  block.count = glm::ivec4(int(options.surfaces.size()),
+                           options.combine == ClipSurfaceOptions::Combine::Intersection,
+                           options.capNormalMap, 0);
+  const Scene& scene = sceneGpu.scene();
+  const float solidFrequency = options.solidTextureScale / std::max(scene.bounds().radius(), 1e-6f);
+  block.capStyle = glm::vec4(options.capOcclusion, options.capSolidTexture, solidFrequency, 0.0f);
+  g.block = gl::Buffer::create(sizeof block, &block);
+
+  if (options.caps)
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      const SceneObject& o = scene.objects[i];
+      if (o.proxy || o.role == Role::Interest) continue;
+      // Parity is undefined for open meshes (§5): never a wrong cap, no cap at all.
+      if (!o.mesh->report.watertight) {
+        uncappable_.push_back(i);
+        continue;
+      }
+      capped_.push_back(i);
+      g.capColors.push_back(options.surfaces.front().capColor.value_or(o.material.color * 0.7f));
+      if (options.parity == ClipSurfaceOptions::Parity::Static)
+        g.sprites.push_back(buildDepthSprite(g.peel.id(), sceneGpu.mesh(i),
+                                             depthSpriteFrame(o.mesh->bounds(), glm::mat3(1.0f),
+                                                              options.depthSpriteResolution),
+                                             options.depthSpriteResolution, true));
+    }
+
+  frame.declare("clipMask", {.format = GL_R32UI,
+                             .meaning = "1 where a clip surface removed a fragment (at any depth), "
+                                        "else 0 (Trapp13 eq. 1)"});
+  frame.declare("capParity",
+                {.format = GL_R32UI,
+                 .meaning = "volumetric parity test of the cap fragments at this pixel (Trapp13 "
+                            "§5.3): 0 none tested, 1 only outside the solid (discarded), 2 at "
+                            "least one inside (kept)"});
+  if (options.parity == ClipSurfaceOptions::Parity::PerFrame && !capped_.empty()) {
+    g.sprites.resize(capped_.size());
+    frame.addPass({.name = "clipSurfaceSprites",
+                   .writes = {},
+                   .run = [this](const PassContext&) { buildPerFrameSprites(sceneGpu_.time()); }});
+  }
+}
+
+ClipSurfaceCutter::~ClipSurfaceCutter() = default;
+
+void ClipSurfaceCutter::buildPerFrameSprites(float time) {
+  // Trapp13 §6.3: peeled along the first clip surface's normal, in world space, every frame,
+  // so moving and deforming solids keep exact caps.
+  const ClipSurface& cs = options_.surfaces.front();
+  const glm::mat3 basis(glm::normalize(cs.u), glm::normalize(cs.v), cs.normal());
+  const Scene& scene = sceneGpu_.scene();
+  for (std::size_t k = 0; k < capped_.size(); ++k) {
+    const SceneObject& o = scene.objects[capped_[k]];
+    const glm::mat4 model = o.transformAt(time);
+    Bounds inBasis;
+    const Bounds b = o.mesh->bounds();
+    for (int c = 0; c < 8; ++c) {
+      const glm::vec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
+                             (c & 4) ? b.max.z : b.min.z);
+      inBasis.extend(glm::transpose(basis) * glm::vec3(model * glm::vec4(corner, 1.0f)));
+    }
+    const glm::mat4 worldToTexture = depthSpriteFrame(inBasis, basis, options_.depthSpriteResolution);
+    gpu_->sprites[k] = buildDepthSprite(gpu_->peel.id(), sceneGpu_.mesh(capped_[k]), worldToTexture * model,
+                                        options_.depthSpriteResolution, false);
+    gpu_->sprites[k].sprite.toTexture = worldToTexture * model;
+  }
+}
+
+void ClipSurfaceCutter::bind() const {
+  glBindBufferBase(GL_UNIFORM_BUFFER, 2, gpu_->block.id());
+  for (std::size_t i = 0; i < gpu_->relief.size(); ++i)
+    glBindTextureUnit(GLuint(16 + i), gpu_->relief[i].id());
+  glBindImageTexture(0, frame_.texture("clipMask").id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(1, frame_.texture("capParity").id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+}
+
+void ClipSurfaceCutter::clearMasks() const {
+  const GLuint zero = 0;
+  glClearTexImage(frame_.texture("clipMask").id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearTexImage(frame_.texture("capParity").id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
+  // Locations of cap.vert / cap.frag.
+  constexpr GLint kObjectId = 11, kCapSurface = 40, kCapToTexture = 41, kDepthComplexity = 45,
+                  kCapColor = 46;
+  const Scene& scene = sceneGpu_.scene();
+  glUseProgram(program);
+  for (std::size_t k = 0; k < capped_.size(); ++k) {
+    const DepthSpriteGpu& sprite = gpu_->sprites[k];
+    // Sprites map the object's own space to LDI space: world → object → LDI.
+    const glm::mat4 toTexture =
+        sprite.sprite.toTexture * glm::inverse(scene.objects[capped_[k]].transformAt(time));
+    glProgramUniform1i(program, kObjectId, int(capped_[k]));
+    glProgramUniformMatrix4fv(program, kCapToTexture, 1, GL_FALSE, &toTexture[0][0]);
+    glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
+    glProgramUniform3fv(program, kCapColor, 1, &gpu_->capColors[k][0]);
+    glBindTextureUnit(20, sprite.layers.id());
+    for (std::size_t i = 0; i < options_.surfaces.size(); ++i) {
+      if (!options_.surfaces[i].enabled) continue;
+      glProgramUniform1i(program, kCapSurface, GLint(i));
+      glBindVertexArray(gpu_->grids[i].vertexArray.id());
+      glDrawElements(GL_TRIANGLES, gpu_->grids[i].indexCount, GL_UNSIGNED_INT, nullptr);
+    }
+  }
+}
+
+std::vector<Aov> ClipSurfaceCutter::spriteAovs() const {
+  std::vector<Aov> aovs;
+  const Scene& scene = sceneGpu_.scene();
+  for (std::size_t k = 0; k < capped_.size(); ++k) {
+    const DepthSpriteGpu& s = gpu_->sprites[k];
+    const int n = s.sprite.width, d = s.sprite.depthComplexity;
+    std::vector<float> texels(std::size_t(n) * std::size_t(n) * std::size_t(std::max(d, 1)));
+    glGetTextureImage(s.layers.id(), 0, GL_RED, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
+                      texels.data());
+    for (int i = 0; i < d; ++i) {
+      FloatImage image(n, n, 1);
+      std::copy_n(texels.begin() + std::ptrdiff_t(std::size_t(i) * std::size_t(n) * std::size_t(n)),
+                  std::size_t(n) * std::size_t(n), image.data.begin());
+      image.flipVertically();
+      aovs.push_back({"ldi_" + std::to_string(capped_[k]) + "_" + std::to_string(i),
+                      "layer " + std::to_string(i) + " of " + std::to_string(d) +
+                          " of the volumetric depth sprite of object " +
+                          std::to_string(capped_[k]) + " (\"" + scene.objects[capped_[k]].name +
+                          "\", Trapp13 §5.2): depth in [0,1] along the sprite's rays, 1 = empty",
+                      std::move(image)});
+    }
+  }
+  return aovs;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,49 @@
+// Trapp13 §4: 2.5D clip surfaces, several evaluated in one pass (§4.5); mirrors
+// src/cutters/clip_surfaces/clip_surface_function.cpp. Shared by the fragment test
+// (clip_fragment.glsl) and the caps (cap.vert, cap.frag). Needs frame_uniforms.glsl.
+#include "../fate.glsl"
+const int kMaxClipSurfaces = 4;
+layout(std140, binding = 2) uniform ClipSurfaces {
+  vec4 uClipOrigin[kMaxClipSurfaces];  // xyz: O, w: 1 if enabled
+  vec4 uClipU[kMaxClipSurfaces];       // xyz: U
+  vec4 uClipV[kMaxClipSurfaces];       // xyz: V
+  vec4 uClipScale[kMaxClipSurfaces];   // xyz: S
+  ivec4 uClipCount;                    // x: surfaces, y: 1 = intersection, z: normal map on caps
+  vec4 uCapStyle;                      // x: occlusion strength, y: solid texture, z: its frequency
+};
+// Per surface: r = offset h, g = ∂h/∂s, b = ∂h/∂t, a = ambient occlusion (derived at load).
+layout(binding = 16) uniform sampler2D uClipRelief[kMaxClipSurfaces];
+
+vec3 clipSurfaceNormal(int i) {
+  return normalize(cross(normalize(uClipU[i].xyz), normalize(uClipV[i].xyz)));
+}
+
+// Trapp13 eq. 2 with eq. 3: texture coordinates of P's projection onto the plane.
+vec2 clipSurfaceTexCoord(int i, vec3 p) {
+  vec3 n = clipSurfaceNormal(i), o = uClipOrigin[i].xyz, u = uClipU[i].xyz, v = uClipV[i].xyz;
+  vec3 pn = p - dot(p - o, n) * n;
+  float lu = length(u), lv = length(v);
+  return vec2(dot(pn - o, u / lu) / lu * uClipScale[i].x, dot(pn - o, v / lv) / lv * uClipScale[i].y);
+}
+
+// Trapp13 eq. 1: P·N − N·O + f(OM, T)·S_z; χ = 1 (clipped) where it is < 0.
+float clipSurfaceFunction(int i, vec3 p) {
+  vec3 n = clipSurfaceNormal(i);
+  float h = texture(uClipRelief[i], clipSurfaceTexCoord(i, p)).r;
+  return dot(p, n) - dot(n, uClipOrigin[i].xyz) + h * uClipScale[i].z;
+}
+
+// The combination rule over the enabled surfaces other than `except` (-1: all): union (any
+// clips) or intersection (all clip).
+bool clippedBySurfaces(vec3 p, int except) {
+  bool any = false, all = true, enabled = false;
+  for (int i = 0; i < uClipCount.x; ++i) {
+    if (i == except || uClipOrigin[i].w == 0.0) continue;
+    enabled = true;
+    bool clipped = clipSurfaceFunction(i, p) < 0.0;
+    any = any || clipped;
+    all = all && clipped;
+  }
+  if (!enabled) return except >= 0 && uClipCount.y == 1;  // alone in an intersection: kept
+  return uClipCount.y == 1 ? all : any;
+}
