@@ -16,7 +16,9 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
   const std::vector<std::string> expected{
       "render/mesh.frag",           "render/frame_uniforms.glsl", "styles/surface.glsl",
       "styles/gooch/gooch.glsl",    "cutters/cutters.glsl",       "cutters/fate.glsl",
-      "cutters/adaptive/clip.glsl", "cutters/cutout/cutout.glsl", "cutters/breakaway/breakaway.glsl"};
+      "cutters/adaptive/clip.glsl", "cutters/cutout/cutout.glsl", "cutters/breakaway/breakaway.glsl",
+      "cutters/clip_surfaces/clip_fragment.glsl", "cutters/clip_surfaces/clip_surfaces.glsl",
+      "render/gbuffer.glsl"};
   EXPECT_EQ(source.files, expected);
   // Defines come right after #version, before any other line.
   EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u)

@@ -1,0 +1,337 @@
+// Trapp13: the clip-surface function (eqs. 1–3) against closed forms and against the GPU on
+// dumped world positions, offset maps and their derived maps, volumetric depth sprites
+// (depth complexity of known shapes) and the volumetric parity test against ray parity on the
+// mesh, and caps that cover exactly the cut.
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <random>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/cutters/clip_surfaces.hpp"
+#include "cutaway/io/mesh_import.hpp"
+#include "cutaway/render/renderer.hpp"
+#include "cutters/clip_surfaces/clip_surfaces.hpp"
+#include "gl_test_context.hpp"
+
+using namespace cutaway;
+
+namespace {
+
+const std::string kData = CUTAWAY_TEST_DATA;
+const std::string kSource = CUTAWAY_SOURCE_DIR;
+
+const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
+  for (const auto& a : aovs)
+    if (a.name == name) return a.image;
+  throw std::runtime_error("no AOV " + name);
+}
+
+// A torus around z (major radius 1, minor 0.35), closed and consistently oriented.
+Mesh torus(int major = 64, int minor = 32) {
+  Mesh m;
+  for (int i = 0; i < major; ++i)
+    for (int j = 0; j < minor; ++j) {
+      const float a = 2.0f * 3.14159265f * float(i) / float(major);
+      const float b = 2.0f * 3.14159265f * float(j) / float(minor);
+      const float rr = 1.0f + 0.35f * std::cos(b);
+      m.positions.emplace_back(rr * std::cos(a), rr * std::sin(a), 0.35f * std::sin(b));
+    }
+  for (int i = 0; i < major; ++i)
+    for (int j = 0; j < minor; ++j) {
+      const auto at = [&](int p, int q) { return unsigned(((p % major) * minor) + (q % minor)); };
+      m.triangles.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+      m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+    }
+  computeVertexNormals(m);
+  analyzeTopology(m);
+  return m;
+}
+
+Mesh sphere(int rings = 32, int sectors = 64) {
+  Mesh m;
+  m.positions.emplace_back(0, 0, 1);
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const float t = 3.14159265f * float(i) / float(rings), p = 2.0f * 3.14159265f * float(j) / float(sectors);
+      m.positions.emplace_back(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
+    }
+  m.positions.emplace_back(0, 0, -1);
+  const auto ring = [&](int i, int j) { return unsigned(1 + (i - 1) * sectors + (j % sectors)); };
+  const unsigned south = unsigned(m.positions.size() - 1);
+  for (int j = 0; j < sectors; ++j) {
+    m.triangles.emplace_back(0u, ring(1, j), ring(1, j + 1));
+    m.triangles.emplace_back(south, ring(rings - 1, j + 1), ring(rings - 1, j));
+    for (int i = 1; i + 1 < rings; ++i) {
+      m.triangles.emplace_back(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1));
+      m.triangles.emplace_back(ring(i, j), ring(i + 1, j + 1), ring(i, j + 1));
+    }
+  }
+  computeVertexNormals(m);
+  analyzeTopology(m);
+  return m;
+}
+
+Mesh transformed(const Mesh& mesh, const glm::mat4& m) {
+  Mesh out;
+  out.append(mesh, m);
+  analyzeTopology(out);
+  return out;
+}
+
+Mesh hollowBox() {
+  return importMeshNodes(kSource + "/examples/data/hollow-box.obj").at(0).mesh;
+}
+
+VolumetricDepthSprite spriteOf(const Mesh& mesh, int resolution) {
+  (void)test::glContext();
+  const GpuMesh gpu(mesh);
+  const gl::Program peel = buildDepthPeelProgram();
+  return buildDepthSprite(peel.id(), gpu, depthSpriteFrame(mesh.bounds(), glm::mat3(1.0f), resolution),
+                          resolution, true)
+      .sprite;
+}
+
+}  // namespace
+
+TEST(ClipSurface, FlatMapIsThePlaneAndTexCoordsFollowEq2) {
+  ClipSurface cs{.origin = {1, 2, 3}, .u = {0, 4, 0}, .v = {0, 0, 2}, .scale = {2, 3, 0.5f}};
+  cs.offsetMap = makeOffsetMap({.pattern = OffsetPattern::Flat, .size = 4});
+  // N = Û × V̂ = ŷ × ẑ = x̂: eq. 1 is the signed distance to the plane x = 1.
+  EXPECT_NEAR(glm::length(cs.normal() - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(clipSurfaceFunction(cs, {3.5f, 0, 0}), 2.5f, 1e-6f);
+  EXPECT_NEAR(clipSurfaceFunction(cs, {0.25f, 9, -4}), -0.75f, 1e-6f);
+  // Eq. 2: ((P_N − O)·Û / |U| · S_x, (P_N − O)·V̂ / |V| · S_y).
+  const glm::vec2 t = clipSurfaceTexCoord(cs, {7, 4, 4});
+  EXPECT_NEAR(t.x, 2.0f / 4.0f * 2.0f, 1e-6f);
+  EXPECT_NEAR(t.y, 1.0f / 2.0f * 3.0f, 1e-6f);
+}
+
+TEST(ClipSurface, OffsetShiftsTheSurfaceBySz) {
+  // A constant map of 0.6 with S_z = 0.5 moves the boundary to x = 1 − 0.3 (eq. 1: P·N − N·O +
+  // h·S_z = 0).
+  ClipSurface cs{.origin = {1, 0, 0}, .u = {0, 1, 0}, .v = {0, 0, 1}, .scale = {1, 1, 0.5f}};
+  cs.offsetMap = FloatImage(2, 2, 1);
+  for (float& h : cs.offsetMap.data) h = 0.6f;
+  EXPECT_NEAR(clipSurfaceFunction(cs, {0.7f, 0.3f, 0.8f}), 0.0f, 1e-6f);
+  ClipSurfaceOptions options{.surfaces = {cs}};
+  EXPECT_TRUE(clippedBySurfaces(options, {0.6f, 0, 0}));
+  EXPECT_FALSE(clippedBySurfaces(options, {0.8f, 0, 0}));
+  // Two surfaces: union clips what either clips, intersection what both clip.
+  ClipSurface other = cs;
+  other.origin = {0, 0, 0};
+  other.u = {0, 0, 1};
+  other.v = {1, 0, 0};  // N = ẑ × x̂ = ŷ: clips y < −0.3
+  options.surfaces.push_back(other);
+  EXPECT_TRUE(clippedBySurfaces(options, {0.6f, 5, 0}));
+  options.combine = ClipSurfaceOptions::Combine::Intersection;
+  EXPECT_FALSE(clippedBySurfaces(options, {0.6f, 5, 0}));
+  EXPECT_TRUE(clippedBySurfaces(options, {0.6f, -5, 0}));
+  options.surfaces[1].enabled = false;
+  EXPECT_TRUE(clippedBySurfaces(options, {0.6f, 5, 0}));
+}
+
+TEST(OffsetMap, PatternsTileStayInRangeAndBlend) {
+  for (auto pattern : {OffsetPattern::Sawtooth, OffsetPattern::Noise, OffsetPattern::Ridged}) {
+    const FloatImage m = makeOffsetMap({.pattern = pattern, .size = 64, .frequency = 4});
+    float worstSeam = 0, meanStep = 0;
+    for (int y = 0; y < 64; ++y) {
+      worstSeam = std::max(worstSeam, std::abs(m.at(63, y)[0] - m.at(0, y)[0]));
+      for (int x = 0; x + 1 < 64; ++x) meanStep = std::max(meanStep, std::abs(m.at(x + 1, y)[0] - m.at(x, y)[0]));
+    }
+    for (float h : m.data) ASSERT_TRUE(h >= 0.0f && h <= 1.0f);
+    // Across the wrap the map steps no more than between any two neighbours inside it.
+    EXPECT_LE(worstSeam, meanStep + 1e-6f) << int(pattern);
+  }
+  FloatImage a(2, 2, 1), b(4, 4, 1);
+  for (float& h : a.data) h = 0.25f;
+  for (float& h : b.data) h = 0.5f;
+  EXPECT_EQ(blendOffsetMaps(a, b, OffsetBlend::Add).width, 4);
+  EXPECT_FLOAT_EQ(blendOffsetMaps(a, b, OffsetBlend::Add).data[5], 0.75f);
+  EXPECT_FLOAT_EQ(blendOffsetMaps(a, b, OffsetBlend::Multiply).data[5], 0.125f);
+  EXPECT_FLOAT_EQ(blendOffsetMaps(a, b, OffsetBlend::Max).data[5], 0.5f);
+  EXPECT_FLOAT_EQ(blendOffsetMaps(a, b, OffsetBlend::Min).data[5], 0.25f);
+  EXPECT_FLOAT_EQ(blendOffsetMaps(a, b, OffsetBlend::Mix, 0.25f).data[5], 0.3125f);
+  EXPECT_FLOAT_EQ(blendOffsetMaps(a, b, OffsetBlend::Screen).data[5], 0.625f);
+}
+
+TEST(OffsetMap, DerivedGradientsAndOcclusion) {
+  ClipSurface cs{.u = {2, 0, 0}, .v = {0, 2, 0}, .scale = {1, 1, 0.1f}};
+  // The zig-zag h = 1 − |2 fract(4u) − 1| has slope ±8 per unit of u, none along v.
+  cs.offsetMap = makeOffsetMap({.pattern = OffsetPattern::Sawtooth, .size = 64, .frequency = 4});
+  const FloatImage relief = deriveReliefMaps(cs);
+  EXPECT_NEAR(std::abs(relief.at(3, 10)[1]), 8.0f, 1e-3f);
+  EXPECT_NEAR(relief.at(3, 10)[2], 0.0f, 1e-6f);
+  // Occlusion: the valleys (h = 0) see the ridges and are darker than the ridges (h = 1).
+  EXPECT_LT(relief.at(0, 5)[3], relief.at(8, 5)[3]);
+  EXPECT_NEAR(relief.at(8, 5)[3], 1.0f, 1e-6f);
+  cs.offsetMap = makeOffsetMap({.pattern = OffsetPattern::Flat, .size = 8});
+  for (int i = 0; i < 64; ++i) EXPECT_EQ(deriveReliefMaps(cs).data[std::size_t(i) * 4 + 3], 1.0f);
+}
+
+TEST(OffsetMap, SixteenBitPngKeepsItsLevels) {
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / "cutaway-offset16.png";
+  std::vector<std::uint16_t> levels{0, 1, 257, 65535, 40000, 12345};
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = 3;
+  png.height = 2;
+  png.format = PNG_FORMAT_LINEAR_Y;
+  ASSERT_TRUE(png_image_write_to_file(&png, file.c_str(), 0, levels.data(), 0, nullptr));
+  const FloatImage m = readPngGray(file);
+  ASSERT_EQ(m.width, 3);
+  for (std::size_t i = 0; i < levels.size(); ++i)
+    EXPECT_NEAR(m.data[i], float(levels[i]) / 65535.0f, 1e-7f) << i;
+  std::filesystem::remove(file);
+}
+
+// Trapp13 §5.2: the depth complexity counted by peeling.
+TEST(DepthSprite, DepthComplexityOfKnownShapes) {
+  EXPECT_EQ(spriteOf(sphere(), 128).depthComplexity, 2);
+  EXPECT_EQ(spriteOf(torus(), 128).depthComplexity, 2);  // seen along its axis
+  const glm::mat4 edgeOn = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0));
+  EXPECT_EQ(spriteOf(transformed(torus(), edgeOn), 128).depthComplexity, 4);
+  EXPECT_EQ(spriteOf(hollowBox(), 64).depthComplexity, 4);
+}
+
+// Trapp13 §5.3: the parity test on the GPU-built sprite against ray parity on the triangles,
+// on thousands of random points, for non-convex watertight meshes.
+TEST(DepthSprite, ParityMatchesRayParityOnRandomPoints) {
+  const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), 0.6f, glm::normalize(glm::vec3(1, 1, 0)));
+  for (const Mesh& mesh : std::vector<Mesh>{transformed(torus(), tilt), hollowBox()}) {
+    ASSERT_TRUE(mesh.report.watertight);
+    const VolumetricDepthSprite vds = spriteOf(mesh, 256);
+    const Bounds b = mesh.bounds();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    int inside = 0, wrong = 0;
+    constexpr int kPoints = 5000;
+    for (int i = 0; i < kPoints; ++i) {
+      const glm::vec3 p = b.min + (b.max - b.min) * glm::vec3(u(rng), u(rng), u(rng));
+      const bool reference = insideMesh(mesh, p);
+      inside += reference;
+      wrong += volumetricParityTest(vds, p) != reference;
+    }
+    EXPECT_GT(inside, kPoints / 20);
+    // Only points within a texel of the surface may land on the wrong side.
+    EXPECT_LE(wrong, kPoints / 200) << wrong << " of " << kPoints;
+  }
+}
+
+namespace {
+
+// A torus (watertight, non-convex) clipped by a surface through its middle, seen from above.
+std::string torusScene(const std::string& surface, bool caps) {
+  return R"({"resolution": [128, 96], "samples": 1, "style": {"name": "gooch", "lines": false},
+    "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
+    "objects": [{"name": "torus", "file": ")" +
+         std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") + R"("}],
+    "cutters": {"clipSurfaces": {"caps": )" + (caps ? "true" : "false") +
+         R"(, "surfaces": [)" + surface + "]}}}";
+}
+
+void writeTorus() {
+  const Mesh m = torus();
+  std::FILE* f = std::fopen((std::filesystem::temp_directory_path() / "cutaway-torus.obj").c_str(), "w");
+  for (const auto& p : m.positions) std::fprintf(f, "v %.7g %.7g %.7g\n", p.x, p.y, p.z);
+  for (const auto& t : m.triangles) std::fprintf(f, "f %u %u %u\n", t.x + 1, t.y + 1, t.z + 1);
+  std::fclose(f);
+}
+
+std::vector<Aov> render(const Scene& scene) {
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  return renderer.readAovs();
+}
+
+// A surface through z ≈ 0.05 clipping the upper half (N = −ẑ: clipped where z > o + h·S_z).
+const std::string kNoisySurface =
+    R"({"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0], "scale": [2, 2, 0.1],
+        "offsetMap": {"pattern": "noise", "frequency": 3, "size": 64}})";
+const std::string kFlatSurface =
+    R"({"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0], "scale": [1, 1, 0]})";
+
+}  // namespace
+
+// The GPU's per-fragment test against clipSurfaceFunction on the plain frame's world
+// positions: surface points the C++ form clips are gone, the others stay, pixel by pixel.
+TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
+  writeTorus();
+  const Scene clipped = parseScene(torusScene(kNoisySurface, false), "torus.json", kData);
+  Scene plain = clipped;
+  plain.clipSurfaces.reset();
+  const auto a = render(plain), b = render(clipped);
+  const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
+                   &id = aov(b, "objectId"), &pos = aov(b, "position"), &mask = aov(b, "clipMask");
+  const ClipSurface& cs = clipped.clipSurfaces->surfaces[0];
+  int removed = 0, kept = 0, wrong = 0, visible = 0;
+  for (int y = 0; y < plainId.height; ++y)
+    for (int x = 0; x < plainId.width; ++x) {
+      if (id.at(x, y)[0] == 0.0f) {  // what the clipped frame shows is never clipped
+        EXPECT_GE(clipSurfaceFunction(cs, glm::make_vec3(pos.at(x, y))), -1e-4f) << x << "," << y;
+        ++visible;
+      }
+      if (plainId.at(x, y)[0] != 0.0f) continue;
+      const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
+      const float f = clipSurfaceFunction(cs, p);
+      const bool same = id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-5f;
+      if (f < -1e-3f) ++removed, wrong += same, wrong += mask.at(x, y)[0] != 1.0f;
+      if (f > 1e-3f) ++kept, wrong += !same;
+    }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(removed, 500);
+  EXPECT_GT(kept, 300);
+  EXPECT_GT(visible, 500);
+}
+
+// Caps close the cut and nothing else: where the view ray meets the (flat) clip plane inside
+// the torus, the cap shows; every cap pixel lies inside the torus.
+TEST(ClipSurfaceGpu, CapsCoverExactlyTheCut) {
+  writeTorus();
+  const Scene scene = parseScene(torusScene(kFlatSurface, true), "torus.json", kData);
+  const auto aovs = render(scene);
+  const FloatImage &cap = aov(aovs, "capMask"), &pos = aov(aovs, "position"),
+                   &parity = aov(aovs, "capParity");
+  const Mesh mesh = torus();
+  const Camera camera = scene.resolvedCamera();
+  const glm::mat4 inverse = glm::inverse(
+      camera.projectionMatrix(float(scene.width) / float(scene.height)) * camera.view());
+  int expected = 0, covered = 0, outside = 0, capPixels = 0, tested = 0;
+  for (int y = 0; y < cap.height; ++y)
+    for (int x = 0; x < cap.width; ++x) {
+      const glm::vec2 ndc((x + 0.5f) / cap.width * 2 - 1, 1 - (y + 0.5f) / cap.height * 2);
+      const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
+      const glm::vec3 from = glm::vec3(a) / a.w, to = glm::vec3(b) / b.w;
+      const float t = (0.05f - from.z) / (to.z - from.z);
+      const glm::vec3 onPlane = from + t * (to - from);
+      if (insideMesh(mesh, onPlane)) {
+        ++expected;
+        covered += cap.at(x, y)[0] == 1.0f;
+      }
+      if (cap.at(x, y)[0] == 1.0f) {
+        ++capPixels;
+        outside += !insideMesh(mesh, glm::make_vec3(pos.at(x, y)));
+      }
+      tested += parity.at(x, y)[0] > 0.0f;
+    }
+  EXPECT_GT(expected, 1000);
+  // Pixels whose centre grazes the cross-section's outline may round either way.
+  EXPECT_GE(covered, expected - expected / 50) << covered << " of " << expected;
+  EXPECT_LE(outside, capPixels / 100) << outside << " of " << capPixels;
+  EXPECT_GT(tested, capPixels) << "the cap grid spans more than the cut: parity discards the rest";
+}
+
+TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {
+  writeTorus();
+  Scene scene = parseScene(torusScene(kNoisySurface, true), "torus.json", kData);
+  const FloatImage a = aov(render(scene), "capMask");
+  scene.clipSurfaces->parity = ClipSurfaceOptions::Parity::PerFrame;
+  const FloatImage b = aov(render(scene), "capMask");
+  int differ = 0, caps = 0;
+  for (std::size_t i = 0; i < a.data.size(); ++i) differ += a.data[i] != b.data[i], caps += a.data[i] == 1.0f;
+  EXPECT_GT(caps, 1000);
+  EXPECT_LE(differ, caps / 100) << differ << " of " << caps;
+}
