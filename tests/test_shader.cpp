@@ -13,9 +13,9 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                              .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"},
                                          {"cutter.glsl", "cutters/adaptive/clip.glsl"}}};
   const gl::PreprocessedSource source = gl::preprocess("render/mesh.frag", desc);
-  const std::vector<std::string> expected{"render/mesh.frag", "render/frame_uniforms.glsl",
-                                          "styles/surface.glsl", "styles/gooch/gooch.glsl",
-                                          "cutters/adaptive/clip.glsl"};
+  const std::vector<std::string> expected{
+      "render/mesh.frag",        "render/frame_uniforms.glsl", "styles/surface.glsl",
+      "styles/gooch/gooch.glsl", "cutters/adaptive/clip.glsl", "styles/shadows/shadow_lookup.glsl"};
   EXPECT_EQ(source.files, expected);
   // Defines come right after #version, before any other line.
   EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u)

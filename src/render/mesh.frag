@@ -5,6 +5,7 @@
 #include "../styles/surface.glsl"
 #include "style.glsl"
 #include "cutter.glsl"
+#include "../styles/shadows/shadow_lookup.glsl"
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 layout(location = 8) uniform vec3 uColor;
@@ -36,6 +37,7 @@ void main() {
   s.baseColor = cut ? uCutColor : uColor;
   s.specular = uSpecular;
   s.shininess = uShininess;
+  s.keyLightVisibility = keyLightVisibility(s.position);
   outColor = vec4(shadeSurface(s), 1.0);
   outNormal = vec4(s.normal, uLines);
   outPosition = vec4(s.position, -(uView * vec4(s.position, 1.0)).z);

@@ -25,12 +25,15 @@ const std::vector<ObjectParamSpec>& objectParameterSpecs() {
        "draw silhouette and crease lines on this object (styles/lines)"},
       {"cutawayAngle", ObjectParamSpec::Type::Number, 0, 90,
        "local cutaway angle θ in degrees of an object of interest (Burns11 §6.2.1)"},
+      {"castsShadow", ObjectParamSpec::Type::Bool, 0, 0,
+       "this object casts shadows (style.shadows); default: every visible object except those "
+       "of role exterior"},
   };
   return specs;
 }
 
 const std::vector<std::string>& styleNames() {
-  static const std::vector<std::string> names{"gooch", "blinn-phong"};
+  static const std::vector<std::string> names{"gooch", "blinn-phong", "toon", "hatching"};
   return names;
 }
 
