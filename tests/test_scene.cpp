@@ -151,6 +151,8 @@ const BadScene kBadScenes[] = {
     {"style_hatching_zero_scale.json", "/style/hatching/scale", "value 0 is outside [0.001, 10]"},
     {"style_hatching_paper_not_colour.json", "/style/hatching/paper",
      "expected an array of 3 numbers, got string"},
+    {"style_hatching_bad_lightness.json", "/style/hatching/lightness",
+     "unknown value \"phong\" (expected one of: lambert, gooch)"},
     {"style_hatching_unknown_key.json", "/style/hatching/angle", "unknown key \"angle\""},
     {"style_shadows_size_not_power_of_two.json", "/style/shadows/size",
      "size must be a power of two"},
@@ -1048,6 +1050,7 @@ TEST(SceneStyle, ToonHatchingAndShadowDefaults) {
   EXPECT_EQ(s.style.hatching.tones, 6);
   EXPECT_FLOAT_EQ(s.style.hatching.tint, 0.35f);
   EXPECT_FLOAT_EQ(s.style.hatching.scale, 0.4f);
+  EXPECT_EQ(s.style.hatching.lightness, HatchingStyle::Lightness::Lambert);
   EXPECT_FALSE(s.style.shadows.enabled);
   EXPECT_EQ(s.style.shadows.size, 2048);
   EXPECT_EQ(s.style.shadows.pcfRadius, 1);
@@ -1059,7 +1062,7 @@ TEST(SceneStyle, EveryToonHatchingAndShadowKeyIsRead) {
       "toon": {"ramp": [0.1, [0.2, 0.3, 0.4], 0.7, 1], "highlight": false,
                "highlightThreshold": 0.8, "highlightColor": [1, 1, 0.5]},
       "hatching": {"tones": 8, "paper": [1, 1, 0.9], "ink": [0, 0, 0.2], "tint": 0.5,
-                   "scale": 0.25, "seed": 42},
+                   "scale": 0.25, "seed": 42, "lightness": "gooch"},
       "shadows": {"size": 1024, "bias": 0.001, "slopeBias": 3, "pcfRadius": 2}},
       "objects": [{"name": "cube", "file": "cube.obj", "params": {"castsShadow": false}}]})");
   EXPECT_EQ(s.style.name, "toon");
@@ -1078,6 +1081,7 @@ TEST(SceneStyle, EveryToonHatchingAndShadowKeyIsRead) {
   EXPECT_FLOAT_EQ(h.tint, 0.5f);
   EXPECT_FLOAT_EQ(h.scale, 0.25f);
   EXPECT_EQ(h.seed, 42u);
+  EXPECT_EQ(h.lightness, HatchingStyle::Lightness::Gooch);
   const ShadowStyle& sh = s.style.shadows;
   EXPECT_TRUE(sh.enabled);  // an object turns them on
   EXPECT_EQ(sh.size, 1024);

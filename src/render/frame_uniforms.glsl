@@ -23,5 +23,5 @@ layout(std140, binding = 0) uniform FrameUniforms {
   vec4 uToonHighlight;            // rgb: highlight colour
   vec4 uHatchPaper;               // rgb: paper colour, w: tint by the object colour
   vec4 uHatchInk;                 // rgb: ink colour, w: number of tones
-  vec4 uHatchParams;              // x: 1 / hatch tile size (world units)
+  vec4 uHatchParams;              // x: 1 / hatch tile size (world units), y: 1 for Gooch lightness
 };

@@ -347,7 +347,8 @@ void Renderer::render(const Camera& camera, float time) {
   u.hatchPaper = glm::vec4(hatching.paper, hatching.tint);
   u.hatchInk = glm::vec4(hatching.ink, float(hatching.tones));
   u.hatchParams =
-      glm::vec4(1.0f / (hatching.scale * std::max(scene_.bounds().radius(), 1e-6f)), 0, 0, 0);
+      glm::vec4(1.0f / (hatching.scale * std::max(scene_.bounds().radius(), 1e-6f)),
+                hatching.lightness == HatchingStyle::Lightness::Gooch ? 1.0f : 0.0f, 0, 0);
   if (impl_->shadowMap) {
     // The light sees the scene's bounds over the whole animation, so the map does not
     // change resolution from frame to frame.

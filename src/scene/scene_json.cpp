@@ -589,6 +589,10 @@ HatchingStyle hatchingStyle(const Context& ctx, const json& j, const std::string
   if (const json* v = r.take("ink")) h.ink = color(ctx, *v, r.at("ink"));
   if (const json* v = r.take("tint")) h.tint = float(number(ctx, *v, r.at("tint"), 0, 1));
   if (const json* v = r.take("scale")) h.scale = float(number(ctx, *v, r.at("scale"), 1e-3, 10));
+  if (const json* v = r.take("lightness"))
+    h.lightness = oneOf(ctx, *v, r.at("lightness"), {"lambert", "gooch"}) == "gooch"
+                      ? HatchingStyle::Lightness::Gooch
+                      : HatchingStyle::Lightness::Lambert;
   if (const json* v = r.take("seed")) h.seed = unsigned(integer(ctx, *v, r.at("seed"), 0, 1 << 30));
   r.finish();
   return h;

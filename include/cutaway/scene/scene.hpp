@@ -147,13 +147,15 @@ struct HatchingStyle {
   float tint = 0.35f;                   // how much the object colour tints the paper, in [0, 1]
   float scale = 0.4f;  // hatch tile size as a fraction of the scene's bounding radius
   unsigned seed = 1;   // stroke placement
+  // The surface's lightness from the key light: Lambert max(n·l, 0), or Gooch's (1 + n·l)/2.
+  enum class Lightness { Lambert, Gooch } lightness = Lightness::Lambert;
 };
 
 // A shadow map from the key light (the first light), usable with every style.
 struct ShadowStyle {
   bool enabled = false;
   int size = 2048;         // texels per side
-  float bias = 0.002f;     // constant depth bias, fraction of the light frustum's depth range
+  float bias = 0.002f;     // constant depth bias in the light's window depth [0, 1]
   float slopeBias = 2.0f;  // glPolygonOffset factor: bias × the caster's depth slope
   int pcfRadius = 1;       // (2r + 1)² bilinear comparison taps
 };

@@ -1,5 +1,5 @@
 // Hatching with tonal art maps (Praun, Hoppe, Webb, Finkelstein 2001, "Real-time hatching"):
-// the key light's Lambert term gives the surface's lightness; its darkness 1 − L selects a
+// the key light's Lambert term (or Gooch's (1 + n·l)/2) gives the surface's lightness; its darkness 1 − L selects a
 // position among the TAM's tones (built in src/styles/hatching/tonal_art_map.cpp), and the
 // two tones bracketing it are blended (Praun01 §4: per-pixel blending of neighbouring
 // tones; the nesting of the TAM keeps the blend free of popping strokes).
@@ -32,7 +32,12 @@ float hatchInk(vec2 uv, vec2 dx, vec2 dy, float darkness) {
 
 vec3 shadeSurface(SurfacePoint s) {
   vec3 l = uCounts.x > 0 ? towardsLight(0, s.position) : s.toEye;
-  float lightness = max(dot(s.normal, l), 0.0) * s.keyLightVisibility;
+  float nDotL = dot(s.normal, l);
+  // y = 0: Lambert, max(n·l, 0); y = 1: Gooch's t = (1 + n·l) / 2 (Gooch98), which keeps
+  // surfaces turned away from the light in the middle tones rather than the darkest.
+  float lightness = uHatchParams.y == 0.0
+                        ? max(nDotL, 0.0) * s.keyLightVisibility
+                        : 0.5 * (1.0 + min(nDotL, 0.0) + max(nDotL, 0.0) * s.keyLightVisibility);
   float darkness = clamp(1.0 - lightness, 0.0, 1.0);
 
   vec3 p = s.position * uHatchParams.x;  // tile units
