@@ -187,10 +187,10 @@ TEST(ShadowFrustum, BoundsFitInsideForDirectionalAndPointLights) {
 
 namespace {
 
-// Ray–box intersection (slabs) for t > 0.
+// Ray–box intersection (slabs) for 0 < t < tMax.
 bool hitsBox(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& lo,
-             const glm::vec3& hi) {
-  float t0 = 0.0f, t1 = 1e30f;
+             const glm::vec3& hi, float tMax = 1e30f) {
+  float t0 = 0.0f, t1 = tMax;
   for (int k = 0; k < 3; ++k) {
     if (std::abs(direction[k]) < 1e-12f) {
       if (origin[k] < lo[k] || origin[k] > hi[k]) return false;
@@ -208,11 +208,12 @@ struct ShadowCount {
 };
 
 // tests/data/render/box-shadow.json: a 2-unit box floating 1.5 above the ground plane y = 0,
-// lit from above. For each ground pixel, the ray from its position (position AOV) towards
-// the light decides on the CPU whether the box shadows it; pixels within `margin` of the
-// shadow's edge (rays that hit the box grown by it but miss it shrunk by it) are left out:
-// PCF softens the edge over a few shadow-map texels. Shadowed ground in Blinn-Phong is the
-// ambient 0.15 × 0.8 = 0.12, lit ground 0.12 + 0.8 n·l ≈ 0.87.
+// lit from above (box-shadow-point.json: by a point light). For each ground pixel, the ray from its
+// position (position AOV) towards the light decides on the CPU whether the box shadows it; pixels
+// within `margin` of the shadow's edge (rays that hit the box grown by it but miss it shrunk by it)
+// are left out: PCF softens the edge over a few shadow-map texels. Shadowed ground in Blinn-Phong
+// is the ambient 0.15 × 0.8 = 0.12, lit ground 0.12 + 0.8 n·l (plus a highlight); a pixel counts as
+// rendered in shadow when its red is below the midpoint of the two.
 ShadowCount countShadows(const Scene& scene) {
   Renderer renderer(scene, test::glContext().info());
   renderer.render();
@@ -220,7 +221,7 @@ ShadowCount countShadows(const Scene& scene) {
   const auto aovs = renderer.readAovs();
   const FloatImage& position = findAov(aovs, "position").image;
   const FloatImage& objectId = findAov(aovs, "objectId").image;
-  const glm::vec3 towardsLight = -glm::normalize(scene.lights[0].direction);
+  const Light& light = scene.lights[0];
   const glm::vec3 lo(-1, 1.5f, -1), hi(1, 3.5f, 1);
   const float margin = 0.1f;
   ShadowCount count;
@@ -228,16 +229,22 @@ ShadowCount countShadows(const Scene& scene) {
     for (int x = 0; x < scene.width; ++x) {
       if (objectId.at(x, y)[0] != 0.0f) continue;  // ground only
       const glm::vec3 p(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]);
-      const bool inner = hitsBox(p, towardsLight, lo + margin, hi - margin);
-      const bool outer = hitsBox(p, towardsLight, lo - margin, hi + margin);
+      const bool point = light.type == Light::Type::Point;
+      const glm::vec3 toLight = point ? light.position - p : -light.direction;
+      const float tMax = point ? 1.0f : 1e30f;  // up to the light, not beyond
+      const bool inner = hitsBox(p, toLight, lo + margin, hi - margin, tMax);
+      const bool outer = hitsBox(p, toLight, lo - margin, hi + margin, tMax);
       if (inner != outer) continue;
-      const int red = color.at(x, y)[0];
+      const float red = color.at(x, y)[0];
+      const float nDotL = std::max(glm::normalize(toLight).y, 0.0f);  // ground normal +y
+      const float shadowRed = 0.12f * 255.0f, litRed = (0.12f + 0.8f * nDotL) * 255.0f;
+      const bool renderedDark = red < 0.5f * (shadowRed + litRed);
       if (inner) {
         ++count.shadowed;
-        if (red > 60) ++count.wrongLit;  // 0.12 · 255 ≈ 31
+        if (!renderedDark) ++count.wrongLit;
       } else {
         ++count.lit;
-        if (red < 150) ++count.wrongShadowed;  // ≥ 0.87 · 255 ≈ 222 plus highlight
+        if (renderedDark) ++count.wrongShadowed;
       }
     }
   return count;
@@ -251,6 +258,16 @@ Scene boxShadowScene() {
 
 TEST(ShadowRender, GroundIsDarkExactlyWhereTheBoxBlocksTheLight) {
   const ShadowCount c = countShadows(boxShadowScene());
+  EXPECT_GT(c.shadowed, 100);
+  EXPECT_GT(c.lit, 2000);
+  EXPECT_EQ(c.wrongLit, 0) << "shadowed pixels rendered lit";
+  EXPECT_EQ(c.wrongShadowed, 0) << "lit pixels rendered shadowed (acne or a shifted shadow)";
+}
+
+// A point light: a perspective shadow map from its position (the box's shadow is larger than
+// the box, and falls away from the light).
+TEST(ShadowRender, PointLightShadowMatchesTheRayBoxTest) {
+  const ShadowCount c = countShadows(loadScene(kData + "/render/box-shadow-point.json"));
   EXPECT_GT(c.shadowed, 100);
   EXPECT_GT(c.lit, 2000);
   EXPECT_EQ(c.wrongLit, 0) << "shadowed pixels rendered lit";

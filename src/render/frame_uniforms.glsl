@@ -18,7 +18,7 @@ layout(std140, binding = 0) uniform FrameUniforms {
   vec4 uGoochWarm;                // rgb: k_yellow, w: beta
   vec4 uStyleParams;              // x: Blinn-Phong ambient
   mat4 uShadowMatrix;             // world → [0,1]³ key-light shadow-map coordinates
-  vec4 uShadowParams;             // x: 1 if shadows on, y: depth bias, z: PCF radius, w: 1/size
+  vec4 uShadowParams;             // x: 1 if shadows on, y: bias (scene units), z: PCF radius, w: 1/size
   vec4 uToonParams;               // x: ramp size, y: highlight threshold, z: 1 for highlights
   vec4 uToonHighlight;            // rgb: highlight colour
   vec4 uHatchPaper;               // rgb: paper colour, w: tint by the object colour

@@ -358,8 +358,8 @@ void Renderer::render(const Camera& camera, float time) {
       const ShadowStyle& shadows = scene_.style.shadows;
       const LightFrustum light = keyLightFrustum(u.lightVector[0], scene_.bounds());
       u.shadowMatrix = shadowMatrix(light);
-      u.shadowParams =
-          glm::vec4(1.0f, shadows.bias, float(shadows.pcfRadius), 1.0f / float(shadows.size));
+      u.shadowParams = glm::vec4(1.0f, shadows.bias * scene_.bounds().radius(),
+                                 float(shadows.pcfRadius), 1.0f / float(shadows.size));
       FrameUniforms fromLight = u;
       fromLight.view = light.view;
       fromLight.projection = light.projection;

@@ -611,7 +611,8 @@ ShadowStyle shadowStyle(const Context& ctx, const json& j, const std::string& pt
     s.size = integer(ctx, *v, r.at("size"), 64, 8192);
     if (s.size & (s.size - 1)) ctx.fail(r.at("size"), "size must be a power of two");
   }
-  if (const json* v = r.take("bias")) s.bias = float(number(ctx, *v, r.at("bias"), 0, 0.1));
+  if (const json* v = r.take("bias"))
+    s.bias = float(number(ctx, *v, r.at("bias"), 0, 0.1));  // × the scene's radius
   if (const json* v = r.take("slopeBias"))
     s.slopeBias = float(number(ctx, *v, r.at("slopeBias"), 0, 100));
   if (const json* v = r.take("pcfRadius")) s.pcfRadius = integer(ctx, *v, r.at("pcfRadius"), 0, 4);

@@ -155,7 +155,7 @@ struct HatchingStyle {
 struct ShadowStyle {
   bool enabled = false;
   int size = 2048;         // texels per side
-  float bias = 0.002f;     // constant depth bias in the light's window depth [0, 1]
+  float bias = 0.005f;     // constant bias towards the light, fraction of the scene's radius
   float slopeBias = 2.0f;  // glPolygonOffset factor: bias × the caster's depth slope
   int pcfRadius = 1;       // (2r + 1)² bilinear comparison taps
 };

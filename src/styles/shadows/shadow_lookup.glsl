@@ -6,13 +6,18 @@
 // 2r + 2 texels instead of stair-stepped.
 layout(binding = 15) uniform sampler2DShadow uShadowMap;
 
+// Needs surface.glsl (towardsLight).
 float keyLightVisibility(vec3 position) {
   if (uShadowParams.x == 0.0) return 1.0;  // shadows off, or no key light
-  vec4 h = uShadowMatrix * vec4(position, 1.0);
+  // Constant bias: the receiver moves towards the light by y scene units. Along the light's
+  // ray it keeps its shadow-map texel, and the offset is the same at every depth (a bias in
+  // window depth would vanish or explode with a perspective light's non-linear depth). The
+  // slope-scaled part is applied to the casters (shadow_map.cpp).
+  vec3 biased = position + towardsLight(0, position) * uShadowParams.y;
+  vec4 h = uShadowMatrix * vec4(biased, 1.0);
   vec3 p = h.xyz / h.w;  // [0, 1]³ inside the light's frustum
   if (p.z >= 1.0 || p.z <= 0.0) return 1.0;  // beyond the casters' depth range
-  // Constant bias (y, window depth); the slope-scaled part is applied to the casters.
-  float reference = p.z - uShadowParams.y;
+  float reference = p.z;
   int r = int(uShadowParams.z);
   float lit = 0.0;
   for (int y = -r; y <= r; ++y)

@@ -51,12 +51,23 @@ LightFrustum keyLightFrustum(const glm::vec4& lightVector, const Bounds& bounds)
   axis = distance > 1e-6f * radius ? axis / distance : glm::vec3(0, -1, 0);
   f.view = glm::lookAt(p, p + axis, upFor(axis));
   const float halfAngle =
-      distance > radius ? std::asin(radius / distance) * 1.02f : glm::radians(75.0f);
+      std::min(distance > radius ? std::asin(radius / distance) * 1.02f : glm::radians(75.0f),
+               glm::radians(75.0f));
+  // Near: the bounds' nearest point to the light, times cos(half angle) since off-axis points
+  // are nearer along the axis than in distance; as far out as that allows, because the depth
+  // precision of a perspective map is set by near / far. Far: the farthest corner.
+  const float nearest = glm::length(p - glm::clamp(p, bounds.min, bounds.max));
+  float farthest = 0.0f;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner((i & 1) ? bounds.max.x : bounds.min.x,
+                           (i & 2) ? bounds.max.y : bounds.min.y,
+                           (i & 4) ? bounds.max.z : bounds.min.z);
+    farthest = std::max(farthest, glm::length(p - corner));
+  }
   f.orthographic = false;
-  f.near = std::max(distance - radius, 1e-3f * radius);
-  f.far = distance + radius;
-  f.projection =
-      glm::perspective(2.0f * std::min(halfAngle, glm::radians(75.0f)), 1.0f, f.near, f.far);
+  f.near = std::max(0.99f * nearest * std::cos(halfAngle), 1e-3f * radius);
+  f.far = 1.01f * farthest;
+  f.projection = glm::perspective(2.0f * halfAngle, 1.0f, f.near, f.far);
   return f;
 }
 
