@@ -339,6 +339,7 @@ void Renderer::render(const Camera& camera, float time) {
   u.goochCool = glm::vec4(scene_.style.gooch.cool, scene_.style.gooch.alpha);
   u.goochWarm = glm::vec4(scene_.style.gooch.warm, scene_.style.gooch.beta);
   u.styleParams = glm::vec4(scene_.style.blinnPhong.ambient, 0, 0, 0);
+  const float sceneRadius = std::max(scene_.bounds().radius(), 1e-6f);
   const ToonStyle& toon = scene_.style.toon;
   u.toonParams = glm::vec4(float(toon.ramp.size()), toon.highlightThreshold,
                            toon.highlight ? 1.0f : 0.0f, 0.0f);
@@ -347,7 +348,7 @@ void Renderer::render(const Camera& camera, float time) {
   u.hatchPaper = glm::vec4(hatching.paper, hatching.tint);
   u.hatchInk = glm::vec4(hatching.ink, float(hatching.tones));
   u.hatchParams =
-      glm::vec4(1.0f / (hatching.scale * std::max(scene_.bounds().radius(), 1e-6f)),
+      glm::vec4(1.0f / (hatching.scale * sceneRadius),
                 hatching.lightness == HatchingStyle::Lightness::Gooch ? 1.0f : 0.0f, 0, 0);
   if (impl_->shadowMap) {
     // The light sees the scene's bounds over the whole animation, so the map does not
@@ -358,8 +359,8 @@ void Renderer::render(const Camera& camera, float time) {
       const ShadowStyle& shadows = scene_.style.shadows;
       const LightFrustum light = keyLightFrustum(u.lightVector[0], scene_.bounds());
       u.shadowMatrix = shadowMatrix(light);
-      u.shadowParams = glm::vec4(1.0f, shadows.bias * scene_.bounds().radius(),
-                                 float(shadows.pcfRadius), 1.0f / float(shadows.size));
+      u.shadowParams = glm::vec4(1.0f, shadows.bias * sceneRadius, float(shadows.pcfRadius),
+                                 1.0f / float(shadows.size));
       FrameUniforms fromLight = u;
       fromLight.view = light.view;
       fromLight.projection = light.projection;
