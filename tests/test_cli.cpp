@@ -305,3 +305,22 @@ TEST(Cli, BenchComparesPlainCutoutAndBreakawayPerStyle) {
       EXPECT_NE(std::find(labels.begin(), labels.end(), what + " " + style), labels.end())
           << what << " " << style;
 }
+
+TEST(Cli, StyleNamesAndShadowsFlag) {
+  const fs::path dir = scratch("toon-aovs");
+  const Result r =
+      run("render " + kData + "/render/box-shadow.json -o " + scratch("toon.png").string() +
+          " --style toon --shadows --aov " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("toon"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "shadowMap.pfm"));
+  const Result plain =
+      run("render " + kData + "/render/plane-facing.json -o " + scratch("hatching.png").string() +
+          " --style hatching --aov " + (dir / "plain").string());
+  ASSERT_EQ(plain.exitCode, 0) << plain.err;
+  EXPECT_FALSE(fs::exists(dir / "plain" / "shadowMap.pfm"));  // shadows are off by default
+  const Result bad = run("render " + kData + "/render/plane-facing.json -o " +
+                         scratch("bad.png").string() + " --style watercolour");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("gooch,blinn-phong,toon,hatching"), std::string::npos) << bad.err;
+}

@@ -14,6 +14,7 @@ struct GoldenCase {
   std::string name, scene, style;
   int width, height;
   bool orthographic = false;
+  bool shadows = false;  // style.shadows on
 };
 
 void PrintTo(const GoldenCase& c, std::ostream* os) {
@@ -40,6 +41,7 @@ TEST_P(GoldenTest, MatchesGolden) {
   scene.height = c.height;
   if (!c.style.empty()) scene.style.name = c.style;
   if (c.orthographic) scene.camera.projection = Projection::Orthographic;
+  if (c.shadows) scene.style.shadows.enabled = true;
   Renderer renderer(scene, test::glContext().info());
   renderer.render();
   const auto result =
@@ -70,6 +72,22 @@ INSTANTIATE_TEST_SUITE_P(
                       GoldenCase{"fan-room-breakaway", "fan-room-breakaway.json", "", 320, 240},
                       GoldenCase{"fan-room-breakaway-blinn-phong", "fan-room-breakaway.json",
                                  "blinn-phong", 320, 240}),
+    [](const auto& info) {
+      std::string n = info.param.name;
+      std::replace(n.begin(), n.end(), '-', '_');
+      return n;
+    });
+
+// The toon and hatching styles, and shadows from the key light (src/styles).
+INSTANTIATE_TEST_SUITE_P(
+    Styles, GoldenTest,
+    ::testing::Values(
+        GoldenCase{"bunny-toon", "bunny.json", "toon", 240, 240},
+        GoldenCase{"bunny-hatching-shadows", "bunny.json", "hatching", 240, 240, false, true},
+        GoldenCase{"engine-toon-shadows", "engine.json", "toon", 320, 240, false, true},
+        GoldenCase{"engine-hatching", "engine.json", "hatching", 320, 240},
+        GoldenCase{"engine-cutaway-toon-shadows", "engine-cutaway.json", "toon", 320, 240, false,
+                   true}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');

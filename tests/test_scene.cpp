@@ -134,9 +134,34 @@ const BadScene kBadScenes[] = {
     {"camera_path_key_without_target.json", "/camera/path/0", "missing required key \"target\""},
     {"camera_path_empty.json", "/camera/path", "expected a non-empty array of camera keys"},
     // Style.
-    {"style_unknown_name.json", "/style", "unknown value \"toon\""},
+    {"style_unknown_name.json", "/style", "unknown value \"watercolour\""},
     {"style_unknown_line_key.json", "/style/lines/thickness", "unknown key \"thickness\""},
     {"style_line_width.json", "/style/lines/width", "value 20 is outside [0.5, 8]"},
+    {"style_toon_ramp_one_tone.json", "/style/toon/ramp",
+     "expected an array of 2 to 16 tones (numbers or colours), got 1 elements"},
+    {"style_toon_ramp_four_channels.json", "/style/toon/ramp/1",
+     "expected an array of 3 numbers, got 4 elements"},
+    {"style_toon_ramp_tone_above_one.json", "/style/toon/ramp/1", "value 1.5 is outside [0, 1]"},
+    {"style_toon_unknown_key.json", "/style/toon/bands",
+     "unknown key \"bands\" (expected one of: highlight, highlightColor, highlightThreshold, "
+     "ramp)"},
+    {"style_toon_highlight_not_bool.json", "/style/toon/highlight",
+     "expected true or false, got string"},
+    {"style_hatching_one_tone.json", "/style/hatching/tones", "value 1 is outside [2, 12]"},
+    {"style_hatching_zero_scale.json", "/style/hatching/scale", "value 0 is outside [0.001, 10]"},
+    {"style_hatching_paper_not_colour.json", "/style/hatching/paper",
+     "expected an array of 3 numbers, got string"},
+    {"style_hatching_bad_lightness.json", "/style/hatching/lightness",
+     "unknown value \"phong\" (expected one of: lambert, gooch)"},
+    {"style_hatching_unknown_key.json", "/style/hatching/angle", "unknown key \"angle\""},
+    {"style_shadows_size_not_power_of_two.json", "/style/shadows/size",
+     "size must be a power of two"},
+    {"style_shadows_unknown_key.json", "/style/shadows/softness",
+     "unknown key \"softness\" (expected one of: bias, enabled, pcfRadius, size, slopeBias)"},
+    {"style_shadows_pcf_radius_9.json", "/style/shadows/pcfRadius", "value 9 is outside [0, 4]"},
+    {"style_shadows_string.json", "/style/shadows", "expected an object, got string"},
+    {"object_casts_shadow_number.json", "/objects/0/params/castsShadow",
+     "expected true or false, got number"},
     // Lights.
     {"light_zero_direction.json", "/lights/0/direction", "must not be the zero vector"},
     {"light_unknown_type.json", "/lights/0/type", "unknown value \"spot\""},
@@ -1028,3 +1053,72 @@ TEST(SceneCamera, DurationIsTheLastKeyOfAnyObjectOrTheCameraPath) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Toon, hatching and shadows (src/styles/toon, hatching, shadows).
+
+TEST(SceneStyle, ToonHatchingAndShadowDefaults) {
+  const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}]})");
+  ASSERT_EQ(s.style.toon.ramp.size(), 3u);
+  EXPECT_VEC3_NEAR(s.style.toon.ramp[0], glm::vec3(0.45f), kEps);
+  EXPECT_VEC3_NEAR(s.style.toon.ramp[2], glm::vec3(1.0f), kEps);
+  EXPECT_TRUE(s.style.toon.highlight);
+  EXPECT_FLOAT_EQ(s.style.toon.highlightThreshold, 0.5f);
+  EXPECT_EQ(s.style.hatching.tones, 6);
+  EXPECT_FLOAT_EQ(s.style.hatching.tint, 0.35f);
+  EXPECT_FLOAT_EQ(s.style.hatching.scale, 0.4f);
+  EXPECT_EQ(s.style.hatching.lightness, HatchingStyle::Lightness::Lambert);
+  EXPECT_FALSE(s.style.shadows.enabled);
+  EXPECT_EQ(s.style.shadows.size, 2048);
+  EXPECT_EQ(s.style.shadows.pcfRadius, 1);
+  EXPECT_EQ(styleNames(), (std::vector<std::string>{"gooch", "blinn-phong", "toon", "hatching"}));
+}
+
+TEST(SceneStyle, EveryToonHatchingAndShadowKeyIsRead) {
+  const Scene s = parse(R"({"style": {"name": "toon",
+      "toon": {"ramp": [0.1, [0.2, 0.3, 0.4], 0.7, 1], "highlight": false,
+               "highlightThreshold": 0.8, "highlightColor": [1, 1, 0.5]},
+      "hatching": {"tones": 8, "paper": [1, 1, 0.9], "ink": [0, 0, 0.2], "tint": 0.5,
+                   "scale": 0.25, "seed": 42, "lightness": "gooch"},
+      "shadows": {"size": 1024, "bias": 0.001, "slopeBias": 3, "pcfRadius": 2}},
+      "objects": [{"name": "cube", "file": "cube.obj", "params": {"castsShadow": false}}]})");
+  EXPECT_EQ(s.style.name, "toon");
+  const ToonStyle& t = s.style.toon;
+  ASSERT_EQ(t.ramp.size(), 4u);
+  EXPECT_VEC3_NEAR(t.ramp[0], glm::vec3(0.1f), kEps);  // a number is a grey tone
+  EXPECT_VEC3_NEAR(t.ramp[1], glm::vec3(0.2f, 0.3f, 0.4f), kEps);
+  EXPECT_VEC3_NEAR(t.ramp[3], glm::vec3(1.0f), kEps);
+  EXPECT_FALSE(t.highlight);
+  EXPECT_FLOAT_EQ(t.highlightThreshold, 0.8f);
+  EXPECT_VEC3_NEAR(t.highlightColor, glm::vec3(1, 1, 0.5f), kEps);
+  const HatchingStyle& h = s.style.hatching;
+  EXPECT_EQ(h.tones, 8);
+  EXPECT_VEC3_NEAR(h.paper, glm::vec3(1, 1, 0.9f), kEps);
+  EXPECT_VEC3_NEAR(h.ink, glm::vec3(0, 0, 0.2f), kEps);
+  EXPECT_FLOAT_EQ(h.tint, 0.5f);
+  EXPECT_FLOAT_EQ(h.scale, 0.25f);
+  EXPECT_EQ(h.seed, 42u);
+  EXPECT_EQ(h.lightness, HatchingStyle::Lightness::Gooch);
+  const ShadowStyle& sh = s.style.shadows;
+  EXPECT_TRUE(sh.enabled);  // an object turns them on
+  EXPECT_EQ(sh.size, 1024);
+  EXPECT_FLOAT_EQ(sh.bias, 0.001f);
+  EXPECT_FLOAT_EQ(sh.slopeBias, 3.0f);
+  EXPECT_EQ(sh.pcfRadius, 2);
+  EXPECT_EQ(std::get<bool>(s.objects[0].params.at("castsShadow")), false);
+}
+
+TEST(SceneStyle, ShadowShortFormsAndNames) {
+  EXPECT_TRUE(
+      parse(R"({"style": {"shadows": true}, "objects": [{"name": "c", "file": "cube.obj"}]})")
+          .style.shadows.enabled);
+  EXPECT_FALSE(
+      parse(R"({"style": {"shadows": false}, "objects": [{"name": "c", "file": "cube.obj"}]})")
+          .style.shadows.enabled);
+  EXPECT_FALSE(parse(R"({"style": {"shadows": {"enabled": false, "size": 512}},
+                         "objects": [{"name": "c", "file": "cube.obj"}]})")
+                   .style.shadows.enabled);
+  EXPECT_EQ(
+      parse(R"({"style": "hatching", "objects": [{"name": "c", "file": "cube.obj"}]})").style.name,
+      "hatching");
+}

@@ -13,12 +13,19 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                              .aliases = {{"style.glsl", "styles/gooch/gooch.glsl"}}};
   const gl::PreprocessedSource source = gl::preprocess("render/mesh.frag", desc);
   // Every cutter's file is expanded; its #ifdef decides whether it is compiled.
-  const std::vector<std::string> expected{
-      "render/mesh.frag",           "render/frame_uniforms.glsl", "styles/surface.glsl",
-      "styles/gooch/gooch.glsl",    "cutters/cutters.glsl",       "cutters/fate.glsl",
-      "cutters/adaptive/clip.glsl", "cutters/cutout/cutout.glsl", "cutters/breakaway/breakaway.glsl",
-      "cutters/clip_surfaces/clip_fragment.glsl", "cutters/clip_surfaces/clip_surfaces.glsl",
-      "render/gbuffer.glsl"};
+  const std::vector<std::string> expected{"render/mesh.frag",
+                                          "render/frame_uniforms.glsl",
+                                          "styles/surface.glsl",
+                                          "styles/gooch/gooch.glsl",
+                                          "cutters/cutters.glsl",
+                                          "cutters/fate.glsl",
+                                          "cutters/adaptive/clip.glsl",
+                                          "cutters/cutout/cutout.glsl",
+                                          "cutters/breakaway/breakaway.glsl",
+                                          "cutters/clip_surfaces/clip_fragment.glsl",
+                                          "cutters/clip_surfaces/clip_surfaces.glsl",
+                                          "styles/shadows/shadow_lookup.glsl",
+                                          "render/gbuffer.glsl"};
   EXPECT_EQ(source.files, expected);
   // Defines come right after #version, before any other line.
   EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u)

@@ -50,6 +50,7 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (glm::length(glm::cross(glm::normalize(c.eye - c.target), glm::normalize(c.up))) < 1e-6f)
     throw Error("--up", "", "up is parallel to the viewing direction");
   if (!o.style.empty()) scene.style.name = o.style;
+  if (o.shadows) scene.style.shadows.enabled = true;
   if (o.samples) scene.samples = *o.samples;
   if (o.noCutaway && o.cutawayAngle)
     throw Error("--no-cutaway", "", "cannot be combined with --cutaway-angle");

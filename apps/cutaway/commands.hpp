@@ -19,6 +19,7 @@ struct SceneOverrides {
   std::optional<int> samples;
   std::optional<float> cutawayAngle;  // adaptive cutter θ, degrees
   bool noCutaway = false;
+  bool shadows = false;  // turn on style.shadows
 };
 
 struct RenderOptions {

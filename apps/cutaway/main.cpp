@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/scene/scene.hpp"
 
 namespace {
 
@@ -44,7 +45,8 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
       ->check(CLI::IsMember({"perspective", "orthographic"}));
   command->add_flag("--fit", o.fit, "Fit the camera to the scene (keeps the viewing direction)");
   command->add_option("--style", o.style, "Shading style")
-      ->check(CLI::IsMember({"gooch", "blinn-phong"}));
+      ->check(CLI::IsMember(cutaway::styleNames()));
+  command->add_flag("--shadows", o.shadows, "Shadows from the key light (style.shadows)");
   command
       ->add_option_function<int>(
           "--samples", [&o](int s) { o.samples = s; }, "MSAA samples (1, 2, 4, 8, 16)")

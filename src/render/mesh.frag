@@ -5,6 +5,7 @@
 #include "../styles/surface.glsl"
 #include "style.glsl"
 #include "../cutters/cutters.glsl"
+#include "../styles/shadows/shadow_lookup.glsl"
 #include "gbuffer.glsl"
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
@@ -33,6 +34,7 @@ void main() {
   s.baseColor = cut ? uCutColor : gl_FrontFacing ? uColor : uBackColor;
   s.specular = uSpecular;
   s.shininess = uShininess;
+  s.keyLightVisibility = keyLightVisibility(s.position);
   writeGBuffer(s, shadeSurface(s), uLines, uObjectId, cut, false);
 #ifdef CUTTER_CUTOUT
   outCutoutDistance = (uCutBy & kCutByCutout) != 0 && uCutoutPlaneCount > 0

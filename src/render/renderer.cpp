@@ -10,6 +10,9 @@
 #include "cutters/cutout/cutout.hpp"
 #include "render/fullscreen.hpp"
 #include "render/scene_gpu.hpp"
+#include "styles/hatching/tonal_art_map.hpp"
+#include "styles/shadows/shadow_map.hpp"
+#include "styles/toon/toon_ramp.hpp"
 
 namespace cutaway {
 
@@ -26,11 +29,17 @@ struct FrameUniforms {
   glm::vec4 backgroundTop, backgroundBottom;
   glm::vec4 goochCool, goochWarm;
   glm::vec4 styleParams;
+  glm::mat4 shadowMatrix;
+  glm::vec4 shadowParams;
+  glm::vec4 toonParams, toonHighlight;
+  glm::vec4 hatchPaper, hatchInk, hatchParams;
 };
 
 const char* styleFile(const std::string& style) {
   if (style == "gooch") return "styles/gooch/gooch.glsl";
   if (style == "blinn-phong") return "styles/blinn_phong/blinn_phong.glsl";
+  if (style == "toon") return "styles/toon/toon.glsl";
+  if (style == "hatching") return "styles/hatching/hatching.glsl";
   throw Error("style", "", "unknown style \"" + style + "\"");
 }
 
@@ -57,6 +66,8 @@ struct Renderer::Impl {
       compositeProgram;
   bool lines = false, outlines = false, ghosts = false;
   float ghostDistance = 0;
+  gl::Texture toonRamp, tonalArtMap;  // the toon and hatching styles' textures
+  std::unique_ptr<ShadowMap> shadowMap;
 };
 
 Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
@@ -109,6 +120,14 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                                      {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
     g.ghostLinesProgram = buildFullscreenProgram("styles/lines/lines.frag");
   }
+
+  if (scene.style.name == "toon") g.toonRamp = createToonRampTexture(scene.style.toon);
+  if (scene.style.name == "hatching")
+    g.tonalArtMap = createTonalArtMapTexture(generateTonalArtMap(
+        {.tones = scene.style.hatching.tones, .seed = scene.style.hatching.seed}));
+  if (scene.style.shadows.enabled)
+    g.shadowMap =
+        std::make_unique<ShadowMap>(g.sceneGpu, scene.style.shadows, f, sizeof(FrameUniforms));
 
   const int samples = scene.samples;
   f.declare("sceneColor", {.format = GL_RGBA8, .samples = samples});
@@ -175,6 +194,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   if (g.breakaway)
     for (const char* t : {"breakawayClipDepth", "breakawayInnerDepth", "breakawayHullNormal"})
       geometryInputs.push_back(t);
+  if (g.shadowMap) geometryInputs.push_back("shadowDepth");
   std::vector<std::string> geometryOutputs{"sceneColor",    "sceneNormal",  "scenePosition",
                                            "sceneObjectId", "sceneCutMask"};
   if (g.cutout) geometryOutputs.push_back("sceneCutoutDistance");
@@ -287,6 +307,9 @@ void Renderer::drawGeometry(GLuint framebuffer) {
   if (g.cutout) g.cutout->bind();
   if (g.breakaway) g.breakaway->bind();
   if (g.clipSurfaces) g.clipSurfaces->clearMasks(), g.clipSurfaces->bind();
+  if (g.shadowMap) g.shadowMap->bindForLookup();
+  if (g.toonRamp) glBindTextureUnit(kToonRampUnit, g.toonRamp.id());
+  if (g.tonalArtMap) glBindTextureUnit(kTonalArtMapUnit, g.tonalArtMap.id());
   const GLuint program = g.meshProgram.id();
   const AdaptiveCutawayOptions* adaptive = scene_.adaptive ? &*scene_.adaptive : nullptr;
   const bool clipPlanes = g.cutout && scene_.cutout->method == CutoutOptions::Method::ClipPlanes;
@@ -430,6 +453,38 @@ void Renderer::render(const Camera& camera, float time) {
   u.goochCool = glm::vec4(scene_.style.gooch.cool, scene_.style.gooch.alpha);
   u.goochWarm = glm::vec4(scene_.style.gooch.warm, scene_.style.gooch.beta);
   u.styleParams = glm::vec4(scene_.style.blinnPhong.ambient, 0, 0, 0);
+  const float sceneRadius = std::max(scene_.bounds().radius(), 1e-6f);
+  const ToonStyle& toon = scene_.style.toon;
+  u.toonParams = glm::vec4(float(toon.ramp.size()), toon.highlightThreshold,
+                           toon.highlight ? 1.0f : 0.0f, 0.0f);
+  u.toonHighlight = glm::vec4(toon.highlightColor, 1.0f);
+  const HatchingStyle& hatching = scene_.style.hatching;
+  u.hatchPaper = glm::vec4(hatching.paper, hatching.tint);
+  u.hatchInk = glm::vec4(hatching.ink, float(hatching.tones));
+  u.hatchParams =
+      glm::vec4(1.0f / (hatching.scale * sceneRadius),
+                hatching.lightness == HatchingStyle::Lightness::Gooch ? 1.0f : 0.0f, 0, 0);
+  if (impl_->shadowMap) {
+    // The light sees the scene's bounds over the whole animation, so the map does not
+    // change resolution from frame to frame.
+    const bool keyLight = count > 0;
+    impl_->shadowMap->setActive(keyLight);
+    if (keyLight) {
+      const ShadowStyle& shadows = scene_.style.shadows;
+      const LightFrustum light = keyLightFrustum(u.lightVector[0], scene_.bounds());
+      u.shadowMatrix = shadowMatrix(light);
+      u.shadowParams = glm::vec4(1.0f, shadows.bias * sceneRadius, float(shadows.pcfRadius),
+                                 1.0f / float(shadows.size));
+      FrameUniforms fromLight = u;
+      fromLight.view = light.view;
+      fromLight.projection = light.projection;
+      fromLight.viewProjection = light.projection * light.view;
+      fromLight.inverseProjection = glm::inverse(light.projection);
+      fromLight.inverseView = glm::inverse(light.view);
+      fromLight.counts.y = light.orthographic ? 1 : 0;
+      glNamedBufferSubData(impl_->shadowMap->lightUniforms(), 0, sizeof fromLight, &fromLight);
+    }
+  }
   glNamedBufferSubData(impl_->frameUniforms.id(), 0, sizeof u, &u);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, impl_->frameUniforms.id());
   if (impl_->adaptive) impl_->adaptive->setCamera(camera, aspect);

@@ -28,12 +28,15 @@ const std::vector<ObjectParamSpec>& objectParameterSpecs() {
       {"solid", ObjectParamSpec::Type::Bool, 0, 0,
        "whether a cut shows this object's inside as a solid cut wall (default: when the mesh "
        "is watertight); false for hollow shells such as rooms (Diepstraten03 rule 5)"},
+      {"castsShadow", ObjectParamSpec::Type::Bool, 0, 0,
+       "this object casts shadows (style.shadows); default: every visible object except those "
+       "of role exterior"},
   };
   return specs;
 }
 
 const std::vector<std::string>& styleNames() {
-  static const std::vector<std::string> names{"gooch", "blinn-phong"};
+  static const std::vector<std::string> names{"gooch", "blinn-phong", "toon", "hatching"};
   return names;
 }
 

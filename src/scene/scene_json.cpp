@@ -740,6 +740,71 @@ ClipSurfaceOptions clipSurfaces(const Context& ctx, const json& j, const std::st
   return o;
 }
 
+ToonStyle toonStyle(const Context& ctx, const json& j, const std::string& ptr) {
+  ToonStyle t;
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("ramp")) {
+    // Tones dark to light, each a grey level or a colour multiplying the object colour.
+    if (!v->is_array() || v->size() < 2 || v->size() > 16)
+      ctx.fail(r.at("ramp"),
+               "expected an array of 2 to 16 tones (numbers or colours), got " +
+                   (v->is_array() ? std::to_string(v->size()) + " elements" : typeName(*v)));
+    t.ramp.clear();
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      const std::string p = r.at("ramp") + "/" + std::to_string(i);
+      const json& tone = (*v)[i];
+      t.ramp.push_back(tone.is_array() ? color(ctx, tone, p)
+                                       : glm::vec3(float(number(ctx, tone, p, 0, 1))));
+    }
+  }
+  if (const json* v = r.take("highlight")) t.highlight = boolean(ctx, *v, r.at("highlight"));
+  if (const json* v = r.take("highlightThreshold"))
+    t.highlightThreshold = float(number(ctx, *v, r.at("highlightThreshold"), 0, 1));
+  if (const json* v = r.take("highlightColor"))
+    t.highlightColor = color(ctx, *v, r.at("highlightColor"));
+  r.finish();
+  return t;
+}
+
+HatchingStyle hatchingStyle(const Context& ctx, const json& j, const std::string& ptr) {
+  HatchingStyle h;
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("tones")) h.tones = integer(ctx, *v, r.at("tones"), 2, 12);
+  if (const json* v = r.take("paper")) h.paper = color(ctx, *v, r.at("paper"));
+  if (const json* v = r.take("ink")) h.ink = color(ctx, *v, r.at("ink"));
+  if (const json* v = r.take("tint")) h.tint = float(number(ctx, *v, r.at("tint"), 0, 1));
+  if (const json* v = r.take("scale")) h.scale = float(number(ctx, *v, r.at("scale"), 1e-3, 10));
+  if (const json* v = r.take("lightness"))
+    h.lightness = oneOf(ctx, *v, r.at("lightness"), {"lambert", "gooch"}) == "gooch"
+                      ? HatchingStyle::Lightness::Gooch
+                      : HatchingStyle::Lightness::Lambert;
+  if (const json* v = r.take("seed")) h.seed = unsigned(integer(ctx, *v, r.at("seed"), 0, 1 << 30));
+  r.finish();
+  return h;
+}
+
+ShadowStyle shadowStyle(const Context& ctx, const json& j, const std::string& ptr) {
+  ShadowStyle s;
+  if (j.is_boolean()) {
+    s.enabled = j.get<bool>();
+    return s;
+  }
+  ObjectReader r(ctx, j, ptr);
+  s.enabled = true;
+  if (const json* v = r.take("enabled")) s.enabled = boolean(ctx, *v, r.at("enabled"));
+  if (const json* v = r.take("size")) {
+    s.size = integer(ctx, *v, r.at("size"), 64, 8192);
+    if (s.size & (s.size - 1)) ctx.fail(r.at("size"), "size must be a power of two");
+  }
+  if (const json* v = r.take("bias"))
+    s.bias = float(number(ctx, *v, r.at("bias"), 0, 0.1));  // × the scene's radius
+  if (const json* v = r.take("slopeBias"))
+    s.slopeBias = float(number(ctx, *v, r.at("slopeBias"), 0, 100));
+  if (const json* v = r.take("pcfRadius")) s.pcfRadius = integer(ctx, *v, r.at("pcfRadius"), 0, 4);
+  r.finish();
+  return s;
+}
+
 Style style(const Context& ctx, const json& j, const std::string& ptr) {
   Style s;
   if (j.is_string()) {
@@ -782,6 +847,9 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
       s.blinnPhong.ambient = float(number(ctx, *x, br.at("ambient"), 0, 1));
     br.finish();
   }
+  if (const json* v = r.take("toon")) s.toon = toonStyle(ctx, *v, r.at("toon"));
+  if (const json* v = r.take("hatching")) s.hatching = hatchingStyle(ctx, *v, r.at("hatching"));
+  if (const json* v = r.take("shadows")) s.shadows = shadowStyle(ctx, *v, r.at("shadows"));
   r.finish();
   return s;
 }

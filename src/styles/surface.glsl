@@ -6,6 +6,7 @@ struct SurfacePoint {
   vec3 baseColor;
   float specular;
   float shininess;
+  float keyLightVisibility;  // in [0, 1]: 0 in the key light's (the first light's) shadow
 };
 
 // Unit vector from `p` towards light `i`.

@@ -6,7 +6,9 @@
 // position + view depth, object id, cut mask, depth); "ghostGeometry" / "ghostLines" draw
 // removed material as faded lines; "lines" finds silhouettes, creases and cut outlines per
 // sample (styles/lines); "composite" resolves the samples into the final colour and copies
-// sample 0 of every intermediate buffer into single-sample AOVs.
+// sample 0 of every intermediate buffer into single-sample AOVs. With style.shadows, a
+// "shadowMap" pass before "geometry" draws the shadow casters from the key light
+// (src/styles/shadows/README.md).
 //
 //   auto context = cutaway::gl::HeadlessContext::create();
 //   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");

@@ -134,11 +134,45 @@ struct BlinnPhongStyle {
   float ambient = 0.15f;
 };
 
+// Cel shading with a 1-D ramp texture (Lake, Marshall, Harris, Blackstein 2000): the key
+// light's max(n·l, 0) picks one of ramp.size() equal intervals, and that tone multiplies the
+// object colour; a hard-edged highlight where the Blinn term passes a threshold.
+struct ToonStyle {
+  std::vector<glm::vec3> ramp{glm::vec3(0.45f), glm::vec3(0.75f), glm::vec3(1.0f)};  // dark→light
+  bool highlight = true;
+  float highlightThreshold = 0.5f;  // Blinn term (n·h)^shininess above which it shows
+  glm::vec3 highlightColor{1.0f};   // added, weighted by the object's specular
+};
+
+// Tonal art maps (Praun, Hoppe, Webb, Finkelstein 2001), generated procedurally at start-up.
+struct HatchingStyle {
+  int tones = 6;                        // TAM tones, lightest to darkest (2–12)
+  glm::vec3 paper{1.0f, 0.98f, 0.93f};  // colour between strokes
+  glm::vec3 ink{0.08f, 0.08f, 0.12f};   // stroke colour
+  float tint = 0.35f;                   // how much the object colour tints the paper, in [0, 1]
+  float scale = 0.4f;  // hatch tile size as a fraction of the scene's bounding radius
+  unsigned seed = 1;   // stroke placement
+  // The surface's lightness from the key light: Lambert max(n·l, 0), or Gooch's (1 + n·l)/2.
+  enum class Lightness { Lambert, Gooch } lightness = Lightness::Lambert;
+};
+
+// A shadow map from the key light (the first light), usable with every style.
+struct ShadowStyle {
+  bool enabled = false;
+  int size = 2048;         // texels per side
+  float bias = 0.005f;     // constant bias towards the light, fraction of the scene's radius
+  float slopeBias = 2.0f;  // glPolygonOffset factor: bias × the caster's depth slope
+  int pcfRadius = 1;       // (2r + 1)² bilinear comparison taps
+};
+
 struct Style {
-  std::string name = "gooch";                    // "gooch" or "blinn-phong"
+  std::string name = "gooch";                    // one of styleNames()
   std::optional<LineStyle> lines = LineStyle{};  // nullopt: no lines
   GoochStyle gooch;
   BlinnPhongStyle blinnPhong;
+  ToonStyle toon;
+  HatchingStyle hatching;
+  ShadowStyle shadows;
 };
 const std::vector<std::string>& styleNames();
 

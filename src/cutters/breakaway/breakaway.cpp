@@ -130,7 +130,7 @@ void Breakaway::drawClipDepth(GLuint framebuffer, const std::vector<GpuMesh>& hu
 void Breakaway::bind() const {
   glBindTextureUnit(11, frame_.texture("breakawayClipDepth").id());
   glBindTextureUnit(12, frame_.texture("breakawayInnerDepth").id());
-  glBindTextureUnit(13, frame_.texture("breakawayHullNormal").id());
+  glBindTextureUnit(21, frame_.texture("breakawayHullNormal").id());
 }
 
 }  // namespace cutaway

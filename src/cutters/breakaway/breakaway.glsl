@@ -7,7 +7,7 @@
 // clipped there), and the outer hull's world normal there.
 layout(binding = 11) uniform sampler2D uBreakawayClipDepth;
 layout(binding = 12) uniform sampler2D uBreakawayInnerDepth;
-layout(binding = 13) uniform sampler2D uBreakawayHullNormal;
+layout(binding = 21) uniform sampler2D uBreakawayHullNormal;
 
 int breakawayFragment(bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
   ivec2 p = ivec2(gl_FragCoord.xy);

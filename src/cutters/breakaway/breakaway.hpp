@@ -17,7 +17,7 @@ class Breakaway {
  public:
   // Builds the hulls, declares the clip targets and adds the clip passes (before geometry).
   Breakaway(const Scene& scene, const BreakawayOptions& options, Frame& frame);
-  // Binds the clip depths (units 11, 12) and hull normals (13) for breakaway.glsl.
+  // Binds the clip depths (units 11, 12) and hull normals (21) for breakaway.glsl.
   void bind() const;
   const std::vector<BreakawayCluster>& clusters() const { return clusters_; }
 

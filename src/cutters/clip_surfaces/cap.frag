@@ -8,6 +8,7 @@
 #include "style.glsl"
 #include "clip_surfaces.glsl"
 #include "parity.glsl"
+#include "../../styles/shadows/shadow_lookup.glsl"
 #include "../../render/gbuffer.glsl"
 in vec3 vWorldPosition;
 in vec2 vST;
@@ -78,6 +79,7 @@ void main() {
   s.baseColor = base;
   s.specular = 0.05;
   s.shininess = 16.0;
+  s.keyLightVisibility = keyLightVisibility(s.position);
   float occlusion = mix(1.0, relief.a, uCapStyle.x);
   writeGBuffer(s, shadeSurface(s) * occlusion, 1.0, uObjectId, false, true);
 #ifdef CUTTER_CUTOUT

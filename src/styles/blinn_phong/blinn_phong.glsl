@@ -4,8 +4,9 @@ vec3 shadeSurface(SurfacePoint s) {
   vec3 c = uStyleParams.x * s.baseColor;
   for (int i = 0; i < uCounts.x; ++i) {
     vec3 l = towardsLight(i, s.position);
-    c += uLightColor[i].rgb * (s.baseColor * max(dot(s.normal, l), 0.0) +
-                               s.specular * blinnSpecular(s, l));
+    float visibility = i == 0 ? s.keyLightVisibility : 1.0;  // only the key light casts shadows
+    c += visibility * uLightColor[i].rgb *
+         (s.baseColor * max(dot(s.normal, l), 0.0) + s.specular * blinnSpecular(s, l));
   }
   return c;
 }

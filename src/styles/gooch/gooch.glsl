@@ -6,10 +6,13 @@
 // so surfaces facing the key light are warm and those facing away are cool, never black.
 // The key light is the first light (a headlight if there is none); a white Blinn highlight
 // from it marks shininess, as in the paper's figures.
+// In the key light's shadow the lit part of l·n is taken away (a shadowed surface facing the
+// light looks like one edge-on to it: halfway between cool and warm), and so is the highlight.
 vec3 shadeSurface(SurfacePoint s) {
   vec3 l = uCounts.x > 0 ? towardsLight(0, s.position) : s.toEye;
-  float t = 0.5 * (1.0 + dot(s.normal, l));
+  float nDotL = dot(s.normal, l);
+  float t = 0.5 * (1.0 + min(nDotL, 0.0) + max(nDotL, 0.0) * s.keyLightVisibility);
   vec3 kCool = uGoochCool.rgb + uGoochCool.w * s.baseColor;
   vec3 kWarm = uGoochWarm.rgb + uGoochWarm.w * s.baseColor;
-  return mix(kCool, kWarm, t) + vec3(s.specular * blinnSpecular(s, l));
+  return mix(kCool, kWarm, t) + vec3(s.specular * blinnSpecular(s, l) * s.keyLightVisibility);
 }

@@ -1,0 +1,368 @@
+// Tests of the toon, hatching and shadow styles: the tonal art map's nesting and tones on the
+// CPU (Praun01 §3.2), the toon ramp's bands in a rendered frame against the ramp evaluated at
+// the analytic n·l (Lake00 §3.1), and shadows against a CPU ray–box test.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "cutaway/render/renderer.hpp"
+#include "gl_test_context.hpp"
+#include "styles/hatching/tonal_art_map.hpp"
+#include "styles/shadows/shadow_map.hpp"
+#include "styles/toon/toon_ramp.hpp"
+
+using namespace cutaway;
+
+namespace {
+
+const std::string kData = CUTAWAY_TEST_DATA;
+
+const Aov& findAov(const std::vector<Aov>& aovs, const std::string& name) {
+  for (const auto& a : aovs)
+    if (a.name == name) return a;
+  throw std::runtime_error("no AOV " + name);
+}
+
+const TonalArtMap& defaultTam() {
+  static const TonalArtMap tam = generateTonalArtMap({});
+  return tam;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Tonal art map (CPU).
+
+// Praun01 §3.2: every stroke of a tone is in all darker tones, so each texel of tone k + 1 is
+// at least as dark as in tone k; a stroke texel of tone k (ink ≥ 0.5) stays a stroke texel.
+TEST(TonalArtMap, EveryStrokeOfAToneIsInTheNextDarkerTone) {
+  const TonalArtMap& tam = defaultTam();
+  ASSERT_EQ(tam.tones, 6);
+  for (int level = 0; level < tam.levels; ++level)
+    for (int tone = 0; tone + 1 < tam.tones; ++tone) {
+      const auto& lighter = tam.ink(level, tone);
+      const auto& darker = tam.ink(level, tone + 1);
+      int strokeTexels = 0;
+      for (std::size_t i = 0; i < lighter.size(); ++i) {
+        // 1e-6: ink composes in float, in a different order in the two tones.
+        ASSERT_GE(darker[i], lighter[i] - 1e-6f)
+            << "level " << level << " tone " << tone << " texel " << i;
+        if (lighter[i] >= 0.5f) {
+          ++strokeTexels;
+          ASSERT_GE(darker[i], 0.5f) << "level " << level << " tone " << tone << " texel " << i;
+        }
+      }
+      EXPECT_GT(strokeTexels, 0) << "level " << level << " tone " << tone << " has no strokes";
+    }
+}
+
+// Mean ink rises with the tone at every level and meets the tone's target: strokes are added
+// until the mean passes the target, so it overshoots by at most about one stroke's ink.
+TEST(TonalArtMap, MeanInkRisesAcrossTonesAndMeetsTheTargets) {
+  const TonalArtMap& tam = defaultTam();
+  for (int level = 0; level < tam.levels; ++level) {
+    const double texels = double(tam.width(level)) * tam.width(level);
+    // A stroke is at most 0.5 · width long and about 2 texels wide with its anti-aliasing.
+    const double oneStroke = 0.5 * tam.width(level) * 2.0 / texels;
+    double previous = 0.0;
+    for (int tone = 0; tone < tam.tones; ++tone) {
+      const double mean = tam.meanInk(level, tone);
+      const double target = tonalArtMapTarget(tone, tam.tones);
+      EXPECT_GT(mean, previous) << "level " << level << " tone " << tone;
+      EXPECT_GE(mean, target) << "level " << level << " tone " << tone;
+      EXPECT_LE(mean, target + oneStroke + 1e-9)
+          << "level " << level << " tone " << tone << ": mean " << mean << ", target " << target;
+      previous = mean;
+    }
+  }
+  EXPECT_NEAR(tonalArtMapTarget(5, 6), kTonalArtMapDarkest, 1e-7);
+}
+
+// Every level of a tone is built to the same target, so a change of mipmap level does not
+// change the tone (within about a stroke of the coarsest level); the same seed gives the same
+// TAM, another seed other strokes.
+TEST(TonalArtMap, LevelsAgreeInToneAndSeedsDiffer) {
+  const TonalArtMap& tam = defaultTam();
+  for (int tone = 0; tone < tam.tones; ++tone)
+    for (int level = 1; level < tam.levels; ++level)
+      EXPECT_NEAR(tam.meanInk(level, tone), tam.meanInk(0, tone), 0.1)
+          << "level " << level << " tone " << tone;
+  const TonalArtMap again = generateTonalArtMap({});
+  EXPECT_EQ(again.ink(2, 3), tam.ink(2, 3));  // deterministic
+  const TonalArtMap other = generateTonalArtMap({.seed = 7});
+  EXPECT_NE(other.ink(2, 3), tam.ink(2, 3));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Toon ramp.
+
+TEST(ToonRamp, DiffuseTermSplitsIntoEqualBands) {
+  EXPECT_EQ(toonRampIndex(3, -0.5f), 0);
+  EXPECT_EQ(toonRampIndex(3, 0.0f), 0);
+  EXPECT_EQ(toonRampIndex(3, 0.33f), 0);
+  EXPECT_EQ(toonRampIndex(3, 0.34f), 1);
+  EXPECT_EQ(toonRampIndex(3, 0.66f), 1);
+  EXPECT_EQ(toonRampIndex(3, 0.67f), 2);
+  EXPECT_EQ(toonRampIndex(3, 1.0f), 2);
+  EXPECT_EQ(toonRampIndex(4, 0.5f), 2);
+  ToonStyle style;
+  EXPECT_EQ(toonRampTexels(style).size(), 3u);
+}
+
+// A plane facing the camera, lit by a point light 1 unit in front of it: n·l = 1/√(r² + 1)
+// falls from 1 at the centre to 0.2 in the corners, through all three bands. Each pixel must
+// show exactly the ramp colour (8-bit texel × object colour) of the band of its analytic n·l,
+// except within 0.01 of a band edge, where interpolation and rounding may fall either way.
+TEST(ToonRender, PlaneShowsExactlyTheRampColours) {
+  const Scene scene = parseScene(R"({
+      "resolution": [80, 60], "samples": 1,
+      "style": {"name": "toon", "lines": false,
+                "toon": {"ramp": [[0.2, 0.3, 0.6], 0.55, [1, 0.9, 0.8]], "highlight": false}},
+      "lights": [{"type": "point", "position": [0, 0, 1], "space": "world"}],
+      "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "fov": 60, "near": 1, "far": 11},
+      "objects": [{"name": "plane", "file": "plane.obj", "color": [0.9, 0.8, 0.7]}]})",
+                                 "toon-plane.json", kData + "/render");
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Rgba8Image color = renderer.readColor();
+  const auto aovs = renderer.readAovs();
+  const FloatImage& position = findAov(aovs, "position").image;
+  const FloatImage& objectId = findAov(aovs, "objectId").image;
+  const auto texels = toonRampTexels(scene.style.toon);
+  const int n = int(texels.size());
+  std::set<int> bands;
+  int checked = 0;
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      ASSERT_EQ(objectId.at(x, y)[0], 0.0f) << x << "," << y;
+      const glm::vec3 p(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]);
+      const float nDotL = glm::normalize(glm::vec3(0, 0, 1) - p).z;
+      const float band = nDotL * float(n);
+      if (std::abs(band - std::round(band)) < 0.01f * n) continue;
+      const int index = toonRampIndex(n, nDotL);
+      bands.insert(index);
+      ++checked;
+      for (int c = 0; c < 3; ++c) {
+        const float texel = std::round(texels[std::size_t(index)][c] * 255.0f) / 255.0f;
+        const float expected = texel * scene.objects[0].material.color[c] * 255.0f;
+        EXPECT_NEAR(float(color.at(x, y)[c]), expected, 1.0f)
+            << "pixel " << x << "," << y << " channel " << c << " n·l " << nDotL << " band "
+            << index;
+      }
+    }
+  EXPECT_EQ(bands.size(), 3u);
+  EXPECT_GT(checked, scene.width * scene.height * 9 / 10);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shadows.
+
+// The light's frustum holds the whole scene: every corner of the bounds maps into [0, 1]³
+// (for point lights outside the bounds; from inside, no single frustum sees all around).
+TEST(ShadowFrustum, BoundsFitInsideForDirectionalAndPointLights) {
+  Bounds b;
+  b.extend(glm::vec3(-3, -1, 2));
+  b.extend(glm::vec3(5, 4, 6));
+  for (const glm::vec4 light :
+       {glm::vec4(0.3f, -1, 0.2f, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, 1, 0, 0),
+        glm::vec4(10, 20, 30, 1), glm::vec4(6, 5, 7, 1)}) {
+    const LightFrustum f = keyLightFrustum(light, b);
+    EXPECT_EQ(f.orthographic, light.w == 0.0f);
+    const glm::mat4 m = shadowMatrix(f);
+    for (int i = 0; i < 8; ++i) {
+      const glm::vec3 corner((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                             (i & 4) ? b.max.z : b.min.z);
+      const glm::vec4 h = m * glm::vec4(corner, 1.0f);
+      const glm::vec3 p = glm::vec3(h) / h.w;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_GE(p[k], 0.0f) << "light " << light.x << "," << light.y << "," << light.z
+                              << " corner " << i << " axis " << k;
+        EXPECT_LE(p[k], 1.0f) << "light " << light.x << "," << light.y << "," << light.z
+                              << " corner " << i << " axis " << k;
+      }
+    }
+  }
+}
+
+namespace {
+
+// Ray–box intersection (slabs) for 0 < t < tMax.
+bool hitsBox(const glm::vec3& origin, const glm::vec3& direction, const glm::vec3& lo,
+             const glm::vec3& hi, float tMax = 1e30f) {
+  float t0 = 0.0f, t1 = tMax;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(direction[k]) < 1e-12f) {
+      if (origin[k] < lo[k] || origin[k] > hi[k]) return false;
+      continue;
+    }
+    float a = (lo[k] - origin[k]) / direction[k], b = (hi[k] - origin[k]) / direction[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+  }
+  return t0 <= t1;
+}
+
+struct ShadowCount {
+  int shadowed = 0, lit = 0, wrongShadowed = 0, wrongLit = 0;
+};
+
+// tests/data/render/box-shadow.json: a 2-unit box floating 1.5 above the ground plane y = 0,
+// lit from above (box-shadow-point.json: by a point light). For each ground pixel, the ray from its
+// position (position AOV) towards the light decides on the CPU whether the box shadows it; pixels
+// within `margin` of the shadow's edge (rays that hit the box grown by it but miss it shrunk by it)
+// are left out: PCF softens the edge over a few shadow-map texels. Shadowed ground in Blinn-Phong
+// is the ambient 0.15 × 0.8 = 0.12, lit ground 0.12 + 0.8 n·l (plus a highlight); a pixel counts as
+// rendered in shadow when its red is below the midpoint of the two.
+ShadowCount countShadows(const Scene& scene) {
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Rgba8Image color = renderer.readColor();
+  const auto aovs = renderer.readAovs();
+  const FloatImage& position = findAov(aovs, "position").image;
+  const FloatImage& objectId = findAov(aovs, "objectId").image;
+  const Light& light = scene.lights[0];
+  const glm::vec3 lo(-1, 1.5f, -1), hi(1, 3.5f, 1);
+  const float margin = 0.1f;
+  ShadowCount count;
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      if (objectId.at(x, y)[0] != 0.0f) continue;  // ground only
+      const glm::vec3 p(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]);
+      const bool point = light.type == Light::Type::Point;
+      const glm::vec3 toLight = point ? light.position - p : -light.direction;
+      const float tMax = point ? 1.0f : 1e30f;  // up to the light, not beyond
+      const bool inner = hitsBox(p, toLight, lo + margin, hi - margin, tMax);
+      const bool outer = hitsBox(p, toLight, lo - margin, hi + margin, tMax);
+      if (inner != outer) continue;
+      const float red = color.at(x, y)[0];
+      const float nDotL = std::max(glm::normalize(toLight).y, 0.0f);  // ground normal +y
+      const float shadowRed = 0.12f * 255.0f, litRed = (0.12f + 0.8f * nDotL) * 255.0f;
+      const bool renderedDark = red < 0.5f * (shadowRed + litRed);
+      if (inner) {
+        ++count.shadowed;
+        if (!renderedDark) ++count.wrongLit;
+      } else {
+        ++count.lit;
+        if (renderedDark) ++count.wrongShadowed;
+      }
+    }
+  return count;
+}
+
+Scene boxShadowScene() {
+  return loadScene(kData + "/render/box-shadow.json");
+}
+
+}  // namespace
+
+TEST(ShadowRender, GroundIsDarkExactlyWhereTheBoxBlocksTheLight) {
+  const ShadowCount c = countShadows(boxShadowScene());
+  EXPECT_GT(c.shadowed, 100);
+  EXPECT_GT(c.lit, 2000);
+  EXPECT_EQ(c.wrongLit, 0) << "shadowed pixels rendered lit";
+  EXPECT_EQ(c.wrongShadowed, 0) << "lit pixels rendered shadowed (acne or a shifted shadow)";
+}
+
+// A point light: a perspective shadow map from its position (the box's shadow is larger than
+// the box, and falls away from the light).
+TEST(ShadowRender, PointLightShadowMatchesTheRayBoxTest) {
+  const ShadowCount c = countShadows(loadScene(kData + "/render/box-shadow-point.json"));
+  EXPECT_GT(c.shadowed, 100);
+  EXPECT_GT(c.lit, 2000);
+  EXPECT_EQ(c.wrongLit, 0) << "shadowed pixels rendered lit";
+  EXPECT_EQ(c.wrongShadowed, 0) << "lit pixels rendered shadowed (acne or a shifted shadow)";
+}
+
+TEST(ShadowRender, CastersFollowRoleAndCastsShadow) {
+  {
+    Scene scene = boxShadowScene();
+    scene.objects[1].role = Role::Exterior;  // exterior shells do not cast by default
+    const ShadowCount c = countShadows(scene);
+    EXPECT_EQ(c.shadowed - c.wrongLit, 0);
+  }
+  {
+    Scene scene = boxShadowScene();
+    scene.objects[1].role = Role::Exterior;
+    scene.objects[1].params["castsShadow"] = true;
+    const ShadowCount c = countShadows(scene);
+    EXPECT_EQ(c.wrongLit, 0);
+    EXPECT_EQ(c.wrongShadowed, 0);
+  }
+  {
+    Scene scene = boxShadowScene();
+    scene.objects[1].params["castsShadow"] = false;
+    const ShadowCount c = countShadows(scene);
+    EXPECT_EQ(c.shadowed - c.wrongLit, 0);
+  }
+}
+
+// The shadow map is an AOV: depth along the light's axis in scene units, 0 where nothing
+// casts. Checked at the texels where the box's top centre and a bare ground point project,
+// against their depths in the light's view computed on the CPU.
+TEST(ShadowRender, ShadowMapIsAnAovWithAMeaning) {
+  const Scene scene = boxShadowScene();
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const Aov& map = findAov(aovs, "shadowMap");
+  EXPECT_NE(map.meaning.find("key light"), std::string::npos) << map.meaning;
+  const int size = scene.style.shadows.size;
+  ASSERT_EQ(map.image.width, size);
+  const LightFrustum light =
+      keyLightFrustum(glm::vec4(glm::normalize(scene.lights[0].direction), 0.0f), scene.bounds());
+  const glm::mat4 toMap = shadowMatrix(light);
+  for (const glm::vec3 q : {glm::vec3(0, 3.5f, 0), glm::vec3(6, 0, 5), glm::vec3(-7, 0, -2)}) {
+    const glm::vec4 h = toMap * glm::vec4(q, 1.0f);
+    const int x = int(h.x / h.w * size), y = size - 1 - int(h.y / h.w * size);  // rows top down
+    const float expected = -(light.view * glm::vec4(q, 1.0f)).z;
+    // A texel spans ≈ 0.03 units of a surface at ≈ 20° to the map: depth varies by 0.01.
+    EXPECT_NEAR(map.image.at(x, y)[0], expected, 0.02f) << q.x << "," << q.y << "," << q.z;
+  }
+  EXPECT_EQ(map.image.at(0, 0)[0], 0.0f);  // the 1% margin: no caster in the corner
+  bool timed = false;
+  for (const auto& t : renderer.timings()) timed |= t.name == "shadowMap";
+  EXPECT_TRUE(timed);
+}
+
+// Every style takes the shadow: the shadowed ground is darker than the lit ground.
+class StyleShadowTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(StyleShadowTest, ShadowedGroundIsDarker) {
+  Scene scene = boxShadowScene();
+  scene.style.name = GetParam();
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Rgba8Image color = renderer.readColor();
+  const auto aovs = renderer.readAovs();
+  const FloatImage& position = findAov(aovs, "position").image;
+  const FloatImage& objectId = findAov(aovs, "objectId").image;
+  const glm::vec3 towardsLight = -glm::normalize(scene.lights[0].direction);
+  double shadowSum = 0, litSum = 0;
+  int shadowN = 0, litN = 0;
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      if (objectId.at(x, y)[0] != 0.0f) continue;
+      const glm::vec3 p(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]);
+      const auto px = color.at(x, y);
+      const double luminance = 0.2126 * px[0] + 0.7152 * px[1] + 0.0722 * px[2];
+      if (hitsBox(p, towardsLight, glm::vec3(-0.9f, 1.6f, -0.9f), glm::vec3(0.9f, 3.4f, 0.9f)))
+        shadowSum += luminance, ++shadowN;
+      else if (!hitsBox(p, towardsLight, glm::vec3(-1.1f, 1.4f, -1.1f),
+                        glm::vec3(1.1f, 3.6f, 1.1f)))
+        litSum += luminance, ++litN;
+    }
+  ASSERT_GT(shadowN, 100);
+  ASSERT_GT(litN, 1000);
+  // Gooch's shadow is the mid tone (cool–warm halfway), the mildest of the styles.
+  EXPECT_LT(shadowSum / shadowN, 0.9 * litSum / litN)
+      << GetParam() << ": shadowed " << shadowSum / shadowN << ", lit " << litSum / litN;
+}
+
+INSTANTIATE_TEST_SUITE_P(Styles, StyleShadowTest,
+                         ::testing::Values("gooch", "blinn-phong", "toon", "hatching"),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           std::replace(n.begin(), n.end(), '-', '_');
+                           return n;
+                         });
