@@ -135,7 +135,7 @@ struct ClipSurfaceCutter::Gpu {
   gl::Program peel = buildDepthPeelProgram();
   gl::Buffer block;
   std::vector<gl::Texture> relief;
-  std::vector<CapGrid> grids;
+  std::vector<CapGrid> grids;  // 2^k cells per side, k = 3 … 10
   std::vector<DepthSpriteGpu> sprites;  // one per capped object
   std::vector<glm::vec3> capColors;     // one per capped object
 };
@@ -162,12 +162,8 @@ ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurface
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
     g.relief.push_back(std::move(t));
-    // §5.1: the cap grid refined to the offset map's resolution over the surface's extent.
-    const int cells = int(std::clamp(std::max(float(cs.offsetMap.width) * cs.scale.x,
-                                              float(cs.offsetMap.height) * cs.scale.y),
-                                     8.0f, 1024.0f));
-    g.grids.push_back(makeCapGrid(cells));
   }
+  for (int cells = 8; cells <= 1024; cells *= 2) g.grids.push_back(makeCapGrid(cells));
   block.count = glm::ivec4(int(options.surfaces.size()),
                            options.combine == ClipSurfaceOptions::Combine::Intersection,
                            options.capNormalMap, 0);
@@ -252,7 +248,7 @@ void ClipSurfaceCutter::clearMasks() const {
 void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
   // Locations of cap.vert / cap.frag.
   constexpr GLint kObjectId = 11, kCapSurface = 40, kCapToTexture = 41, kDepthComplexity = 45,
-                  kCapColor = 46;
+                  kCapColor = 46, kCapRect = 48;
   const Scene& scene = sceneGpu_.scene();
   glUseProgram(program);
   for (std::size_t k = 0; k < capped_.size(); ++k) {
@@ -265,11 +261,37 @@ void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
     glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
     glProgramUniform3fv(program, kCapColor, 1, &gpu_->capColors[k][0]);
     glBindTextureUnit(20, sprite.layers.id());
+    const SceneObject& o = scene.objects[capped_[k]];
+    const glm::mat4 model = o.transformAt(time);
+    const Bounds b = o.mesh->bounds();
     for (std::size_t i = 0; i < options_.surfaces.size(); ++i) {
-      if (!options_.surfaces[i].enabled) continue;
+      const ClipSurface& cs = options_.surfaces[i];
+      if (!cs.enabled) continue;
+      // Only the part of the surface the object's box spans, and only if the box straddles
+      // the displaced surface (which lies within S_z behind the plane).
+      const glm::vec3 n = cs.normal(), u = glm::normalize(cs.u), v = glm::normalize(cs.v);
+      glm::vec2 lo(1e30f), hi(-1e30f);
+      float nearest = 1e30f, farthest = -1e30f;
+      for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
+                               (c & 4) ? b.max.z : b.min.z);
+        const glm::vec3 d = glm::vec3(model * glm::vec4(corner, 1.0f)) - cs.origin;
+        const glm::vec2 st(glm::dot(d, u) / glm::length(cs.u), glm::dot(d, v) / glm::length(cs.v));
+        lo = glm::min(lo, st), hi = glm::max(hi, st);
+        nearest = std::min(nearest, glm::dot(d, n)), farthest = std::max(farthest, glm::dot(d, n));
+      }
+      if (nearest > 0.0f || farthest < -cs.scale.z) continue;
+      lo = glm::clamp(lo, 0.0f, 1.0f), hi = glm::clamp(hi, 0.0f, 1.0f);
+      if (hi.x <= lo.x || hi.y <= lo.y) continue;
+      // §5.1: as many cells as offset-map texels the rectangle covers (a power of two).
+      const float texels = std::max((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x,
+                                    (hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y);
+      std::size_t grid = 0;
+      while (grid + 1 < gpu_->grids.size() && float(8 << grid) < texels) ++grid;
       glProgramUniform1i(program, kCapSurface, GLint(i));
-      glBindVertexArray(gpu_->grids[i].vertexArray.id());
-      glDrawElements(GL_TRIANGLES, gpu_->grids[i].indexCount, GL_UNSIGNED_INT, nullptr);
+      glProgramUniform4f(program, kCapRect, lo.x, lo.y, hi.x, hi.y);
+      glBindVertexArray(gpu_->grids[grid].vertexArray.id());
+      glDrawElements(GL_TRIANGLES, gpu_->grids[grid].indexCount, GL_UNSIGNED_INT, nullptr);
     }
   }
 }
