@@ -324,3 +324,21 @@ TEST(Cli, StyleNamesAndShadowsFlag) {
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.err.find("gooch,blinn-phong,toon,hatching"), std::string::npos) << bad.err;
 }
+
+TEST(Cli, ClipSurfacesWarnAboutOpenMeshesAndBench) {
+  const Result r = run("render " + kSource + "/examples/engine-clip.json -o " +
+                       scratch("engine-clip.png").string() + " --size 96x72");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("not watertight, so their cuts get no cap"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  const Result quiet = run("render " + kSource + "/examples/bunny-clip.json -o " +
+                           scratch("bunny-clip.png").string() + " --size 64x64");
+  EXPECT_EQ(quiet.err, "");
+  const Result bench =
+      run("bench " + kSource + "/examples/bunny-clip.json --frames 1 --size 64x64 --json");
+  ASSERT_EQ(bench.exitCode, 0) << bench.err;
+  std::vector<std::string> labels;
+  const auto parsed = nlohmann::json::parse(bench.out);
+  for (const auto& run : parsed["runs"]) labels.push_back(run["label"]);
+  EXPECT_EQ(labels, (std::vector<std::string>{"plain", "clipped", "clipped + capped"}));
+}

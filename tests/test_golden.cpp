@@ -71,7 +71,12 @@ INSTANTIATE_TEST_SUITE_P(
                                  "blinn-phong", 240, 240},
                       GoldenCase{"fan-room-breakaway", "fan-room-breakaway.json", "", 320, 240},
                       GoldenCase{"fan-room-breakaway-blinn-phong", "fan-room-breakaway.json",
-                                 "blinn-phong", 320, 240}),
+                                 "blinn-phong", 320, 240},
+                      // Trapp13 clip surfaces and caps.
+                      GoldenCase{"engine-clip", "engine-clip.json", "", 320, 240},
+                      GoldenCase{"house-clip", "house-clip.json", "", 320, 240},
+                      GoldenCase{"bunny-clip", "bunny-clip.json", "", 240, 240},
+                      GoldenCase{"bunny-clip-toon", "bunny-clip.json", "toon", 240, 240}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');

@@ -107,10 +107,30 @@ void warnAboutOpenExteriors(const Scene& scene) {
                    scene.file.string().c_str(), o.name.c_str());
 }
 
+// Trapp13 §5: parity is undefined for open meshes, so their cuts get no caps; say which.
+void warnAboutUncappedObjects(const Scene& scene) {
+  if (!scene.clipSurfaces || !scene.clipSurfaces->caps) return;
+  std::vector<std::string> open;
+  for (const auto& o : scene.objects)
+    if (!o.proxy && o.role != Role::Interest && !o.mesh->report.watertight) open.push_back(o.name);
+  if (open.empty()) return;
+  std::string names;
+  for (std::size_t i = 0; i < std::min<std::size_t>(open.size(), 3); ++i)
+    names += (i ? ", \"" : "\"") + open[i] + "\"";
+  if (open.size() > 3) names += " and " + std::to_string(open.size() - 3) + " more";
+  std::fprintf(stderr,
+               "warning: %s: %zu clipped object%s not watertight, so %s cut%s no cap (parity "
+               "is undefined for open meshes): %s\n",
+               scene.file.string().c_str(), open.size(), open.size() == 1 ? " is" : "s are",
+               open.size() == 1 ? "its" : "their", open.size() == 1 ? " gets" : "s get",
+               names.c_str());
+}
+
 int render(const RenderOptions& options) {
   Scene scene = loadScene(options.scene);
   applyOverrides(scene, options.overrides);
   warnAboutOpenExteriors(scene);
+  warnAboutUncappedObjects(scene);
   if (options.frames > 0 && options.output.find('%') != std::string::npos) {
     static const std::regex patternRe(R"([^%]*%0?\d*d[^%]*)");
     if (!std::regex_match(options.output, patternRe))
@@ -226,6 +246,28 @@ int info(const std::string& path) {
         {"angle", c->angle},
         {"rotation", c->rotation ? nlohmann::json(*c->rotation) : nlohmann::json("facing the camera")},
         {"planes", c->axialRange ? 4 : 2}};
+  if (const auto& c = scene.clipSurfaces) {
+    nlohmann::json surfaces = nlohmann::json::array();
+    for (const auto& cs : c->surfaces)
+      surfaces.push_back({{"origin", vec(cs.origin)},
+                          {"u", vec(cs.u)},
+                          {"v", vec(cs.v)},
+                          {"normal", vec(cs.normal())},
+                          {"scale", vec(cs.scale)},
+                          {"offsetMap", {cs.offsetMap.width, cs.offsetMap.height}},
+                          {"enabled", cs.enabled}});
+    nlohmann::json capped = nlohmann::json::array(), uncapped = nlohmann::json::array();
+    for (const auto& o : scene.objects)
+      if (!o.proxy && o.role != Role::Interest)
+        (o.mesh->report.watertight ? capped : uncapped).push_back(o.name);
+    out["cutters"]["clipSurfaces"] = {
+        {"surfaces", surfaces},
+        {"combine", c->combine == ClipSurfaceOptions::Combine::Union ? "union" : "intersection"},
+        {"caps", c->caps},
+        {"parity", c->parity == ClipSurfaceOptions::Parity::Static ? "static" : "perFrame"},
+        {"capped", c->caps ? capped : nlohmann::json::array()},
+        {"notCappedOpenMeshes", c->caps ? uncapped : nlohmann::json::array()}};
+  }
   if (const auto& b = scene.breakaway) {
     const BreakawayExtent extent = breakawayExtent(scene, *b);
     nlohmann::json clusters = nlohmann::json::array();
@@ -356,6 +398,16 @@ int bench(const BenchOptions& options) {
       }
       for (std::size_t i = base; i < runs.size(); ++i) runs[i].plain = base;
     }
+  } else if (scene.clipSurfaces) {
+    // Trapp13 §6.2's comparison: the model alone, clipped, and clipped and capped.
+    Scene plain = scene, clipped = scene;
+    plain.clipSurfaces.reset();
+    clipped.clipSurfaces->caps = false;
+    runs.push_back(measure("plain", plain, info, options.frames));
+    runs.push_back(measure("clipped", clipped, info, options.frames));
+    Scene capped = scene;
+    capped.clipSurfaces->caps = true;
+    runs.push_back(measure("clipped + capped", capped, info, options.frames));
   } else if (!scene.adaptive) {
     runs.push_back(measure("frame", scene, info, options.frames));
   } else {
@@ -458,7 +510,7 @@ int bench(const BenchOptions& options) {
     std::printf("%-26s %10.3f %10.3f %10.3f\n", "frame (wall ms)", m.frame.median, m.frame.min,
                 m.frame.max);
   }
-  if (scene.cutout || scene.breakaway) {
+  if (scene.cutout || scene.breakaway || scene.clipSurfaces) {
     std::printf("\n%-24s %12s %12s\n", "summary", "frame ms", "× plain");
     for (const auto& m : runs)
       std::printf("%-24s %12.3f %12.3f\n", m.label.c_str(), m.frame.median,
