@@ -335,3 +335,38 @@ TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {
   EXPECT_GT(caps, 1000);
   EXPECT_LE(differ, caps / 100) << differ << " of " << caps;
 }
+
+// §6.1: a diffuse map multiplies the cap colour where the cap shows, and nowhere else.
+TEST(ClipSurfaceGpu, DiffuseMapTintsOnlyTheCaps) {
+  writeTorus();
+  const std::filesystem::path red = std::filesystem::temp_directory_path() / "cutaway-red.png";
+  Rgba8Image img(2, 2);
+  for (int i = 0; i < 4; ++i) img.pixels[std::size_t(i) * 4] = 255, img.pixels[std::size_t(i) * 4 + 3] = 255;
+  writePng(red, img);
+  const std::string surface =
+      kFlatSurface.substr(0, kFlatSurface.size() - 1) + R"(, "diffuseMap": ")" + red.string() + "\"}";
+  const Scene plain = parseScene(torusScene(kFlatSurface, true), "torus.json", kData);
+  const Scene tinted = parseScene(torusScene(surface, true), "torus.json", kData);
+  Renderer a(plain, test::glContext().info()), b(tinted, test::glContext().info());
+  a.render();
+  b.render();
+  const Rgba8Image ca = a.readColor(), cb = b.readColor();
+  const FloatImage cap = aov(a.readAovs(), "capMask");
+  int caps = 0, redder = 0, changedElsewhere = 0;
+  for (int y = 0; y < cap.height; ++y)
+    for (int x = 0; x < cap.width; ++x) {
+      const auto* p = ca.at(x, y);
+      const auto* q = cb.at(x, y);
+      if (cap.at(x, y)[0] == 1.0f) {
+        ++caps;
+        redder += q[1] < p[1] && q[2] <= p[2];  // green (and blue) removed by the red map
+      } else {
+        changedElsewhere += p[0] != q[0] || p[1] != q[1] || p[2] != q[2];
+      }
+    }
+  EXPECT_GT(caps, 1000);
+  EXPECT_GE(redder, caps * 95 / 100);
+  // Anti-aliased cap edges blend into their neighbours; nothing farther away changes.
+  EXPECT_LE(changedElsewhere, caps / 10);
+}
+

@@ -711,6 +711,18 @@ ClipSurfaceOptions clipSurfaces(const Context& ctx, const json& j, const std::st
     if (const json* v = sr.take("offsetMap")) cs.offsetMap = offsetMap(ctx, *v, sr.at("offsetMap"));
     if (const json* v = sr.take("enabled")) cs.enabled = boolean(ctx, *v, sr.at("enabled"));
     if (const json* v = sr.take("capColor")) cs.capColor = color(ctx, *v, sr.at("capColor"));
+    if (const json* v = sr.take("diffuseMap")) {
+      if (!v->is_string()) ctx.fail(sr.at("diffuseMap"), "expected a PNG file name");
+      const std::filesystem::path file = ctx.baseDir / v->get<std::string>();
+      if (!std::filesystem::is_regular_file(file))
+        ctx.fail(sr.at("diffuseMap"), "no such diffuse map: " + file.string());
+      try {
+        cs.diffuseMap = readPng(file);
+        cs.diffuseMap.flipVertically();  // the image's bottom row is t = 0
+      } catch (const Error& e) {
+        ctx.fail(sr.at("diffuseMap"), e.reason() + " (" + file.string() + ")");
+      }
+    }
     sr.finish();
     o.surfaces.push_back(std::move(cs));
   }

@@ -53,6 +53,9 @@ struct ClipSurface {
   FloatImage offsetMap{1, 1, 1};  // OM: heights in [0, 1]
   bool enabled = true;
   std::optional<glm::vec3> capColor;  // default: the capped object's colour, darker
+  // §6.1: a diffuse map over the cap, sampled at T (eq. 2) like the offset map; multiplies the
+  // cap colour. Empty: none.
+  Rgba8Image diffuseMap;
 
   glm::vec3 normal() const { return glm::normalize(glm::cross(glm::normalize(u), glm::normalize(v))); }
 };

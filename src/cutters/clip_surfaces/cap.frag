@@ -17,6 +17,8 @@ layout(location = 40) uniform int uCapSurface;
 layout(location = 41) uniform mat4 uCapToTexture;  // world → LDI space of the capped solid
 layout(location = 45) uniform int uDepthComplexity;
 layout(location = 46) uniform vec3 uCapColor;
+layout(location = 49) uniform int uHasDiffuse;
+layout(binding = 22) uniform sampler2D uCapDiffuse;  // §6.1 diffuse map, sampled at T
 // Per pixel, the parity results of cap fragments: 1 = one was outside, 2 = one was inside.
 layout(binding = 1, r32ui) uniform coherent uimage2D uCapParity;
 
@@ -71,6 +73,7 @@ void main() {
   vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - vWorldPosition);
   if (dot(normal, toEye) < 0.0) normal = -normal;  // seen from the kept side through a gap
   vec3 base = uCapColor;
+  if (uHasDiffuse != 0) base *= texture(uCapDiffuse, vST * uClipScale[i].xy).rgb;
   if (uCapStyle.y != 0.0) base *= mix(0.55, 1.1, marble(vWorldPosition * uCapStyle.z));
   SurfacePoint s;
   s.position = vWorldPosition;

@@ -134,7 +134,7 @@ DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const g
 struct ClipSurfaceCutter::Gpu {
   gl::Program peel = buildDepthPeelProgram();
   gl::Buffer block;
-  std::vector<gl::Texture> relief;
+  std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
   std::vector<CapGrid> grids;  // 2^k cells per side, k = 3 … 10
   std::vector<DepthSpriteGpu> sprites;  // one per capped object
   std::vector<glm::vec3> capColors;     // one per capped object
@@ -162,6 +162,18 @@ ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurface
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
     g.relief.push_back(std::move(t));
+    gl::Texture d;
+    if (cs.diffuseMap.width > 0) {
+      d = gl::Texture::create(GL_TEXTURE_2D);
+      glTextureStorage2D(d.id(), 1, GL_RGBA8, cs.diffuseMap.width, cs.diffuseMap.height);
+      glTextureSubImage2D(d.id(), 0, 0, 0, cs.diffuseMap.width, cs.diffuseMap.height, GL_RGBA,
+                          GL_UNSIGNED_BYTE, cs.diffuseMap.pixels.data());
+      glTextureParameteri(d.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(d.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(d.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+      glTextureParameteri(d.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+    }
+    g.diffuse.push_back(std::move(d));
   }
   for (int cells = 8; cells <= 1024; cells *= 2) g.grids.push_back(makeCapGrid(cells));
   block.count = glm::ivec4(int(options.surfaces.size()),
@@ -248,7 +260,7 @@ void ClipSurfaceCutter::clearMasks() const {
 void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
   // Locations of cap.vert / cap.frag.
   constexpr GLint kObjectId = 11, kCapSurface = 40, kCapToTexture = 41, kDepthComplexity = 45,
-                  kCapColor = 46, kCapRect = 48;
+                  kCapColor = 46, kCapRect = 48, kHasDiffuse = 49;
   const Scene& scene = sceneGpu_.scene();
   glUseProgram(program);
   for (std::size_t k = 0; k < capped_.size(); ++k) {
@@ -290,6 +302,9 @@ void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
       while (grid + 1 < gpu_->grids.size() && float(8 << grid) < texels) ++grid;
       glProgramUniform1i(program, kCapSurface, GLint(i));
       glProgramUniform4f(program, kCapRect, lo.x, lo.y, hi.x, hi.y);
+      const GLuint diffuse = gpu_->diffuse[i].id();
+      glProgramUniform1i(program, kHasDiffuse, diffuse != 0);
+      if (diffuse) glBindTextureUnit(22, diffuse);
       glBindVertexArray(gpu_->grids[grid].vertexArray.id());
       glDrawElements(GL_TRIANGLES, gpu_->grids[grid].indexCount, GL_UNSIGNED_INT, nullptr);
     }
