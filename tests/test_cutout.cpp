@@ -349,18 +349,7 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
       const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
       const glm::vec3 from = glm::vec3(a) / a.w, dir = glm::vec3(b) / b.w - from;
       float nearest = 2.0f;  // in units of the segment near → far
-      for (const auto& t : hull.triangles) {  // Möller–Trumbore
-        const glm::vec3 p0 = hull.positions[t.x], e1 = hull.positions[t.y] - p0,
-                        e2 = hull.positions[t.z] - p0;
-        const glm::vec3 q = glm::cross(dir, e2);
-        const float det = glm::dot(e1, q);
-        if (std::abs(det) < 1e-12f) continue;
-        const glm::vec3 s = from - p0;
-        const float bu = glm::dot(s, q) / det;
-        const glm::vec3 r = glm::cross(s, e1);
-        const float bv = glm::dot(dir, r) / det, tt = glm::dot(e2, r) / det;
-        if (bu >= 0 && bv >= 0 && bu + bv <= 1 && tt > 0) nearest = std::min(nearest, tt);
-      }
+      for (const float t : rayHits(hull, from, dir)) nearest = std::min(nearest, t);
       float expected = 0.0f;
       if (nearest <= 1.0f) {
         const glm::vec4 h = viewProjection * glm::vec4(from + nearest * dir, 1.0f);

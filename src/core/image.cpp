@@ -56,42 +56,49 @@ void writePng(const std::filesystem::path& path, const Rgba8Image& image) {
   });
 }
 
-Rgba8Image readPng(const std::filesystem::path& path) {
-  png_image png{};
-  png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, path.c_str())) {
-    std::string reason = png.message;
-    png_image_free(&png);
-    throw Error(path.string(), "", "cannot read PNG: " + reason);
-  }
-  png.format = PNG_FORMAT_RGBA;
-  Rgba8Image image(int(png.width), int(png.height));
-  if (!png_image_finish_read(&png, nullptr, image.pixels.data(), 0, nullptr)) {
-    std::string reason = png.message;
-    png_image_free(&png);
-    throw Error(path.string(), "", "cannot decode PNG: " + reason);
-  }
-  return image;
-}
+namespace {
 
-FloatImage readPngGray(const std::filesystem::path& path) {
-  png_image png{};
+// libpng's simplified reader: the header, then the pixels in the format `choose` sets.
+template <class Choose>
+std::vector<std::uint8_t> readPngPixels(const std::filesystem::path& path, png_image& png,
+                                        Choose choose) {
+  png = png_image{};
   png.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&png, path.c_str())) {
     std::string reason = png.message;
     png_image_free(&png);
     throw Error(path.string(), "", "cannot read PNG: " + reason);
   }
-  // libpng marks 16-bit files linear; reading them as 16-bit linear grey keeps every level.
-  const bool sixteen = (png.format & PNG_FORMAT_FLAG_LINEAR) != 0;
-  png.format = sixteen ? PNG_FORMAT_LINEAR_Y : PNG_FORMAT_GRAY;
-  FloatImage image(int(png.width), int(png.height), 1);
+  choose(png);
   std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
   if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) {
     std::string reason = png.message;
     png_image_free(&png);
     throw Error(path.string(), "", "cannot decode PNG: " + reason);
   }
+  return bytes;
+}
+
+}  // namespace
+
+Rgba8Image readPng(const std::filesystem::path& path) {
+  png_image png;
+  std::vector<std::uint8_t> bytes =
+      readPngPixels(path, png, [](png_image& p) { p.format = PNG_FORMAT_RGBA; });
+  Rgba8Image image(int(png.width), int(png.height));
+  image.pixels = std::move(bytes);
+  return image;
+}
+
+FloatImage readPngGray(const std::filesystem::path& path) {
+  png_image png;
+  bool sixteen = false;
+  const std::vector<std::uint8_t> bytes = readPngPixels(path, png, [&](png_image& p) {
+    // libpng marks 16-bit files linear; reading them as 16-bit linear grey keeps every level.
+    sixteen = (p.format & PNG_FORMAT_FLAG_LINEAR) != 0;
+    p.format = sixteen ? PNG_FORMAT_LINEAR_Y : PNG_FORMAT_GRAY;
+  });
+  FloatImage image(int(png.width), int(png.height), 1);
   for (std::size_t i = 0; i < image.data.size(); ++i) {
     if (sixteen) {
       std::uint16_t v;

@@ -161,4 +161,21 @@ Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi) {
   return m;
 }
 
+std::vector<float> rayHits(const Mesh& mesh, const glm::vec3& origin, const glm::vec3& direction) {
+  std::vector<float> hits;
+  for (const auto& tri : mesh.triangles) {
+    const glm::vec3 p0 = mesh.positions[tri.x];
+    const glm::vec3 e1 = mesh.positions[tri.y] - p0, e2 = mesh.positions[tri.z] - p0;
+    const glm::vec3 q = glm::cross(direction, e2);
+    const double det = glm::dot(e1, q);
+    if (std::abs(det) < 1e-14) continue;  // parallel to the triangle's plane
+    const glm::vec3 s = origin - p0;
+    const double a = glm::dot(s, q) / det;
+    const glm::vec3 r = glm::cross(s, e1);
+    const double b = glm::dot(direction, r) / det, t = glm::dot(e2, r) / det;
+    if (a >= 0.0 && b >= 0.0 && a + b <= 1.0 && t > 0.0) hits.push_back(float(t));
+  }
+  return hits;
+}
+
 }  // namespace cutaway

@@ -63,6 +63,10 @@ void computeVertexNormals(Mesh& mesh, float creaseAngle = 40.0f);
 // Edge topology after welding equal positions; fills the edge counts and `watertight`.
 void analyzeTopology(Mesh& mesh);
 
+// Ray parameters t > 0 at which origin + t·direction meets the mesh's triangles
+// (Möller & Trumbore 1997), unsorted; the references that GPU tests compare against.
+std::vector<float> rayHits(const Mesh& mesh, const glm::vec3& origin, const glm::vec3& direction);
+
 // Axis-aligned box with outward-facing triangles and flat normals (24 vertices).
 Mesh makeBox(const glm::vec3& min, const glm::vec3& max);
 

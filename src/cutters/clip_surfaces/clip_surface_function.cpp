@@ -150,20 +150,7 @@ bool volumetricParityTest(const VolumetricDepthSprite& vds, const glm::vec3& p) 
 bool insideMesh(const Mesh& mesh, const glm::vec3& p) {
   // A direction no axis-aligned or diagonal model feature lines up with.
   const glm::vec3 dir = glm::normalize(glm::vec3(0.3137f, 0.7719f, 0.5531f));
-  int crossings = 0;
-  for (const auto& tri : mesh.triangles) {  // Möller–Trumbore
-    const glm::vec3 p0 = mesh.positions[tri.x];
-    const glm::vec3 e1 = mesh.positions[tri.y] - p0, e2 = mesh.positions[tri.z] - p0;
-    const glm::vec3 q = glm::cross(dir, e2);
-    const double det = glm::dot(e1, q);
-    if (std::abs(det) < 1e-14) continue;
-    const glm::vec3 s = p - p0;
-    const double a = glm::dot(s, q) / det;
-    const glm::vec3 r = glm::cross(s, e1);
-    const double b = glm::dot(dir, r) / det, t = glm::dot(e2, r) / det;
-    crossings += a >= 0.0 && b >= 0.0 && a + b <= 1.0 && t > 0.0;
-  }
-  return crossings % 2 == 1;
+  return rayHits(mesh, p, dir).size() % 2 == 1;
 }
 
 }  // namespace cutaway
