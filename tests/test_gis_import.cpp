@@ -2,7 +2,9 @@
 // shafts as points): GeoJSON written here with known coordinates and attributes, the offset
 // arithmetic in double precision, reprojection against the projection's natural origin, every
 // error case, and real Ordnance Survey layers in British National Grid from libplplot-data.
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -216,6 +218,57 @@ TEST_F(GisImportTest, ListsLayers) {
   EXPECT_EQ(layers[0].crs.authority, "EPSG:27700");
   EXPECT_EQ(layers[0].fields, std::vector<std::string>{"radius"});
   EXPECT_EQ(layers[0].geometryType, "Line String");
+}
+
+// A GeoPackage written here through OGR with two layers, as a utility would deliver a network:
+// "sewers" (3-D MultiLineStrings) and "shafts" (3-D points) in ETRS89 / UTM 32N (EPSG:25832,
+// Konev18's Cologne). UTM northings of 5.6·10⁶ m have a float spacing of 0.5 m, so the offset
+// is what keeps 5645678.25 at 678.25.
+TEST_F(GisImportTest, GeoPackageLayersByName) {
+  GDALAllRegister();
+  const fs::path file = dir_ / "network.gpkg";
+  {
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+    ASSERT_NE(driver, nullptr);
+    GDALDatasetUniquePtr dataset(driver->Create(file.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+    ASSERT_TRUE(dataset);
+    OGRSpatialReference utm;
+    ASSERT_EQ(utm.importFromEPSG(25832), OGRERR_NONE);
+    auto addLayer = [&](const char* name, OGRwkbGeometryType type, const char* wkt) {
+      OGRLayer* layer = dataset->CreateLayer(name, &utm, type, nullptr);
+      ASSERT_NE(layer, nullptr);
+      OGRFieldDefn radius("radius", OFTReal);
+      ASSERT_EQ(layer->CreateField(&radius), OGRERR_NONE);
+      OGRFeature feature(layer->GetLayerDefn());
+      feature.SetField("radius", 0.6);
+      OGRGeometry* geometry = nullptr;
+      ASSERT_EQ(OGRGeometryFactory::createFromWkt(wkt, &utm, &geometry), OGRERR_NONE);
+      feature.SetGeometryDirectly(geometry);
+      ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
+    };
+    addLayer("sewers", wkbMultiLineString25D,
+             "MULTILINESTRING Z ((356789.5 5645678.25 48,356799.5 5645678.25 47.5))");
+    addLayer("shafts", wkbPoint25D, "POINT Z (356789.5 5645678.25 50)");
+  }
+  const GisImportOptions utmOffset{.offset = {356000.0, 5645000.0, 0.0}};
+  expectError([&] { importGisLines(file); }, {"network.gpkg", "2 layers", "sewers", "name one"});
+  GisImportOptions options = utmOffset;
+  options.layer = "sewers";
+  options.attributes = {"radius"};
+  const GisLines sewers = importGisLines(file, options);
+  EXPECT_EQ(sewers.crs.authority, "EPSG:25832");
+  EXPECT_TRUE(sewers.hasZ);
+  ASSERT_EQ(sewers.polylines.size(), 1u);
+  EXPECT_EQ(sewers.polylines[0].points,
+            (std::vector<glm::vec3>{{789.5f, 678.25f, 48.0f}, {799.5f, 678.25f, 47.5f}}));
+  EXPECT_EQ(sewers.polylines[0].attributes, std::vector<double>{0.6});
+  options.layer = "shafts";
+  const GisPoints shafts = importGisPoints(file, options);
+  ASSERT_EQ(shafts.points.size(), 1u);
+  EXPECT_EQ(shafts.points[0].position, glm::vec3(789.5f, 678.25f, 50.0f));
+  expectError([&] { importGisLines(file, options); },
+              {"network.gpkg", "layer shafts", "Point", "not lines"});
+  EXPECT_EQ(listGisLayers(file).size(), 2u);
 }
 
 // ---- errors: file, place (layer / feature) and reason -----------------------------------
