@@ -1,0 +1,113 @@
+// cutaway/io/gis_import.hpp — pipe networks and shafts from GIS vector data through GDAL/OGR
+// (ESRI Shapefile, GeoPackage, GeoJSON and every other OGR vector format): Konev18 §5's input,
+// pipes as polylines of 3-D nodes with per-pipe attributes (radius, water level), shafts as
+// points.
+//
+// Projected coordinates are large (British National Grid eastings reach 7·10⁵ m, UTM
+// northings 10⁷ m) and a float keeps only 24 bits: 465123.25 is already at float's 1/32 m
+// resolution. So every coordinate is optionally reprojected (in double), then a declared
+// offset is subtracted in double, and only the small remainder becomes a float.
+//
+//   cutaway::GisImportOptions options{.attributes = {"radius", "water_level"},
+//                                     .offset = {465000.0, 164000.0, 0.0}};
+//   cutaway::GisLines pipes = cutaway::importGisLines("sewers.shp", options);
+//   for (const cutaway::GisPolyline& p : pipes.polylines)
+//     std::printf("feature %lld: %zu nodes, radius %g\n", (long long)p.featureId,
+//                 p.points.size(), p.attributes[0]);
+//
+// Errors (cutaway::Error, file + "layer NAME" or "layer NAME, feature FID" + reason): a
+// missing or unreadable file, no such layer, a layer of the wrong geometry type, an empty
+// layer, a missing or non-numeric attribute field, an unknown CRS or one that cannot be
+// transformed when a reprojection is asked for. Repeated consecutive nodes (zero-length
+// segments) and parts left with a single node are dropped and counted in the report.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace cutaway {
+
+struct GisCrs {
+  std::string name;       // "OSGB 1936 / British National Grid"; empty: the layer has no CRS
+  std::string authority;  // "EPSG:27700"; empty where no authority code is known
+  std::string wkt;        // WKT2 (OGC 2019)
+  bool known() const { return !wkt.empty(); }
+};
+
+// An axis-aligned box in the layer's own CRS, in double precision.
+struct GisExtent {
+  glm::dvec2 min{0.0}, max{0.0};
+};
+
+struct GisLayerInfo {
+  std::string name;
+  std::string geometryType;  // OGR's name: "Line String", "3D Multi Line String", "Point"…
+  std::int64_t featureCount = 0;
+  GisCrs crs;
+  std::optional<GisExtent> extent;  // absent for an empty layer
+  std::vector<std::string> fields;  // attribute field names, in the layer's order
+};
+
+// The layers of a vector data source, for inspection (`cutaway info`).
+std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file);
+
+struct GisImportOptions {
+  std::string layer;                    // empty: the data source's only layer
+  std::vector<std::string> attributes;  // numeric fields read per feature, in this order
+  std::string targetCrs;   // empty: keep the layer's CRS; else anything OGR's SetFromUserInput
+                           // takes ("EPSG:25832", WKT, PROJ strings)
+  glm::dvec3 offset{0.0};  // subtracted (after any reprojection) before converting to float
+};
+
+struct GisImportReport {
+  std::int64_t features = 0;  // features read
+  std::int64_t featuresWithoutGeometry = 0;
+  std::int64_t repeatedNodes = 0;           // consecutive nodes equal (as float) to the previous
+  std::int64_t degenerateParts = 0;         // parts with fewer than two distinct nodes
+  std::int64_t missingAttributeValues = 0;  // null fields, returned as NaN
+};
+
+struct GisPolyline {
+  std::int64_t featureId = 0;
+  int part = 0;                    // index within a MultiLineString, 0 for a LineString
+  std::vector<glm::vec3> points;   // (x, y, z) in the output CRS minus the offset; z = −offset.z
+                                   // for 2-D data; at least two, consecutive ones distinct
+  std::vector<double> attributes;  // GisImportOptions::attributes' values, NaN where null
+};
+
+struct GisPoint {
+  std::int64_t featureId = 0;
+  int part = 0;  // index within a MultiPoint
+  glm::vec3 position{0.0f};
+  std::vector<double> attributes;
+};
+
+struct GisLines {
+  GisLayerInfo layer;  // the source layer (its CRS, and its extent in that CRS)
+  GisCrs crs;          // the CRS of `polylines`: the target CRS, or the layer's
+  glm::dvec3 offset{0.0};
+  bool hasZ = false;  // the layer's geometries carry heights
+  std::vector<GisPolyline> polylines;
+  GisImportReport report;
+};
+
+struct GisPoints {
+  GisLayerInfo layer;
+  GisCrs crs;
+  glm::dvec3 offset{0.0};
+  bool hasZ = false;
+  std::vector<GisPoint> points;
+  GisImportReport report;
+};
+
+// A LineString / MultiLineString layer (2-D or 3-D).
+GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options = {});
+// A Point / MultiPoint layer (2-D or 3-D).
+GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options = {});
+
+}  // namespace cutaway

@@ -1,0 +1,354 @@
+// GIS vector import through GDAL/OGR: Konev18 §5's pipe network ("a set of lines in the .SHP
+// format", each pipe a list of 3-D nodes with a radius and a water level) and its shafts.
+// Coordinates are reprojected and shifted by a declared offset in double precision before
+// they become floats (see gis_import.hpp for why).
+#include "cutaway/io/gis_import.hpp"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+#include <ogrsf_frmts.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+
+#include "cutaway/core/error.hpp"
+
+namespace cutaway {
+
+namespace {
+
+void registerDrivers() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+// GDAL reports problems through a global handler that prints to stderr by default; while we
+// read, errors are kept quiet and the last message goes into our own Error instead.
+class QuietGdalErrors {
+ public:
+  QuietGdalErrors() {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdalErrors() { CPLPopErrorHandler(); }
+  QuietGdalErrors(const QuietGdalErrors&) = delete;
+  QuietGdalErrors& operator=(const QuietGdalErrors&) = delete;
+  static std::string lastMessage() {
+    const char* m = CPLGetLastErrorMsg();
+    return m && *m ? std::string(": ") + m : std::string();
+  }
+};
+
+std::string layerPlace(const OGRLayer& layer) {
+  return "layer " + std::string(const_cast<OGRLayer&>(layer).GetName());
+}
+
+std::string featurePlace(const OGRLayer& layer, GIntBig fid) {
+  return layerPlace(layer) + ", feature " + std::to_string(fid);
+}
+
+GisCrs describeCrs(const OGRSpatialReference* srs) {
+  GisCrs crs;
+  if (!srs || srs->IsEmpty()) return crs;
+  OGRSpatialReference copy(*srs);
+  // An ESRI .prj carries names but no authority code: look for the one EPSG definition it
+  // matches (GDAL's own confidence scale; 90 and above means equivalent up to names).
+  if (!copy.GetAuthorityName(nullptr)) {
+    int count = 0;
+    int* confidence = nullptr;
+    OGRSpatialReferenceH* matches = copy.FindMatches(nullptr, &count, &confidence);
+    if (matches && count >= 1 && confidence[0] >= 90)
+      copy = *OGRSpatialReference::FromHandle(matches[0]);
+    OSRFreeSRSArray(matches);
+    CPLFree(confidence);
+  }
+  if (const char* n = copy.GetName()) crs.name = n;
+  const char* authority = copy.GetAuthorityName(nullptr);
+  const char* code = copy.GetAuthorityCode(nullptr);
+  if (authority && code) crs.authority = std::string(authority) + ":" + code;
+  char* wkt = nullptr;
+  const char* const options[] = {"FORMAT=WKT2_2019", nullptr};
+  if (copy.exportToWkt(&wkt, options) == OGRERR_NONE && wkt) crs.wkt = wkt;
+  CPLFree(wkt);
+  return crs;
+}
+
+GisLayerInfo describeLayer(OGRLayer& layer) {
+  GisLayerInfo info;
+  info.name = layer.GetName();
+  info.geometryType = OGRGeometryTypeToName(layer.GetGeomType());
+  info.featureCount = layer.GetFeatureCount(TRUE);
+  info.crs = describeCrs(layer.GetSpatialRef());
+  OGREnvelope envelope;
+  if (info.featureCount > 0 && layer.GetExtent(&envelope, TRUE) == OGRERR_NONE)
+    info.extent = GisExtent{{envelope.MinX, envelope.MinY}, {envelope.MaxX, envelope.MaxY}};
+  const OGRFeatureDefn* definition = layer.GetLayerDefn();
+  for (int i = 0; i < definition->GetFieldCount(); ++i)
+    info.fields.emplace_back(definition->GetFieldDefn(i)->GetNameRef());
+  return info;
+}
+
+GDALDatasetUniquePtr openVectorSource(const std::filesystem::path& file) {
+  registerDrivers();
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) throw Error(file.string(), "", "GIS file not found");
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(file.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
+                                                 nullptr, nullptr, nullptr));
+  if (!dataset)
+    throw Error(file.string(), "",
+                "cannot open as a GIS vector data source" + QuietGdalErrors::lastMessage());
+  return dataset;
+}
+
+std::string layerNames(GDALDataset& dataset) {
+  std::string names;
+  for (int i = 0; i < dataset.GetLayerCount(); ++i)
+    names += (i ? ", " : "") + std::string(dataset.GetLayer(i)->GetName());
+  return names.empty() ? "none" : names;
+}
+
+OGRLayer& chooseLayer(GDALDataset& dataset, const std::filesystem::path& file,
+                      const std::string& name) {
+  if (name.empty()) {
+    if (dataset.GetLayerCount() == 1) return *dataset.GetLayer(0);
+    throw Error(file.string(), "",
+                "the data source has " + std::to_string(dataset.GetLayerCount()) + " layers (" +
+                    layerNames(dataset) + "): name one");
+  }
+  OGRLayer* layer = dataset.GetLayerByName(name.c_str());
+  if (!layer)
+    throw Error(file.string(), "layer " + name,
+                "no such layer (layers: " + layerNames(dataset) + ")");
+  return *layer;
+}
+
+// Everything a feature loop needs: the layer, its attribute field indices, the coordinate
+// transformation and the offset.
+class FeatureReader {
+ public:
+  FeatureReader(const std::filesystem::path& file, OGRLayer& layer, const GisImportOptions& options,
+                GisImportReport& report)
+      : file_(file), layer_(layer), offset_(options.offset), report_(report) {
+    const OGRFeatureDefn* definition = layer.GetLayerDefn();
+    for (const std::string& name : options.attributes) {
+      const int i = definition->GetFieldIndex(name.c_str());
+      if (i < 0) {
+        std::string fields;
+        for (int k = 0; k < definition->GetFieldCount(); ++k)
+          fields += (k ? ", " : "") + std::string(definition->GetFieldDefn(k)->GetNameRef());
+        throw Error(file.string(), layerPlace(layer),
+                    "no attribute field \"" + name +
+                        "\" (fields: " + (fields.empty() ? "none" : fields) + ")");
+      }
+      const OGRFieldType type = definition->GetFieldDefn(i)->GetType();
+      if (type != OFTInteger && type != OFTInteger64 && type != OFTReal)
+        throw Error(file.string(), layerPlace(layer),
+                    "attribute field \"" + name + "\" holds " +
+                        OGRFieldDefn::GetFieldTypeName(type) + " values, not numbers");
+      fields_.push_back(i);
+    }
+    if (!options.targetCrs.empty()) {
+      const OGRSpatialReference* source = layer.GetSpatialRef();
+      if (!source || source->IsEmpty())
+        throw Error(file.string(), layerPlace(layer),
+                    "the layer has no CRS, so it cannot be reprojected to " + options.targetCrs);
+      OGRSpatialReference from(*source), to;
+      if (to.SetFromUserInput(options.targetCrs.c_str()) != OGRERR_NONE)
+        throw Error(
+            file.string(), layerPlace(layer),
+            "unknown target CRS \"" + options.targetCrs + "\"" + QuietGdalErrors::lastMessage());
+      // x = easting / longitude, y = northing / latitude whatever the CRS's axis order
+      // (EPSG:4326 is latitude first), as the layer's own coordinates are.
+      from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+      to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+      transform_.reset(OGRCreateCoordinateTransformation(&from, &to));
+      if (!transform_)
+        throw Error(file.string(), layerPlace(layer),
+                    "no transformation to " + options.targetCrs + QuietGdalErrors::lastMessage());
+      crs_ = describeCrs(&to);
+    } else {
+      crs_ = describeCrs(layer.GetSpatialRef());
+    }
+  }
+
+  const GisCrs& crs() const { return crs_; }
+
+  std::vector<double> attributes(const OGRFeature& feature) {
+    std::vector<double> values;
+    for (int i : fields_) {
+      if (feature.IsFieldSetAndNotNull(i)) {
+        values.push_back(feature.GetFieldAsDouble(i));
+      } else {
+        values.push_back(std::numeric_limits<double>::quiet_NaN());
+        ++report_.missingAttributeValues;
+      }
+    }
+    return values;
+  }
+
+  // Node k of `points`: reprojected in double, minus the offset in double, then rounded once
+  // to float — the order that keeps 465123.25 − 465000 = 123.25 exact.
+  glm::vec3 node(const OGRSimpleCurve& curve, int k, GIntBig fid) {
+    return place(curve.getX(k), curve.getY(k), curve.getZ(k), fid);
+  }
+  glm::vec3 place(double x, double y, double z, GIntBig fid) {
+    const double sourceX = x, sourceY = y;  // Transform() may overwrite them when it fails
+    if (transform_ && !transform_->Transform(1, &x, &y, &z))
+      throw Error(file_.string(), featurePlace(layer_, fid),
+                  "cannot transform (" + std::to_string(sourceX) + ", " + std::to_string(sourceY) +
+                      ") to " + crs_.name + QuietGdalErrors::lastMessage());
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+      throw Error(file_.string(), featurePlace(layer_, fid), "non-finite coordinate");
+    return glm::vec3(float(x - offset_.x), float(y - offset_.y), float(z - offset_.z));
+  }
+
+ private:
+  struct DestroyTransform {
+    void operator()(OGRCoordinateTransformation* t) const {
+      OGRCoordinateTransformation::DestroyCT(t);
+    }
+  };
+  const std::filesystem::path& file_;
+  OGRLayer& layer_;
+  glm::dvec3 offset_;
+  GisImportReport& report_;
+  std::vector<int> fields_;
+  std::unique_ptr<OGRCoordinateTransformation, DestroyTransform> transform_;
+  GisCrs crs_;
+};
+
+void requireNonEmpty(const std::filesystem::path& file, OGRLayer& layer, std::int64_t count) {
+  if (count <= 0) throw Error(file.string(), layerPlace(layer), "the layer is empty");
+}
+
+}  // namespace
+
+std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file) {
+  QuietGdalErrors quiet;
+  GDALDatasetUniquePtr dataset = openVectorSource(file);
+  std::vector<GisLayerInfo> layers;
+  for (int i = 0; i < dataset->GetLayerCount(); ++i)
+    layers.push_back(describeLayer(*dataset->GetLayer(i)));
+  return layers;
+}
+
+GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
+  QuietGdalErrors quiet;
+  GDALDatasetUniquePtr dataset = openVectorSource(file);
+  OGRLayer& layer = chooseLayer(*dataset, file, options.layer);
+  GisLines out;
+  out.layer = describeLayer(layer);
+  out.offset = options.offset;
+  const OGRwkbGeometryType layerType = wkbFlatten(layer.GetGeomType());
+  // wkbUnknown: a layer of mixed geometries (GeoJSON); each feature is checked instead.
+  if (layerType != wkbLineString && layerType != wkbMultiLineString && layerType != wkbUnknown)
+    throw Error(file.string(), layerPlace(layer),
+                "the layer holds " + out.layer.geometryType + " geometries, not lines");
+  requireNonEmpty(file, layer, out.layer.featureCount);
+  out.hasZ = wkbHasZ(layer.GetGeomType());
+  FeatureReader reader(file, layer, options, out.report);
+  out.crs = reader.crs();
+
+  for (const OGRFeatureUniquePtr& feature : layer) {
+    ++out.report.features;
+    const GIntBig fid = feature->GetFID();
+    const OGRGeometry* geometry = feature->GetGeometryRef();
+    if (!geometry || geometry->IsEmpty()) {
+      ++out.report.featuresWithoutGeometry;
+      continue;
+    }
+    std::vector<const OGRLineString*> parts;
+    switch (wkbFlatten(geometry->getGeometryType())) {
+      case wkbLineString:
+        parts.push_back(geometry->toLineString());
+        break;
+      case wkbMultiLineString:
+        for (const OGRLineString* part : *geometry->toMultiLineString()) parts.push_back(part);
+        break;
+      default:
+        throw Error(file.string(), featurePlace(layer, fid),
+                    std::string("geometry is ") + geometry->getGeometryName() + ", not a line");
+    }
+    out.hasZ = out.hasZ || geometry->Is3D();
+    const std::vector<double> attributes = reader.attributes(*feature);
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      GisPolyline polyline{fid, int(p), {}, attributes};
+      for (int k = 0; k < parts[p]->getNumPoints(); ++k) {
+        const glm::vec3 node = reader.node(*parts[p], k, fid);
+        // A node equal (as the renderer will see it, in float) to the previous one makes a
+        // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
+        // need a direction per segment, so it is dropped.
+        if (!polyline.points.empty() && polyline.points.back() == node) {
+          ++out.report.repeatedNodes;
+          continue;
+        }
+        polyline.points.push_back(node);
+      }
+      if (polyline.points.size() < 2) {
+        ++out.report.degenerateParts;
+        continue;
+      }
+      out.polylines.push_back(std::move(polyline));
+    }
+  }
+  if (out.polylines.empty())
+    throw Error(
+        file.string(), layerPlace(layer),
+        "no line with two distinct nodes in " + std::to_string(out.report.features) + " features");
+  return out;
+}
+
+GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
+  QuietGdalErrors quiet;
+  GDALDatasetUniquePtr dataset = openVectorSource(file);
+  OGRLayer& layer = chooseLayer(*dataset, file, options.layer);
+  GisPoints out;
+  out.layer = describeLayer(layer);
+  out.offset = options.offset;
+  const OGRwkbGeometryType layerType = wkbFlatten(layer.GetGeomType());
+  if (layerType != wkbPoint && layerType != wkbMultiPoint && layerType != wkbUnknown)
+    throw Error(file.string(), layerPlace(layer),
+                "the layer holds " + out.layer.geometryType + " geometries, not points");
+  requireNonEmpty(file, layer, out.layer.featureCount);
+  out.hasZ = wkbHasZ(layer.GetGeomType());
+  FeatureReader reader(file, layer, options, out.report);
+  out.crs = reader.crs();
+
+  for (const OGRFeatureUniquePtr& feature : layer) {
+    ++out.report.features;
+    const GIntBig fid = feature->GetFID();
+    const OGRGeometry* geometry = feature->GetGeometryRef();
+    if (!geometry || geometry->IsEmpty()) {
+      ++out.report.featuresWithoutGeometry;
+      continue;
+    }
+    std::vector<const OGRPoint*> parts;
+    switch (wkbFlatten(geometry->getGeometryType())) {
+      case wkbPoint:
+        parts.push_back(geometry->toPoint());
+        break;
+      case wkbMultiPoint:
+        for (const OGRPoint* part : *geometry->toMultiPoint()) parts.push_back(part);
+        break;
+      default:
+        throw Error(file.string(), featurePlace(layer, fid),
+                    std::string("geometry is ") + geometry->getGeometryName() + ", not a point");
+    }
+    out.hasZ = out.hasZ || geometry->Is3D();
+    const std::vector<double> attributes = reader.attributes(*feature);
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      out.points.push_back({fid, int(p),
+                            reader.place(parts[p]->getX(), parts[p]->getY(), parts[p]->getZ(), fid),
+                            attributes});
+  }
+  if (out.points.empty())
+    throw Error(file.string(), layerPlace(layer),
+                "no point in " + std::to_string(out.report.features) + " features");
+  return out;
+}
+
+}  // namespace cutaway
