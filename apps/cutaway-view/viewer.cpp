@@ -587,17 +587,24 @@ void Viewer::drawPanels() {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   constexpr float kMargin = 8.0f, kLeftWidth = 300.0f, kRightWidth = 330.0f;
   constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize;
-  const float sceneHeight = std::max(200.0f, (display.y - 3 * kMargin) * 0.6f);
+  const float sceneHeight = std::max(200.0f, (display.y - 3 * kMargin) * 0.5f);
 
   ImGui::SetNextWindowPos(ImVec2(kMargin, kMargin), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(kLeftWidth, sceneHeight), ImGuiCond_Always);
   if (ImGui::Begin("Scene", nullptr, kFlags)) scenePanel(state_);
   ImGui::End();
 
+  // What the frame holds and costs, under the scene: the AOV inspector and the timings.
   ImGui::SetNextWindowPos(ImVec2(kMargin, sceneHeight + 2 * kMargin), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(kLeftWidth, 0), ImGuiCond_Always);
-  if (ImGui::Begin("Timings", nullptr, kFlags | ImGuiWindowFlags_AlwaysAutoResize))
-    timingsPanel(state_, ImGui::GetIO().Framerate);
+  ImGui::SetNextWindowSize(ImVec2(kLeftWidth, display.y - sceneHeight - 3 * kMargin),
+                           ImGuiCond_Always);
+  if (ImGui::Begin("Inspector", nullptr, kFlags)) {
+    ImGui::PushItemWidth(-100.0f);
+    if (ImGui::CollapsingHeader("AOV inspector", ImGuiTreeNodeFlags_DefaultOpen)) aovPanel(state_);
+    ImGui::PopItemWidth();
+    if (ImGui::CollapsingHeader("Timings", ImGuiTreeNodeFlags_DefaultOpen))
+      timingsPanel(state_, ImGui::GetIO().Framerate);
+  }
   ImGui::End();
 
   ImGui::SetNextWindowPos(ImVec2(display.x - kRightWidth - kMargin, kMargin), ImGuiCond_Always);
@@ -617,7 +624,6 @@ void Viewer::drawPanels() {
     for (const auto& panel : kCutterPanels)
       if (ImGui::CollapsingHeader(panel.title, ImGuiTreeNodeFlags_DefaultOpen)) panel.draw(state_);
     if (ImGui::CollapsingHeader("Style")) stylePanel(state_);
-    if (ImGui::CollapsingHeader("AOV inspector", ImGuiTreeNodeFlags_DefaultOpen)) aovPanel(state_);
     ImGui::PopItemWidth();
   }
   ImGui::End();

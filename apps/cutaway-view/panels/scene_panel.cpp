@@ -83,7 +83,7 @@ void selectionControls(ViewerState& state) {
 void scenePanel(ViewerState& state) {
   ImGui::TextDisabled("%s", state.scene.file.filename().string().c_str());
   const float listHeight =
-      ImGui::GetContentRegionAvail().y - 9.0f * ImGui::GetFrameHeightWithSpacing();
+      ImGui::GetContentRegionAvail().y - 7.0f * ImGui::GetFrameHeightWithSpacing();
   ImGui::BeginChild("objects", ImVec2(0, std::max(listHeight, 80.0f)), true);
   for (const auto& group : groupsOf(state.scene)) {
     std::vector<std::size_t> members;
