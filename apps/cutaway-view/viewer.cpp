@@ -223,8 +223,9 @@ void Viewer::handleInput(float seconds) {
       if (move != glm::vec3(0.0f)) fly(camera, move * speed), state_.viewChanged = true;
     }
   }
+  bool pressed = false;
   for (int button = 0; button < 3; ++button)
-    if (ImGui::IsMouseClicked(button)) viewDrag_ = !io.WantCaptureMouse;
+    if (ImGui::IsMouseClicked(button)) viewDrag_ = !io.WantCaptureMouse, pressed = true;
   if (!viewDrag_ && io.WantCaptureMouse) return;
   if (!io.WantCaptureMouse && io.MouseWheel != 0.0f) {
     zoom(camera, std::pow(kZoomPerWheelStep, io.MouseWheel));
@@ -232,7 +233,9 @@ void Viewer::handleInput(float seconds) {
   }
   if (!viewDrag_) return;
   const glm::vec2 delta(io.MouseDelta.x * scale, io.MouseDelta.y * scale);
-  const bool moved = delta != glm::vec2(0.0f);
+  // The frame of a press also carries the cursor's motion before it (a slow frame on a
+  // software rasteriser can hold a long way): a drag starts with the next frame.
+  const bool moved = delta != glm::vec2(0.0f) && !pressed;
   if (ImGui::IsMouseDown(0) && !io.KeyShift && moved) {
     if (state_.flyMode)
       look(camera, delta.x * kOrbitDegreesPerPixel * 0.5f, -delta.y * kOrbitDegreesPerPixel * 0.5f);

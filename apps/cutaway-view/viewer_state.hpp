@@ -22,6 +22,7 @@ struct ViewerState {
   std::set<std::size_t> selection;  // indices into scene.objects
   std::vector<CameraKey> cameraPath;  // recorded keys, saved as camera.path
   bool previewPath = false;           // the view follows cameraPath at `time`
+  float nextKeyTime = 0.0f;           // the camera panel's time for the next key
   float time = 0.0f;                  // scene time (animation, path), seconds
   bool playing = false;
   bool flyMode = false;

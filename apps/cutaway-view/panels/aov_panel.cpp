@@ -4,6 +4,8 @@
 // value range and the value under the cursor.
 #include <imgui.h>
 
+#include <cmath>
+
 #include "panels.hpp"
 
 namespace cutaway::view {
@@ -26,6 +28,7 @@ void aovPanel(ViewerState& state) {
     state.colormap = Colormap(map), state.aovChanged = true;
   if (ImGui::Checkbox("auto range", &state.autoRange)) state.aovChanged = true;
   ImGui::BeginDisabled(state.autoRange);
+  // ValueRange is two adjacent floats, min then max, as DragFloat2 edits them.
   if (ImGui::DragFloat2("range", &state.range.min, 0.001f * (std::abs(state.range.max) + 1e-3f), 0,
                         0, "%.5g"))
     state.aovChanged = true;

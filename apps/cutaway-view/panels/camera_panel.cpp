@@ -33,8 +33,10 @@ void cameraPanel(ViewerState& state) {
 
   ImGui::Separator();
   ImGui::TextDisabled("camera path");
-  static float keyTime = 0.0f;
-  if (!state.cameraPath.empty()) keyTime = std::max(keyTime, state.cameraPath.back().time + 1e-3f);
+  float& keyTime = state.nextKeyTime;
+  // The next key must come later than the last one: suggest a second after it.
+  if (!state.cameraPath.empty() && keyTime <= state.cameraPath.back().time)
+    keyTime = state.cameraPath.back().time + 1.0f;
   ImGui::SetNextItemWidth(80);
   ImGui::DragFloat("s", &keyTime, 0.1f, 0.0f, 1e6f, "%.2f");
   ImGui::SameLine();

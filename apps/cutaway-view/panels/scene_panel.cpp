@@ -3,6 +3,8 @@
 // importance and local cutaway angle (Burns08 §5.3, Burns11 §6.2.1).
 #include <imgui.h>
 
+#include <algorithm>
+
 #include "panels.hpp"
 
 namespace cutaway::view {
