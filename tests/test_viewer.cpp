@@ -53,10 +53,25 @@ bool hasXvfbRun() {
   return run("command -v xvfb-run >/dev/null").exitCode == 0;
 }
 
-// Under Xvfb: a private server (-a picks a free display number), a screen larger than any
-// window the tests open, 24-bit colour so that the window has an RGB8 default framebuffer.
-std::string underXvfb(const std::string& args) {
-  return "xvfb-run -a -s '-screen 0 1280x1024x24' " + kViewer + " " + args;
+// Runs the viewer under Xvfb: a private server (-a picks a free display number), a screen
+// larger than any window the tests open, 24-bit colour so that the window has an RGB8
+// default framebuffer. The viewer's exit status and stderr are its own, kept apart from
+// xvfb-run's (which can fail its clean-up after a clean run: "problem while cleaning up
+// temporary directory").
+Result runUnderXvfb(const std::string& args) {
+  const fs::path rc = scratch("viewer.rc"), err = scratch("viewer.err");
+  Result outer;
+  // A second try when the server did not start (another Xvfb took the display meanwhile).
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    fs::remove(rc);
+    outer = run("xvfb-run -a -s '-screen 0 1280x1024x24' sh -c '" + kViewer + " " + args + " 2>" +
+                err.string() + "; echo $? >" + rc.string() + "'");
+    std::ifstream rcStream(rc), errStream(err);
+    int status = -1;
+    if (rcStream >> status)
+      return {status, outer.out, std::string((std::istreambuf_iterator<char>(errStream)), {})};
+  }
+  return {-1, outer.out, "xvfb-run did not run the viewer: " + outer.err};
 }
 
 int count(const std::string& text, char c) {
@@ -97,7 +112,7 @@ TEST(Viewer, ScriptLineFailingAtRunTimeNamesTheLine) {
   const fs::path script = scratch("unknown-object.txt");
   std::ofstream(script) << "wait 1\nselect no such part\nquit\n";
   const Result r =
-      run(underXvfb(kSource + "/examples/bunny.json --size 160x120 --script " + script.string()));
+      runUnderXvfb(kSource + "/examples/bunny.json --size 160x120 --script " + script.string());
   EXPECT_EQ(r.exitCode, 1) << r.err;
   EXPECT_EQ(r.err, "cutaway-view: error: " + script.string() +
                        ": line 2: no object or group named \"no such part\"\n");
@@ -137,8 +152,8 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
                         << window.string()
                         << "\n"
                            "quit\n";
-  const Result r = run(underXvfb(
-      kSource + "/examples/engine-cutaway.json --size 640x480 --script " + script.string()));
+  const Result r = runUnderXvfb(kSource + "/examples/engine-cutaway.json --size 640x480 --script " +
+                                script.string());
   ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("probe 320 240: cutawayDepth ["), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("saved " + saved.string()), std::string::npos) << r.out;
