@@ -141,6 +141,10 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
                            "save-aovs "
                         << aovs.string()
                         << "\n"
+                           // A camera path whose first key is the screenshot's camera.
+                           "key 0\n"
+                           "orbit 40 0\n"
+                           "key 2\n"
                            "save "
                         << saved.string()
                         << "\n"
@@ -168,7 +172,8 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
       covered += shot.at(x, y)[0] < 200 || shot.at(x, y)[2] < 180;
   EXPECT_GT(covered, shot.width * shot.height / 10);
 
-  // `cutaway render` of the saved scene: the same image. Both run Mesa's llvmpipe (GLX in the
+  // `cutaway render` of the saved scene (at time 0: the first key of its camera path, the
+  // screenshot's camera): the same image. Both run Mesa's llvmpipe (GLX in the
   // window, EGL surfaceless in the CLI) on the same scene values, bit for bit (floats are
   // saved in their shortest exact form); the images were identical when this was written.
   // The slack (a mean of 0.1/255, 0.05% of the pixels off by more than 32) is for a driver
@@ -225,6 +230,8 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
   for (const auto& o : json["objects"][0]["overrides"])
     if (o.contains("params") && o["params"].value("cutawayAngle", 0.0) == 40.0) ++pistonOverrides;
   EXPECT_EQ(pistonOverrides, 2);
+  ASSERT_EQ(json["camera"]["path"].size(), 2u);
+  EXPECT_EQ(json["camera"]["path"][1]["time"], 2.0);
 
   // The window screenshot shows the panels over the view: ImGui's dark windows where the
   // rendered image is light.

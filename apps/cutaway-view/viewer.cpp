@@ -543,7 +543,10 @@ std::string Viewer::valueAt(int x, int y) const {
 }
 
 void Viewer::pick(int x, int y, bool add) {
-  if (x < 0 || y < 0 || x >= width_ || y >= height_ || objectIds_.empty()) return;
+  // The ids are the last frame's: after a resize they wait for the next render.
+  if (x < 0 || y < 0 || x >= width_ || y >= height_ ||
+      objectIds_.size() != std::size_t(width_) * std::size_t(height_))
+    return;
   const float id = objectIds_[std::size_t(height_ - 1 - y) * width_ + x];
   if (!add) state_.selection.clear();
   if (id >= 0) {
