@@ -1,9 +1,15 @@
 #include "cutaway/gl/window_context.hpp"
 
+#include <dlfcn.h>
 #include <epoxy/gl.h>
+#include <link.h>
 // After epoxy: GLFW must not include the system GL header itself.
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include "cutaway/core/error.hpp"
 
@@ -19,6 +25,25 @@ std::string& lastGlfwError() {
 
 void onGlfwError(int, const char* description) {
   lastGlfwError() = description ? description : "unknown GLFW error";
+}
+
+// The DRI drivers that GLX loaded for this context stay loaded to the end of the process (as
+// the headless context keeps EGL's, see context.cpp): glfwTerminate unloads libGL, which
+// unloads the driver, and the driver's once-per-process allocations then read as leaks to
+// LeakSanitizer (Mesa's swrast_dri.so under Xvfb).
+void keepDriversLoaded() {
+  std::vector<std::string> drivers;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, std::size_t, void* out) {
+        const std::string_view name = info->dlpi_name ? info->dlpi_name : "";
+        if (name.ends_with("_dri.so"))
+          static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+        return 0;
+      },
+      &drivers);
+  // Outside dl_iterate_phdr, which holds the loader's lock.
+  for (const auto& driver : drivers)
+    dlopen(driver.c_str(), RTLD_LAZY | RTLD_NOLOAD | RTLD_NODELETE);
 }
 
 }  // namespace
@@ -45,6 +70,7 @@ std::unique_ptr<WindowContext> WindowContext::create(const WindowOptions& option
     throw Error("OpenGL 4.5 core required, the window's driver gives " +
                 std::to_string(epoxy_gl_version() / 10) + "." +
                 std::to_string(epoxy_gl_version() % 10));
+  keepDriversLoaded();
   self->setVsync(options.vsync);
   self->info_ = ContextInfo::query();
   return self;
