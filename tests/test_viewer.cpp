@@ -55,17 +55,18 @@ bool hasXvfbRun() {
 
 // Runs the viewer under Xvfb: a private server (-a picks a free display number), a screen
 // larger than any window the tests open, 24-bit colour so that the window has an RGB8
-// default framebuffer. The viewer's exit status and stderr are its own, kept apart from
-// xvfb-run's (which can fail its clean-up after a clean run: "problem while cleaning up
-// temporary directory").
+// default framebuffer, and -noreset: a server reset when the viewer disconnects signals
+// xvfb-run (SIGUSR1) in the middle of its clean-up, which then fails ("problem while
+// cleaning up temporary directory") and leaves the server running. The viewer's exit status
+// and stderr are its own, kept apart from xvfb-run's.
 Result runUnderXvfb(const std::string& args) {
   const fs::path rc = scratch("viewer.rc"), err = scratch("viewer.err");
   Result outer;
   // A second try when the server did not start (another Xvfb took the display meanwhile).
   for (int attempt = 0; attempt < 2; ++attempt) {
     fs::remove(rc);
-    outer = run("xvfb-run -a -s '-screen 0 1280x1024x24' sh -c '" + kViewer + " " + args + " 2>" +
-                err.string() + "; echo $? >" + rc.string() + "'");
+    outer = run("xvfb-run -a -s '-screen 0 1280x1024x24 -noreset' sh -c '" + kViewer + " " + args +
+                " 2>" + err.string() + "; echo $? >" + rc.string() + "'");
     std::ifstream rcStream(rc), errStream(err);
     int status = -1;
     if (rcStream >> status)
