@@ -94,8 +94,12 @@ void scenePanel(ViewerState& state) {
     const std::string title = (group.empty() ? std::string("(no group)") : group) + " (" +
                               std::to_string(members.size()) + ")";
     ImGui::PushID(group.c_str());
-    const bool open =
-        ImGui::TreeNodeEx(title.c_str(), group.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen);
+    // Groups are what the author singled out: open. The ungrouped rest (often the many parts
+    // of the context) starts closed unless it is short.
+    constexpr std::size_t kShortList = 20;
+    const bool open = ImGui::TreeNodeEx(
+        title.c_str(),
+        !group.empty() || members.size() <= kShortList ? ImGuiTreeNodeFlags_DefaultOpen : 0);
     if (!group.empty()) {
       ImGui::SameLine();
       if (ImGui::SmallButton("select")) {
