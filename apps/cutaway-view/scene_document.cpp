@@ -220,6 +220,7 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
   std::size_t k = 0;
   const std::size_t n = current.objects.size();
   for (auto& entry : doc["objects"]) {
+    if (k >= n) break;  // reported below
     const std::string name = entry.at("name").get<std::string>();
     if (entry.value("split", "file") != "nodes") {
       patchEntry(entry, original.objects[k], current.objects[k]);
@@ -233,8 +234,11 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
     if (entry.contains("overrides") && entry["overrides"].empty()) entry.erase("overrides");
   }
   if (doc.contains("proxies"))
-    for (auto& entry : doc["proxies"])
-      patchEntry(entry, original.objects[k], current.objects[k]), ++k;
+    for (auto& entry : doc["proxies"]) {
+      if (k >= n) break;  // reported below
+      patchEntry(entry, original.objects[k], current.objects[k]);
+      ++k;
+    }
   if (k != n)
     throw Error(target.string(), "", "the viewer's objects no longer match the scene file");
 

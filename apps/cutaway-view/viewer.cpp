@@ -81,6 +81,8 @@ Viewer::Viewer(const ViewerOptions& options) : options_(options) {
   camera.fit = false;
   camera.eye = resolved.eye, camera.target = resolved.target, camera.height = resolved.height;
   state_.showPanels = options.panels;
+  // Bounds walk every vertex: once, for the fly speed (they cover the whole animation).
+  sceneRadius_ = std::max(original_.bounds().radius(), 1e-3f);
   const fs::path stem = options.scene.stem();
   state_.savePath = (options.scene.parent_path() / (stem.string() + ".view.json")).string();
   state_.screenshotPath = stem.string() + "-view.png";
@@ -214,8 +216,8 @@ void Viewer::handleInput(float seconds) {
     }
     if (state_.flyMode && !io.KeyCtrl) {
       // Half the scene's radius per second; Shift for four times that.
-      const float speed = 0.5f * std::max(state_.scene.bounds().radius(), 1e-3f) *
-                          (io.KeyShift ? 4.0f : 1.0f) * std::min(seconds, 0.1f);
+      const float speed =
+          0.5f * sceneRadius_ * (io.KeyShift ? 4.0f : 1.0f) * std::min(seconds, 0.1f);
       GLFWwindow* w = window_->window();
       const auto down = [w](int key) { return glfwGetKey(w, key) == GLFW_PRESS ? 1.0f : 0.0f; };
       const glm::vec3 move(down(GLFW_KEY_D) - down(GLFW_KEY_A), down(GLFW_KEY_E) - down(GLFW_KEY_Q),

@@ -78,6 +78,7 @@ class Viewer {
   std::unique_ptr<gl::WindowContext> window_;
   std::unique_ptr<Renderer> renderer_;
   int width_ = 0, height_ = 0;  // framebuffer = render size
+  float sceneRadius_ = 1.0f;    // of the visible objects' bounds, world units
 
   std::vector<float> objectIds_;  // last frame's objectId AOV, rows bottom to top
   FloatImage aovImage_;           // the shown AOV, rows bottom to top
