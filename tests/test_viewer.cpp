@@ -135,6 +135,7 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
                            "set adaptive.angle 30\n"
                            "angle 40\n"
                            "set style.lines.width 2\n"
+                           "pick 320 240\n"
                            "deselect\n"
                            "screenshot "
                         << view.string()
@@ -161,6 +162,8 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
                                 script.string());
   ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("probe 320 240: cutawayDepth ["), std::string::npos) << r.out;
+  // The centre of the view shows a part of the engine (picked through the object-id AOV).
+  EXPECT_NE(r.out.find("pick 320 240: engine/nodes["), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("saved " + saved.string()), std::string::npos) << r.out;
 
   // The rendered view: its size, and the engine covers a good part of it.

@@ -351,6 +351,22 @@ TEST(ViewerSelection, CameraKeysMustIncrease) {
   EXPECT_EQ(state.cameraPath.size(), 2u);
 }
 
+TEST(ViewerSelection, PathPreviewInterpolatesTheRecordedKeys) {
+  ViewerState state;
+  state.scene.objects.resize(1);
+  state.scene.objects[0].mesh = std::make_shared<Mesh>(makeBox({-1, -1, -1}, {1, 1, 1}));
+  state.scene.camera.eye = {0, 0, 10};
+  addCameraKey(state, 0.0f);
+  state.scene.camera.eye = {0, 0, 20};
+  addCameraKey(state, 2.0f);
+  state.scene.camera.eye = {5, 0, 5};  // the interactive camera, elsewhere
+  state.time = 0.5f;
+  EXPECT_EQ(viewCamera(state).eye, glm::vec3(5, 0, 5));  // not previewing
+  state.previewPath = true;
+  EXPECT_NEAR(viewCamera(state).eye.z, 12.5f, 1e-5f);
+  EXPECT_GT(viewCamera(state).near, 0.0f);  // resolved: near and far derived
+}
+
 // A scene with an object split into nodes (two_parts.obj), a whole-file object and a proxy.
 constexpr const char* kSavedScene = R"({
   "resolution": [64, 48],
