@@ -326,6 +326,11 @@ TEST(ViewerColormap, TurboEndsAndIds) {
   const Rgba8Image shown = applyColormap(ids, Colormap::Ids, finiteRange(ids, 0));
   EXPECT_EQ(shown.at(0, 0)[0], 0);
   EXPECT_EQ(shown.at(1, 0)[3], 255);
+  FloatImage depth(3, 1, 1);
+  depth.data = {0.0f, 4.0f, 9.0f};  // a background texel, then two objects
+  EXPECT_EQ(finiteRange(depth, 0).min, 0.0f);
+  EXPECT_EQ(finiteRange(depth, 0, {0, 1, 1}).min, 4.0f);
+  EXPECT_EQ(finiteRange(depth, 0, {0, 1, 1}).max, 9.0f);
   EXPECT_EQ(resolveColormap(Colormap::Auto, "normal", 3), Colormap::Normals);
   EXPECT_EQ(resolveColormap(Colormap::Auto, "cutawayDepth", 1), Colormap::Turbo);
 }

@@ -30,10 +30,13 @@ Colormap resolveColormap(Colormap c, const std::string& aov, int channels) {
   return channels == 3 ? Colormap::Rgb : Colormap::Turbo;
 }
 
-ValueRange finiteRange(const FloatImage& image, int channel) {
+ValueRange finiteRange(const FloatImage& image, int channel,
+                       const std::vector<std::uint8_t>& include) {
   float lo = INFINITY, hi = -INFINITY;
+  const std::size_t channels = std::size_t(image.channels);
   for (std::size_t i = 0; i < image.data.size(); ++i) {
-    if (channel >= 0 && int(i % std::size_t(image.channels)) != channel) continue;
+    if (channel >= 0 && int(i % channels) != channel) continue;
+    if (!include.empty() && !include[i / channels]) continue;
     const float v = image.data[i];
     if (!std::isfinite(v)) continue;
     lo = std::min(lo, v);

@@ -6,6 +6,7 @@
 //   Rgba8Image shown = applyColormap(depth, Colormap::Turbo, r);
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,9 +34,11 @@ Colormap resolveColormap(Colormap c, const std::string& aov, int channels);
 struct ValueRange {
   float min = 0, max = 1;
 };
-// Smallest and largest finite value over channel `channel` (all channels if −1); [0, 1] for an
-// image without finite values.
-ValueRange finiteRange(const FloatImage& image, int channel);
+// Smallest and largest finite value over channel `channel` (all channels if −1) of the
+// texels whose entry in `include` is non-zero (all texels when `include` is empty); [0, 1]
+// when there is no such value.
+ValueRange finiteRange(const FloatImage& image, int channel,
+                       const std::vector<std::uint8_t>& include = {});
 
 glm::vec3 turbo(float t);  // t in [0, 1]
 glm::vec3 idColor(int id);

@@ -479,9 +479,20 @@ void Viewer::refreshAov() {
       FloatImage(d.width ? d.width : frame.width(), d.height ? d.height : frame.height(), channels);
   aovImage_.data = frame.read(state_.aov, channels);
   const Colormap map = resolveColormap(state_.colormap, state_.aov, channels);
-  if (state_.autoRange)
+  state_.shownColormap = map;
+  if (state_.autoRange) {
+    // Over the pixels that show an object: background values (0 view depth, depth 1, zero
+    // positions) would squeeze the objects' values into a sliver of the colour map. Buffers
+    // of another size (the n×n cutaway buffer) have no background to leave out.
+    std::vector<std::uint8_t> objects;
+    if (aovImage_.width == width_ && aovImage_.height == height_ &&
+        objectIds_.size() == std::size_t(width_) * std::size_t(height_)) {
+      objects.resize(objectIds_.size());
+      for (std::size_t i = 0; i < objects.size(); ++i) objects[i] = objectIds_[i] >= 0.0f;
+    }
     state_.range =
-        finiteRange(aovImage_, map == Colormap::Rgb || map == Colormap::Normals ? -1 : 0);
+        finiteRange(aovImage_, map == Colormap::Rgb || map == Colormap::Normals ? -1 : 0, objects);
+  }
   upload(aovTexture_, applyColormap(aovImage_, map, state_.range));
 }
 
@@ -519,6 +530,9 @@ void Viewer::drawView() {
   const int x = int(io.MousePos.x * scale), y = int(io.MousePos.y * scale);
   state_.cursorValue =
       x >= 0 && y >= 0 && x < width_ && y < height_ && !io.WantCaptureMouse ? valueAt(x, y) : "";
+  // The inspected buffer's value follows the cursor (not while dragging the camera).
+  if (!state_.aov.empty() && !state_.cursorValue.empty() && !viewDrag_)
+    ImGui::SetTooltip("%s", state_.cursorValue.c_str());
 }
 
 std::string Viewer::valueAt(int x, int y) const {

@@ -31,6 +31,7 @@ struct ViewerState {
   // AOV inspector: "" shows the final colour.
   std::string aov;
   Colormap colormap = Colormap::Auto;
+  Colormap shownColormap = Colormap::Turbo;  // `colormap` resolved for the shown buffer
   bool autoRange = true;
   ValueRange range;
   std::vector<std::string> aovNames;  // of the current frame

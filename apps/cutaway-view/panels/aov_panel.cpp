@@ -33,6 +33,21 @@ void aovPanel(ViewerState& state) {
                         0, "%.5g"))
     state.aovChanged = true;
   ImGui::EndDisabled();
+  if (state.shownColormap == Colormap::Turbo || state.shownColormap == Colormap::Gray) {
+    // The scale: the range's minimum on the left, its maximum on the right.
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    const float width = ImGui::CalcItemWidth(), height = ImGui::GetFrameHeight() * 0.5f;
+    constexpr int kSteps = 64;
+    for (int i = 0; i < kSteps; ++i) {
+      const float t = (float(i) + 0.5f) / kSteps;
+      const glm::vec3 c = state.shownColormap == Colormap::Turbo ? turbo(t) : glm::vec3(t);
+      draw->AddRectFilled(ImVec2(at.x + width * float(i) / kSteps, at.y),
+                          ImVec2(at.x + width * float(i + 1) / kSteps + 1.0f, at.y + height),
+                          ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+    }
+    ImGui::Dummy(ImVec2(width, height));
+  }
   const auto meaning = state.aovMeanings.find(state.aov);
   if (meaning != state.aovMeanings.end()) ImGui::TextWrapped("%s", meaning->second.c_str());
   ImGui::Separator();
