@@ -429,7 +429,15 @@ void Viewer::frameSelection() {
 }
 
 void Viewer::update() {
-  if (state_.sceneChanged) {
+  // While a slider is dragged, a machine that needs longer than this for a new renderer and
+  // its frame (llvmpipe: about a second for the engine) rebuilds when the slider is let go,
+  // so that the slider follows the mouse; a faster one updates live.
+  constexpr double kLiveRebuildMs = 150.0;
+  const bool dragging = ImGui::GetCurrentContext() && ImGui::IsAnyItemActive() && !script_;
+  if (state_.sceneChanged && renderer_ && dragging && rebuildMs_ > kLiveRebuildMs) return;
+  const bool rebuild = state_.sceneChanged;
+  if (rebuild) {
+    const auto start = std::chrono::steady_clock::now();
     // The renderer keeps a reference to the scene and builds its passes from it: a new one.
     renderer_.reset();
     renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
@@ -444,6 +452,8 @@ void Viewer::update() {
       state_.aov.clear();  // e.g. the cutter's buffers after turning it off
     state_.sceneChanged = false;
     state_.viewChanged = true;
+    rebuildMs_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   if (state_.viewChanged) {
     const auto start = std::chrono::steady_clock::now();
@@ -451,6 +461,7 @@ void Viewer::update() {
     state_.timings = renderer_->timings();  // waits for the frame's timer queries
     state_.renderMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (rebuild) rebuildMs_ += state_.renderMs;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     readFrameBuffers();
     state_.viewChanged = false;

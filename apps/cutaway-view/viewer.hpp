@@ -79,6 +79,7 @@ class Viewer {
   std::unique_ptr<Renderer> renderer_;
   int width_ = 0, height_ = 0;  // framebuffer = render size
   float sceneRadius_ = 1.0f;    // of the visible objects' bounds, world units
+  double rebuildMs_ = 0;        // wall time of the last renderer rebuild and its first frame
 
   std::vector<float> objectIds_;  // last frame's objectId AOV, rows bottom to top
   FloatImage aovImage_;           // the shown AOV, rows bottom to top
