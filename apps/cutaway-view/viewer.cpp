@@ -598,7 +598,7 @@ void Viewer::screenshot(const fs::path& path) {
   update();
   writePng(path, renderer_->readColor());
   state_.status = "wrote " + path.string() + " (" + std::to_string(width_) + "x" +
-                  std::to_string(height_) + ")";
+                  std::to_string(height_) + ", " + state_.rendererName + ")";
   std::printf("%s\n", state_.status.c_str());
   std::fflush(stdout);
 }
