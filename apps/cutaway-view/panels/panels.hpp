@@ -1,0 +1,27 @@
+// The viewer's Dear ImGui panels, one function per panel and file, each drawing from and
+// writing to the ViewerState. A new cutter's panel is a file like adaptive_panel.cpp that
+// draws its parameter table (parameters/<cutter>.cpp) with parameterTable() and whatever
+// the cutter needs besides; the viewer calls it from its "Cutters" section.
+#pragma once
+
+#include <vector>
+
+#include "../parameters.hpp"
+#include "../viewer_state.hpp"
+
+namespace cutaway::view {
+
+// One parameter's widget (checkbox, slider, combo, colour); true when the user changed it.
+bool parameterWidget(const Parameter& parameter, Scene& scene);
+// Every parameter of `table`, greyed out where it does not apply; flags sceneChanged.
+void parameterTable(const std::vector<Parameter>& table, ViewerState& state);
+
+void scenePanel(ViewerState& state);     // objects by group, selection, role, importance, angle
+void cameraPanel(ViewerState& state);    // projection, fly mode, framing, path, time
+void filePanel(ViewerState& state);      // save scene, screenshot
+void adaptivePanel(ViewerState& state);  // the adaptive cutter (Burns08/11)
+void stylePanel(ViewerState& state);     // shading and lines
+void aovPanel(ViewerState& state);       // AOV inspector: buffer, colour map, range, value
+void timingsPanel(const ViewerState& state, float framesPerSecond);
+
+}  // namespace cutaway::view

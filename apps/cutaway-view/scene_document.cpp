@@ -1,0 +1,301 @@
+#include "scene_document.hpp"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include "cutaway/core/atomic_file.hpp"
+#include "cutaway/core/error.hpp"
+
+namespace cutaway::view {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+namespace {
+
+// The shortest decimal that reads back as the same float: 35 stays 35, not
+// 35.000000000000001, and the loader's float of it is bit-identical to the viewer's.
+double exact(float f) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, f).ptr;
+  double d = 0;
+  std::from_chars(buffer, end, d);
+  return d;
+}
+
+json vec(const glm::vec3& v) {
+  return {exact(v.x), exact(v.y), exact(v.z)};
+}
+
+json paramJson(const ParamValue& v) {
+  return std::visit([](auto x) { return json(x); }, v);
+}
+
+// The value that has the effect of leaving `key` unset, for overrides, which can set a
+// parameter but not remove one.
+ParamValue unsetValue(const std::string& key, const Scene& scene) {
+  if (key == "cutawayAngle")
+    return double(exact(scene.adaptive ? scene.adaptive->angle : AdaptiveCutawayOptions{}.angle));
+  return true;  // "lines": drawn unless turned off
+}
+
+struct Changes {
+  bool role = false, importance = false;
+  ObjectParams setParams;                // changed or new
+  std::vector<std::string> unsetParams;  // present when loaded, removed since
+  bool any() const { return role || importance || !setParams.empty() || !unsetParams.empty(); }
+};
+
+Changes changes(const SceneObject& before, const SceneObject& after) {
+  Changes c;
+  c.role = before.role != after.role;
+  c.importance = before.importance != after.importance;
+  for (const auto& [k, v] : after.params) {
+    const auto it = before.params.find(k);
+    if (it == before.params.end() || it->second != v) c.setParams[k] = v;
+  }
+  for (const auto& [k, v] : before.params)
+    if (!after.params.count(k)) c.unsetParams.push_back(k);
+  return c;
+}
+
+// An object entry (not split), or a proxy: the keys are the object's own.
+void patchEntry(json& entry, const SceneObject& before, const SceneObject& after) {
+  const Changes c = changes(before, after);
+  if (c.role) entry["role"] = roleName(after.role);
+  if (c.importance) entry["importance"] = exact(after.importance);
+  for (const auto& [k, v] : c.setParams) entry["params"][k] = paramJson(v);
+  for (const auto& k : c.unsetParams)
+    if (entry.contains("params")) entry["params"].erase(k);
+  if (entry.contains("params") && entry["params"].empty()) entry.erase("params");
+}
+
+// One node of an entry split into nodes: an override matching exactly the node, last.
+void patchNode(json& entry, const std::string& node, const SceneObject& before,
+               const SceneObject& after, const Scene& scene) {
+  const Changes c = changes(before, after);
+  if (!c.any()) return;
+  const std::string match = escapeRegex(node);
+  json& overrides = entry["overrides"];
+  json mine = {{"match", match}};
+  // A previous save's exact override: its keys that we set again move to the new last one,
+  // the rest (a colour, say) stays where it was so that its precedence does not change.
+  for (std::size_t i = 0; i < overrides.size();) {
+    json& o = overrides[i];
+    if (o.value("match", "") != match) {
+      ++i;
+      continue;
+    }
+    for (const char* key : {"role", "importance"})
+      if (o.contains(key)) mine[key] = o[key], o.erase(key);
+    if (o.contains("params")) {
+      for (auto& [k, v] : o["params"].items()) mine["params"][k] = v;
+      o.erase("params");
+    }
+    if (o.size() == 1)
+      overrides.erase(i);
+    else
+      ++i;
+  }
+  // Written in full (not only what changed) so that the node ends as the viewer shows it
+  // whatever the overrides before this one say.
+  mine["role"] = roleName(after.role);
+  mine["importance"] = exact(after.importance);
+  for (const auto& [k, v] : after.params) mine["params"][k] = paramJson(v);
+  for (const auto& k : c.unsetParams) mine["params"][k] = paramJson(unsetValue(k, scene));
+  overrides.push_back(mine);
+}
+
+void makePathsAbsolute(json& doc, const fs::path& baseDir) {
+  if (!doc.contains("objects") || !doc["objects"].is_array()) return;
+  for (auto& entry : doc["objects"])
+    if (entry.contains("file") && entry["file"].is_string()) {
+      const fs::path file = entry["file"].get<std::string>();
+      if (file.is_relative())
+        entry["file"] = fs::absolute(baseDir / file).lexically_normal().string();
+    }
+}
+
+}  // namespace
+
+std::string escapeRegex(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    if (std::string_view("\\^$.|?*+()[]{}").find(c) != std::string_view::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+json cameraJson(const Camera& c) {
+  json j = {
+      {"projection", c.projection == Projection::Orthographic ? "orthographic" : "perspective"},
+      {"eye", vec(c.eye)},
+      {"target", vec(c.target)},
+      {"up", vec(c.up)},
+      {"fov", exact(c.fovY)},
+      {"height", exact(c.height)}};
+  if (c.near > 0) j["near"] = exact(c.near);
+  if (c.far > 0) j["far"] = exact(c.far);
+  if (!c.path.empty()) {
+    json path = json::array();
+    for (const auto& k : c.path)
+      path.push_back({{"time", exact(k.time)}, {"eye", vec(k.eye)}, {"target", vec(k.target)}});
+    j["path"] = path;
+  }
+  return j;
+}
+
+json styleJson(const Style& s) {
+  json j = {{"name", s.name}};
+  if (s.lines) {
+    const LineStyle& l = *s.lines;
+    j["lines"] = {{"silhouettes", l.silhouettes},
+                  {"creases", l.creases},
+                  {"creaseAngle", exact(l.creaseAngle)},
+                  {"depthThreshold", exact(l.depthThreshold)},
+                  {"width", exact(l.width)},
+                  {"color", vec(l.color)}};
+  } else {
+    j["lines"] = false;
+  }
+  j["gooch"] = {{"cool", vec(s.gooch.cool)},
+                {"warm", vec(s.gooch.warm)},
+                {"alpha", exact(s.gooch.alpha)},
+                {"beta", exact(s.gooch.beta)}};
+  j["blinnPhong"] = {{"ambient", exact(s.blinnPhong.ambient)}};
+  return j;
+}
+
+json adaptiveJson(const AdaptiveCutawayOptions& o) {
+  using O = AdaptiveCutawayOptions;
+  json j = {{"angle", exact(o.angle)},
+            {"bufferSize", o.bufferSize},
+            {"perspectiveCompensation", o.perspectiveCompensation},
+            {"edgeCompression", o.edgeCompression ? json(exact(o.edgeRegion)) : json(false)},
+            // The loader turns the constraint on for a floorNormal and then applies this key.
+            {"floorNormal", vec(o.floorNormal)},
+            {"directionalConstraint", o.directionalConstraint},
+            {"jumpFlooding", fields::variantName(o.variant)},
+            {"compute", o.compute == O::Compute::Gpu   ? "gpu"
+                        : o.compute == O::Compute::Cpu ? "cpu"
+                                                       : "auto"},
+            {"cutSurfaces", o.cutSurfaces == O::CutSurfaces::All          ? "all"
+                            : o.cutSurfaces == O::CutSurfaces::Watertight ? "watertight"
+                                                                          : "none"},
+            {"outlines", o.outlines},
+            {"outlineColor", vec(o.outlineColor)},
+            {"ghostLines", o.ghostLines ? json{{"distance", exact(o.ghostDistance)},
+                                               {"opacity", exact(o.ghostOpacity)}}
+                                        : json(false)}};
+  if (o.cutSurfaceColor) j["cutSurfaceColor"] = vec(*o.cutSurfaceColor);
+  return j;
+}
+
+SceneDocument SceneDocument::load(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path.string(), "", "cannot open scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    return SceneDocument(json::parse(text.str()), path);
+  } catch (const json::exception& e) {
+    throw Error(path.string(), "", std::string("invalid JSON: ") + e.what());
+  }
+}
+
+SceneDocument::SceneDocument(json document, fs::path path)
+    : document_(std::move(document)), path_(std::move(path)) {}
+
+json SceneDocument::patched(const Scene& original, const Scene& current,
+                            const fs::path& target) const {
+  if (original.objects.size() != current.objects.size())
+    throw Error(target.string(), "", "the viewer's objects no longer match the scene file");
+  json doc = document_;
+  doc["camera"] = cameraJson(current.camera);
+  if (current.width != original.width || current.height != original.height)
+    doc["resolution"] = {current.width, current.height};
+
+  std::size_t k = 0;
+  const std::size_t n = current.objects.size();
+  for (auto& entry : doc["objects"]) {
+    if (k >= n) break;  // reported below
+    const std::string name = entry.at("name").get<std::string>();
+    if (entry.value("split", "file") != "nodes") {
+      patchEntry(entry, original.objects[k], current.objects[k]);
+      ++k;
+      continue;
+    }
+    const std::string prefix = name + "/";
+    for (; k < n && !current.objects[k].proxy && current.objects[k].name.starts_with(prefix); ++k)
+      patchNode(entry, current.objects[k].name.substr(prefix.size()), original.objects[k],
+                current.objects[k], current);
+    if (entry.contains("overrides") && entry["overrides"].empty()) entry.erase("overrides");
+  }
+  if (doc.contains("proxies"))
+    for (auto& entry : doc["proxies"]) {
+      if (k >= n) break;  // reported below
+      patchEntry(entry, original.objects[k], current.objects[k]);
+      ++k;
+    }
+  if (k != n)
+    throw Error(target.string(), "", "the viewer's objects no longer match the scene file");
+
+  const bool adaptiveChanged =
+      original.adaptive.has_value() != current.adaptive.has_value() ||
+      (current.adaptive && adaptiveJson(*original.adaptive) != adaptiveJson(*current.adaptive));
+  if (adaptiveChanged) {
+    if (current.adaptive) {
+      doc["cutters"]["adaptive"] = adaptiveJson(*current.adaptive);
+    } else if (doc.contains("cutters")) {
+      doc["cutters"].erase("adaptive");
+      if (doc["cutters"].empty()) doc.erase("cutters");
+    }
+  }
+  const json style = styleJson(current.style);
+  if (style != styleJson(original.style)) {
+    json& s = doc["style"];
+    if (s.is_string()) s = json{{"name", s}};
+    if (!s.is_object()) s = json::object();
+    for (auto& [key, value] : style.items()) s[key] = value;
+  }
+  const fs::path from = fs::weakly_canonical(fs::absolute(path_)).parent_path();
+  const fs::path to = fs::weakly_canonical(fs::absolute(target)).parent_path();
+  if (from != to) makePathsAbsolute(doc, path_.parent_path());
+  return doc;
+}
+
+void SceneDocument::save(const Scene& original, const Scene& current,
+                         const fs::path& target) const {
+  const std::string text = patched(original, current, target).dump(2) + "\n";
+  // The strict loader is the judge of the format; then what the viewer changed must read back.
+  Scene saved;
+  try {
+    saved = parseScene(text, target, target.parent_path());
+  } catch (const Error& e) {
+    throw Error(target.string(), e.place(), "the saved scene would not load: " + e.reason());
+  }
+  const auto mismatch = [&](const std::string& what) {
+    throw Error(target.string(), "", "the saved scene does not reproduce the viewer's " + what);
+  };
+  if (saved.objects.size() != current.objects.size()) mismatch("objects");
+  for (std::size_t i = 0; i < saved.objects.size(); ++i) {
+    const SceneObject &a = saved.objects[i], &b = current.objects[i];
+    if (a.name != b.name || a.role != b.role || a.importance != b.importance)
+      mismatch("object \"" + b.name + "\"");
+    // Unset parameters may come back as their neutral value (unsetValue).
+    for (const auto& [key, value] : b.params)
+      if (!a.params.count(key) || a.params.at(key) != value)
+        mismatch("parameters of \"" + b.name + "\"");
+  }
+  if (cameraJson(saved.camera) != cameraJson(current.camera)) mismatch("camera");
+  if (saved.adaptive.has_value() != current.adaptive.has_value() ||
+      (saved.adaptive && adaptiveJson(*saved.adaptive) != adaptiveJson(*current.adaptive)))
+    mismatch("adaptive cutter");
+  if (styleJson(saved.style) != styleJson(current.style)) mismatch("style");
+  if (saved.width != current.width || saved.height != current.height) mismatch("resolution");
+  writeFileAtomically(target, [&](std::ostream& os) { os << text; });
+}
+
+}  // namespace cutaway::view

@@ -1,0 +1,94 @@
+// The interactive viewer: a GLFW window showing the scene through the same Renderer as
+// `cutaway render`, with Dear ImGui panels (panels/), mouse and key camera control
+// (camera_controller.hpp), picking through the object-id AOV, the AOV inspector, timings,
+// screenshots and scene saving (scene_document.hpp), and scripted sessions (script.hpp).
+//
+// The renderer renders at the window's framebuffer size; the live Scene is the viewer's
+// copy, and a change of a cutter, style or object option rebuilds the renderer (it builds
+// its passes and programs from the scene), while camera moves only render again.
+//
+//   cutaway::view::Viewer viewer({.scene = "examples/engine-cutaway.json"});   // throws
+//   return viewer.run();
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cutaway/core/image.hpp"
+#include "cutaway/gl/objects.hpp"
+#include "cutaway/gl/window_context.hpp"
+#include "cutaway/render/renderer.hpp"
+#include "scene_document.hpp"
+#include "script.hpp"
+#include "viewer_state.hpp"
+
+namespace cutaway::view {
+
+struct ViewerOptions {
+  std::filesystem::path scene;
+  std::filesystem::path script;  // empty: interactive
+  int width = 0, height = 0;     // window size; 0: the scene's resolution
+  bool panels = true;
+};
+
+class Viewer {
+ public:
+  // Loads the scene (and script), opens the window; throws cutaway::Error (a bad scene or
+  // script, no display).
+  explicit Viewer(const ViewerOptions& options);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  // The event loop; returns the exit status (non-zero when a script line failed).
+  int run();
+
+ private:
+  void handleInput(float seconds);
+  void runScript();
+  void execute(const ScriptCommand& command);
+  void handleRequests();
+  void syncSize();
+  void update();  // rebuilds, renders and recolours as the state's flags say
+  void readFrameBuffers();
+  void refreshAov();
+  void refreshOverlay();
+  void drawView();
+  void drawPanels();
+
+  void pick(int x, int y, bool add);
+  std::string valueAt(int x, int y) const;  // of the shown buffer, framebuffer pixel, top-down
+  void saveScene(const std::filesystem::path& path);
+  void screenshot(const std::filesystem::path& path);
+  void windowShot(const std::filesystem::path& path);
+  void frameSelection();
+  float aspect() const;
+
+  ViewerOptions options_;
+  Scene original_;  // as loaded, for saving
+  std::optional<SceneDocument> document_;
+  ViewerState state_;
+  std::optional<Script> script_;
+  std::size_t scriptNext_ = 0;
+  int waitFrames_ = 0;
+  std::string scriptFailure_;
+
+  std::unique_ptr<gl::WindowContext> window_;
+  std::unique_ptr<Renderer> renderer_;
+  int width_ = 0, height_ = 0;  // framebuffer = render size
+  float sceneRadius_ = 1.0f;    // of the visible objects' bounds, world units
+  double rebuildMs_ = 0;        // wall time of the last renderer rebuild and its first frame
+
+  std::vector<float> objectIds_;  // last frame's objectId AOV, rows bottom to top
+  FloatImage aovImage_;           // the shown AOV, rows bottom to top
+  gl::Texture aovTexture_, overlayTexture_;
+  std::set<std::size_t> overlaySelection_;
+  bool overlayVisible_ = false;
+  bool viewDrag_ = false;  // a mouse press that started on the view, not on a panel
+  std::string pendingWindowShot_;
+  bool quit_ = false;
+};
+
+}  // namespace cutaway::view

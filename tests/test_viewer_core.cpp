@@ -1,0 +1,483 @@
+// The viewer's parts that need no window: the script parser, the parameter tables, the
+// camera moves and scene saving (apps/cutaway-view).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "camera_controller.hpp"
+#include "colormap.hpp"
+#include "cutaway/core/error.hpp"
+#include "parameters.hpp"
+#include "scene_document.hpp"
+#include "script.hpp"
+#include "viewer_state.hpp"
+
+namespace fs = std::filesystem;
+using namespace cutaway;
+using namespace cutaway::view;
+
+namespace {
+
+const std::string kData = CUTAWAY_TEST_DATA;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("cutaway-view-core-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+std::string scriptError(const std::string& text) {
+  try {
+    parseScript(text, "s.txt");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(ViewerScript, ParsesEveryCommand) {
+  const Script s = parseScript(R"(# a session
+wait 3
+orbit 30 -10
+look 5 2
+pan 0.1 -0.2
+zoom 1.5
+fly 0 0 2.5
+projection orthographic
+frame
+
+select connecting rods
+deselect
+pick 10 20
+role interest
+importance 0.75
+angle 40
+angle off
+set adaptive.angle 30
+set style.name blinn-phong
+set style.lines.color 0.1,0.2,0.3
+aov cutawayDepth turbo
+aov off
+probe 1 2
+time 1.5
+key 2
+clear-path
+screenshot out dir/view #1.png
+screenshot-window w.png
+save saved.json
+save-aovs aovs
+panels off
+quit
+)",
+                               "s.txt");
+  ASSERT_EQ(s.commands.size(), 30u);
+  using Kind = ScriptCommand::Kind;
+  EXPECT_EQ(s.commands[0].kind, Kind::Wait);
+  EXPECT_EQ(s.commands[0].line, 2);
+  EXPECT_EQ(s.commands[1].numbers, (std::vector<float>{30, -10}));
+  EXPECT_EQ(s.commands[6].text, "orthographic");
+  EXPECT_EQ(s.commands[8].kind, Kind::Select);
+  EXPECT_EQ(s.commands[8].line, 11);                 // the blank line counts
+  EXPECT_EQ(s.commands[8].text, "connecting rods");  // names may hold spaces
+  EXPECT_EQ(s.commands[13].numbers, (std::vector<float>{40}));
+  EXPECT_EQ(s.commands[14].text, "off");
+  EXPECT_EQ(s.commands[15].parameter, findParameter("adaptive.angle"));
+  EXPECT_EQ(std::get<double>(s.commands[15].value), 30.0);
+  EXPECT_EQ(std::get<std::string>(s.commands[16].value), "blinn-phong");
+  EXPECT_EQ(std::get<glm::vec3>(s.commands[17].value), glm::vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_EQ(s.commands[18].text, "cutawayDepth");
+  EXPECT_EQ(s.commands[18].colormap, "turbo");
+  EXPECT_EQ(s.commands[24].text, "out dir/view #1.png");  // paths keep spaces and '#'
+  EXPECT_FALSE(s.commands[28].on);
+  EXPECT_EQ(s.commands[29].kind, Kind::Quit);
+}
+
+struct BadLine {
+  const char* name;
+  const char* script;
+  const char* error;
+};
+
+class ViewerScriptErrors : public testing::TestWithParam<BadLine> {};
+
+TEST_P(ViewerScriptErrors, NameFileLineAndReason) {
+  EXPECT_EQ(scriptError(GetParam().script), GetParam().error);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadLines, ViewerScriptErrors,
+    testing::Values(
+        BadLine{"UnknownCommand", "wait 1\norbt 30 10\n",
+                "s.txt: line 2: unknown command \"orbt\""},
+        BadLine{"TooFewNumbers", "orbit 30\n",
+                "s.txt: line 1: \"orbit\" takes 2 numbers, got 1 argument"},
+        BadLine{"NotANumber", "zoom fast\n", "s.txt: line 1: expected a number, got \"fast\""},
+        BadLine{"ZoomNotPositive", "zoom 0\n", "s.txt: line 1: zoom factor must be greater than 0"},
+        BadLine{"FractionalWait", "wait 1.5\n",
+                "s.txt: line 1: wait takes a whole number of frames in [0, 100000]"},
+        BadLine{"ImportanceRange", "\n\nimportance 2\n",
+                "s.txt: line 3: importance must lie in [0, 1]"},
+        BadLine{"UnknownRole", "role focus\n",
+                "s.txt: line 1: unknown role \"focus\" (expected one of: context, interest, "
+                "exterior, interior)"},
+        BadLine{"AngleRange", "angle 120\n",
+                "s.txt: line 1: cutaway angle must lie in [0, 90] degrees"},
+        BadLine{"SetValueRange", "set adaptive.angle 95\n",
+                "s.txt: line 1: adaptive.angle: value 95 is outside [0, 90]"},
+        BadLine{"SetIntegerParameter", "set adaptive.bufferSize 100.5\n",
+                "s.txt: line 1: adaptive.bufferSize: expected an integer, got 100.5"},
+        BadLine{"SetBool", "set adaptive.outlines maybe\n",
+                "s.txt: line 1: adaptive.outlines: expected true/false or on/off, got \"maybe\""},
+        BadLine{"SetChoice", "set adaptive.compute gpu2\n",
+                "s.txt: line 1: adaptive.compute: unknown value \"gpu2\" (expected one of: auto, "
+                "gpu, cpu)"},
+        BadLine{"SetColour", "set style.lines.color 1,2,0\n",
+                "s.txt: line 1: style.lines.color: colour channels must lie in [0, 1], got "
+                "\"1,2,0\""},
+        BadLine{"SetMissingValue", "set adaptive.angle\n",
+                "s.txt: line 1: \"set\" takes a parameter key and a value, got 1 argument"},
+        BadLine{"Projection", "projection fisheye\n",
+                "s.txt: line 1: projection must be perspective or orthographic, got \"fisheye\""},
+        BadLine{"Colormap", "aov depth jet\n",
+                "s.txt: line 1: unknown colormap \"jet\" (expected one of: auto, gray, turbo, rgb, "
+                "normals, ids)"},
+        BadLine{"SelectWithoutName", "select\n", "s.txt: line 1: \"select\" needs an argument"},
+        BadLine{"QuitWithArgument", "quit now\n",
+                "s.txt: line 1: \"quit\" takes no arguments, got 1 argument"},
+        BadLine{"NegativePixel", "pick -1 3\n", "s.txt: line 1: pixel coordinates must be ≥ 0"},
+        BadLine{"Panels", "panels maybe\n",
+                "s.txt: line 1: panels takes on or off, got \"maybe\""}),
+    [](const testing::TestParamInfo<BadLine>& info) { return std::string(info.param.name); });
+
+TEST(ViewerScript, UnknownParameterListsTheKnownOnes) {
+  const std::string e = scriptError("set adaptive.anlge 30\n");
+  EXPECT_EQ(e.rfind("s.txt: line 1: unknown parameter \"adaptive.anlge\" (known: adaptive.enabled, "
+                    "adaptive.angle,",
+                    0),
+            0u)
+      << e;
+}
+
+TEST(ViewerScript, MissingFileIsAnError) {
+  try {
+    loadScript("/nonexistent/script.txt");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/script.txt: cannot open script file");
+  }
+}
+
+TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
+  Scene scene;
+  for (const auto& group : parameterGroups())
+    for (const auto& p : *group.parameters) {
+      SCOPED_TRACE(p.key);
+      ASSERT_TRUE(p.get && p.set);
+      ParameterValue v;
+      switch (p.type) {
+        case Parameter::Type::Bool:
+          v = !std::get<bool>(p.get(scene));
+          break;
+        case Parameter::Type::Int:
+        case Parameter::Type::Float:
+          v = p.type == Parameter::Type::Int ? std::round((p.min + std::min(p.max, 4096.0)) / 2)
+                                             : (p.min + std::min(p.max, 100.0)) / 2;
+          break;
+        case Parameter::Type::Choice:
+          v = p.choices().back();
+          break;
+        case Parameter::Type::Color:
+          v = glm::vec3(0.25f, 0.5f, 0.75f);
+          break;
+        case Parameter::Type::Direction:
+          v = glm::vec3(0.0f, 0.0f, 1.0f);
+          break;
+      }
+      // Turning a feature off drops its options (adaptive.enabled, style.lines): re-enable.
+      if (p.key != "adaptive.enabled" && p.key != "style.lines") {
+        findParameter("adaptive.enabled")->set(scene, true);
+        findParameter("style.lines")->set(scene, true);
+      }
+      p.set(scene, v);
+      EXPECT_EQ(formatParameterValue(p.get(scene)), formatParameterValue(v));
+      EXPECT_EQ(findParameter(p.key), &p);
+    }
+}
+
+TEST(ViewerParameters, SettingACutterOptionAddsTheCutter) {
+  Scene scene;
+  ASSERT_FALSE(scene.adaptive);
+  findParameter("adaptive.angle")->set(scene, 20.0);
+  ASSERT_TRUE(scene.adaptive);
+  EXPECT_EQ(scene.adaptive->angle, 20.0f);
+  findParameter("adaptive.enabled")->set(scene, false);
+  EXPECT_FALSE(scene.adaptive);
+}
+
+TEST(ViewerParameters, StyleChoicesAreTheLibrarysStyles) {
+  EXPECT_EQ(findParameter("style.name")->choices(), styleNames());
+}
+
+namespace {
+
+Camera testCamera() {
+  Camera c;
+  c.eye = {0, 0, 10};
+  c.target = {0, 0, 0};
+  c.fovY = 40;
+  return c;
+}
+
+}  // namespace
+
+TEST(ViewerCamera, OrbitKeepsTheTargetAndTheDistance) {
+  Camera c = testCamera();
+  orbit(c, 90.0f, 0.0f);
+  EXPECT_EQ(c.target, glm::vec3(0.0f));
+  // A positive yaw carries the eye to the view's right (+x seen from +z).
+  EXPECT_NEAR(c.eye.x, 10.0f, 1e-4f);
+  EXPECT_NEAR(c.eye.z, 0.0f, 1e-4f);
+  orbit(c, 0.0f, 30.0f);
+  EXPECT_NEAR(glm::length(c.eye), 10.0f, 1e-4f);
+  EXPECT_NEAR(c.eye.y, 10.0f * std::sin(glm::radians(30.0f)), 1e-4f);  // raised by 30°
+}
+
+TEST(ViewerCamera, OrbitStopsShortOfThePole) {
+  Camera c = testCamera();
+  orbit(c, 0.0f, 120.0f);
+  const float polar = glm::degrees(std::acos(glm::dot(glm::normalize(c.eye), c.up)));
+  EXPECT_NEAR(polar, kMinPolarDegrees, 1e-3f);
+  EXPECT_GT(glm::length(glm::cross(glm::normalize(c.eye - c.target), c.up)), 1e-3f);
+}
+
+TEST(ViewerCamera, LookTurnsTheGazeAboutTheEye) {
+  Camera c = testCamera();
+  look(c, 90.0f, 0.0f);
+  EXPECT_EQ(c.eye, glm::vec3(0, 0, 10));
+  EXPECT_NEAR(c.target.x, 10.0f, 1e-4f);  // looking right, towards +x
+  EXPECT_NEAR(c.target.z, 10.0f, 1e-4f);
+}
+
+TEST(ViewerCamera, PanMovesByViewHeights) {
+  Camera c = testCamera();
+  const float h = viewHeightAtTarget(c);
+  EXPECT_NEAR(h, 2.0f * 10.0f * std::tan(glm::radians(20.0f)), 1e-5f);
+  pan(c, 0.5f, 0.25f);
+  EXPECT_NEAR(c.target.x, 0.5f * h, 1e-5f);
+  EXPECT_NEAR(c.target.y, 0.25f * h, 1e-5f);
+  EXPECT_NEAR(c.eye.z, 10.0f, 1e-5f);
+}
+
+TEST(ViewerCamera, ZoomAndFly) {
+  Camera c = testCamera();
+  zoom(c, 2.0f);
+  EXPECT_NEAR(c.eye.z, 5.0f, 1e-5f);
+  fly(c, glm::vec3(1.0f, 2.0f, 3.0f));  // right, up, forward
+  EXPECT_NEAR(c.eye.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(c.eye.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(c.eye.z, 2.0f, 1e-5f);
+  EXPECT_NEAR(c.target.z, -3.0f, 1e-5f);
+}
+
+TEST(ViewerCamera, ProjectionSwitchKeepsTheSizeAtTheTarget) {
+  Camera c = testCamera();
+  const float before = viewHeightAtTarget(c);
+  setProjection(c, Projection::Orthographic);
+  EXPECT_NEAR(c.height, before, 1e-5f);
+  c.height *= 0.5f;
+  setProjection(c, Projection::Perspective);
+  EXPECT_NEAR(viewHeightAtTarget(c), before * 0.5f, 1e-4f);
+  EXPECT_NEAR(glm::length(c.eye - c.target), 5.0f, 1e-4f);
+}
+
+TEST(ViewerCamera, FrameBoundsFitsTheBoundingSphere) {
+  Camera c = testCamera();
+  Bounds b;
+  b.extend(glm::vec3(4, 4, 4));
+  b.extend(glm::vec3(6, 8, 5));
+  const float aspect = 0.5f;  // portrait: the horizontal half-angle is the narrower
+  frameBounds(c, b, aspect);
+  EXPECT_EQ(c.target, b.center());
+  const float tanX = std::tan(glm::radians(c.fovY) * 0.5f) * aspect;
+  const float distance = glm::length(c.eye - c.target);
+  // The sphere's angular radius equals the narrower half-angle (with the 5% margin).
+  EXPECT_NEAR(std::asin(b.radius() * 1.05f / distance), std::atan(tanX), 1e-4f);
+  EXPECT_NEAR(glm::normalize(c.eye - c.target).z, 1.0f, 1e-5f);  // direction kept
+}
+
+TEST(ViewerColormap, TurboEndsAndIds) {
+  // Turbo runs from dark blue through green to dark red.
+  const glm::vec3 low = turbo(0.15f), middle = turbo(0.5f), high = turbo(1.0f);
+  EXPECT_LT(glm::length(turbo(0.0f)), 0.3f);
+  EXPECT_GT(low.b, std::max(low.r, low.g));
+  EXPECT_GT(middle.g, std::max(middle.r, middle.b));
+  EXPECT_GT(high.r, 4.0f * std::max(high.g, high.b));
+  EXPECT_LT(high.r, 0.7f);
+  EXPECT_EQ(idColor(-1), glm::vec3(0.0f));
+  EXPECT_NE(idColor(1), idColor(2));
+  FloatImage ids(2, 1, 1);
+  ids.data = {-1.0f, 3.0f};
+  const Rgba8Image shown = applyColormap(ids, Colormap::Ids, finiteRange(ids, 0));
+  EXPECT_EQ(shown.at(0, 0)[0], 0);
+  EXPECT_EQ(shown.at(1, 0)[3], 255);
+  FloatImage depth(3, 1, 1);
+  depth.data = {0.0f, 4.0f, 9.0f};  // a background texel, then two objects
+  EXPECT_EQ(finiteRange(depth, 0).min, 0.0f);
+  EXPECT_EQ(finiteRange(depth, 0, {0, 1, 1}).min, 4.0f);
+  EXPECT_EQ(finiteRange(depth, 0, {0, 1, 1}).max, 9.0f);
+  EXPECT_EQ(resolveColormap(Colormap::Auto, "normal", 3), Colormap::Normals);
+  EXPECT_EQ(resolveColormap(Colormap::Auto, "cutawayDepth", 1), Colormap::Turbo);
+}
+
+TEST(ViewerSelection, ObjectsByNameThenByGroup) {
+  Scene scene;
+  scene.objects.resize(3);
+  scene.objects[0].name = "a", scene.objects[0].group = "g";
+  scene.objects[1].name = "g", scene.objects[1].group = "";
+  scene.objects[2].name = "c", scene.objects[2].group = "h";
+  EXPECT_EQ(objectsNamed(scene, "a"), (std::vector<std::size_t>{0}));
+  EXPECT_EQ(objectsNamed(scene, "g"), (std::vector<std::size_t>{1}));  // a name wins
+  EXPECT_EQ(objectsNamed(scene, "h"), (std::vector<std::size_t>{2}));
+  EXPECT_TRUE(objectsNamed(scene, "x").empty());
+  EXPECT_EQ(groupsOf(scene), (std::vector<std::string>{"g", "", "h"}));
+}
+
+TEST(ViewerSelection, CameraKeysMustIncrease) {
+  ViewerState state;
+  addCameraKey(state, 1.0f);
+  EXPECT_THROW(addCameraKey(state, 1.0f), Error);
+  addCameraKey(state, 2.0f);
+  EXPECT_EQ(state.cameraPath.size(), 2u);
+}
+
+TEST(ViewerSelection, PathPreviewInterpolatesTheRecordedKeys) {
+  ViewerState state;
+  state.scene.objects.resize(1);
+  state.scene.objects[0].mesh = std::make_shared<Mesh>(makeBox({-1, -1, -1}, {1, 1, 1}));
+  state.scene.camera.eye = {0, 0, 10};
+  addCameraKey(state, 0.0f);
+  state.scene.camera.eye = {0, 0, 20};
+  addCameraKey(state, 2.0f);
+  state.scene.camera.eye = {5, 0, 5};  // the interactive camera, elsewhere
+  state.time = 0.5f;
+  EXPECT_EQ(viewCamera(state).eye, glm::vec3(5, 0, 5));  // not previewing
+  state.previewPath = true;
+  EXPECT_NEAR(viewCamera(state).eye.z, 12.5f, 1e-5f);
+  EXPECT_GT(viewCamera(state).near, 0.0f);  // resolved: near and far derived
+}
+
+// A scene with an object split into nodes (two_parts.obj), a whole-file object and a proxy.
+constexpr const char* kSavedScene = R"({
+  "resolution": [64, 48],
+  "style": "gooch",
+  "objects": [
+    {"name": "parts", "file": "MESHES/two_parts.obj", "split": "nodes",
+     "overrides": [{"match": ".*", "group": "all parts", "color": [0.2, 0.4, 0.6]}]},
+    {"name": "cube", "file": "MESHES/cube.obj", "role": "interest", "params": {"cutawayAngle": 20}}
+  ],
+  "proxies": [{"name": "box", "box": {"min": [-1, -1, -1], "max": [1, 1, 1]}}],
+  "cutters": {"adaptive": {"angle": 35}}
+})";
+
+TEST(ViewerSave, PatchedSceneReloadsWithTheViewersChanges) {
+  std::string text = kSavedScene;
+  const std::string meshes = kData + "/meshes";
+  for (std::size_t at; (at = text.find("MESHES")) != std::string::npos;)
+    text.replace(at, 6, meshes);
+  const fs::path source = scratch("source.json");
+  std::ofstream(source) << text;
+  const Scene original = loadScene(source);
+  ASSERT_EQ(original.objects.size(), 4u);  // two nodes, the cube, the proxy
+
+  ViewerState state;
+  state.scene = original;
+  state.scene.objects[1].role = Role::Interest;  // a node: an override of its own
+  state.scene.objects[1].importance = 0.9f;
+  state.scene.objects[1].params["cutawayAngle"] = 12.5;
+  state.scene.objects[2].params.erase("cutawayAngle");  // the entry's own parameter goes
+  state.scene.objects[2].importance = 0.3f;
+  state.scene.objects[3].importance = 0.7f;  // the proxy
+  findParameter("adaptive.angle")->set(state.scene, 50.0);
+  findParameter("adaptive.ghostLines")->set(state.scene, true);
+  findParameter("style.lines.width")->set(state.scene, 2.0);
+  state.scene.camera.fit = false;
+  state.scene.camera.eye = {1.5f, 2.25f, 7.1f};
+  state.scene.camera.target = {0.1f, 0.2f, 0.3f};
+  state.scene.camera.projection = Projection::Orthographic;
+  state.scene.camera.height = 3.3f;
+  state.scene.camera.path = {{0.0f, {1, 2, 7}, {0, 0, 0}}, {2.0f, {-1, 2, 7}, {0, 0, 0}}};
+  state.scene.width = 80;
+
+  const fs::path target = scratch("saved.json");
+  const SceneDocument document = SceneDocument::load(source);
+  document.save(original, state.scene, target);
+  const Scene saved = loadScene(target);
+  ASSERT_EQ(saved.objects.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE(saved.objects[i].name);
+    EXPECT_EQ(saved.objects[i].name, state.scene.objects[i].name);
+    EXPECT_EQ(saved.objects[i].role, state.scene.objects[i].role);
+    EXPECT_EQ(saved.objects[i].importance, state.scene.objects[i].importance);
+    EXPECT_EQ(saved.objects[i].params, state.scene.objects[i].params);
+    EXPECT_EQ(saved.objects[i].material.color, original.objects[i].material.color);
+    EXPECT_EQ(saved.objects[i].group, original.objects[i].group);
+  }
+  EXPECT_EQ(saved.adaptive->angle, 50.0f);
+  EXPECT_TRUE(saved.adaptive->ghostLines);
+  EXPECT_EQ(saved.style.lines->width, 2.0f);
+  EXPECT_EQ(saved.camera.eye, state.scene.camera.eye);  // bit for bit
+  EXPECT_EQ(saved.camera.target, state.scene.camera.target);
+  EXPECT_EQ(saved.camera.height, 3.3f);
+  EXPECT_EQ(saved.camera.projection, Projection::Orthographic);
+  EXPECT_EQ(saved.camera.path.size(), 2u);
+  EXPECT_EQ(saved.width, 80);
+  EXPECT_EQ(saved.height, 48);
+
+  // The untouched node has no override of its own; the touched one has exactly one, last.
+  std::ifstream in(target);
+  const auto json = nlohmann::ordered_json::parse(in);
+  const auto& overrides = json["objects"][0]["overrides"];
+  ASSERT_EQ(overrides.size(), 2u);
+  EXPECT_EQ(overrides[0]["match"], ".*");
+  EXPECT_EQ(overrides[1]["match"], escapeRegex(state.scene.objects[1].name.substr(6)));
+  EXPECT_FALSE(json["objects"][1].contains("params"));
+  EXPECT_EQ(json.begin().key(), "resolution");  // the author's key order is kept
+
+  // Saving again from the saved file does not pile up overrides.
+  const SceneDocument again = SceneDocument::load(target);
+  ViewerState second;
+  second.scene = saved;
+  second.scene.objects[1].importance = 0.1f;
+  again.save(saved, second.scene, target);
+  std::ifstream in2(target);
+  EXPECT_EQ(nlohmann::ordered_json::parse(in2)["objects"][0]["overrides"].size(), 2u);
+  EXPECT_EQ(loadScene(target).objects[1].importance, 0.1f);
+}
+
+TEST(ViewerSave, RelativeMeshPathsFollowTheFileElsewhere) {
+  const fs::path dir = scratch("relative");
+  fs::create_directories(dir / "sub");
+  fs::copy_file(kData + "/meshes/cube.obj", dir / "cube.obj", fs::copy_options::overwrite_existing);
+  std::ofstream(dir / "scene.json") << R"({"objects": [{"name": "cube", "file": "cube.obj"}]})";
+  const Scene original = loadScene(dir / "scene.json");
+  Scene current = original;
+  current.camera = original.resolvedCamera();
+  current.camera.fit = false;
+  SceneDocument::load(dir / "scene.json").save(original, current, dir / "sub" / "saved.json");
+  EXPECT_EQ(loadScene(dir / "sub" / "saved.json").objects.size(), 1u);
+  // Same folder: the path stays relative.
+  SceneDocument::load(dir / "scene.json").save(original, current, dir / "same.json");
+  std::ifstream in(dir / "same.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["objects"][0]["file"], "cube.obj");
+}
+
+TEST(ViewerSave, EscapedNamesMatchThemselvesOnly) {
+  EXPECT_EQ(escapeRegex("nodes[2]"), "nodes\\[2\\]");
+  EXPECT_EQ(escapeRegex("a.b*c(d)|e"), "a\\.b\\*c\\(d\\)\\|e");
+}
