@@ -175,6 +175,8 @@ TEST(ViewerScript, MissingFileIsAnError) {
 
 TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
   Scene scene;
+  // Clip surfaces come from the scene file; the viewer edits those there are.
+  scene.clipSurfaces = ClipSurfaceOptions{.surfaces = std::vector<ClipSurface>(kMaxClipSurfaces)};
   for (const auto& group : parameterGroups())
     for (const auto& p : *group.parameters) {
       SCOPED_TRACE(p.key);
@@ -199,11 +201,10 @@ TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
           v = glm::vec3(0.0f, 0.0f, 1.0f);
           break;
       }
-      // Turning a feature off drops its options (adaptive.enabled, style.lines): re-enable.
-      if (p.key != "adaptive.enabled" && p.key != "style.lines") {
-        findParameter("adaptive.enabled")->set(scene, true);
-        findParameter("style.lines")->set(scene, true);
-      }
+      // Turning a feature off drops its options (*.enabled, style.lines): re-enable.
+      for (const char* feature :
+           {"adaptive.enabled", "cutout.enabled", "breakaway.enabled", "style.lines"})
+        if (p.key != feature) findParameter(feature)->set(scene, true);
       p.set(scene, v);
       EXPECT_EQ(formatParameterValue(p.get(scene)), formatParameterValue(v));
       EXPECT_EQ(findParameter(p.key), &p);
@@ -480,4 +481,54 @@ TEST(ViewerSave, RelativeMeshPathsFollowTheFileElsewhere) {
 TEST(ViewerSave, EscapedNamesMatchThemselvesOnly) {
   EXPECT_EQ(escapeRegex("nodes[2]"), "nodes\\[2\\]");
   EXPECT_EQ(escapeRegex("a.b*c(d)|e"), "a\\.b\\*c\\(d\\)\\|e");
+}
+
+// The Diepstraten03 and Trapp13 cutters' parameters saved: each edited value reads back, the
+// clip surface keeps its offset map, and a cutter switched off leaves the file.
+TEST(ViewerSave, CutoutBreakawayAndClipSurfaceChangesReadBack) {
+  const fs::path dir = scratch("cutters");
+  fs::create_directories(dir);
+  const std::string cube = kData + "/meshes/cube.obj", tetra = kData + "/meshes/tetra.obj";
+  std::ofstream(dir / "scene.json") << R"({"objects": [
+      {"name": "box", "file": ")" + cube + R"(", "role": "exterior"},
+      {"name": "tetra", "file": ")" + tetra + R"(", "role": "interior",
+       "transform": {"scale": [0.3, 0.3, 0.3], "translate": [0.3, 0.3, 0.3]}}],
+    "cutters": {"cutout": {"angle": 80},
+                "clipSurfaces": {"surfaces": [{"origin": [-1, -1, 0.5], "u": [3, 0, 0], "v": [0, 3, 0],
+                                               "offsetMap": {"pattern": "ridged", "seed": 3}}]}}})";
+  const Scene original = loadScene(dir / "scene.json");
+  Scene current = original;
+  current.camera = original.resolvedCamera();
+  current.camera.fit = false;
+  findParameter("cutout.angle")->set(current, 120.0);
+  findParameter("cutout.facingCamera")->set(current, false);
+  findParameter("cutout.rotation")->set(current, 30.0);
+  findParameter("cutout.jitter")->set(current, std::string("sawtooth"));
+  findParameter("cutout.jitterAmplitude")->set(current, 0.05);
+  findParameter("breakaway.enabled")->set(current, true);
+  findParameter("breakaway.offset")->set(current, 0.2);
+  findParameter("breakaway.wallColor")->set(current, glm::vec3(0.1f, 0.2f, 0.3f));
+  findParameter("clipSurfaces.0.position")->set(current, 0.25);
+  findParameter("clipSurfaces.combine")->set(current, std::string("intersection"));
+  findParameter("clipSurfaces.0.height")->set(current, 0.125);
+  SceneDocument::load(dir / "scene.json").save(original, current, dir / "saved.json");
+  const Scene saved = loadScene(dir / "saved.json");
+  ASSERT_TRUE(saved.cutout && saved.breakaway && saved.clipSurfaces);
+  EXPECT_EQ(saved.cutout->angle, 120.0f);
+  EXPECT_EQ(saved.cutout->rotation, 30.0f);
+  EXPECT_EQ(saved.cutout->jitter.pattern, CutoutJitter::Pattern::Sawtooth);
+  EXPECT_EQ(saved.cutout->jitter.amplitude, 0.05f);
+  EXPECT_EQ(saved.breakaway->offset, 0.2f);
+  EXPECT_EQ(*saved.breakaway->wallColor, glm::vec3(0.1f, 0.2f, 0.3f));
+  const ClipSurface& cs = saved.clipSurfaces->surfaces[0];
+  EXPECT_NEAR(glm::dot(cs.origin, cs.normal()), 0.25f, 1e-6f);
+  EXPECT_EQ(cs.scale.z, 0.125f);
+  EXPECT_EQ(saved.clipSurfaces->combine, ClipSurfaceOptions::Combine::Intersection);
+  // The offset map is still the ridged recipe of the original file.
+  EXPECT_EQ(cs.offsetMap.data, original.clipSurfaces->surfaces[0].offsetMap.data);
+
+  findParameter("cutout.enabled")->set(current, false);
+  SceneDocument::load(dir / "scene.json").save(original, current, dir / "without.json");
+  std::ifstream in(dir / "without.json");
+  EXPECT_FALSE(nlohmann::json::parse(in)["cutters"].contains("cutout"));
 }

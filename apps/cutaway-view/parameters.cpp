@@ -10,6 +10,9 @@ namespace cutaway::view {
 const std::vector<ParameterGroup>& parameterGroups() {
   static const std::vector<ParameterGroup> groups{
       {"adaptive", "Adaptive cutaway (Burns08/11)", &adaptiveParameters()},
+      {"cutout", "Cutout (Diepstraten03)", &cutoutParameters()},
+      {"breakaway", "Breakaway (Diepstraten03)", &breakawayParameters()},
+      {"clipSurfaces", "Clip surfaces (Trapp13)", &clipSurfaceParameters()},
       {"style", "Style", &styleParameters()},
   };
   return groups;

@@ -193,6 +193,69 @@ json adaptiveJson(const AdaptiveCutawayOptions& o) {
   return j;
 }
 
+json cutoutJson(const CutoutOptions& o) {
+  using P = CutoutJitter::Pattern;
+  json j = {{"method", o.method == CutoutOptions::Method::Texture ? "texture" : "clipPlanes"},
+            {"angle", exact(o.angle)}};
+  if (o.rotation) j["rotation"] = exact(*o.rotation);
+  if (o.axialRange) j["axialRange"] = {exact(o.axialRange->x), exact(o.axialRange->y)};
+  if (o.jitter.pattern != P::None) {
+    const CutoutJitter& t = o.jitter;
+    j["jitter"] = {{"pattern", t.pattern == P::Sawtooth ? "sawtooth"
+                               : t.pattern == P::Noise  ? "noise"
+                                                        : "image"},
+                   {"amplitude", exact(t.amplitude)},
+                   {"frequency", exact(t.frequency)},
+                   {"octaves", t.octaves}};
+    if (t.pattern == P::Image) j["jitter"]["image"] = fs::absolute(t.image).string();
+  }
+  if (o.wallColor) j["wallColor"] = vec(*o.wallColor);
+  if (o.insideColor) j["insideColor"] = vec(*o.insideColor);
+  return j;
+}
+
+json breakawayJson(const BreakawayOptions& o) {
+  json j = json::object();
+  if (o.offset) j["offset"] = exact(*o.offset);
+  if (o.wallThickness) j["wallThickness"] = exact(*o.wallThickness);
+  if (o.wallColor) j["wallColor"] = vec(*o.wallColor);
+  if (o.insideColor) j["insideColor"] = vec(*o.insideColor);
+  return j;
+}
+
+// The clip surfaces' keys the viewer edits; offset maps and the rest stay as written.
+json clipSurfacesJson(const ClipSurfaceOptions& o) {
+  json surfaces = json::array();
+  for (const auto& cs : o.surfaces)
+    surfaces.push_back({{"origin", vec(cs.origin)},
+                        {"scale", vec(cs.scale)},
+                        {"enabled", cs.enabled}});
+  return {{"combine", o.combine == ClipSurfaceOptions::Combine::Union ? "union" : "intersection"},
+          {"caps", o.caps},
+          {"parity", o.parity == ClipSurfaceOptions::Parity::Static ? "static" : "perFrame"},
+          {"capStyle",
+           {{"normalMap", o.capNormalMap},
+            {"occlusion", exact(o.capOcclusion)},
+            {"solidTexture", o.capSolidTexture},
+            {"solidTextureScale", exact(o.solidTextureScale)}}},
+          {"surfaces", surfaces}};
+}
+
+// Writes `current` as doc["cutters"][key] when it differs from `original` (or removes it).
+template <typename Options, typename ToJson>
+void patchCutter(json& doc, const char* key, const std::optional<Options>& original,
+                 const std::optional<Options>& current, ToJson toJson) {
+  const bool changed = original.has_value() != current.has_value() ||
+                       (current && toJson(*original) != toJson(*current));
+  if (!changed) return;
+  if (current) {
+    doc["cutters"][key] = toJson(*current);
+  } else if (doc.contains("cutters")) {
+    doc["cutters"].erase(key);
+    if (doc["cutters"].empty()) doc.erase("cutters");
+  }
+}
+
 SceneDocument SceneDocument::load(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string(), "", "cannot open scene file");
@@ -242,15 +305,21 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
   if (k != n)
     throw Error(target.string(), "", "the viewer's objects no longer match the scene file");
 
-  const bool adaptiveChanged =
-      original.adaptive.has_value() != current.adaptive.has_value() ||
-      (current.adaptive && adaptiveJson(*original.adaptive) != adaptiveJson(*current.adaptive));
-  if (adaptiveChanged) {
-    if (current.adaptive) {
-      doc["cutters"]["adaptive"] = adaptiveJson(*current.adaptive);
-    } else if (doc.contains("cutters")) {
-      doc["cutters"].erase("adaptive");
-      if (doc["cutters"].empty()) doc.erase("cutters");
+  patchCutter(doc, "adaptive", original.adaptive, current.adaptive, adaptiveJson);
+  patchCutter(doc, "cutout", original.cutout, current.cutout, cutoutJson);
+  patchCutter(doc, "breakaway", original.breakaway, current.breakaway, breakawayJson);
+  if (current.clipSurfaces &&
+      clipSurfacesJson(*original.clipSurfaces) != clipSurfacesJson(*current.clipSurfaces)) {
+    // Merged key by key: each surface keeps its offset map and directions as written.
+    json& c = doc["cutters"]["clipSurfaces"];
+    const json edited = clipSurfacesJson(*current.clipSurfaces);
+    for (auto& [key, value] : edited.items()) {
+      if (key != "surfaces") {
+        c[key] = value;
+        continue;
+      }
+      for (std::size_t i = 0; i < value.size(); ++i)
+        for (auto& [k, v] : value[i].items()) c["surfaces"][i][k] = v;
     }
   }
   const json style = styleJson(current.style);
@@ -290,9 +359,14 @@ void SceneDocument::save(const Scene& original, const Scene& current,
         mismatch("parameters of \"" + b.name + "\"");
   }
   if (cameraJson(saved.camera) != cameraJson(current.camera)) mismatch("camera");
-  if (saved.adaptive.has_value() != current.adaptive.has_value() ||
-      (saved.adaptive && adaptiveJson(*saved.adaptive) != adaptiveJson(*current.adaptive)))
-    mismatch("adaptive cutter");
+  const auto differ = [](const auto& a, const auto& b, auto toJson) {
+    return a.has_value() != b.has_value() || (a && toJson(*a) != toJson(*b));
+  };
+  if (differ(saved.adaptive, current.adaptive, adaptiveJson)) mismatch("adaptive cutter");
+  if (differ(saved.cutout, current.cutout, cutoutJson)) mismatch("cutout");
+  if (differ(saved.breakaway, current.breakaway, breakawayJson)) mismatch("breakaway");
+  if (differ(saved.clipSurfaces, current.clipSurfaces, clipSurfacesJson))
+    mismatch("clip surfaces");
   if (styleJson(saved.style) != styleJson(current.style)) mismatch("style");
   if (saved.width != current.width || saved.height != current.height) mismatch("resolution");
   writeFileAtomically(target, [&](std::ostream& os) { os << text; });

@@ -646,16 +646,26 @@ void Viewer::drawPanels() {
     ImGui::PushItemWidth(-130.0f);
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) filePanel(state_);
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) cameraPanel(state_);
-    // One entry per cutter: a future cutter adds its panel function here.
+    // One entry per cutter: a future cutter adds its panel function here. A cutter the scene
+    // uses starts open, the others closed.
     struct CutterPanel {
       const char* title;
       void (*draw)(ViewerState&);
+      bool (*active)(const Scene&);
     };
     static const CutterPanel kCutterPanels[] = {
-        {"Adaptive cutaway (Burns08/11)", adaptivePanel},
+        {"Adaptive cutaway (Burns08/11)", adaptivePanel,
+         [](const Scene& s) { return s.adaptive.has_value(); }},
+        {"Cutout (Diepstraten03)", cutoutPanel, [](const Scene& s) { return s.cutout.has_value(); }},
+        {"Breakaway (Diepstraten03)", breakawayPanel,
+         [](const Scene& s) { return s.breakaway.has_value(); }},
+        {"Clip surfaces (Trapp13)", clipSurfacePanel,
+         [](const Scene& s) { return s.clipSurfaces.has_value(); }},
     };
     for (const auto& panel : kCutterPanels)
-      if (ImGui::CollapsingHeader(panel.title, ImGuiTreeNodeFlags_DefaultOpen)) panel.draw(state_);
+      if (ImGui::CollapsingHeader(panel.title,
+                                  panel.active(state_.scene) ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+        panel.draw(state_);
     if (ImGui::CollapsingHeader("Style")) stylePanel(state_);
     ImGui::PopItemWidth();
   }

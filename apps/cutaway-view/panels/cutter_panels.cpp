@@ -1,0 +1,42 @@
+// The panels of the Diepstraten03 and Trapp13 cutters: their parameter tables
+// (parameters/diepstraten.cpp, parameters/clip_surfaces.cpp) and what the scene gives them to
+// work on.
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "panels.hpp"
+
+namespace cutaway::view {
+
+namespace {
+
+std::size_t countRole(const Scene& scene, Role role) {
+  return std::size_t(std::count_if(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
+    return !o.proxy && o.role == role;
+  }));
+}
+
+}  // namespace
+
+void cutoutPanel(ViewerState& state) {
+  parameterTable(cutoutParameters(), state);
+  ImGui::TextDisabled("%zu exterior objects (roles: Scene panel); groups share one wedge",
+                      countRole(state.scene, Role::Exterior));
+}
+
+void breakawayPanel(ViewerState& state) {
+  parameterTable(breakawayParameters(), state);
+  ImGui::TextDisabled("%zu interior objects around %zu exterior ones; one hull per group",
+                      countRole(state.scene, Role::Interior), countRole(state.scene, Role::Exterior));
+}
+
+void clipSurfacePanel(ViewerState& state) {
+  if (!state.scene.clipSurfaces) {
+    ImGui::TextDisabled("no clip surfaces in this scene (cutters.clipSurfaces)");
+    return;
+  }
+  parameterTable(clipSurfaceParameters(), state);
+}
+
+}  // namespace cutaway::view
