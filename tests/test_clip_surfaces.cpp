@@ -56,7 +56,8 @@ Mesh sphere(int rings = 32, int sectors = 64) {
   m.positions.emplace_back(0, 0, 1);
   for (int i = 1; i < rings; ++i)
     for (int j = 0; j < sectors; ++j) {
-      const float t = 3.14159265f * float(i) / float(rings), p = 2.0f * 3.14159265f * float(j) / float(sectors);
+      const float t = 3.14159265f * float(i) / float(rings),
+                  p = 2.0f * 3.14159265f * float(j) / float(sectors);
       m.positions.emplace_back(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t));
     }
   m.positions.emplace_back(0, 0, -1);
@@ -90,8 +91,9 @@ VolumetricDepthSprite spriteOf(const Mesh& mesh, int resolution) {
   (void)test::glContext();
   const GpuMesh gpu(mesh);
   const gl::Program peel = buildDepthPeelProgram();
-  return buildDepthSprite(peel.id(), gpu, depthSpriteFrame(mesh.bounds(), glm::mat3(1.0f), resolution),
-                          resolution, true)
+  return buildDepthSprite(peel.id(), gpu,
+                          depthSpriteFrame(mesh.bounds(), glm::mat3(1.0f), resolution), resolution,
+                          true)
       .sprite;
 }
 
@@ -140,7 +142,8 @@ TEST(OffsetMap, PatternsTileStayInRangeAndBlend) {
     float worstSeam = 0, meanStep = 0;
     for (int y = 0; y < 64; ++y) {
       worstSeam = std::max(worstSeam, std::abs(m.at(63, y)[0] - m.at(0, y)[0]));
-      for (int x = 0; x + 1 < 64; ++x) meanStep = std::max(meanStep, std::abs(m.at(x + 1, y)[0] - m.at(x, y)[0]));
+      for (int x = 0; x + 1 < 64; ++x)
+        meanStep = std::max(meanStep, std::abs(m.at(x + 1, y)[0] - m.at(x, y)[0]));
     }
     for (float h : m.data) ASSERT_TRUE(h >= 0.0f && h <= 1.0f);
     // Across the wrap the map steps no more than between any two neighbours inside it.
@@ -173,7 +176,8 @@ TEST(OffsetMap, DerivedGradientsAndOcclusion) {
 }
 
 TEST(OffsetMap, SixteenBitPngKeepsItsLevels) {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "cutaway-offset16.png";
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "cutaway-offset16.png";
   std::vector<std::uint16_t> levels{0, 1, 257, 65535, 40000, 12345};
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
@@ -229,13 +233,14 @@ std::string torusScene(const std::string& surface, bool caps) {
     "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
     "objects": [{"name": "torus", "file": ")" +
          std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") + R"("}],
-    "cutters": {"clipSurfaces": {"caps": )" + (caps ? "true" : "false") +
-         R"(, "surfaces": [)" + surface + "]}}}";
+    "cutters": {"clipSurfaces": {"caps": )" +
+         (caps ? "true" : "false") + R"(, "surfaces": [)" + surface + "]}}}";
 }
 
 void writeTorus() {
   const Mesh m = torus();
-  std::FILE* f = std::fopen((std::filesystem::temp_directory_path() / "cutaway-torus.obj").c_str(), "w");
+  std::FILE* f =
+      std::fopen((std::filesystem::temp_directory_path() / "cutaway-torus.obj").c_str(), "w");
   for (const auto& p : m.positions) std::fprintf(f, "v %.7g %.7g %.7g\n", p.x, p.y, p.z);
   for (const auto& t : m.triangles) std::fprintf(f, "f %u %u %u\n", t.x + 1, t.y + 1, t.z + 1);
   std::fclose(f);
@@ -277,7 +282,8 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
       if (plainId.at(x, y)[0] != 0.0f) continue;
       const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
       const float f = clipSurfaceFunction(cs, p);
-      const bool same = id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-5f;
+      const bool same =
+          id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-5f;
       if (f < -1e-3f) ++removed, wrong += same, wrong += mask.at(x, y)[0] != 1.0f;
       if (f > 1e-3f) ++kept, wrong += !same;
     }
@@ -331,7 +337,8 @@ TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {
   scene.clipSurfaces->parity = ClipSurfaceOptions::Parity::PerFrame;
   const FloatImage b = aov(render(scene), "capMask");
   int differ = 0, caps = 0;
-  for (std::size_t i = 0; i < a.data.size(); ++i) differ += a.data[i] != b.data[i], caps += a.data[i] == 1.0f;
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    differ += a.data[i] != b.data[i], caps += a.data[i] == 1.0f;
   EXPECT_GT(caps, 1000);
   EXPECT_LE(differ, caps / 100) << differ << " of " << caps;
 }
@@ -341,10 +348,11 @@ TEST(ClipSurfaceGpu, DiffuseMapTintsOnlyTheCaps) {
   writeTorus();
   const std::filesystem::path red = std::filesystem::temp_directory_path() / "cutaway-red.png";
   Rgba8Image img(2, 2);
-  for (int i = 0; i < 4; ++i) img.pixels[std::size_t(i) * 4] = 255, img.pixels[std::size_t(i) * 4 + 3] = 255;
+  for (int i = 0; i < 4; ++i)
+    img.pixels[std::size_t(i) * 4] = 255, img.pixels[std::size_t(i) * 4 + 3] = 255;
   writePng(red, img);
-  const std::string surface =
-      kFlatSurface.substr(0, kFlatSurface.size() - 1) + R"(, "diffuseMap": ")" + red.string() + "\"}";
+  const std::string surface = kFlatSurface.substr(0, kFlatSurface.size() - 1) +
+                              R"(, "diffuseMap": ")" + red.string() + "\"}";
   const Scene plain = parseScene(torusScene(kFlatSurface, true), "torus.json", kData);
   const Scene tinted = parseScene(torusScene(surface, true), "torus.json", kData);
   Renderer a(plain, test::glContext().info()), b(tinted, test::glContext().info());
@@ -369,4 +377,3 @@ TEST(ClipSurfaceGpu, DiffuseMapTintsOnlyTheCaps) {
   // Anti-aliased cap edges blend into their neighbours; nothing farther away changes.
   EXPECT_LE(changedElsewhere, caps / 10);
 }
-

@@ -54,7 +54,8 @@ double boxSurfaceVariance(double a, double b, double c) {
 
 TEST(MainAxis, RotatedBoxMatchesClosedForm) {
   const glm::vec3 h(3.0f, 2.0f, 1.0f), centre(5.0f, -2.0f, 7.0f);
-  const glm::mat3 r = glm::mat3(glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1, 2, 3))));
+  const glm::mat3 r =
+      glm::mat3(glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1, 2, 3))));
   const PrincipalAxes a = principalAxes(boxCorners(h, r, centre));
   EXPECT_NEAR(glm::length(a.center - centre), 0.0f, 1e-4f);
   const double expected[3] = {boxSurfaceVariance(3, 2, 1), boxSurfaceVariance(2, 1, 3),
@@ -126,7 +127,8 @@ TEST(CutoutWedge, PlanesMeetOnTheAxisAndFaceTheViewer) {
     EXPECT_NEAR(glm::dot(glm::vec3(p), a.axes[0]), 0.0f, 1e-6f);
   }
   // Inward normals of a wedge of opening α are 180° − α apart.
-  const float between = glm::degrees(std::acos(glm::dot(glm::vec3(w.planes[0]), glm::vec3(w.planes[1]))));
+  const float between =
+      glm::degrees(std::acos(glm::dot(glm::vec3(w.planes[0]), glm::vec3(w.planes[1]))));
   EXPECT_NEAR(between, 180.0f - 70.0f, 1e-3f);
   // The viewer's direction (off the axis) is inside the wedge; its opposite is not.
   const glm::vec3 towards = glm::normalize(viewer - glm::dot(viewer, a.axes[0]) * a.axes[0]);
@@ -136,7 +138,8 @@ TEST(CutoutWedge, PlanesMeetOnTheAxisAndFaceTheViewer) {
   // The signed distance is the distance to the nearer plane inside a right-angled wedge.
   options.angle = 90.0f;
   const CutoutWedge right = cutoutWedge(a, options, viewer);
-  EXPECT_NEAR(cutoutDistance(right, none, a.center + 2.0f * towards), 2.0f * std::sqrt(0.5f), 1e-5f);
+  EXPECT_NEAR(cutoutDistance(right, none, a.center + 2.0f * towards), 2.0f * std::sqrt(0.5f),
+              1e-5f);
 
   options.axialRange = glm::vec2(0.25f, 0.5f);
   const CutoutWedge partial = cutoutWedge(a, options, viewer);
@@ -179,7 +182,8 @@ std::string cubeScene(const std::string& cutter) {
        "transform": {"scale": [1.6, 1, 1]}},
       {"name": "tetra", "file": "meshes/tetra.obj", "role": "interior",
        "transform": {"translate": [0.3, 0.3, 0.3], "scale": [0.4, 0.4, 0.4]}}]
-    )" + (cutter.empty() ? std::string() : ", \"cutters\": {" + cutter + "}") + "}";
+    )" + (cutter.empty() ? std::string() : ", \"cutters\": {" + cutter + "}") +
+         "}";
 }
 
 // The wedge the renderer builds for the cube this frame.
@@ -230,8 +234,8 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
                    &distance = aov(cutAovs, "cutoutDistance");
   const glm::vec3 eye = cut.resolvedCamera().eye;
   // Float noise in interpolated positions, plus GL's coarse bilinear weights for the image.
-  const float tolerance =
-      2e-5f * wedge.axisLength + (jitter == "image" ? 0.02f * j.amplitude * wedge.axisLength : 0.0f);
+  const float tolerance = 2e-5f * wedge.axisLength +
+                          (jitter == "image" ? 0.02f * j.amplitude * wedge.axisLength : 0.0f);
   const float margin = 0.01f * wedge.axisLength;
   int removed = 0, kept = 0, compared = 0, wrong = 0;
   for (int y = 0; y < plainId.height; ++y)
@@ -292,8 +296,8 @@ TEST(Cutout, WallsAreShownAndInteriorIsWhole) {
 // same objects as the per-fragment method (which adds only the walls' shading).
 TEST(Cutout, ClipPlanesMatchTheTextureMethod) {
   const Scene texture = parseScene(cubeScene(R"("cutout": {"angle": 80})"), "cube.json", kData);
-  const Scene planes =
-      parseScene(cubeScene(R"("cutout": {"angle": 80, "method": "clipPlanes"})"), "cube.json", kData);
+  const Scene planes = parseScene(cubeScene(R"("cutout": {"angle": 80, "method": "clipPlanes"})"),
+                                  "cube.json", kData);
   const FloatImage a = aov(renderAovs(texture), "objectId");
   const FloatImage b = aov(renderAovs(planes), "objectId");
   int differ = 0;
@@ -326,8 +330,8 @@ TEST(Breakaway, InflatedHullContainsTheOffsetBody) {
 // The clip depth pass (greater-than, then less-than) against the nearest hit of a ray with
 // the outer hulls, per pixel; and exterior front faces in front of it are gone.
 TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
-  const Scene scene =
-      parseScene(cubeScene(R"("breakaway": {"offset": 0.1, "wallThickness": 0.05})"), "cube.json", kData);
+  const Scene scene = parseScene(
+      cubeScene(R"("breakaway": {"offset": 0.1, "wallThickness": 0.05})"), "cube.json", kData);
   const Scene plain = parseScene(cubeScene(""), "cube.json", kData);
   const auto aovs = renderAovs(scene);
   const auto plainAovs = renderAovs(plain);
@@ -358,7 +362,8 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
       }
       mismatched += std::abs(clip.at(x, y)[0] - expected) > 1e-5f;
       // The cube's surface in front of the hull is removed.
-      if (plainId.at(x, y)[0] == 0.0f && expected > 0.0f && plainDepth.at(x, y)[0] < expected - 1e-4f) {
+      if (plainId.at(x, y)[0] == 0.0f && expected > 0.0f &&
+          plainDepth.at(x, y)[0] < expected - 1e-4f) {
         ++removed;
         wrong += id.at(x, y)[0] == 0.0f && depth.at(x, y)[0] == plainDepth.at(x, y)[0];
       }

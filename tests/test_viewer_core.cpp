@@ -491,7 +491,8 @@ TEST(ViewerSave, CutoutBreakawayAndClipSurfaceChangesReadBack) {
   const std::string cube = kData + "/meshes/cube.obj", tetra = kData + "/meshes/tetra.obj";
   std::ofstream(dir / "scene.json") << R"({"objects": [
       {"name": "box", "file": ")" + cube + R"(", "role": "exterior"},
-      {"name": "tetra", "file": ")" + tetra + R"(", "role": "interior",
+      {"name": "tetra", "file": ")" + tetra +
+                                           R"(", "role": "interior",
        "transform": {"scale": [0.3, 0.3, 0.3], "translate": [0.3, 0.3, 0.3]}}],
     "cutters": {"cutout": {"angle": 80},
                 "clipSurfaces": {"surfaces": [{"origin": [-1, -1, 0.5], "u": [3, 0, 0], "v": [0, 3, 0],

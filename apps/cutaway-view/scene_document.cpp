@@ -227,9 +227,8 @@ json breakawayJson(const BreakawayOptions& o) {
 json clipSurfacesJson(const ClipSurfaceOptions& o) {
   json surfaces = json::array();
   for (const auto& cs : o.surfaces)
-    surfaces.push_back({{"origin", vec(cs.origin)},
-                        {"scale", vec(cs.scale)},
-                        {"enabled", cs.enabled}});
+    surfaces.push_back(
+        {{"origin", vec(cs.origin)}, {"scale", vec(cs.scale)}, {"enabled", cs.enabled}});
   return {{"combine", o.combine == ClipSurfaceOptions::Combine::Union ? "union" : "intersection"},
           {"caps", o.caps},
           {"parity", o.parity == ClipSurfaceOptions::Parity::Static ? "static" : "perFrame"},
@@ -365,8 +364,7 @@ void SceneDocument::save(const Scene& original, const Scene& current,
   if (differ(saved.adaptive, current.adaptive, adaptiveJson)) mismatch("adaptive cutter");
   if (differ(saved.cutout, current.cutout, cutoutJson)) mismatch("cutout");
   if (differ(saved.breakaway, current.breakaway, breakawayJson)) mismatch("breakaway");
-  if (differ(saved.clipSurfaces, current.clipSurfaces, clipSurfacesJson))
-    mismatch("clip surfaces");
+  if (differ(saved.clipSurfaces, current.clipSurfaces, clipSurfacesJson)) mismatch("clip surfaces");
   if (styleJson(saved.style) != styleJson(current.style)) mismatch("style");
   if (saved.width != current.width || saved.height != current.height) mismatch("resolution");
   writeFileAtomically(target, [&](std::ostream& os) { os << text; });

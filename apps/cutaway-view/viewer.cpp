@@ -656,7 +656,8 @@ void Viewer::drawPanels() {
     static const CutterPanel kCutterPanels[] = {
         {"Adaptive cutaway (Burns08/11)", adaptivePanel,
          [](const Scene& s) { return s.adaptive.has_value(); }},
-        {"Cutout (Diepstraten03)", cutoutPanel, [](const Scene& s) { return s.cutout.has_value(); }},
+        {"Cutout (Diepstraten03)", cutoutPanel,
+         [](const Scene& s) { return s.cutout.has_value(); }},
         {"Breakaway (Diepstraten03)", breakawayPanel,
          [](const Scene& s) { return s.breakaway.has_value(); }},
         {"Clip surfaces (Trapp13)", clipSurfacePanel,

@@ -244,7 +244,8 @@ int info(const std::string& path) {
     out["cutters"]["cutout"] = {
         {"method", c->method == CutoutOptions::Method::Texture ? "texture" : "clipPlanes"},
         {"angle", c->angle},
-        {"rotation", c->rotation ? nlohmann::json(*c->rotation) : nlohmann::json("facing the camera")},
+        {"rotation",
+         c->rotation ? nlohmann::json(*c->rotation) : nlohmann::json("facing the camera")},
         {"planes", c->axialRange ? 4 : 2}};
   if (const auto& c = scene.clipSurfaces) {
     nlohmann::json surfaces = nlohmann::json::array();
@@ -275,9 +276,8 @@ int info(const std::string& path) {
       clusters.push_back({{"group", c.group},
                           {"objects", c.objects.size()},
                           {"hullTriangles", c.outerHull.triangles.size()}});
-    out["cutters"]["breakaway"] = {{"offset", extent.offset},
-                                   {"wallThickness", extent.wallThickness},
-                                   {"clusters", clusters}};
+    out["cutters"]["breakaway"] = {
+        {"offset", extent.offset}, {"wallThickness", extent.wallThickness}, {"clusters", clusters}};
   }
   std::printf("%s\n", out.dump(2).c_str());
   return 0;
@@ -379,8 +379,9 @@ int bench(const BenchOptions& options) {
   if (scene.cutout || scene.breakaway) {
     // Diepstraten03 §6's table: plain, cutout and breakaway for every style, in one run; a
     // cutter the scene does not configure runs with its defaults where the roles allow it.
-    const bool interior = std::any_of(scene.objects.begin(), scene.objects.end(),
-                                      [](const SceneObject& o) { return o.role == Role::Interior; });
+    const bool interior =
+        std::any_of(scene.objects.begin(), scene.objects.end(),
+                    [](const SceneObject& o) { return o.role == Role::Interior; });
     for (const auto& style : styleNames()) {
       Scene plain = scene;
       plain.cutout.reset();

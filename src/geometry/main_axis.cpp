@@ -20,9 +20,9 @@ SurfaceMoments surfaceMoments(const Mesh& mesh) {
     m.area += area;
     first += area * centroid;
     // outerProduct(a, b)[col][row] = a[row] b[col]; symmetric here.
-    second += (area / 12.0) * (9.0 * glm::outerProduct(centroid, centroid) +
-                               glm::outerProduct(p, p) + glm::outerProduct(q, q) +
-                               glm::outerProduct(r, r));
+    second +=
+        (area / 12.0) * (9.0 * glm::outerProduct(centroid, centroid) + glm::outerProduct(p, p) +
+                         glm::outerProduct(q, q) + glm::outerProduct(r, r));
   }
   if (m.area <= 0.0) return m;
   m.mean = first / m.area;

@@ -48,10 +48,10 @@ std::vector<float> Frame::read(const std::string& name, int channels) const {
     return texels;
   }
   const GLenum format = isDepthFormat(d.format) ? GL_DEPTH_COMPONENT
-                        : channels == 3            ? GL_RGB
-                                                   : GL_RED;
-  glGetTextureImage(texture(name).id(), 0, format, GL_FLOAT,
-                    GLsizei(texels.size() * sizeof(float)), texels.data());
+                        : channels == 3         ? GL_RGB
+                                                : GL_RED;
+  glGetTextureImage(texture(name).id(), 0, format, GL_FLOAT, GLsizei(texels.size() * sizeof(float)),
+                    texels.data());
   return texels;
 }
 

@@ -45,8 +45,8 @@ const char* styleFile(const std::string& style) {
 
 // Mesh uniform locations of src/render/mesh.frag (and ghost.frag for the id).
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
-                kCutBy = 13, kCutSurface = 14, kCutColor = 15, kBackColor = 16,
-                kGhostDistance = 17, kClipPlane = 18;
+                kCutBy = 13, kCutSurface = 14, kCutColor = 15, kBackColor = 16, kGhostDistance = 17,
+                kClipPlane = 18;
 // Bits of src/cutters/fate.glsl.
 constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4, kCutByClipSurfaces = 8;
 
@@ -102,11 +102,11 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   g.backgroundProgram = buildFullscreenProgram("render/background.frag");
   g.compositeProgram = buildFullscreenProgram("render/composite.frag", cutters);
   if (g.clipSurfaces) {
-    g.capProgram = gl::buildProgram(
-        {.stages = {{GL_VERTEX_SHADER, "cutters/clip_surfaces/cap.vert"},
-                    {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/cap.frag"}},
-         .defines = cutters,
-         .aliases = {{"style.glsl", styleFile(scene.style.name)}}});
+    g.capProgram =
+        gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "cutters/clip_surfaces/cap.vert"},
+                                     {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/cap.frag"}},
+                          .defines = cutters,
+                          .aliases = {{"style.glsl", styleFile(scene.style.name)}}});
     g.capMaskProgram = buildFullscreenProgram("cutters/clip_surfaces/cap_mask.frag");
   }
   if (g.lines || g.outlines)
@@ -195,7 +195,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
     for (const char* t : {"breakawayClipDepth", "breakawayInnerDepth", "breakawayHullNormal"})
       geometryInputs.push_back(t);
   if (g.shadowMap) geometryInputs.push_back("shadowDepth");
-  std::vector<std::string> geometryOutputs{"sceneColor",    "sceneNormal",  "scenePosition",
+  std::vector<std::string> geometryOutputs{"sceneColor", "sceneNormal", "scenePosition",
                                            "sceneObjectId", "sceneCutMask"};
   if (g.cutout) geometryOutputs.push_back("sceneCutoutDistance");
   geometryOutputs.push_back("sceneDepth");
@@ -315,8 +315,9 @@ void Renderer::drawGeometry(GLuint framebuffer) {
   const bool clipPlanes = g.cutout && scene_.cutout->method == CutoutOptions::Method::ClipPlanes;
   // Diepstraten03's cutters cut only exterior objects (rule 1); their walls and insides take
   // the cutter's colours.
-  const std::optional<glm::vec3> wallColor =
-      g.cutout ? scene_.cutout->wallColor : g.breakaway ? scene_.breakaway->wallColor : std::nullopt;
+  const std::optional<glm::vec3> wallColor = g.cutout      ? scene_.cutout->wallColor
+                                             : g.breakaway ? scene_.breakaway->wallColor
+                                                           : std::nullopt;
   const std::optional<glm::vec3> insideColor = g.cutout      ? scene_.cutout->insideColor
                                                : g.breakaway ? scene_.breakaway->insideColor
                                                              : std::nullopt;
@@ -366,14 +367,13 @@ void Renderer::drawGeometry(GLuint framebuffer) {
     glEnable(GL_CLIP_DISTANCE0);
     for (int k = 0; k < kMaxCutoutPlanes; ++k)
       g.sceneGpu.draw(
-          program,
-          [&](const SceneObject& o) { return !o.proxy && o.role == Role::Exterior; },
+          program, [&](const SceneObject& o) { return !o.proxy && o.role == Role::Exterior; },
           [&](const SceneObject& o, std::size_t i) {
             setUniforms(o, i);
             const CutoutWedge* w = g.cutout->wedgeOf(i);
             // A wedge with fewer planes clips this pass away entirely.
-            const glm::vec4 keep =
-                w && k < int(w->planes.size()) ? -w->planes[std::size_t(k)] : glm::vec4(0, 0, 0, -1);
+            const glm::vec4 keep = w && k < int(w->planes.size()) ? -w->planes[std::size_t(k)]
+                                                                  : glm::vec4(0, 0, 0, -1);
             glProgramUniform4fv(program, kClipPlane, 1, &keep[0]);
           });
     glDisable(GL_CLIP_DISTANCE0);
@@ -409,9 +409,9 @@ void Renderer::composite() {
   const GLuint program = g.compositeProgram.id();
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
-  const char* inputs[] = {"sceneColor",  "sceneNormal", "scenePosition", "sceneObjectId",
-                          "sceneDepth",  "lines",       "cutOutlines",   "ghostLines",
-                          "sceneCutMask", "sceneCutoutDistance"};
+  const char* inputs[] = {
+      "sceneColor", "sceneNormal", "scenePosition", "sceneObjectId", "sceneDepth",
+      "lines",      "cutOutlines", "ghostLines",    "sceneCutMask",  "sceneCutoutDistance"};
   for (GLuint unit = 0; unit < 10; ++unit)
     if (frame_->has(inputs[unit])) glBindTextureUnit(unit, frame_->texture(inputs[unit]).id());
   glProgramUniform1i(program, 0, scene_.samples);

@@ -598,7 +598,8 @@ CutoutOptions cutout(const Context& ctx, const json& j, const std::string& ptr) 
       o.jitter.amplitude = float(number(ctx, *x, jr.at("amplitude"), 0, 1));
     if (const json* x = jr.take("frequency"))
       o.jitter.frequency = float(number(ctx, *x, jr.at("frequency"), 1e-3, 1e4));
-    if (const json* x = jr.take("octaves")) o.jitter.octaves = integer(ctx, *x, jr.at("octaves"), 1, 8);
+    if (const json* x = jr.take("octaves"))
+      o.jitter.octaves = integer(ctx, *x, jr.at("octaves"), 1, 8);
     if (const json* x = jr.take("image")) {
       if (!x->is_string()) ctx.fail(jr.at("image"), "expected a file name, got " + typeName(*x));
       o.jitter.image = ctx.baseDir / x->get<std::string>();
@@ -614,9 +615,11 @@ CutoutOptions cutout(const Context& ctx, const json& j, const std::string& ptr) 
       ctx.fail(r.at("jitter"), "pattern \"image\" needs an \"image\" file (a PNG)");
     jr.finish();
   }
-  if (o.method == CutoutOptions::Method::ClipPlanes && o.jitter.pattern != CutoutJitter::Pattern::None)
-    ctx.fail(r.at("jitter"), "the clip-plane method cannot jitter (Diepstraten03 §4.3); use "
-                             "\"method\": \"texture\"");
+  if (o.method == CutoutOptions::Method::ClipPlanes &&
+      o.jitter.pattern != CutoutJitter::Pattern::None)
+    ctx.fail(r.at("jitter"),
+             "the clip-plane method cannot jitter (Diepstraten03 §4.3); use "
+             "\"method\": \"texture\"");
   wallColors(ctx, r, o);
   r.finish();
   return o;
@@ -633,8 +636,9 @@ BreakawayOptions breakaway(const Context& ctx, const json& j, const std::string&
   if (const json* v = r.take("wallThickness"))
     o.wallThickness = float(number(ctx, *v, r.at("wallThickness"), 0, 1e30));
   if (o.offset && o.wallThickness && *o.wallThickness > *o.offset)
-    ctx.fail(r.at("wallThickness"), "the wall thickness must not exceed the offset (the back-face "
-                                    "hull is the outer hull shrunk by it)");
+    ctx.fail(r.at("wallThickness"),
+             "the wall thickness must not exceed the offset (the back-face "
+             "hull is the outer hull shrunk by it)");
   wallColors(ctx, r, o);
   r.finish();
   return o;
@@ -680,7 +684,8 @@ FloatImage offsetMap(const Context& ctx, const json& j, const std::string& ptr) 
   if (const json* v = r.take("frequency"))
     recipe.frequency = integer(ctx, *v, r.at("frequency"), 1, 1024);
   if (const json* v = r.take("octaves")) recipe.octaves = integer(ctx, *v, r.at("octaves"), 1, 10);
-  if (const json* v = r.take("seed")) recipe.seed = unsigned(integer(ctx, *v, r.at("seed"), 0, 1 << 30));
+  if (const json* v = r.take("seed"))
+    recipe.seed = unsigned(integer(ctx, *v, r.at("seed"), 0, 1 << 30));
   r.finish();
   return makeOffsetMap(recipe);
 }
@@ -972,7 +977,7 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
                        [&](const SceneObject& o) { return !o.proxy && o.role == role; });
   };
   for (const auto& [cutter, on] : {std::pair{"cutout", scene.cutout.has_value()},
-                                  std::pair{"breakaway", scene.breakaway.has_value()}})
+                                   std::pair{"breakaway", scene.breakaway.has_value()}})
     if (on && !hasRole(Role::Exterior))
       ctx.fail(std::string("/cutters/") + cutter,
                "no object has role \"exterior\": nothing to cut (give the outside objects that "

@@ -12,9 +12,9 @@ namespace cutaway::view {
 namespace {
 
 std::size_t countRole(const Scene& scene, Role role) {
-  return std::size_t(std::count_if(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
-    return !o.proxy && o.role == role;
-  }));
+  return std::size_t(
+      std::count_if(scene.objects.begin(), scene.objects.end(),
+                    [&](const SceneObject& o) { return !o.proxy && o.role == role; }));
 }
 
 }  // namespace
@@ -28,7 +28,8 @@ void cutoutPanel(ViewerState& state) {
 void breakawayPanel(ViewerState& state) {
   parameterTable(breakawayParameters(), state);
   ImGui::TextDisabled("%zu interior objects around %zu exterior ones; one hull per group",
-                      countRole(state.scene, Role::Interior), countRole(state.scene, Role::Exterior));
+                      countRole(state.scene, Role::Interior),
+                      countRole(state.scene, Role::Exterior));
 }
 
 void clipSurfacePanel(ViewerState& state) {

@@ -16,15 +16,15 @@ bool parameterWidget(const Parameter& parameter, Scene& scene);
 // Every parameter of `table`, greyed out where it does not apply; flags sceneChanged.
 void parameterTable(const std::vector<Parameter>& table, ViewerState& state);
 
-void scenePanel(ViewerState& state);     // objects by group, selection, role, importance, angle
-void cameraPanel(ViewerState& state);    // projection, fly mode, framing, path, time
-void filePanel(ViewerState& state);      // save scene, screenshot
-void adaptivePanel(ViewerState& state);  // the adaptive cutter (Burns08/11)
-void cutoutPanel(ViewerState& state);     // Diepstraten03 cutout (panels/cutter_panels.cpp)
-void breakawayPanel(ViewerState& state);  // Diepstraten03 breakaway
+void scenePanel(ViewerState& state);        // objects by group, selection, role, importance, angle
+void cameraPanel(ViewerState& state);       // projection, fly mode, framing, path, time
+void filePanel(ViewerState& state);         // save scene, screenshot
+void adaptivePanel(ViewerState& state);     // the adaptive cutter (Burns08/11)
+void cutoutPanel(ViewerState& state);       // Diepstraten03 cutout (panels/cutter_panels.cpp)
+void breakawayPanel(ViewerState& state);    // Diepstraten03 breakaway
 void clipSurfacePanel(ViewerState& state);  // Trapp13 clip surfaces
-void stylePanel(ViewerState& state);     // shading and lines
-void aovPanel(ViewerState& state);       // AOV inspector: buffer, colour map, range, value
+void stylePanel(ViewerState& state);        // shading and lines
+void aovPanel(ViewerState& state);          // AOV inspector: buffer, colour map, range, value
 void timingsPanel(const ViewerState& state, float framesPerSecond);
 
 }  // namespace cutaway::view

@@ -1,7 +1,7 @@
 // The adaptive cutter's options (cutaway::AdaptiveCutawayOptions; Burns08, Burns11 ch. 4–6)
 // as viewer parameters. Setting any of them on a scene without the cutter adds it with the
 // defaults first, as `cutaway render --cutaway-angle` does.
-#include "../parameters.hpp"
+#include "binding.hpp"
 
 namespace cutaway::view {
 
@@ -19,79 +19,30 @@ Options& options(Scene& scene) {
   return *scene.adaptive;
 }
 
-// A parameter bound to one member of the options.
+bool adaptiveOn(const Scene& s) {
+  return s.adaptive.has_value();
+}
+
+const OptionsBinding<Options> kBinding{"adaptive", options, options, adaptiveOn};
+
 template <typename T>
 Parameter member(std::string key, std::string label, Parameter::Type type, T Options::*field,
                  std::string help) {
-  Parameter p;
-  p.key = "adaptive." + key;
-  p.label = std::move(label);
-  p.type = type;
-  p.help = std::move(help);
-  p.get = [field](const Scene& s) -> ParameterValue {
-    const T& v = options(s).*field;
-    if constexpr (std::is_same_v<T, bool>)
-      return v;
-    else if constexpr (std::is_same_v<T, glm::vec3>)
-      return v;
-    else
-      return double(v);
-  };
-  p.set = [field](Scene& s, const ParameterValue& v) {
-    if constexpr (std::is_same_v<T, bool>)
-      options(s).*field = std::get<bool>(v);
-    else if constexpr (std::is_same_v<T, glm::vec3>)
-      options(s).*field = std::get<glm::vec3>(v);
-    else
-      options(s).*field = T(std::get<double>(v));
-  };
-  p.applies = [](const Scene& s) { return s.adaptive.has_value(); };
-  return p;
+  return kBinding.member(std::move(key), std::move(label), type, field, std::move(help));
 }
 
-// An enum member shown as its scene-format name.
 template <typename E>
 Parameter choice(std::string key, std::string label, E Options::*field,
                  std::vector<std::pair<std::string, E>> names, std::string help) {
-  Parameter p;
-  p.key = "adaptive." + key;
-  p.label = std::move(label);
-  p.type = Parameter::Type::Choice;
-  p.help = std::move(help);
-  p.choices = [names] {
-    std::vector<std::string> out;
-    for (const auto& [name, value] : names) out.push_back(name);
-    return out;
-  };
-  p.get = [field, names](const Scene& s) -> ParameterValue {
-    for (const auto& [name, value] : names)
-      if (options(s).*field == value) return name;
-    return names.front().first;
-  };
-  p.set = [field, names](Scene& s, const ParameterValue& v) {
-    for (const auto& [name, value] : names)
-      if (name == std::get<std::string>(v)) options(s).*field = value;
-  };
-  p.applies = [](const Scene& s) { return s.adaptive.has_value(); };
-  return p;
+  return kBinding.choice(std::move(key), std::move(label), field, std::move(names),
+                         std::move(help));
 }
 
 std::vector<Parameter> makeAdaptiveParameters() {
   using Type = Parameter::Type;
   std::vector<Parameter> out;
-  Parameter enabled;
-  enabled.key = "adaptive.enabled";
-  enabled.label = "enabled";
-  enabled.type = Type::Bool;
-  enabled.help = "Cut away what hides the objects of interest (Burns08).";
-  enabled.get = [](const Scene& s) -> ParameterValue { return s.adaptive.has_value(); };
-  enabled.set = [](Scene& s, const ParameterValue& v) {
-    if (!std::get<bool>(v))
-      s.adaptive.reset();
-    else if (!s.adaptive)
-      s.adaptive.emplace();
-  };
-  out.push_back(enabled);
+  out.push_back(
+      kBinding.enabled("Cut away what hides the objects of interest (Burns08).", &Scene::adaptive));
 
   Parameter angle = member("angle", "angle θ (°)", Type::Float, &Options::angle,
                            "Angle between the cut's walls and the viewing ray (Burns08 §3); "

@@ -60,11 +60,12 @@ std::vector<Parameter> makeClipSurfaceParameters() {
                           {"perFrame", ClipSurfaceOptions::Parity::PerFrame}},
                          "Depth sprites built once per mesh, or re-peeled every frame for "
                          "moving objects (§6.3)."));
-  out.push_back(b.member("normalMap", "cap normal map", Type::Bool, &ClipSurfaceOptions::capNormalMap,
+  out.push_back(b.member("normalMap", "cap normal map", Type::Bool,
+                         &ClipSurfaceOptions::capNormalMap,
                          "Shade the caps' relief from the offset map's gradients (§6.1)."));
-  Parameter occlusion = b.member("occlusion", "cap occlusion", Type::Float,
-                                 &ClipSurfaceOptions::capOcclusion,
-                                 "Strength of the occlusion map derived from the offset map.");
+  Parameter occlusion =
+      b.member("occlusion", "cap occlusion", Type::Float, &ClipSurfaceOptions::capOcclusion,
+               "Strength of the occlusion map derived from the offset map.");
   occlusion.min = 0, occlusion.max = 1;
   out.push_back(occlusion);
   out.push_back(b.member("solidTexture", "solid texture", Type::Bool,
@@ -72,7 +73,8 @@ std::vector<Parameter> makeClipSurfaceParameters() {
                          "Marble-like procedural solid texture on the caps (Fig. 11)."));
   for (int i = 0; i < kMaxClipSurfaces; ++i) {
     out.push_back(surface(
-        i, "enabled", "on", Type::Bool, [](const ClipSurface& cs) -> ParameterValue { return cs.enabled; },
+        i, "enabled", "on", Type::Bool,
+        [](const ClipSurface& cs) -> ParameterValue { return cs.enabled; },
         [](ClipSurface& cs, const ParameterValue& v) { cs.enabled = std::get<bool>(v); },
         "Whether this surface clips (§4.5: each surface can be switched)."));
     Parameter position = surface(

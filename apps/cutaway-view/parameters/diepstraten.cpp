@@ -35,9 +35,10 @@ std::vector<Parameter> makeCutoutParameters() {
   using Type = Parameter::Type;
   const OptionsBinding<CutoutOptions> b{"cutout", readCutout, writeCutout, cutoutOn};
   std::vector<Parameter> out;
-  out.push_back(b.enabled("Cut a wedge out of every exterior object along its main axis "
-                          "(Diepstraten03 §4).",
-                          &Scene::cutout));
+  out.push_back(
+      b.enabled("Cut a wedge out of every exterior object along its main axis "
+                "(Diepstraten03 §4).",
+                &Scene::cutout));
   out.push_back(b.choice("method", "method", &CutoutOptions::method,
                          {{"texture", CutoutOptions::Method::Texture},
                           {"clipPlanes", CutoutOptions::Method::ClipPlanes}},
@@ -51,8 +52,9 @@ std::vector<Parameter> makeCutoutParameters() {
   facing.key = "cutout.facingCamera";
   facing.label = "faces the camera";
   facing.type = Type::Bool;
-  facing.help = "Turn the wedge about the main axis towards the viewer (rule 3), or hold it at "
-                "the rotation below.";
+  facing.help =
+      "Turn the wedge about the main axis towards the viewer (rule 3), or hold it at "
+      "the rotation below.";
   facing.get = [](const Scene& s) -> ParameterValue { return !readCutout(s).rotation; };
   facing.set = [](Scene& s, const ParameterValue& v) {
     if (std::get<bool>(v))
@@ -86,14 +88,14 @@ std::vector<Parameter> makeCutoutParameters() {
                                "displaces the signed distance.");
   pattern.applies = textureCutout;
   out.push_back(pattern);
-  Parameter amplitude = j.member("jitterAmplitude", "jitter amplitude", Type::Float,
-                                 &CutoutJitter::amplitude,
-                                 "Displacement, as a fraction of the main axis' extent.");
+  Parameter amplitude =
+      j.member("jitterAmplitude", "jitter amplitude", Type::Float, &CutoutJitter::amplitude,
+               "Displacement, as a fraction of the main axis' extent.");
   amplitude.min = 0, amplitude.max = 1, amplitude.sliderMax = 0.2;
   out.push_back(amplitude);
-  Parameter frequency = j.member("jitterFrequency", "jitter frequency", Type::Float,
-                                 &CutoutJitter::frequency,
-                                 "Pattern repeats per extent along the main axis.");
+  Parameter frequency =
+      j.member("jitterFrequency", "jitter frequency", Type::Float, &CutoutJitter::frequency,
+               "Pattern repeats per extent along the main axis.");
   frequency.min = 1e-3, frequency.max = 1e4, frequency.sliderMax = 60;
   out.push_back(frequency);
   out.push_back(b.color("wallColor", "wall colour", &CutoutOptions::wallColor, kDefaultWallColor,
@@ -137,18 +139,18 @@ Parameter extent(std::string key, std::string label, std::optional<float> Breaka
 std::vector<Parameter> makeBreakawayParameters() {
   const OptionsBinding<BreakawayOptions> b{"breakaway", readBreakaway, writeBreakaway, breakawayOn};
   std::vector<Parameter> out;
-  out.push_back(b.enabled("Open one hole in the exterior objects where the interior objects "
-                          "would be hidden (Diepstraten03 §5).",
-                          &Scene::breakaway));
-  out.push_back(extent("offset", "hull offset", &BreakawayOptions::offset,
-                       &BreakawayExtent::offset,
+  out.push_back(
+      b.enabled("Open one hole in the exterior objects where the interior objects "
+                "would be hidden (Diepstraten03 §5).",
+                &Scene::breakaway));
+  out.push_back(extent("offset", "hull offset", &BreakawayOptions::offset, &BreakawayExtent::offset,
                        "Scene units the interior objects' convex hulls grow by."));
   out.push_back(extent("wallThickness", "wall thickness", &BreakawayOptions::wallThickness,
                        &BreakawayExtent::wallThickness,
                        "The back-face hull is smaller by this: the hole's wall (at most the "
                        "offset)."));
-  out.push_back(b.color("wallColor", "wall colour", &BreakawayOptions::wallColor,
-                        kDefaultWallColor, "Colour of the cut walls of solid exteriors."));
+  out.push_back(b.color("wallColor", "wall colour", &BreakawayOptions::wallColor, kDefaultWallColor,
+                        "Colour of the cut walls of solid exteriors."));
   return out;
 }
 

@@ -26,9 +26,12 @@ inline float valueNoise(float x, float y, std::uint32_t seed = 0, std::int32_t p
   const float fx = std::floor(x), fy = std::floor(y);
   const float ax = x - fx, ay = y - fy;
   const float sx = ax * ax * (3.0f - 2.0f * ax), sy = ay * ay * (3.0f - 2.0f * ay);
-  auto wrap = [period](std::int32_t i) { return period > 0 ? ((i % period) + period) % period : i; };
+  auto wrap = [period](std::int32_t i) {
+    return period > 0 ? ((i % period) + period) % period : i;
+  };
   const auto ix = std::int32_t(fx), iy = std::int32_t(fy);
-  const float a = latticeValue(wrap(ix), wrap(iy), seed), b = latticeValue(wrap(ix + 1), wrap(iy), seed);
+  const float a = latticeValue(wrap(ix), wrap(iy), seed),
+              b = latticeValue(wrap(ix + 1), wrap(iy), seed);
   const float c = latticeValue(wrap(ix), wrap(iy + 1), seed),
               d = latticeValue(wrap(ix + 1), wrap(iy + 1), seed);
   const float bottom = a * (1.0f - sx) + b * sx, top = c * (1.0f - sx) + d * sx;

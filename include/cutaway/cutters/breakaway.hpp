@@ -20,8 +20,8 @@
 namespace cutaway {
 
 struct BreakawayOptions {
-  std::optional<float> offset;  // world units the hulls grow by; default: 5% of the
-                                // interior objects' bounding radius
+  std::optional<float> offset;         // world units the hulls grow by; default: 5% of the
+                                       // interior objects' bounding radius
   std::optional<float> wallThickness;  // the back-face hull is smaller by this; default:
                                        // half the offset; at most the offset
   std::optional<glm::vec3> wallColor;  // default: kDefaultWallColor (cutout.hpp)

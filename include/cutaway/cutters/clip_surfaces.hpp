@@ -30,8 +30,8 @@ enum class OffsetPattern {
 };
 struct OffsetMapRecipe {
   OffsetPattern pattern = OffsetPattern::Noise;
-  int size = 256;       // texels per side
-  int frequency = 4;    // periods (lattice cells) across the map
+  int size = 256;     // texels per side
+  int frequency = 4;  // periods (lattice cells) across the map
   int octaves = 5;
   unsigned seed = 1;
 };
@@ -49,7 +49,7 @@ struct ClipSurface {
   glm::vec3 origin{0.0f};  // O: a corner of the cap's extent
   glm::vec3 u{1, 0, 0};    // U, V: orthogonal; N = Û × V̂; the cap spans O + [0,1]·U + [0,1]·V
   glm::vec3 v{0, 1, 0};
-  glm::vec3 scale{1, 1, 0.05f};  // S: offset-map repeats along U and V; S_z: height in scene units
+  glm::vec3 scale{1, 1, 0.05f};   // S: offset-map repeats along U and V; S_z: height in scene units
   FloatImage offsetMap{1, 1, 1};  // OM: heights in [0, 1]
   bool enabled = true;
   std::optional<glm::vec3> capColor;  // default: the capped object's colour, darker
@@ -57,7 +57,9 @@ struct ClipSurface {
   // cap colour. Empty: none.
   Rgba8Image diffuseMap;
 
-  glm::vec3 normal() const { return glm::normalize(glm::cross(glm::normalize(u), glm::normalize(v))); }
+  glm::vec3 normal() const {
+    return glm::normalize(glm::cross(glm::normalize(u), glm::normalize(v)));
+  }
 };
 
 // Trapp13 eqs. 1–3: P·N − N·O + f(OM, T)·S_z, with T from the projection P_N of P onto the
@@ -101,8 +103,8 @@ FloatImage deriveReliefMaps(const ClipSurface& cs);
 struct VolumetricDepthSprite {
   glm::mat4 toTexture{1.0f};  // M = T(C)·S·B·T(−G): object (or world) space → LDI space [0,1]³
   int width = 0, height = 0;
-  int depthComplexity = 0;     // d: number of layers
-  std::vector<float> layers;   // d × height × width window depths, rows bottom to top; 1 = empty
+  int depthComplexity = 0;    // d: number of layers
+  std::vector<float> layers;  // d × height × width window depths, rows bottom to top; 1 = empty
 };
 
 // The VPT of §5.3: inside when an odd number of layers lie in front of the point along its ray.

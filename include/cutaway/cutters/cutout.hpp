@@ -29,9 +29,9 @@ struct CutoutJitter {
   // the paper's tiny repeated texture under bilinear filtering (a triangle wave); noise:
   // fractal value noise (their "clouds"); image: any PNG (grey level, repeated).
   enum class Pattern { None, Sawtooth, Noise, Image } pattern = Pattern::None;
-  float amplitude = 0.03f;  // displacement, as a fraction of the main axis' extent
-  float frequency = 12.0f;  // pattern repeats per main-axis extent
-  int octaves = 4;          // noise
+  float amplitude = 0.03f;      // displacement, as a fraction of the main axis' extent
+  float frequency = 12.0f;      // pattern repeats per main-axis extent
+  int octaves = 4;              // noise
   std::filesystem::path image;  // Image: the PNG it was loaded from
   FloatImage imageData;         // Image: its grey levels, loaded with the scene (readPngGray)
 };
@@ -59,8 +59,8 @@ inline constexpr glm::vec3 kDefaultWallColor{0.82f, 0.32f, 0.26f};
 // One exterior unit's wedge for a frame: planes (n, w) with n·x + w > 0 on the removed side;
 // a point is removed when it lies on the removed side of every plane.
 struct CutoutWedge {
-  glm::vec3 origin{0.0f};  // centre of the hull surface (on the main axis)
-  glm::vec3 axis{0.0f};    // main axis, unit
+  glm::vec3 origin{0.0f};   // centre of the hull surface (on the main axis)
+  glm::vec3 axis{0.0f};     // main axis, unit
   float axisLength = 1.0f;  // extent of the hull along the axis
   std::vector<glm::vec4> planes;
 };

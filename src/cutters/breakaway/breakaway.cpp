@@ -82,8 +82,9 @@ Breakaway::Breakaway(const Scene& scene, const BreakawayOptions& options, Frame&
     outer_.emplace_back(c.outerHull);
     inner_.emplace_back(c.innerHull);
   }
-  hullProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
-                                              {GL_FRAGMENT_SHADER, "cutters/breakaway/hull.frag"}}});
+  hullProgram_ =
+      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
+                                   {GL_FRAGMENT_SHADER, "cutters/breakaway/hull.frag"}}});
   const glm::mat4 identity(1.0f);
   glProgramUniformMatrix4fv(hullProgram_.id(), meshUniform::kModel, 1, GL_FALSE, &identity[0][0]);
   glProgramUniformMatrix4fv(hullProgram_.id(), meshUniform::kNormalMatrix, 1, GL_FALSE,
@@ -100,12 +101,14 @@ Breakaway::Breakaway(const Scene& scene, const BreakawayOptions& options, Frame&
                             "clip exterior back faces"});
   frame.declare("breakawayHullNormal", {.format = GL_RGBA16F});
   frame.declare("breakawayInnerNormal", {.format = GL_RGBA16F});
-  frame.addPass({.name = "breakawayClip",
-                 .writes = {"breakawayHullNormal", "breakawayClipDepth"},
-                 .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, outer_); }});
-  frame.addPass({.name = "breakawayInnerClip",
-                 .writes = {"breakawayInnerNormal", "breakawayInnerDepth"},
-                 .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, inner_); }});
+  frame.addPass(
+      {.name = "breakawayClip",
+       .writes = {"breakawayHullNormal", "breakawayClipDepth"},
+       .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, outer_); }});
+  frame.addPass(
+      {.name = "breakawayInnerClip",
+       .writes = {"breakawayInnerNormal", "breakawayInnerDepth"},
+       .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, inner_); }});
 }
 
 void Breakaway::drawClipDepth(GLuint framebuffer, const std::vector<GpuMesh>& hulls) const {

@@ -18,7 +18,8 @@ FloatImage makeOffsetMap(const OffsetMapRecipe& r) {
       const float u = (float(x) + 0.5f) / float(r.size), v = (float(y) + 0.5f) / float(r.size);
       float h = 0.0f;
       switch (r.pattern) {
-        case OffsetPattern::Flat: break;
+        case OffsetPattern::Flat:
+          break;
         case OffsetPattern::Sawtooth: {
           const float t = u * float(frequency);
           h = 1.0f - std::abs(2.0f * (t - std::floor(t)) - 1.0f);
@@ -29,7 +30,8 @@ FloatImage makeOffsetMap(const OffsetMapRecipe& r) {
           float sum = 0.0f, weight = 1.0f, total = 0.0f;
           for (int o = 0; o < r.octaves; ++o) {
             const int period = frequency << o;
-            float n = valueNoise(u * float(period), v * float(period), r.seed + unsigned(o), period);
+            float n =
+                valueNoise(u * float(period), v * float(period), r.seed + unsigned(o), period);
             // Ridged: sharp creases where the noise crosses its middle ("broken material").
             if (r.pattern == OffsetPattern::Ridged) n = 1.0f - std::abs(2.0f * n - 1.0f);
             sum += weight * n;
@@ -50,16 +52,29 @@ FloatImage blendOffsetMaps(const FloatImage& a, const FloatImage& b, OffsetBlend
   FloatImage out(big.width, big.height, 1);
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) {
-      const float u = (float(x) + 0.5f) / float(out.width), v = (float(y) + 0.5f) / float(out.height);
+      const float u = (float(x) + 0.5f) / float(out.width),
+                  v = (float(y) + 0.5f) / float(out.height);
       const float p = sampleRepeat(a, u, v), q = sampleRepeat(b, u, v);
       float h = 0.0f;
       switch (op) {
-        case OffsetBlend::Add: h = p + q; break;
-        case OffsetBlend::Multiply: h = p * q; break;
-        case OffsetBlend::Max: h = std::max(p, q); break;
-        case OffsetBlend::Min: h = std::min(p, q); break;
-        case OffsetBlend::Mix: h = p * (1.0f - weight) + q * weight; break;
-        case OffsetBlend::Screen: h = 1.0f - (1.0f - p) * (1.0f - q); break;
+        case OffsetBlend::Add:
+          h = p + q;
+          break;
+        case OffsetBlend::Multiply:
+          h = p * q;
+          break;
+        case OffsetBlend::Max:
+          h = std::max(p, q);
+          break;
+        case OffsetBlend::Min:
+          h = std::min(p, q);
+          break;
+        case OffsetBlend::Mix:
+          h = p * (1.0f - weight) + q * weight;
+          break;
+        case OffsetBlend::Screen:
+          h = 1.0f - (1.0f - p) * (1.0f - q);
+          break;
       }
       out.at(x, y)[0] = std::clamp(h, 0.0f, 1.0f);
     }
@@ -120,7 +135,8 @@ FloatImage deriveReliefMaps(const ClipSurface& cs) {
         const float cx = std::cos(angle), cy = std::sin(angle);
         float steepest = 0.0f;
         for (int s = 1; s <= kSteps; ++s) {
-          const int qx = x + int(std::lround(cx * float(s))), qy = y + int(std::lround(cy * float(s)));
+          const int qx = x + int(std::lround(cx * float(s))),
+                    qy = y + int(std::lround(cy * float(s)));
           const float dx = float(qx - x) * texelU, dy = float(qy - y) * texelV;
           const float run = std::sqrt(dx * dx + dy * dy);
           if (run <= 0.0f) continue;

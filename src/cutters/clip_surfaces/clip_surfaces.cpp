@@ -60,12 +60,14 @@ glm::mat4 depthSpriteFrame(const Bounds& box, const glm::mat3& basis, int resolu
   const glm::vec3 lo = box.min - pad, extent = size + 2.0f * pad;
   // T = S · (Bᵀ x − lo): into the basis, then onto [0,1]³.
   glm::mat4 toBasis(glm::transpose(basis));
-  return glm::scale(glm::mat4(1.0f), 1.0f / extent) * glm::translate(glm::mat4(1.0f), -lo) * toBasis;
+  return glm::scale(glm::mat4(1.0f), 1.0f / extent) * glm::translate(glm::mat4(1.0f), -lo) *
+         toBasis;
 }
 
 gl::Program buildDepthPeelProgram() {
-  return gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "cutters/clip_surfaces/depth_peel.vert"},
-                                      {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/depth_peel.frag"}}});
+  return gl::buildProgram(
+      {.stages = {{GL_VERTEX_SHADER, "cutters/clip_surfaces/depth_peel.vert"},
+                  {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/depth_peel.frag"}}});
 }
 
 DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const glm::mat4& toTexture,
@@ -103,8 +105,8 @@ DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const g
     GLuint any = 0;
     glGetQueryObjectuiv(query.id(), GL_QUERY_RESULT, &any);
     if (!any) break;  // nothing left behind the last layer: that is the depth complexity
-    glCopyImageSubData(layer.id(), GL_TEXTURE_2D, 0, 0, 0, 0, previous.id(), GL_TEXTURE_2D, 0, 0,
-                       0, 0, n, n, 1);
+    glCopyImageSubData(layer.id(), GL_TEXTURE_2D, 0, 0, 0, 0, previous.id(), GL_TEXTURE_2D, 0, 0, 0,
+                       0, n, n, 1);
     layers.push_back(std::move(layer));
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -125,8 +127,8 @@ DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const g
                        GL_TEXTURE_2D_ARRAY, 0, 0, 0, i, n, n, 1);
   if (readBack && s.depthComplexity > 0) {
     s.layers.resize(std::size_t(n) * std::size_t(n) * std::size_t(s.depthComplexity));
-    glGetTextureImage(out.layers.id(), 0, GL_RED, GL_FLOAT, GLsizei(s.layers.size() * sizeof(float)),
-                      s.layers.data());
+    glGetTextureImage(out.layers.id(), 0, GL_RED, GL_FLOAT,
+                      GLsizei(s.layers.size() * sizeof(float)), s.layers.data());
   }
   return out;
 }
@@ -135,9 +137,9 @@ struct ClipSurfaceCutter::Gpu {
   gl::Program peel = buildDepthPeelProgram();
   gl::Buffer block;
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
-  std::vector<CapGrid> grids;  // 2^k cells per side, k = 3 … 10
-  std::vector<DepthSpriteGpu> sprites;  // one per capped object
-  std::vector<glm::vec3> capColors;     // one per capped object
+  std::vector<CapGrid> grids;                // 2^k cells per side, k = 3 … 10
+  std::vector<DepthSpriteGpu> sprites;       // one per capped object
+  std::vector<glm::vec3> capColors;          // one per capped object
 };
 
 ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurfaceOptions& options,
@@ -196,10 +198,10 @@ ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurface
       capped_.push_back(i);
       g.capColors.push_back(options.surfaces.front().capColor.value_or(o.material.color * 0.7f));
       if (options.parity == ClipSurfaceOptions::Parity::Static)
-        g.sprites.push_back(buildDepthSprite(g.peel.id(), sceneGpu.mesh(i),
-                                             depthSpriteFrame(o.mesh->bounds(), glm::mat3(1.0f),
-                                                              options.depthSpriteResolution),
-                                             options.depthSpriteResolution, true));
+        g.sprites.push_back(buildDepthSprite(
+            g.peel.id(), sceneGpu.mesh(i),
+            depthSpriteFrame(o.mesh->bounds(), glm::mat3(1.0f), options.depthSpriteResolution),
+            options.depthSpriteResolution, true));
     }
 
   frame.declare("clipMask", {.format = GL_R32UI,
@@ -212,9 +214,9 @@ ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurface
                             "least one inside (kept)"});
   if (options.parity == ClipSurfaceOptions::Parity::PerFrame && !capped_.empty()) {
     g.sprites.resize(capped_.size());
-    frame.addPass({.name = "clipSurfaceSprites",
-                   .writes = {},
-                   .run = [this](const PassContext&) { buildPerFrameSprites(sceneGpu_.time()); }});
+    frame.addPass({.name = "clipSurfaceSprites", .writes = {}, .run = [this](const PassContext&) {
+                     buildPerFrameSprites(sceneGpu_.time());
+                   }});
   }
 }
 
@@ -236,9 +238,11 @@ void ClipSurfaceCutter::buildPerFrameSprites(float time) {
                              (c & 4) ? b.max.z : b.min.z);
       inBasis.extend(glm::transpose(basis) * glm::vec3(model * glm::vec4(corner, 1.0f)));
     }
-    const glm::mat4 worldToTexture = depthSpriteFrame(inBasis, basis, options_.depthSpriteResolution);
-    gpu_->sprites[k] = buildDepthSprite(gpu_->peel.id(), sceneGpu_.mesh(capped_[k]), worldToTexture * model,
-                                        options_.depthSpriteResolution, false);
+    const glm::mat4 worldToTexture =
+        depthSpriteFrame(inBasis, basis, options_.depthSpriteResolution);
+    gpu_->sprites[k] =
+        buildDepthSprite(gpu_->peel.id(), sceneGpu_.mesh(capped_[k]), worldToTexture * model,
+                         options_.depthSpriteResolution, false);
     gpu_->sprites[k].sprite.toTexture = worldToTexture * model;
   }
 }

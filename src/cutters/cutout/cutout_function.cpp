@@ -25,7 +25,7 @@ CutoutWedge cutoutWedge(const PrincipalAxes& axes, const CutoutOptions& options,
   } else {
     b = towardsViewer - glm::dot(towardsViewer, a) * a;
     b = glm::dot(b, b) > 1e-12f * glm::dot(towardsViewer, towardsViewer) ? glm::normalize(b)
-                                                                          : axes.axes[1];
+                                                                         : axes.axes[1];
   }
   const glm::vec3 t = glm::cross(a, b);
   // Two planes through the axis, each at half the relative angle from b; their inward
@@ -39,8 +39,8 @@ CutoutWedge cutoutWedge(const PrincipalAxes& axes, const CutoutOptions& options,
   if (options.axialRange) {
     const float sLo = axes.extentMin + options.axialRange->x * w.axisLength;
     const float sHi = axes.extentMin + options.axialRange->y * w.axisLength;
-    w.planes.emplace_back(a, -glm::dot(a, w.origin) - sLo);   // s > sLo
-    w.planes.emplace_back(-a, glm::dot(a, w.origin) + sHi);   // s < sHi
+    w.planes.emplace_back(a, -glm::dot(a, w.origin) - sLo);  // s > sLo
+    w.planes.emplace_back(-a, glm::dot(a, w.origin) + sHi);  // s < sHi
   }
   return w;
 }
@@ -76,10 +76,14 @@ float cutoutPerturbation(const CutoutWedge& wedge, const CutoutJitter& jitter, c
   const float radial = glm::length(d - along * wedge.axis);
   const glm::vec2 uv = glm::vec2(along, radial) * (jitter.frequency / wedge.axisLength);
   switch (jitter.pattern) {
-    case CutoutJitter::Pattern::None: return 0.0f;
-    case CutoutJitter::Pattern::Sawtooth: return 0.5f * (triangleWave(uv.x) + triangleWave(uv.y));
-    case CutoutJitter::Pattern::Noise: return fractalNoise(uv, jitter.octaves);
-    case CutoutJitter::Pattern::Image: return 2.0f * sampleRepeat(jitter.imageData, uv.x, uv.y) - 1.0f;
+    case CutoutJitter::Pattern::None:
+      return 0.0f;
+    case CutoutJitter::Pattern::Sawtooth:
+      return 0.5f * (triangleWave(uv.x) + triangleWave(uv.y));
+    case CutoutJitter::Pattern::Noise:
+      return fractalNoise(uv, jitter.octaves);
+    case CutoutJitter::Pattern::Image:
+      return 2.0f * sampleRepeat(jitter.imageData, uv.x, uv.y) - 1.0f;
   }
   return 0.0f;
 }
