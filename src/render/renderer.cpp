@@ -90,11 +90,13 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
         adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * scene.bounds().radius();
 
   g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  // The active cutters' #defines for cutters.glsl.
   std::map<std::string, std::string> cutters;
-  if (adaptive) cutters["CUTTER_ADAPTIVE"] = "1";
-  if (g.cutout) cutters["CUTTER_CUTOUT"] = "1";
-  if (g.breakaway) cutters["CUTTER_BREAKAWAY"] = "1";
-  if (g.clipSurfaces) cutters["CUTTER_CLIP_SURFACES"] = "1";
+  for (const auto& [on, define] : {std::pair{adaptive != nullptr, "CUTTER_ADAPTIVE"},
+                                   std::pair{bool(g.cutout), "CUTTER_CUTOUT"},
+                                   std::pair{bool(g.breakaway), "CUTTER_BREAKAWAY"},
+                                   std::pair{bool(g.clipSurfaces), "CUTTER_CLIP_SURFACES"}})
+    if (on) cutters.emplace(define, "1");
   g.meshProgram = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
        .defines = cutters,
