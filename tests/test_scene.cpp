@@ -169,7 +169,8 @@ const BadScene kBadScenes[] = {
     {"light_too_many.json", "/lights", "at most 8 lights, got 9"},
     // Cutters: the adaptive cutaway.
     {"cutters_unknown_cutter.json", "/cutters/diepstraten",
-     "unknown key \"diepstraten\" (expected one of: adaptive, breakaway, clipSurfaces, cutout)"},
+     "unknown key \"diepstraten\" (expected one of: adaptive, breakaway, clipSurfaces, cutout, "
+     "terrainOpening)"},
     // Cutters: Diepstraten03 cutout and breakaway.
     {"cutout_angle_0.json", "/cutters/cutout/angle", "value 0 is outside [1, 180]"},
     {"cutout_jitter_unknown_pattern.json", "/cutters/cutout/jitter/pattern",
@@ -200,6 +201,10 @@ const BadScene kBadScenes[] = {
     {"clip_scale_zero.json", "/cutters/clipSurfaces/surfaces/0/scale",
      "repeats (x, y) must be > 0"},
     {"clip_parity_unknown.json", "/cutters/clipSurfaces/parity", "unknown value \"sometimes\""},
+    // Cutters: Konev18 terrain opening.
+    {"terrain_no_network.json", "/cutters/terrainOpening", "no network"},
+    {"terrain_matches_nothing.json", "/cutters/terrainOpening/terrain", "no object name matches"},
+    {"terrain_network_missing.json", "/cutters/terrainOpening/network/0", "no-such.shp"},
     {"object_param_solid_number.json", "/objects/0/params/solid",
      "expected true or false, got number"},
     {"cutters_not_an_object.json", "/cutters", "expected an object, got string"},

@@ -24,6 +24,7 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                                           "cutters/breakaway/breakaway.glsl",
                                           "cutters/clip_surfaces/clip_fragment.glsl",
                                           "cutters/clip_surfaces/clip_surfaces.glsl",
+                                          "cutters/terrain_opening/terrain_opening.glsl",
                                           "styles/shadows/shadow_lookup.glsl",
                                           "render/gbuffer.glsl"};
   EXPECT_EQ(source.files, expected);

@@ -13,6 +13,7 @@ const std::vector<ParameterGroup>& parameterGroups() {
       {"cutout", "Cutout (Diepstraten03)", &cutoutParameters()},
       {"breakaway", "Breakaway (Diepstraten03)", &breakawayParameters()},
       {"clipSurfaces", "Clip surfaces (Trapp13)", &clipSurfaceParameters()},
+      {"terrain", "Terrain opening (Konev18)", &terrainParameters()},
       {"style", "Style", &styleParameters()},
   };
   return groups;

@@ -53,6 +53,7 @@ const std::vector<Parameter>& styleParameters();        // parameters/style.cpp
 const std::vector<Parameter>& cutoutParameters();       // parameters/diepstraten.cpp
 const std::vector<Parameter>& breakawayParameters();    // parameters/diepstraten.cpp
 const std::vector<Parameter>& clipSurfaceParameters();  // parameters/clip_surfaces.cpp
+const std::vector<Parameter>& terrainParameters();      // parameters/terrain.cpp
 const std::vector<ParameterGroup>& parameterGroups();
 const Parameter* findParameter(const std::string& key);
 

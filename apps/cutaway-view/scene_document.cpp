@@ -240,6 +240,18 @@ json clipSurfacesJson(const ClipSurfaceOptions& o) {
           {"surfaces", surfaces}};
 }
 
+// The terrain opening's keys the viewer edits; the network and terrain stay as written.
+json terrainJson(const TerrainOpeningOptions& o) {
+  json j = {{"w", exact(o.w)},
+            {"s", exact(o.s)},
+            {"cameraDistance", o.cameraDistance},
+            {"metric", o.metric == TerrainOpeningOptions::Metric::L1 ? "l1" : "euclidean"},
+            {"resolution", o.resolution},
+            {"cutBuildings", o.cutBuildings}};
+  if (o.thicknessColor) j["thicknessColor"] = vec(*o.thicknessColor);
+  return j;
+}
+
 // Writes `current` as doc["cutters"][key] when it differs from `original` (or removes it).
 template <typename Options, typename ToJson>
 void patchCutter(json& doc, const char* key, const std::optional<Options>& original,
@@ -328,6 +340,11 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
     if (!s.is_object()) s = json::object();
     for (auto& [key, value] : style.items()) s[key] = value;
   }
+  if (current.terrainOpening &&
+      terrainJson(*original.terrainOpening) != terrainJson(*current.terrainOpening))
+    for (const json edited = terrainJson(*current.terrainOpening);
+         auto& [key, value] : edited.items())
+      doc["cutters"]["terrainOpening"][key] = value;
   const fs::path from = fs::weakly_canonical(fs::absolute(path_)).parent_path();
   const fs::path to = fs::weakly_canonical(fs::absolute(target)).parent_path();
   if (from != to) makePathsAbsolute(doc, path_.parent_path());

@@ -662,6 +662,8 @@ void Viewer::drawPanels() {
          [](const Scene& s) { return s.breakaway.has_value(); }},
         {"Clip surfaces (Trapp13)", clipSurfacePanel,
          [](const Scene& s) { return s.clipSurfaces.has_value(); }},
+        {"Terrain opening (Konev18)", terrainPanel,
+         [](const Scene& s) { return s.terrainOpening.has_value(); }},
     };
     for (const auto& panel : kCutterPanels)
       if (ImGui::CollapsingHeader(panel.title,

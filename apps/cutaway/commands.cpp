@@ -269,6 +269,19 @@ int info(const std::string& path) {
         {"capped", c->caps ? capped : nlohmann::json::array()},
         {"notCappedOpenMeshes", c->caps ? uncapped : nlohmann::json::array()}};
   }
+  if (const auto& t = scene.terrainOpening) {
+    std::size_t nodes = 0;
+    for (const auto& line : t->lines) nodes += line.size();
+    out["cutters"]["terrainOpening"] = {
+        {"terrain", t->terrain},
+        {"polylines", t->lines.size()},
+        {"nodes", nodes},
+        {"resolution", t->resolution},
+        {"metric", t->metric == TerrainOpeningOptions::Metric::L1 ? "l1" : "euclidean"},
+        {"w", t->w},
+        {"s", t->s},
+        {"cameraDistance", t->cameraDistance}};
+  }
   if (const auto& b = scene.breakaway) {
     const BreakawayExtent extent = breakawayExtent(scene, *b);
     nlohmann::json clusters = nlohmann::json::array();

@@ -1,6 +1,6 @@
 // The active cutters composed into one per-fragment decision for the geometry pass; each is
 // compiled in by its define (CUTTER_ADAPTIVE, CUTTER_CUTOUT, CUTTER_BREAKAWAY,
-// CUTTER_CLIP_SURFACES). A fragment is
+// CUTTER_CLIP_SURFACES, CUTTER_TERRAIN). A fragment is
 // removed when any cutter that cuts its object removes it; a back face seen through a cut
 // takes the first cutter's cut surface. Needs frame_uniforms.glsl.
 #include "fate.glsl"
@@ -15,6 +15,9 @@
 #endif
 #ifdef CUTTER_CLIP_SURFACES
 #include "clip_surfaces/clip_fragment.glsl"
+#endif
+#ifdef CUTTER_TERRAIN
+#include "terrain_opening/terrain_opening.glsl"
 #endif
 
 int cutFragment(int cutBy, vec3 x, bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
@@ -40,6 +43,13 @@ int cutFragment(int cutBy, vec3 x, bool frontFacing, out vec3 cutPosition, out v
 #ifdef CUTTER_BREAKAWAY
   if ((cutBy & kCutByBreakaway) != 0) {
     f = breakawayFragment(frontFacing, p, n);
+    if (f == kDiscard) return kDiscard;
+    if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
+  }
+#endif
+#ifdef CUTTER_TERRAIN
+  if ((cutBy & kCutByTerrain) != 0) {
+    f = terrainFragment(x, p, n);
     if (f == kDiscard) return kDiscard;
     if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
   }

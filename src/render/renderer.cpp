@@ -8,6 +8,7 @@
 #include "cutters/breakaway/breakaway.hpp"
 #include "cutters/clip_surfaces/clip_surfaces.hpp"
 #include "cutters/cutout/cutout.hpp"
+#include "cutters/terrain_opening/terrain_opening.hpp"
 #include "render/fullscreen.hpp"
 #include "render/scene_gpu.hpp"
 #include "styles/hatching/tonal_art_map.hpp"
@@ -48,7 +49,8 @@ constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLin
                 kCutBy = 13, kCutSurface = 14, kCutColor = 15, kBackColor = 16, kGhostDistance = 17,
                 kClipPlane = 18;
 // Bits of src/cutters/fate.glsl.
-constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4, kCutByClipSurfaces = 8;
+constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4, kCutByClipSurfaces = 8,
+              kCutByTerrain = 16;
 
 }  // namespace
 
@@ -59,6 +61,7 @@ struct Renderer::Impl {
   std::unique_ptr<Cutout> cutout;
   std::unique_ptr<Breakaway> breakaway;
   std::unique_ptr<ClipSurfaceCutter> clipSurfaces;
+  std::unique_ptr<TerrainOpening> terrain;
   gl::Program capProgram, capMaskProgram;
   gl::Buffer frameUniforms;
   FullscreenTriangle fullscreen;
@@ -81,6 +84,8 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   if (scene.breakaway) g.breakaway = std::make_unique<Breakaway>(scene, *scene.breakaway, f);
   if (scene.clipSurfaces)
     g.clipSurfaces = std::make_unique<ClipSurfaceCutter>(g.sceneGpu, *scene.clipSurfaces, f);
+  if (scene.terrainOpening)
+    g.terrain = std::make_unique<TerrainOpening>(scene, *scene.terrainOpening, f);
   g.lines = scene.style.lines.has_value();
   // Cut outlines: the adaptive cutter's option; the Diepstraten03 cutters outline their walls.
   g.outlines = (adaptive && adaptive->outlines) || g.cutout || g.breakaway;
@@ -95,7 +100,8 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   for (const auto& [on, define] : {std::pair{adaptive != nullptr, "CUTTER_ADAPTIVE"},
                                    std::pair{bool(g.cutout), "CUTTER_CUTOUT"},
                                    std::pair{bool(g.breakaway), "CUTTER_BREAKAWAY"},
-                                   std::pair{bool(g.clipSurfaces), "CUTTER_CLIP_SURFACES"}})
+                                   std::pair{bool(g.clipSurfaces), "CUTTER_CLIP_SURFACES"},
+                                   std::pair{bool(g.terrain), "CUTTER_TERRAIN"}})
     if (on) cutters.emplace(define, "1");
   g.meshProgram = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
@@ -309,6 +315,7 @@ void Renderer::drawGeometry(GLuint framebuffer) {
   if (g.cutout) g.cutout->bind();
   if (g.breakaway) g.breakaway->bind();
   if (g.clipSurfaces) g.clipSurfaces->clearMasks(), g.clipSurfaces->bind();
+  if (g.terrain) g.terrain->prepare(g.meshProgram.id());
   if (g.shadowMap) g.shadowMap->bindForLookup();
   if (g.toonRamp) glBindTextureUnit(kToonRampUnit, g.toonRamp.id());
   if (g.tonalArtMap) glBindTextureUnit(kTonalArtMapUnit, g.tonalArtMap.id());
@@ -337,7 +344,8 @@ void Renderer::drawGeometry(GLuint framebuffer) {
     const int cutBy = (adaptiveCut ? kCutByAdaptive : 0) |
                       (g.cutout && exterior && !clipPlanes ? kCutByCutout : 0) |
                       (g.breakaway && exterior ? kCutByBreakaway : 0) |
-                      (g.clipSurfaces && o.role != Role::Interest ? kCutByClipSurfaces : 0);
+                      (g.clipSurfaces && o.role != Role::Interest ? kCutByClipSurfaces : 0) |
+                      (g.terrain && g.terrain->cuts(i) ? kCutByTerrain : 0);
     glProgramUniform1i(program, kCutBy, cutBy);
     using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
     const bool diepstraten = exterior && (g.cutout || g.breakaway);
@@ -345,9 +353,11 @@ void Renderer::drawGeometry(GLuint framebuffer) {
         (adaptiveCut &&
          (adaptive->cutSurfaces == CutSurfaces::All ||
           (adaptive->cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight))) ||
-        (diepstraten && o.solid());
+        (diepstraten && o.solid()) || (g.terrain && g.terrain->cuts(i));
     glProgramUniform1i(program, kCutSurface, cutSurface);
-    const glm::vec3 cutColor = diepstraten ? wallColor.value_or(kDefaultWallColor)
+    const glm::vec3 cutColor = g.terrain && g.terrain->cuts(i)
+                                   ? scene_.terrainOpening->thicknessColor.value_or(kSoilColor)
+                               : diepstraten ? wallColor.value_or(kDefaultWallColor)
                                : adaptive && adaptive->cutSurfaceColor ? *adaptive->cutSurfaceColor
                                                                        : o.material.color * 0.8f;
     glProgramUniform3fv(program, kCutColor, 1, &cutColor[0]);
@@ -520,6 +530,7 @@ std::vector<Aov> Renderer::readAovs() const {
   }
   if (impl_->clipSurfaces)
     for (auto& aov : impl_->clipSurfaces->spriteAovs()) aovs.push_back(std::move(aov));
+  if (impl_->terrain) aovs.push_back(impl_->terrain->fieldAov());
   return aovs;
 }
 

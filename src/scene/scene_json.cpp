@@ -14,6 +14,7 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
 #include "cutaway/geometry/convex_hull.hpp"
+#include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/scene/scene.hpp"
 
@@ -757,6 +758,84 @@ ClipSurfaceOptions clipSurfaces(const Context& ctx, const json& j, const std::st
   return o;
 }
 
+TerrainOpeningOptions terrainOpening(const Context& ctx, const json& j, const std::string& ptr) {
+  TerrainOpeningOptions o;
+  ObjectReader r(ctx, j, ptr);
+  (void)regex(ctx, r.require("terrain"), r.at("terrain"));  // validated; the cutter matches it
+  o.terrain = r.require("terrain").get<std::string>();
+  if (const json* v = r.take("buildings")) {
+    (void)regex(ctx, *v, r.at("buildings"));
+    o.buildings = v->get<std::string>();
+  }
+  if (const json* v = r.take("cutBuildings"))
+    o.cutBuildings = boolean(ctx, *v, r.at("cutBuildings"));
+  // The scene CRS offset: easting E and northing N become x = E − E0, z = −(N − N0).
+  glm::dvec2 offset(0.0);
+  if (const json* v = r.take("offset")) {
+    if (!v->is_array() || v->size() != 2) ctx.fail(r.at("offset"), "expected [easting, northing]");
+    offset = {number(ctx, (*v)[0], r.at("offset") + "/0", -1e12, 1e12),
+              number(ctx, (*v)[1], r.at("offset") + "/1", -1e12, 1e12)};
+  }
+  if (const json* v = r.take("network")) {
+    if (!v->is_array()) ctx.fail(r.at("network"), "expected an array of layers");
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      const std::string p = r.at("network") + "/" + std::to_string(i);
+      ObjectReader nr(ctx, (*v)[i], p);
+      const std::filesystem::path file =
+          ctx.baseDir / string(ctx, nr.require("file"), nr.at("file"));
+      GisImportOptions gis;
+      if (const json* x = nr.take("layer")) gis.layer = string(ctx, *x, nr.at("layer"));
+      if (const json* x = nr.take("crs")) gis.targetCrs = string(ctx, *x, nr.at("crs"));
+      gis.offset = glm::dvec3(offset, 0.0);
+      nr.finish();
+      try {
+        for (const auto& line : importGisLines(file, gis).polylines) {
+          std::vector<glm::vec2> xz;
+          for (const auto& q : line.points) xz.emplace_back(q.x, -q.y);
+          o.lines.push_back(std::move(xz));
+        }
+      } catch (const Error& e) {
+        ctx.fail(p, e.what());
+      }
+    }
+  }
+  if (const json* v = r.take("lines")) {
+    if (!v->is_array()) ctx.fail(r.at("lines"), "expected an array of polylines");
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      const std::string p = r.at("lines") + "/" + std::to_string(i);
+      const json& line = (*v)[i];
+      if (!line.is_array() || line.size() < 2)
+        ctx.fail(p, "a polyline needs at least two [x, z] nodes");
+      std::vector<glm::vec2> xz;
+      for (std::size_t k = 0; k < line.size(); ++k) {
+        const std::string q = p + "/" + std::to_string(k);
+        if (!line[k].is_array() || line[k].size() != 2) ctx.fail(q, "expected [x, z]");
+        xz.emplace_back(float(number(ctx, line[k][0], q + "/0", -1e9, 1e9)),
+                        float(number(ctx, line[k][1], q + "/1", -1e9, 1e9)));
+      }
+      o.lines.push_back(std::move(xz));
+    }
+  }
+  if (o.lines.empty())
+    ctx.fail(ptr,
+             "no network: give \"network\" layers or \"lines\" (Konev18 §4 opens the "
+             "terrain above pipes)");
+  if (const json* v = r.take("resolution"))
+    o.resolution = integer(ctx, *v, r.at("resolution"), 16, 8192);
+  if (const json* v = r.take("metric"))
+    o.metric = oneOf(ctx, *v, r.at("metric"), {"l1", "euclidean"}) == "l1"
+                   ? TerrainOpeningOptions::Metric::L1
+                   : TerrainOpeningOptions::Metric::Euclidean;
+  if (const json* v = r.take("w")) o.w = float(number(ctx, *v, r.at("w"), 0, 1e6));
+  if (const json* v = r.take("s")) o.s = float(number(ctx, *v, r.at("s"), 1e-6, 1e6));
+  if (const json* v = r.take("cameraDistance"))
+    o.cameraDistance = boolean(ctx, *v, r.at("cameraDistance"));
+  if (const json* v = r.take("thicknessColor"))
+    o.thicknessColor = color(ctx, *v, r.at("thicknessColor"));
+  r.finish();
+  return o;
+}
+
 ToonStyle toonStyle(const Context& ctx, const json& j, const std::string& ptr) {
   ToonStyle t;
   ObjectReader r(ctx, j, ptr);
@@ -943,6 +1022,8 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
       scene.breakaway = breakaway(ctx, *a, "/cutters/breakaway");
     if (const json* a = cr.take("clipSurfaces"))
       scene.clipSurfaces = clipSurfaces(ctx, *a, "/cutters/clipSurfaces");
+    if (const json* a = cr.take("terrainOpening"))
+      scene.terrainOpening = terrainOpening(ctx, *a, "/cutters/terrainOpening");
     cr.finish();
   }
   if (const json* v = r.take("lights")) {
@@ -985,6 +1066,14 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   if (scene.breakaway && !hasRole(Role::Interior))
     ctx.fail("/cutters/breakaway",
              "no object has role \"interior\": the breakaway hull is built around them");
+  if (scene.terrainOpening) {
+    const std::regex terrain(scene.terrainOpening->terrain);
+    if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
+          return !o.proxy && std::regex_match(o.name, terrain);
+        }))
+      ctx.fail("/cutters/terrainOpening/terrain",
+               "no object name matches \"" + scene.terrainOpening->terrain + "\"");
+  }
   // The camera may "fit" to the objects, so it is read after them.
   if (const json* v = r.take("camera"))
     scene.camera = camera(ctx, *v, "/camera");

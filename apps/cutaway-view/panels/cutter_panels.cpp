@@ -1,4 +1,4 @@
-// The panels of the Diepstraten03 and Trapp13 cutters: their parameter tables
+// The panels of the Diepstraten03, Trapp13 and Konev18 cutters: their parameter tables
 // (parameters/diepstraten.cpp, parameters/clip_surfaces.cpp) and what the scene gives them to
 // work on.
 #include <imgui.h>
@@ -38,6 +38,15 @@ void clipSurfacePanel(ViewerState& state) {
     return;
   }
   parameterTable(clipSurfaceParameters(), state);
+}
+
+void terrainPanel(ViewerState& state) {
+  if (!state.scene.terrainOpening) {
+    ImGui::TextDisabled("no terrain opening in this scene (cutters.terrainOpening)");
+    return;
+  }
+  parameterTable(terrainParameters(), state);
+  ImGui::TextDisabled("%zu network polylines", state.scene.terrainOpening->lines.size());
 }
 
 }  // namespace cutaway::view

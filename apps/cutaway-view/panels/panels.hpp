@@ -23,6 +23,7 @@ void adaptivePanel(ViewerState& state);     // the adaptive cutter (Burns08/11)
 void cutoutPanel(ViewerState& state);       // Diepstraten03 cutout (panels/cutter_panels.cpp)
 void breakawayPanel(ViewerState& state);    // Diepstraten03 breakaway
 void clipSurfacePanel(ViewerState& state);  // Trapp13 clip surfaces
+void terrainPanel(ViewerState& state);      // Konev18 terrain opening
 void stylePanel(ViewerState& state);        // shading and lines
 void aovPanel(ViewerState& state);          // AOV inspector: buffer, colour map, range, value
 void timingsPanel(const ViewerState& state, float framesPerSecond);

@@ -25,6 +25,7 @@
 #include "cutaway/cutters/breakaway.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
 #include "cutaway/cutters/cutout.hpp"
+#include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
@@ -185,10 +186,11 @@ struct Scene {
   int width = 800, height = 600;
   int samples = 4;  // MSAA samples of the final image
   Style style;
-  std::optional<AdaptiveCutawayOptions> adaptive;  // "cutters": {"adaptive": {…}}
-  std::optional<CutoutOptions> cutout;             // "cutters": {"cutout": {…}}
-  std::optional<BreakawayOptions> breakaway;       // "cutters": {"breakaway": {…}}
-  std::optional<ClipSurfaceOptions> clipSurfaces;  // "cutters": {"clipSurfaces": {…}}
+  std::optional<AdaptiveCutawayOptions> adaptive;       // "cutters": {"adaptive": {…}}
+  std::optional<CutoutOptions> cutout;                  // "cutters": {"cutout": {…}}
+  std::optional<BreakawayOptions> breakaway;            // "cutters": {"breakaway": {…}}
+  std::optional<ClipSurfaceOptions> clipSurfaces;       // "cutters": {"clipSurfaces": {…}}
+  std::optional<TerrainOpeningOptions> terrainOpening;  // "cutters": {"terrainOpening": {…}}
 
   // Bounds of the visible (non-proxy) objects in world space.
   Bounds bounds() const;

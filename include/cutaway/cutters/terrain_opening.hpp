@@ -1,0 +1,58 @@
+// cutaway/cutters/terrain_opening.hpp — the terrain opened above a pipe network (Konev et al.
+// 2018, §4): the network drawn into a grid aligned with the terrain, a distance transform
+// (L1 by two 1-D passes, the paper's zig-zag, or exact Euclidean) gives D_p, the distance to
+// the closest pipe; each terrain fragment compares it with a threshold t that shrinks with
+// the camera distance (eq. 1), and draws terrain, an artificial thickness, or nothing
+// (eqs. 2–3). Mirrored in src/cutters/terrain_opening/terrain_opening.glsl.
+//
+//   scene.terrainOpening = cutaway::TerrainOpeningOptions{.terrain = "ground", .lines = {...}};
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cutaway/geometry/mesh.hpp"
+
+namespace cutaway {
+
+struct TerrainOpeningOptions {
+  std::string terrain;        // regular expression: the terrain objects' names (whole match)
+  std::string buildings;      // regular expression: building objects ("" none)
+  bool cutBuildings = false;  // buildings opened by the same rule, or left whole
+  // The network in world coordinates (x, z), y up: scene CRS easting E and northing N map to
+  // x = E − offset.x, z = −(N − offset.y), so north is −z.
+  std::vector<std::vector<glm::vec2>> lines;
+  int resolution = 1024;  // T: texels per side of the distance texture
+  enum class Metric { L1, Euclidean } metric = Metric::L1;
+  float w = 0.015f;            // eq. 1: width of the opening
+  float s = 10.0f;             // eq. 1: size; the opening closes at camera distance s²
+  bool cameraDistance = true;  // false: t = w·s everywhere
+  std::optional<glm::vec3> thicknessColor;  // default kSoilColor
+};
+inline constexpr glm::vec3 kSoilColor{0.58f, 0.43f, 0.3f};
+
+// D_p over the terrain's extent: texel (i, j) covers x ∈ min.x + [i, i+1)·size.x/T and
+// z ∈ min.y + [j, j+1)·size.y/T; values min(distance in texels, 255) / 255, as the paper's
+// 8-bit texture (0 on a pipe, 1 from 255 texels on).
+struct TerrainField {
+  glm::vec2 min{0.0f}, size{1.0f};  // world x, z
+  int resolution = 0;
+  std::vector<float> distance;   // resolution², rows of increasing z
+  float at(glm::vec2 uv) const;  // nearest texel at uv ∈ [0,1]² (clamped)
+};
+TerrainField terrainField(const TerrainOpeningOptions& options, const Bounds& terrainBounds);
+
+// Eq. 1: t = w(s² − d_c)/s (or w·s without the camera-distance dependency).
+float openingThreshold(const TerrainOpeningOptions& options, float cameraDistance);
+
+enum class TerrainFate { Terrain, Thickness, Discard };
+// Eqs. 2–3 for a terrain point p seen from `eye` looking along `forward`: terrain where
+// D_p(P_uv) ≥ t; else, one texel further along the view's horizontal direction
+// (ε = √2/T), thickness where D_p > t there, else discard.
+TerrainFate terrainFate(const TerrainField& field, const TerrainOpeningOptions& options,
+                        const glm::vec3& p, const glm::vec3& eye, const glm::vec3& forward);
+
+}  // namespace cutaway

@@ -1,0 +1,99 @@
+// Konev18 §4: the terrain opening of a rendered frame against the C++ evaluation of eqs. 1–3
+// on its dumped world positions, pixel by pixel.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "cutaway/cutters/terrain_opening.hpp"
+#include "cutaway/render/renderer.hpp"
+#include "gl_test_context.hpp"
+
+using namespace cutaway;
+
+namespace {
+
+const std::string kSource = CUTAWAY_SOURCE_DIR;
+
+const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
+  for (const auto& a : aovs)
+    if (a.name == name) return a.image;
+  throw std::runtime_error("no AOV " + name);
+}
+
+std::vector<Aov> render(const Scene& scene) {
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  return renderer.readAovs();
+}
+
+// A 100 × 100 ground over a floor 2 units below, two crossing "pipes" and a bend.
+std::string groundScene(const std::string& metric, bool cut) {
+  return R"({"resolution": [128, 96], "samples": 1, "style": {"name": "gooch", "lines": false},
+    "camera": {"eye": [50, 14, 8], "target": [50, 0, -40], "fov": 50, "near": 0.5, "far": 300},
+    "objects": [
+      {"name": "ground", "file": ")" +
+         kSource + R"(/examples/data/tile.obj", "transform": {"scale": [100, 1, 100]}},
+      {"name": "floor", "file": ")" +
+         kSource +
+         R"(/examples/data/tile.obj", "transform": {"translate": [0, -2, 0], "scale": [100, 1, 100]}}]
+    )" +
+         (cut ? R"(, "cutters": {"terrainOpening": {"terrain": "ground", "resolution": 256, "metric": ")" +
+                    metric + R"(", "w": 0.02, "s": 8,
+        "lines": [[[10, -30], [90, -40]], [[50, -5], [52, -90]], [[20, -70], [40, -60], [45, -80]]]}})"
+              : std::string()) +
+         "}";
+}
+
+}  // namespace
+
+class TerrainOpeningGpuCpu : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
+  const Scene cut = parseScene(groundScene(GetParam(), true), "ground.json", kSource);
+  const Scene plain = parseScene(groundScene(GetParam(), false), "ground.json", kSource);
+  const auto a = render(plain), b = render(cut);
+  const TerrainOpeningOptions& o = *cut.terrainOpening;
+  Bounds terrain;
+  terrain.extend(cut.objects[0].worldBounds());
+  const TerrainField field = terrainField(o, terrain);
+  const Camera camera = cut.resolvedCamera();
+  const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+  const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
+                   &id = aov(b, "objectId"), &pos = aov(b, "position"), &mask = aov(b, "cutMask"),
+                   &threshold = aov(b, "terrainThreshold"), &fate = aov(b, "terrainClass");
+  int counts[3] = {0, 0, 0}, wrong = 0, ground = 0;
+  for (int y = 0; y < plainId.height; ++y)
+    for (int x = 0; x < plainId.width; ++x) {
+      if (plainId.at(x, y)[0] != 0.0f) continue;
+      ++ground;
+      const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
+      const TerrainFate f = terrainFate(field, o, p, camera.eye, forward);
+      ++counts[int(f)];
+      const bool same =
+          id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-3f;
+      const bool thick = mask.at(x, y)[0] == 1.0f;
+      const bool ok = f == TerrainFate::Terrain     ? same && !thick && fate.at(x, y)[0] == 1.0f
+                      : f == TerrainFate::Thickness ? id.at(x, y)[0] == 0.0f && thick
+                                                    : !same && fate.at(x, y)[0] == 3.0f;
+      wrong += !ok;
+      // Eq. 1 at the pixel: d_c from the eye, t from d_c.
+      EXPECT_NEAR(threshold.at(x, y)[0], glm::length(camera.eye - p), 1e-2f);
+      EXPECT_NEAR(threshold.at(x, y)[1], openingThreshold(o, threshold.at(x, y)[0]), 1e-5f);
+    }
+  EXPECT_GT(counts[int(TerrainFate::Terrain)], 1000);
+  EXPECT_GT(counts[int(TerrainFate::Discard)], 200);
+  EXPECT_GT(counts[int(TerrainFate::Thickness)], 5);
+  // Positions on texel borders may round to either texel.
+  EXPECT_LE(wrong, ground / 200) << wrong << " of " << ground;
+}
+
+INSTANTIATE_TEST_SUITE_P(Metrics, TerrainOpeningGpuCpu, ::testing::Values("l1", "euclidean"));
+
+TEST(TerrainOpening, ThresholdFollowsEquation1) {
+  TerrainOpeningOptions o;  // w = 0.015, s = 10: t = 0.15 at the camera, 0 at s² = 100
+  EXPECT_FLOAT_EQ(openingThreshold(o, 0.0f), 0.15f);
+  EXPECT_FLOAT_EQ(openingThreshold(o, 100.0f), 0.0f);
+  EXPECT_LT(openingThreshold(o, 150.0f), 0.0f);
+  o.cameraDistance = false;
+  EXPECT_FLOAT_EQ(openingThreshold(o, 150.0f), 0.15f);
+}
