@@ -10,6 +10,7 @@
 #include <ogr_spatialref.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -236,65 +237,96 @@ std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file) {
   return layers;
 }
 
-GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
-  QuietGdalErrors quiet;
-  GDALDatasetUniquePtr dataset = openVectorSource(file);
-  OGRLayer& layer = chooseLayer(*dataset, file, options.layer);
-  GisLines out;
-  out.layer = describeLayer(layer);
-  out.offset = options.offset;
-  const OGRwkbGeometryType layerType = wkbFlatten(layer.GetGeomType());
-  // wkbUnknown: a layer of mixed geometries (GeoJSON); each feature is checked instead.
-  if (layerType != wkbLineString && layerType != wkbMultiLineString && layerType != wkbUnknown)
-    throw Error(file.string(), layerPlace(layer),
-                "the layer holds " + out.layer.geometryType + " geometries, not lines");
-  requireNonEmpty(file, layer, out.layer.featureCount);
-  out.hasZ = wkbHasZ(layer.GetGeomType());
-  FeatureReader reader(file, layer, options, out.report);
-  out.crs = reader.crs();
+namespace {
 
+// A layer opened for import: the data source (which owns the layer), the checks shared by
+// lines and points, and the feature reader.
+struct OpenedLayer {
+  GDALDatasetUniquePtr dataset;
+  OGRLayer* layer;
+  GisLayerInfo info;
+  bool hasZ;
+};
+
+// `kinds`: the flat geometry types the layer may declare (wkbUnknown, a layer of mixed
+// geometries as GeoJSON makes, is always accepted: each feature is checked instead).
+OpenedLayer openLayer(const std::filesystem::path& file, const GisImportOptions& options,
+                      std::initializer_list<OGRwkbGeometryType> kinds, const char* what) {
+  OpenedLayer o{openVectorSource(file), nullptr, {}, false};
+  o.layer = &chooseLayer(*o.dataset, file, options.layer);
+  o.info = describeLayer(*o.layer);
+  const OGRwkbGeometryType type = wkbFlatten(o.layer->GetGeomType());
+  if (type != wkbUnknown && std::find(kinds.begin(), kinds.end(), type) == kinds.end())
+    throw Error(file.string(), layerPlace(*o.layer),
+                "the layer holds " + o.info.geometryType + " geometries, not " + what);
+  requireNonEmpty(file, *o.layer, o.info.featureCount);
+  o.hasZ = wkbHasZ(o.layer->GetGeomType());
+  return o;
+}
+
+// Calls visit(fid, geometry, attributes) for every feature with a geometry, counting them.
+template <class Visit>
+void forEachFeature(OGRLayer& layer, FeatureReader& reader, GisImportReport& report, bool& hasZ,
+                    Visit visit) {
   for (const OGRFeatureUniquePtr& feature : layer) {
-    ++out.report.features;
-    const GIntBig fid = feature->GetFID();
+    ++report.features;
     const OGRGeometry* geometry = feature->GetGeometryRef();
     if (!geometry || geometry->IsEmpty()) {
-      ++out.report.featuresWithoutGeometry;
+      ++report.featuresWithoutGeometry;
       continue;
     }
-    std::vector<const OGRLineString*> parts;
-    switch (wkbFlatten(geometry->getGeometryType())) {
-      case wkbLineString:
-        parts.push_back(geometry->toLineString());
-        break;
-      case wkbMultiLineString:
-        for (const OGRLineString* part : *geometry->toMultiLineString()) parts.push_back(part);
-        break;
-      default:
-        throw Error(file.string(), featurePlace(layer, fid),
-                    std::string("geometry is ") + geometry->getGeometryName() + ", not a line");
-    }
-    out.hasZ = out.hasZ || geometry->Is3D();
-    const std::vector<double> attributes = reader.attributes(*feature);
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      GisPolyline polyline{fid, int(p), {}, attributes};
-      for (int k = 0; k < parts[p]->getNumPoints(); ++k) {
-        const glm::vec3 node = reader.node(*parts[p], k, fid);
-        // A node equal (as the renderer will see it, in float) to the previous one makes a
-        // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
-        // need a direction per segment, so it is dropped.
-        if (!polyline.points.empty() && polyline.points.back() == node) {
-          ++out.report.repeatedNodes;
-          continue;
-        }
-        polyline.points.push_back(node);
-      }
-      if (polyline.points.size() < 2) {
-        ++out.report.degenerateParts;
-        continue;
-      }
-      out.polylines.push_back(std::move(polyline));
-    }
+    hasZ = hasZ || geometry->Is3D();
+    visit(feature->GetFID(), *geometry, reader.attributes(*feature));
   }
+}
+
+}  // namespace
+
+GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
+  QuietGdalErrors quiet;
+  OpenedLayer opened = openLayer(file, options, {wkbLineString, wkbMultiLineString}, "lines");
+  OGRLayer& layer = *opened.layer;
+  GisLines out;
+  out.layer = opened.info;
+  out.offset = options.offset;
+  out.hasZ = opened.hasZ;
+  FeatureReader reader(file, layer, options, out.report);
+  out.crs = reader.crs();
+  forEachFeature(
+      layer, reader, out.report, out.hasZ,
+      [&](GIntBig fid, const OGRGeometry& geometry, const std::vector<double>& attributes) {
+        std::vector<const OGRLineString*> parts;
+        switch (wkbFlatten(geometry.getGeometryType())) {
+          case wkbLineString:
+            parts.push_back(geometry.toLineString());
+            break;
+          case wkbMultiLineString:
+            for (const OGRLineString* part : *geometry.toMultiLineString()) parts.push_back(part);
+            break;
+          default:
+            throw Error(file.string(), featurePlace(layer, fid),
+                        std::string("geometry is ") + geometry.getGeometryName() + ", not a line");
+        }
+        for (std::size_t p = 0; p < parts.size(); ++p) {
+          GisPolyline polyline{fid, int(p), {}, attributes};
+          for (int k = 0; k < parts[p]->getNumPoints(); ++k) {
+            const glm::vec3 node = reader.node(*parts[p], k, fid);
+            // A node equal (as the renderer will see it, in float) to the previous one makes a
+            // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
+            // need a direction per segment, so it is dropped.
+            if (!polyline.points.empty() && polyline.points.back() == node) {
+              ++out.report.repeatedNodes;
+              continue;
+            }
+            polyline.points.push_back(node);
+          }
+          if (polyline.points.size() < 2) {
+            ++out.report.degenerateParts;
+            continue;
+          }
+          out.polylines.push_back(std::move(polyline));
+        }
+      });
   if (out.polylines.empty())
     throw Error(
         file.string(), layerPlace(layer),
@@ -304,47 +336,34 @@ GisLines importGisLines(const std::filesystem::path& file, const GisImportOption
 
 GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
   QuietGdalErrors quiet;
-  GDALDatasetUniquePtr dataset = openVectorSource(file);
-  OGRLayer& layer = chooseLayer(*dataset, file, options.layer);
+  OpenedLayer opened = openLayer(file, options, {wkbPoint, wkbMultiPoint}, "points");
+  OGRLayer& layer = *opened.layer;
   GisPoints out;
-  out.layer = describeLayer(layer);
+  out.layer = opened.info;
   out.offset = options.offset;
-  const OGRwkbGeometryType layerType = wkbFlatten(layer.GetGeomType());
-  if (layerType != wkbPoint && layerType != wkbMultiPoint && layerType != wkbUnknown)
-    throw Error(file.string(), layerPlace(layer),
-                "the layer holds " + out.layer.geometryType + " geometries, not points");
-  requireNonEmpty(file, layer, out.layer.featureCount);
-  out.hasZ = wkbHasZ(layer.GetGeomType());
+  out.hasZ = opened.hasZ;
   FeatureReader reader(file, layer, options, out.report);
   out.crs = reader.crs();
-
-  for (const OGRFeatureUniquePtr& feature : layer) {
-    ++out.report.features;
-    const GIntBig fid = feature->GetFID();
-    const OGRGeometry* geometry = feature->GetGeometryRef();
-    if (!geometry || geometry->IsEmpty()) {
-      ++out.report.featuresWithoutGeometry;
-      continue;
-    }
-    std::vector<const OGRPoint*> parts;
-    switch (wkbFlatten(geometry->getGeometryType())) {
-      case wkbPoint:
-        parts.push_back(geometry->toPoint());
-        break;
-      case wkbMultiPoint:
-        for (const OGRPoint* part : *geometry->toMultiPoint()) parts.push_back(part);
-        break;
-      default:
-        throw Error(file.string(), featurePlace(layer, fid),
-                    std::string("geometry is ") + geometry->getGeometryName() + ", not a point");
-    }
-    out.hasZ = out.hasZ || geometry->Is3D();
-    const std::vector<double> attributes = reader.attributes(*feature);
-    for (std::size_t p = 0; p < parts.size(); ++p)
-      out.points.push_back({fid, int(p),
-                            reader.place(parts[p]->getX(), parts[p]->getY(), parts[p]->getZ(), fid),
-                            attributes});
-  }
+  forEachFeature(
+      layer, reader, out.report, out.hasZ,
+      [&](GIntBig fid, const OGRGeometry& geometry, const std::vector<double>& attributes) {
+        std::vector<const OGRPoint*> parts;
+        switch (wkbFlatten(geometry.getGeometryType())) {
+          case wkbPoint:
+            parts.push_back(geometry.toPoint());
+            break;
+          case wkbMultiPoint:
+            for (const OGRPoint* part : *geometry.toMultiPoint()) parts.push_back(part);
+            break;
+          default:
+            throw Error(file.string(), featurePlace(layer, fid),
+                        std::string("geometry is ") + geometry.getGeometryName() + ", not a point");
+        }
+        for (std::size_t p = 0; p < parts.size(); ++p)
+          out.points.push_back(
+              {fid, int(p), reader.place(parts[p]->getX(), parts[p]->getY(), parts[p]->getZ(), fid),
+               attributes});
+      });
   if (out.points.empty())
     throw Error(file.string(), layerPlace(layer),
                 "no point in " + std::to_string(out.report.features) + " features");
