@@ -54,7 +54,13 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.samples) scene.samples = *o.samples;
   if (o.noCutaway && o.cutawayAngle)
     throw Error("--no-cutaway", "", "cannot be combined with --cutaway-angle");
-  if (o.noCutaway) scene.adaptive.reset();
+  if (o.noCutaway) {  // the plain model: no cutter at all
+    scene.adaptive.reset();
+    scene.cutout.reset();
+    scene.breakaway.reset();
+    scene.clipSurfaces.reset();
+    scene.terrainOpening.reset();
+  }
   if (o.cutawayAngle) {
     if (!scene.adaptive) scene.adaptive.emplace();
     scene.adaptive->angle = *o.cutawayAngle;

@@ -56,7 +56,8 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
           "--cutaway-angle", [&o](float a) { o.cutawayAngle = a; },
           "Adaptive cutaway angle θ in degrees (adds the cutter if the scene has none)")
       ->check(CLI::Range(0.0f, 90.0f));
-  command->add_flag("--no-cutaway", o.noCutaway, "Render without the scene's adaptive cutaway");
+  command->add_flag("--no-cutaway", o.noCutaway,
+                    "Render without any of the scene's cutters (the plain model)");
 }
 
 }  // namespace
