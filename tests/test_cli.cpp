@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cutaway/core/image.hpp"
+#include "run_command.hpp"
 
 namespace fs = std::filesystem;
 using namespace cutaway;
@@ -19,32 +20,15 @@ const std::string kBinary = CUTAWAY_BINARY;
 const std::string kSource = CUTAWAY_SOURCE_DIR;
 const std::string kData = CUTAWAY_TEST_DATA;
 
-struct Result {
-  int exitCode;
-  std::string out, err;
-};
+using test::Result;
 
 // Runs `cutaway ARGS` capturing stdout and stderr separately.
 Result run(const std::string& args) {
-  const fs::path errFile =
-      fs::temp_directory_path() / ("cutaway-test-err-" + std::to_string(::getpid()));
-  const std::string command = kBinary + " " + args + " 2>" + errFile.string();
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer;
-  std::size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  std::ifstream errStream(errFile);
-  std::string err((std::istreambuf_iterator<char>(errStream)), {});
-  fs::remove(errFile);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err};
+  return test::runCommand(kBinary + " " + args);
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("cutaway-cli-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return test::scratchPath("cli", name);
 }
 
 int lines(const std::string& s) {

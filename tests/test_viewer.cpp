@@ -12,6 +12,7 @@
 #include <set>
 
 #include "cutaway/core/image.hpp"
+#include "run_command.hpp"
 
 namespace fs = std::filesystem;
 using namespace cutaway;
@@ -22,31 +23,14 @@ const std::string kViewer = CUTAWAY_VIEW_BINARY;
 const std::string kCli = CUTAWAY_BINARY;
 const std::string kSource = CUTAWAY_SOURCE_DIR;
 
-struct Result {
-  int exitCode;
-  std::string out, err;
-};
+using test::Result;
 
-// Runs a shell command line, capturing stdout and stderr separately.
 Result run(const std::string& command) {
-  const fs::path errFile =
-      fs::temp_directory_path() / ("cutaway-view-test-err-" + std::to_string(::getpid()));
-  FILE* pipe = popen((command + " 2>" + errFile.string()).c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer;
-  for (std::size_t n; (n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0;)
-    out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  std::ifstream errStream(errFile);
-  std::string err((std::istreambuf_iterator<char>(errStream)), {});
-  fs::remove(errFile);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err};
+  return test::runCommand(command);
 }
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("cutaway-view-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return test::scratchPath("view", name);
 }
 
 bool hasXvfbRun() {

@@ -55,8 +55,10 @@ constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4, kCutByC
 }  // namespace
 
 struct Renderer::Impl {
-  explicit Impl(const Scene& scene) : sceneGpu(scene) {}
+  explicit Impl(const Scene& scene) : sceneGpu(scene), sceneBounds(scene.bounds()) {}
   SceneGpu sceneGpu;
+  // Over the whole animation (SceneObject::worldBounds), so computed once, not per frame.
+  Bounds sceneBounds;
   std::unique_ptr<AdaptiveCutaway> adaptive;
   std::unique_ptr<Cutout> cutout;
   std::unique_ptr<Breakaway> breakaway;
@@ -92,7 +94,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   g.ghosts = adaptive && adaptive->ghostLines;
   if (g.ghosts)
     g.ghostDistance =
-        adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * scene.bounds().radius();
+        adaptive->ghostDistance > 0 ? adaptive->ghostDistance : 0.05f * g.sceneBounds.radius();
 
   g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
   // The active cutters' #defines for cutters.glsl.
@@ -465,7 +467,7 @@ void Renderer::render(const Camera& camera, float time) {
   u.goochCool = glm::vec4(scene_.style.gooch.cool, scene_.style.gooch.alpha);
   u.goochWarm = glm::vec4(scene_.style.gooch.warm, scene_.style.gooch.beta);
   u.styleParams = glm::vec4(scene_.style.blinnPhong.ambient, 0, 0, 0);
-  const float sceneRadius = std::max(scene_.bounds().radius(), 1e-6f);
+  const float sceneRadius = std::max(impl_->sceneBounds.radius(), 1e-6f);
   const ToonStyle& toon = scene_.style.toon;
   u.toonParams = glm::vec4(float(toon.ramp.size()), toon.highlightThreshold,
                            toon.highlight ? 1.0f : 0.0f, 0.0f);
@@ -483,7 +485,7 @@ void Renderer::render(const Camera& camera, float time) {
     impl_->shadowMap->setActive(keyLight);
     if (keyLight) {
       const ShadowStyle& shadows = scene_.style.shadows;
-      const LightFrustum light = keyLightFrustum(u.lightVector[0], scene_.bounds());
+      const LightFrustum light = keyLightFrustum(u.lightVector[0], impl_->sceneBounds);
       u.shadowMatrix = shadowMatrix(light);
       u.shadowParams = glm::vec4(1.0f, shadows.bias * sceneRadius, float(shadows.pcfRadius),
                                  1.0f / float(shadows.size));

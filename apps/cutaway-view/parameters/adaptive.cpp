@@ -9,21 +9,7 @@ namespace {
 
 using Options = AdaptiveCutawayOptions;
 
-const Options& options(const Scene& scene) {
-  static const Options kDefaults;
-  return scene.adaptive ? *scene.adaptive : kDefaults;
-}
-
-Options& options(Scene& scene) {
-  if (!scene.adaptive) scene.adaptive.emplace();
-  return *scene.adaptive;
-}
-
-bool adaptiveOn(const Scene& s) {
-  return s.adaptive.has_value();
-}
-
-const OptionsBinding<Options> kBinding{"adaptive", options, options, adaptiveOn};
+const OptionsBinding<Options> kBinding = sceneOptions<Options, &Scene::adaptive>("adaptive");
 
 template <typename T>
 Parameter member(std::string key, std::string label, Parameter::Type type, T Options::*field,

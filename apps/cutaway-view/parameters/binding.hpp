@@ -108,4 +108,20 @@ struct OptionsBinding {
   }
 };
 
+// The binding of the options a Scene holds in `Field`: their defaults while the cutter is
+// off; writing any of them turns it on with the defaults first.
+template <typename Options, std::optional<Options> Scene::*Field>
+OptionsBinding<Options> sceneOptions(std::string prefix) {
+  return {std::move(prefix),
+          [](const Scene& s) -> const Options& {
+            static const Options kDefaults;
+            return s.*Field ? *(s.*Field) : kDefaults;
+          },
+          [](Scene& s) -> Options& {
+            if (!(s.*Field)) (s.*Field).emplace();
+            return *(s.*Field);
+          },
+          [](const Scene& s) { return (s.*Field).has_value(); }};
+}
+
 }  // namespace cutaway::view

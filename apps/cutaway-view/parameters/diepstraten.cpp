@@ -6,26 +6,19 @@ namespace cutaway::view {
 
 namespace {
 
-const CutoutOptions& readCutout(const Scene& s) {
-  static const CutoutOptions kDefaults;
-  return s.cutout ? *s.cutout : kDefaults;
-}
-CutoutOptions& writeCutout(Scene& s) {
-  if (!s.cutout) s.cutout.emplace();
-  return *s.cutout;
-}
-bool cutoutOn(const Scene& s) {
-  return s.cutout.has_value();
-}
+const OptionsBinding<CutoutOptions> kCutout = sceneOptions<CutoutOptions, &Scene::cutout>("cutout");
+const OptionsBinding<BreakawayOptions> kBreakaway =
+    sceneOptions<BreakawayOptions, &Scene::breakaway>("breakaway");
+
 bool textureCutout(const Scene& s) {
   return s.cutout && s.cutout->method == CutoutOptions::Method::Texture;
 }
 
 const CutoutJitter& readJitter(const Scene& s) {
-  return readCutout(s).jitter;
+  return kCutout.read(s).jitter;
 }
 CutoutJitter& writeJitter(Scene& s) {
-  return writeCutout(s).jitter;
+  return kCutout.write(s).jitter;
 }
 bool jittered(const Scene& s) {
   return textureCutout(s) && s.cutout->jitter.pattern != CutoutJitter::Pattern::None;
@@ -33,7 +26,7 @@ bool jittered(const Scene& s) {
 
 std::vector<Parameter> makeCutoutParameters() {
   using Type = Parameter::Type;
-  const OptionsBinding<CutoutOptions> b{"cutout", readCutout, writeCutout, cutoutOn};
+  const OptionsBinding<CutoutOptions>& b = kCutout;
   std::vector<Parameter> out;
   out.push_back(
       b.enabled("Cut a wedge out of every exterior object along its main axis "
@@ -55,14 +48,14 @@ std::vector<Parameter> makeCutoutParameters() {
   facing.help =
       "Turn the wedge about the main axis towards the viewer (rule 3), or hold it at "
       "the rotation below.";
-  facing.get = [](const Scene& s) -> ParameterValue { return !readCutout(s).rotation; };
+  facing.get = [](const Scene& s) -> ParameterValue { return !kCutout.read(s).rotation; };
   facing.set = [](Scene& s, const ParameterValue& v) {
     if (std::get<bool>(v))
-      writeCutout(s).rotation.reset();
-    else if (!writeCutout(s).rotation)
-      writeCutout(s).rotation = 0.0f;
+      kCutout.write(s).rotation.reset();
+    else if (!kCutout.write(s).rotation)
+      kCutout.write(s).rotation = 0.0f;
   };
-  facing.applies = cutoutOn;
+  facing.applies = kCutout.active;
   out.push_back(facing);
   Parameter rotation;
   rotation.key = "cutout.rotation";
@@ -71,10 +64,10 @@ std::vector<Parameter> makeCutoutParameters() {
   rotation.min = -360, rotation.max = 360, rotation.sliderMax = 180;
   rotation.help = "The wedge's rotation about the main axis, from the second principal axis.";
   rotation.get = [](const Scene& s) -> ParameterValue {
-    return double(readCutout(s).rotation.value_or(0.0f));
+    return double(kCutout.read(s).rotation.value_or(0.0f));
   };
   rotation.set = [](Scene& s, const ParameterValue& v) {
-    writeCutout(s).rotation = float(std::get<double>(v));
+    kCutout.write(s).rotation = float(std::get<double>(v));
   };
   rotation.applies = [](const Scene& s) { return s.cutout && s.cutout->rotation.has_value(); };
   out.push_back(rotation);
@@ -103,18 +96,6 @@ std::vector<Parameter> makeCutoutParameters() {
   return out;
 }
 
-const BreakawayOptions& readBreakaway(const Scene& s) {
-  static const BreakawayOptions kDefaults;
-  return s.breakaway ? *s.breakaway : kDefaults;
-}
-BreakawayOptions& writeBreakaway(Scene& s) {
-  if (!s.breakaway) s.breakaway.emplace();
-  return *s.breakaway;
-}
-bool breakawayOn(const Scene& s) {
-  return s.breakaway.has_value();
-}
-
 // An optional length shown as its resolved default (breakawayExtent) until the user sets it.
 Parameter extent(std::string key, std::string label, std::optional<float> BreakawayOptions::*field,
                  float BreakawayExtent::*resolved, std::string help) {
@@ -125,19 +106,19 @@ Parameter extent(std::string key, std::string label, std::optional<float> Breaka
   p.min = 0, p.max = 1e30;  // scene units: dragged, not a slider
   p.help = std::move(help);
   p.get = [field, resolved](const Scene& s) -> ParameterValue {
-    const BreakawayOptions& o = readBreakaway(s);
+    const BreakawayOptions& o = kBreakaway.read(s);
     if (o.*field) return double(*(o.*field));
     return double(breakawayExtent(s, o).*resolved);
   };
   p.set = [field](Scene& s, const ParameterValue& v) {
-    writeBreakaway(s).*field = float(std::get<double>(v));
+    kBreakaway.write(s).*field = float(std::get<double>(v));
   };
-  p.applies = breakawayOn;
+  p.applies = kBreakaway.active;
   return p;
 }
 
 std::vector<Parameter> makeBreakawayParameters() {
-  const OptionsBinding<BreakawayOptions> b{"breakaway", readBreakaway, writeBreakaway, breakawayOn};
+  const OptionsBinding<BreakawayOptions>& b = kBreakaway;
   std::vector<Parameter> out;
   out.push_back(
       b.enabled("Open one hole in the exterior objects where the interior objects "

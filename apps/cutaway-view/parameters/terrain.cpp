@@ -6,24 +6,12 @@ namespace cutaway::view {
 
 namespace {
 
-const TerrainOpeningOptions& readTerrain(const Scene& s) {
-  static const TerrainOpeningOptions kDefaults;
-  return s.terrainOpening ? *s.terrainOpening : kDefaults;
-}
-// The network and terrain come from the scene file; a scene without them gets an opening
-// with no network, which opens nothing.
-TerrainOpeningOptions& writeTerrain(Scene& s) {
-  if (!s.terrainOpening) s.terrainOpening.emplace();
-  return *s.terrainOpening;
-}
-bool terrainOn(const Scene& s) {
-  return s.terrainOpening.has_value();
-}
-
 std::vector<Parameter> makeTerrainParameters() {
   using Type = Parameter::Type;
   using O = TerrainOpeningOptions;
-  const OptionsBinding<O> b{"terrain", readTerrain, writeTerrain, terrainOn};
+  // The network and terrain come from the scene file: a scene without them that sets one of
+  // these gets an opening with no network, which opens nothing.
+  const auto b = sceneOptions<O, &Scene::terrainOpening>("terrain");
   std::vector<Parameter> out;
   Parameter w = b.member("w", "width w", Type::Float, &O::w, "Eq. 1's width of the opening.");
   w.min = 0, w.max = 1e6, w.sliderMax = 0.1;

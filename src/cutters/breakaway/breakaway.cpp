@@ -100,14 +100,13 @@ Breakaway::Breakaway(const Scene& scene, const BreakawayOptions& options, Frame&
                  .meaning = "the same for the smaller hulls (offset minus wall thickness) that "
                             "clip exterior back faces"});
   frame.declare("breakawayHullNormal", {.format = GL_RGBA16F});
-  frame.declare("breakawayInnerNormal", {.format = GL_RGBA16F});
   frame.addPass(
       {.name = "breakawayClip",
        .writes = {"breakawayHullNormal", "breakawayClipDepth"},
        .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, outer_); }});
   frame.addPass(
       {.name = "breakawayInnerClip",
-       .writes = {"breakawayInnerNormal", "breakawayInnerDepth"},
+       .writes = {"breakawayInnerDepth"},  // back faces need no hull normal
        .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, inner_); }});
 }
 

@@ -140,6 +140,7 @@ struct ClipSurfaceCutter::Gpu {
   std::vector<CapGrid> grids;                // 2^k cells per side, k = 3 … 10
   std::vector<DepthSpriteGpu> sprites;       // one per capped object
   std::vector<glm::vec3> capColors;          // one per capped object
+  std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
 };
 
 ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurfaceOptions& options,
@@ -196,11 +197,12 @@ ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurface
         continue;
       }
       capped_.push_back(i);
+      g.capBounds.push_back(o.mesh->bounds());
       g.capColors.push_back(options.surfaces.front().capColor.value_or(o.material.color * 0.7f));
       if (options.parity == ClipSurfaceOptions::Parity::Static)
         g.sprites.push_back(buildDepthSprite(
             g.peel.id(), sceneGpu.mesh(i),
-            depthSpriteFrame(o.mesh->bounds(), glm::mat3(1.0f), options.depthSpriteResolution),
+            depthSpriteFrame(g.capBounds.back(), glm::mat3(1.0f), options.depthSpriteResolution),
             options.depthSpriteResolution, true));
     }
 
@@ -232,7 +234,7 @@ void ClipSurfaceCutter::buildPerFrameSprites(float time) {
     const SceneObject& o = scene.objects[capped_[k]];
     const glm::mat4 model = o.transformAt(time);
     Bounds inBasis;
-    const Bounds b = o.mesh->bounds();
+    const Bounds& b = gpu_->capBounds[k];
     for (int c = 0; c < 8; ++c) {
       const glm::vec3 corner((c & 1) ? b.max.x : b.min.x, (c & 2) ? b.max.y : b.min.y,
                              (c & 4) ? b.max.z : b.min.z);
@@ -279,7 +281,7 @@ void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
     glBindTextureUnit(20, sprite.layers.id());
     const SceneObject& o = scene.objects[capped_[k]];
     const glm::mat4 model = o.transformAt(time);
-    const Bounds b = o.mesh->bounds();
+    const Bounds& b = gpu_->capBounds[k];
     for (std::size_t i = 0; i < options_.surfaces.size(); ++i) {
       const ClipSurface& cs = options_.surfaces[i];
       if (!cs.enabled) continue;
