@@ -201,6 +201,9 @@ const BadScene kBadScenes[] = {
     {"clip_scale_zero.json", "/cutters/clipSurfaces/surfaces/0/scale",
      "repeats (x, y) must be > 0"},
     {"clip_parity_unknown.json", "/cutters/clipSurfaces/parity", "unknown value \"sometimes\""},
+    // The geographic frame.
+    {"geo_unknown_crs.json", "/geo/crs", "unknown CRS \"EPSG:999999\""},
+    {"geo_offset_short.json", "/geo/offset", "expected [easting, northing]"},
     // Cutters: Konev18 terrain opening.
     {"terrain_no_network.json", "/cutters/terrainOpening", "no network"},
     {"terrain_matches_nothing.json", "/cutters/terrainOpening/terrain", "no object name matches"},

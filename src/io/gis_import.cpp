@@ -228,6 +228,13 @@ void requireNonEmpty(const std::filesystem::path& file, OGRLayer& layer, std::in
 
 }  // namespace
 
+bool gisCrsKnown(const std::string& crs) {
+  registerDrivers();
+  QuietGdalErrors quiet;
+  OGRSpatialReference srs;
+  return srs.SetFromUserInput(crs.c_str()) == OGRERR_NONE;
+}
+
 std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file) {
   QuietGdalErrors quiet;
   GDALDatasetUniquePtr dataset = openVectorSource(file);

@@ -17,138 +17,19 @@
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/scene/scene.hpp"
+#include "scene/json_reader.hpp"
 
 namespace cutaway {
 
 namespace {
 
+using namespace scene_json;
 using json = nlohmann::json;
+
 
 // The renderer's light array (kMaxLights in src/render/frame_uniforms.glsl); more would be
 // dropped without a word.
 constexpr std::size_t kMaxLights = 8;
-
-struct Context {
-  std::string file;
-  std::filesystem::path baseDir;
-  [[noreturn]] void fail(const std::string& pointer, const std::string& reason) const {
-    throw Error(file, pointer.empty() ? "/" : pointer, reason);
-  }
-};
-
-std::string typeName(const json& j) {
-  return j.type_name();
-}
-
-// A key as one JSON pointer token (RFC 6901): "~" → "~0", "/" → "~1".
-std::string token(const std::string& key) {
-  std::string out;
-  for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
-  return out;
-}
-
-// One JSON object being read: fields are taken by name, and `finish` rejects the rest.
-class ObjectReader {
- public:
-  ObjectReader(const Context& ctx, const json& j, std::string pointer)
-      : ctx_(ctx), j_(j), pointer_(std::move(pointer)) {
-    if (!j.is_object()) ctx.fail(pointer_, "expected an object, got " + typeName(j));
-  }
-  const json* take(const std::string& key) {
-    taken_.insert(key);
-    const auto it = j_.find(key);
-    return it == j_.end() ? nullptr : &*it;
-  }
-  const json& require(const std::string& key) {
-    const json* v = take(key);
-    if (!v) ctx_.fail(pointer_, "missing required key \"" + key + "\"");
-    return *v;
-  }
-  bool has(const std::string& key) const { return j_.contains(key); }
-  std::string at(const std::string& key) const { return pointer_ + "/" + key; }
-  const std::string& pointer() const { return pointer_; }
-  void finish() const {
-    for (const auto& [key, value] : j_.items())
-      if (!taken_.count(key)) {
-        std::string known;
-        for (const auto& k : taken_) known += (known.empty() ? "" : ", ") + k;
-        ctx_.fail(pointer_ + "/" + token(key),
-                  "unknown key \"" + key + "\" (expected one of: " + known + ")");
-      }
-  }
-
- private:
-  const Context& ctx_;
-  const json& j_;
-  std::string pointer_;
-  std::set<std::string> taken_;
-};
-
-double number(const Context& ctx, const json& j, const std::string& ptr, double lo, double hi) {
-  if (!j.is_number()) ctx.fail(ptr, "expected a number, got " + typeName(j));
-  const double v = j.get<double>();
-  if (!(v >= lo && v <= hi)) {
-    std::ostringstream s;
-    s << "value " << v << " is outside [" << lo << ", " << hi << "]";
-    ctx.fail(ptr, s.str());
-  }
-  return v;
-}
-
-int integer(const Context& ctx, const json& j, const std::string& ptr, int lo, int hi) {
-  if (!j.is_number_integer()) ctx.fail(ptr, "expected an integer, got " + typeName(j));
-  return int(number(ctx, j, ptr, lo, hi));
-}
-
-bool boolean(const Context& ctx, const json& j, const std::string& ptr) {
-  if (!j.is_boolean()) ctx.fail(ptr, "expected true or false, got " + typeName(j));
-  return j.get<bool>();
-}
-
-std::string string(const Context& ctx, const json& j, const std::string& ptr) {
-  if (!j.is_string()) ctx.fail(ptr, "expected a string, got " + typeName(j));
-  return j.get<std::string>();
-}
-
-std::string oneOf(const Context& ctx, const json& j, const std::string& ptr,
-                  const std::vector<std::string>& names) {
-  const std::string v = string(ctx, j, ptr);
-  for (const auto& n : names)
-    if (n == v) return v;
-  std::string list;
-  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  ctx.fail(ptr, "unknown value \"" + v + "\" (expected one of: " + list + ")");
-}
-
-glm::vec3 vec3(const Context& ctx, const json& j, const std::string& ptr, double lo = -1e30,
-               double hi = 1e30) {
-  if (!j.is_array() || j.size() != 3)
-    ctx.fail(ptr, "expected an array of 3 numbers, got " +
-                      (j.is_array() ? std::to_string(j.size()) + " elements" : typeName(j)));
-  glm::vec3 v;
-  for (int i = 0; i < 3; ++i)
-    v[i] = float(number(ctx, j[std::size_t(i)], ptr + "/" + std::to_string(i), lo, hi));
-  return v;
-}
-
-glm::vec3 color(const Context& ctx, const json& j, const std::string& ptr) {
-  return vec3(ctx, j, ptr, 0.0, 1.0);
-}
-
-glm::vec3 direction(const Context& ctx, const json& j, const std::string& ptr) {
-  const glm::vec3 v = vec3(ctx, j, ptr);
-  if (glm::length(v) < 1e-9f) ctx.fail(ptr, "a direction must not be the zero vector");
-  return glm::normalize(v);
-}
-
-std::regex regex(const Context& ctx, const json& j, const std::string& ptr) {
-  const std::string pattern = string(ctx, j, ptr);
-  try {
-    return std::regex(pattern, std::regex::ECMAScript);
-  } catch (const std::regex_error& e) {
-    ctx.fail(ptr, "invalid regular expression \"" + pattern + "\": " + e.what());
-  }
-}
 
 // translate / rotate / scale keys of a transform or keyframe, read from `r`.
 Trs readTrs(const Context& ctx, ObjectReader& r) {
@@ -769,13 +650,6 @@ TerrainOpeningOptions terrainOpening(const Context& ctx, const json& j, const st
   }
   if (const json* v = r.take("cutBuildings"))
     o.cutBuildings = boolean(ctx, *v, r.at("cutBuildings"));
-  // The scene CRS offset: easting E and northing N become x = E − E0, z = −(N − N0).
-  glm::dvec2 offset(0.0);
-  if (const json* v = r.take("offset")) {
-    if (!v->is_array() || v->size() != 2) ctx.fail(r.at("offset"), "expected [easting, northing]");
-    offset = {number(ctx, (*v)[0], r.at("offset") + "/0", -1e12, 1e12),
-              number(ctx, (*v)[1], r.at("offset") + "/1", -1e12, 1e12)};
-  }
   if (const json* v = r.take("network")) {
     if (!v->is_array()) ctx.fail(r.at("network"), "expected an array of layers");
     for (std::size_t i = 0; i < v->size(); ++i) {
@@ -783,10 +657,8 @@ TerrainOpeningOptions terrainOpening(const Context& ctx, const json& j, const st
       ObjectReader nr(ctx, (*v)[i], p);
       const std::filesystem::path file =
           ctx.baseDir / string(ctx, nr.require("file"), nr.at("file"));
-      GisImportOptions gis;
+      GisImportOptions gis = gisOptions(ctx);
       if (const json* x = nr.take("layer")) gis.layer = string(ctx, *x, nr.at("layer"));
-      if (const json* x = nr.take("crs")) gis.targetCrs = string(ctx, *x, nr.at("crs"));
-      gis.offset = glm::dvec3(offset, 0.0);
       nr.finish();
       try {
         for (const auto& line : importGisLines(file, gis).polylines) {
@@ -834,6 +706,23 @@ TerrainOpeningOptions terrainOpening(const Context& ctx, const json& j, const st
     o.thicknessColor = color(ctx, *v, r.at("thicknessColor"));
   r.finish();
   return o;
+}
+
+GeoFrame geoFrame(const Context& ctx, const json& j, const std::string& ptr) {
+  GeoFrame g;
+  ObjectReader r(ctx, j, ptr);
+  if (const json* v = r.take("crs")) {
+    g.crs = string(ctx, *v, r.at("crs"));
+    if (!gisCrsKnown(g.crs)) ctx.fail(r.at("crs"), "unknown CRS \"" + g.crs + "\"");
+  }
+  if (const json* v = r.take("offset")) {
+    if (!v->is_array() || (v->size() != 2 && v->size() != 3))
+      ctx.fail(r.at("offset"), "expected [easting, northing] or [easting, northing, height]");
+    for (std::size_t i = 0; i < v->size(); ++i)
+      g.offset[int(i)] = number(ctx, (*v)[i], r.at("offset") + "/" + std::to_string(i), -1e12, 1e12);
+  }
+  r.finish();
+  return g;
 }
 
 ToonStyle toonStyle(const Context& ctx, const json& j, const std::string& ptr) {
@@ -954,7 +843,7 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
 
 Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
                  const std::filesystem::path& baseDir) {
-  const Context ctx{displayName.string(), baseDir};
+  Context ctx{displayName.string(), baseDir, {}};
   // Turn a 1-based byte offset into a line and column a person can find.
   const auto lineColumn = [&text](std::size_t byte) {
     std::size_t line = 1, column = 1;
@@ -992,6 +881,7 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   ObjectReader r(ctx, root, "");
   if (const json* v = r.take("version"))
     if (integer(ctx, *v, "/version", 1, 1) != 1) ctx.fail("/version", "unsupported version");
+  if (const json* v = r.take("geo")) ctx.geo = scene.geo = geoFrame(ctx, *v, "/geo");
   if (const json* v = r.take("resolution")) {
     if (!v->is_array() || v->size() != 2) ctx.fail("/resolution", "expected [width, height]");
     scene.width = integer(ctx, (*v)[0], "/resolution/0", 1, 16384);

@@ -53,6 +53,9 @@ struct GisLayerInfo {
   std::vector<std::string> fields;  // attribute field names, in the layer's order
 };
 
+// Whether OGR understands `crs` ("EPSG:27700", WKT, a PROJ string).
+bool gisCrsKnown(const std::string& crs);
+
 // The layers of a vector data source, for inspection (`cutaway info`).
 std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file);
 

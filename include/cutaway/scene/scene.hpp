@@ -88,6 +88,19 @@ struct SceneObject {
   Bounds worldBounds() const;
 };
 
+// The scene's geographic frame (Konev18 §5 input): every GIS layer and raster is reprojected
+// to `crs` (when given), then a projected point (easting E, northing N, height H) becomes the
+// scene point x = E − E0, y = H − H0, z = −(N − N0): y up, north towards −z. The offset is
+// subtracted in double precision, so large projected coordinates (British National Grid, UTM)
+// keep their centimetres as floats.
+struct GeoFrame {
+  std::string crs;          // anything OGR's SetFromUserInput takes; empty: keep each layer's
+  glm::dvec3 offset{0.0};   // E0, N0, H0
+  // A layer's point as imported with `importOptions` (x = E − E0, y = N − N0, z = H − H0).
+  static glm::vec3 toScene(const glm::vec3& p) { return {p.x, p.z, -p.y}; }
+  static glm::vec3 fromScene(const glm::vec3& p) { return {p.x, -p.z, p.y}; }
+};
+
 enum class Projection { Perspective, Orthographic };
 
 struct CameraKey {
@@ -186,6 +199,7 @@ struct Scene {
   int width = 800, height = 600;
   int samples = 4;  // MSAA samples of the final image
   Style style;
+  GeoFrame geo;  // "geo": {"crs": …, "offset": […]}
   std::optional<AdaptiveCutawayOptions> adaptive;       // "cutters": {"adaptive": {…}}
   std::optional<CutoutOptions> cutout;                  // "cutters": {"cutout": {…}}
   std::optional<BreakawayOptions> breakaway;            // "cutters": {"breakaway": {…}}

@@ -1,0 +1,154 @@
+// Strict JSON reading for the scene format (docs/scene-format.md): every error names the
+// file, the JSON pointer and the reason; unknown keys are errors. Shared by the scene file's
+// parts (src/scene/scene_json.cpp, src/scene/network_json.cpp).
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/io/gis_import.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace cutaway::scene_json {
+
+using json = nlohmann::json;
+
+struct Context {
+  std::string file;
+  std::filesystem::path baseDir;
+  GeoFrame geo;  // read first: GIS layers and rasters anywhere in the file go through it
+  [[noreturn]] void fail(const std::string& pointer, const std::string& reason) const {
+    throw Error(file, pointer.empty() ? "/" : pointer, reason);
+  }
+};
+
+inline std::string typeName(const json& j) {
+  return j.type_name();
+}
+
+// A key as one JSON pointer token (RFC 6901): "~" → "~0", "/" → "~1".
+inline std::string token(const std::string& key) {
+  std::string out;
+  for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return out;
+}
+
+// One JSON object being read: fields are taken by name, and `finish` rejects the rest.
+class ObjectReader {
+ public:
+  ObjectReader(const Context& ctx, const json& j, std::string pointer)
+      : ctx_(ctx), j_(j), pointer_(std::move(pointer)) {
+    if (!j.is_object()) ctx.fail(pointer_, "expected an object, got " + typeName(j));
+  }
+  const json* take(const std::string& key) {
+    taken_.insert(key);
+    const auto it = j_.find(key);
+    return it == j_.end() ? nullptr : &*it;
+  }
+  const json& require(const std::string& key) {
+    const json* v = take(key);
+    if (!v) ctx_.fail(pointer_, "missing required key \"" + key + "\"");
+    return *v;
+  }
+  bool has(const std::string& key) const { return j_.contains(key); }
+  std::string at(const std::string& key) const { return pointer_ + "/" + key; }
+  const std::string& pointer() const { return pointer_; }
+  void finish() const {
+    for (const auto& [key, value] : j_.items())
+      if (!taken_.count(key)) {
+        std::string known;
+        for (const auto& k : taken_) known += (known.empty() ? "" : ", ") + k;
+        ctx_.fail(pointer_ + "/" + token(key),
+                  "unknown key \"" + key + "\" (expected one of: " + known + ")");
+      }
+  }
+
+ private:
+  const Context& ctx_;
+  const json& j_;
+  std::string pointer_;
+  std::set<std::string> taken_;
+};
+
+inline double number(const Context& ctx, const json& j, const std::string& ptr, double lo, double hi) {
+  if (!j.is_number()) ctx.fail(ptr, "expected a number, got " + typeName(j));
+  const double v = j.get<double>();
+  if (!(v >= lo && v <= hi)) {
+    std::ostringstream s;
+    s << "value " << v << " is outside [" << lo << ", " << hi << "]";
+    ctx.fail(ptr, s.str());
+  }
+  return v;
+}
+
+inline int integer(const Context& ctx, const json& j, const std::string& ptr, int lo, int hi) {
+  if (!j.is_number_integer()) ctx.fail(ptr, "expected an integer, got " + typeName(j));
+  return int(number(ctx, j, ptr, lo, hi));
+}
+
+inline bool boolean(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_boolean()) ctx.fail(ptr, "expected true or false, got " + typeName(j));
+  return j.get<bool>();
+}
+
+inline std::string string(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_string()) ctx.fail(ptr, "expected a string, got " + typeName(j));
+  return j.get<std::string>();
+}
+
+inline std::string oneOf(const Context& ctx, const json& j, const std::string& ptr,
+                  const std::vector<std::string>& names) {
+  const std::string v = string(ctx, j, ptr);
+  for (const auto& n : names)
+    if (n == v) return v;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  ctx.fail(ptr, "unknown value \"" + v + "\" (expected one of: " + list + ")");
+}
+
+inline glm::vec3 vec3(const Context& ctx, const json& j, const std::string& ptr, double lo = -1e30,
+               double hi = 1e30) {
+  if (!j.is_array() || j.size() != 3)
+    ctx.fail(ptr, "expected an array of 3 numbers, got " +
+                      (j.is_array() ? std::to_string(j.size()) + " elements" : typeName(j)));
+  glm::vec3 v;
+  for (int i = 0; i < 3; ++i)
+    v[i] = float(number(ctx, j[std::size_t(i)], ptr + "/" + std::to_string(i), lo, hi));
+  return v;
+}
+
+inline glm::vec3 color(const Context& ctx, const json& j, const std::string& ptr) {
+  return vec3(ctx, j, ptr, 0.0, 1.0);
+}
+
+inline glm::vec3 direction(const Context& ctx, const json& j, const std::string& ptr) {
+  const glm::vec3 v = vec3(ctx, j, ptr);
+  if (glm::length(v) < 1e-9f) ctx.fail(ptr, "a direction must not be the zero vector");
+  return glm::normalize(v);
+}
+
+inline std::regex regex(const Context& ctx, const json& j, const std::string& ptr) {
+  const std::string pattern = string(ctx, j, ptr);
+  try {
+    return std::regex(pattern, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    ctx.fail(ptr, "invalid regular expression \"" + pattern + "\": " + e.what());
+  }
+}
+
+// Import options for a GIS layer in the scene's frame: reprojected to its CRS, offset removed.
+inline GisImportOptions gisOptions(const Context& ctx) {
+  GisImportOptions o;
+  o.targetCrs = ctx.geo.crs;
+  o.offset = ctx.geo.offset;
+  return o;
+}
+
+}  // namespace cutaway::scene_json
