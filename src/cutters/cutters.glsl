@@ -1,6 +1,6 @@
 // The active cutters composed into one per-fragment decision for the geometry pass; each is
 // compiled in by its define (CUTTER_ADAPTIVE, CUTTER_CUTOUT, CUTTER_BREAKAWAY,
-// CUTTER_CLIP_SURFACES, CUTTER_TERRAIN). A fragment is
+// CUTTER_CLIP_SURFACES, CUTTER_TERRAIN, CUTTER_SHAFT_WEDGE). A fragment is
 // removed when any cutter that cuts its object removes it; a back face seen through a cut
 // takes the first cutter's cut surface. Needs frame_uniforms.glsl.
 #include "fate.glsl"
@@ -19,8 +19,12 @@
 #ifdef CUTTER_TERRAIN
 #include "terrain_opening/terrain_opening.glsl"
 #endif
+#ifdef CUTTER_SHAFT_WEDGE
+#include "shaft_wedge/shaft_wedge.glsl"
+#endif
 
-int cutFragment(int cutBy, vec3 x, bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
+int cutFragment(int cutBy, vec3 x, vec3 normal, bool frontFacing, out vec3 cutPosition,
+                out vec3 cutNormal) {
   cutPosition = vec3(0.0);
   cutNormal = vec3(0.0);
   int fate = kKeep;
@@ -50,6 +54,13 @@ int cutFragment(int cutBy, vec3 x, bool frontFacing, out vec3 cutPosition, out v
 #ifdef CUTTER_TERRAIN
   if ((cutBy & kCutByTerrain) != 0) {
     f = terrainFragment(x, p, n);
+    if (f == kDiscard) return kDiscard;
+    if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
+  }
+#endif
+#ifdef CUTTER_SHAFT_WEDGE
+  if ((cutBy & (kCutByShaftOuter | kCutByShaftInner)) != 0) {
+    f = shaftFragment((cutBy & kCutByShaftInner) != 0, x, normal, frontFacing, p, n);
     if (f == kDiscard) return kDiscard;
     if (f == kCutSurface && fate == kKeep) fate = f, cutPosition = p, cutNormal = n;
   }

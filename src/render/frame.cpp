@@ -84,8 +84,10 @@ void Frame::prepare(Pass& pass) {
       throw Error("frame", pass.desc.name, "writes render targets of different sizes");
     first = false;
     if (isDepthFormat(d.format)) {
-      glNamedFramebufferTexture(pass.framebuffer.id(), GL_DEPTH_ATTACHMENT, it->second.texture.id(),
-                                0);
+      const bool stencil = d.format == GL_DEPTH24_STENCIL8 || d.format == GL_DEPTH32F_STENCIL8;
+      glNamedFramebufferTexture(pass.framebuffer.id(),
+                                stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
+                                it->second.texture.id(), 0);
     } else {
       const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(drawBuffers.size());
       glNamedFramebufferTexture(pass.framebuffer.id(), attachment, it->second.texture.id(), 0);

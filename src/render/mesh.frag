@@ -20,7 +20,8 @@ layout(location = 15) uniform vec3 uCutColor;
 layout(location = 16) uniform vec3 uBackColor;  // back faces that are no cut surface (an open or hollow inside)
 void main() {
   vec3 cutPosition, cutNormal;
-  int fate = cutFragment(uCutBy, vWorldPosition, gl_FrontFacing, cutPosition, cutNormal);
+  int fate = cutFragment(uCutBy, vWorldPosition, vWorldNormal, gl_FrontFacing, cutPosition,
+                         cutNormal);
   if (fate == kDiscard) discard;
   bool cut = fate == kCutSurface && uCutSurface != 0;
   vec3 n = vWorldNormal;

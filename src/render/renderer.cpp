@@ -1,5 +1,6 @@
 #include "cutaway/render/renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "cutaway/core/error.hpp"
@@ -10,6 +11,7 @@
 #include "cutters/cutout/cutout.hpp"
 #include "cutters/terrain_opening/terrain_opening.hpp"
 #include "render/fullscreen.hpp"
+#include "render/pipes/pipe_renderer.hpp"
 #include "render/scene_gpu.hpp"
 #include "styles/hatching/tonal_art_map.hpp"
 #include "styles/shadows/shadow_map.hpp"
@@ -47,10 +49,14 @@ const char* styleFile(const std::string& style) {
 // Mesh uniform locations of src/render/mesh.frag (and ghost.frag for the id).
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
                 kCutBy = 13, kCutSurface = 14, kCutColor = 15, kBackColor = 16, kGhostDistance = 17,
-                kClipPlane = 18;
+                kClipPlane = 18, kShaftOpening = 52;
 // Bits of src/cutters/fate.glsl.
 constexpr int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4, kCutByClipSurfaces = 8,
-              kCutByTerrain = 16;
+              kCutByTerrain = 16, kCutByShaftOuter = 32, kCutByShaftInner = 64;
+
+bool isShaft(const SceneObject& o) {
+  return o.networkPart == NetworkPart::ShaftOuter || o.networkPart == NetworkPart::ShaftInner;
+}
 
 }  // namespace
 
@@ -64,6 +70,7 @@ struct Renderer::Impl {
   std::unique_ptr<Breakaway> breakaway;
   std::unique_ptr<ClipSurfaceCutter> clipSurfaces;
   std::unique_ptr<TerrainOpening> terrain;
+  std::unique_ptr<PipeRenderer> pipes;
   gl::Program capProgram, capMaskProgram;
   gl::Buffer frameUniforms;
   FullscreenTriangle fullscreen;
@@ -103,7 +110,9 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                                    std::pair{bool(g.cutout), "CUTTER_CUTOUT"},
                                    std::pair{bool(g.breakaway), "CUTTER_BREAKAWAY"},
                                    std::pair{bool(g.clipSurfaces), "CUTTER_CLIP_SURFACES"},
-                                   std::pair{bool(g.terrain), "CUTTER_TERRAIN"}})
+                                   std::pair{bool(g.terrain), "CUTTER_TERRAIN"},
+                                   std::pair{std::any_of(scene.objects.begin(), scene.objects.end(), isShaft),
+                                             "CUTTER_SHAFT_WEDGE"}})
     if (on) cutters.emplace(define, "1");
   g.meshProgram = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
@@ -145,7 +154,13 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   f.declare("scenePosition", {.format = GL_RGBA32F, .samples = samples});
   f.declare("sceneObjectId", {.format = GL_R32I, .samples = samples});
   f.declare("sceneCutMask", {.format = GL_R8, .samples = samples});
-  f.declare("sceneDepth", {.format = GL_DEPTH_COMPONENT32F, .samples = samples});
+  // Konev18 §6's billboard pipes mark the stencil buffer.
+  const bool billboards =
+      std::any_of(scene.networks.begin(), scene.networks.end(),
+                  [](const PipeNetwork& n) { return n.mode == PipeNetwork::Mode::Billboards; });
+  f.declare("sceneDepth",
+            {.format = billboards ? GLenum(GL_DEPTH32F_STENCIL8) : GLenum(GL_DEPTH_COMPONENT32F),
+             .samples = samples});
   if (g.cutout) {
     f.declare("sceneCutoutDistance", {.format = GL_R32F, .samples = samples});
     f.declare("cutoutDistance",
@@ -213,6 +228,11 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
              .reads = geometryInputs,
              .writes = geometryOutputs,
              .run = [this](const PassContext& pass) { drawGeometry(pass.framebuffer); }});
+  if (billboards) {
+    geometryOutputs.pop_back();  // the depth target: the pipe passes add their own
+    g.pipes = std::make_unique<PipeRenderer>(scene, f, cutters, styleFile(scene.style.name),
+                                             geometryOutputs);
+  }
   if (g.clipSurfaces) {
     f.declare("capMask", {.format = GL_R32F,
                           .meaning = "1 where a cap surface covers a clip surface's cut (Trapp13 "
@@ -351,6 +371,17 @@ void Renderer::drawGeometry(GLuint framebuffer) {
     glProgramUniform1i(program, kCutBy, cutBy);
     using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
     const bool diepstraten = exterior && (g.cutout || g.breakaway);
+    if (isShaft(o)) {
+      // Konev18 §7: the wedge's cut surface in the network's colour, the inside in its own.
+      const PipeNetwork& net = scene_.networks[std::size_t(o.network)];
+      const bool inner = o.networkPart == NetworkPart::ShaftInner;
+      glProgramUniform1i(program, kCutBy, cutBy | (inner ? kCutByShaftInner : kCutByShaftOuter));
+      glProgramUniform1i(program, kCutSurface, 1);
+      glProgramUniform3fv(program, kCutColor, 1, &net.cutColor[0]);
+      glProgramUniform3fv(program, kBackColor, 1, &net.insideColor[0]);
+      glProgramUniform1f(program, kShaftOpening, net.shaftOpening);
+      return;
+    }
     const bool cutSurface =
         (adaptiveCut &&
          (adaptive->cutSurfaces == CutSurfaces::All ||

@@ -99,6 +99,7 @@ Bounds Scene::bounds() const {
   Bounds b;
   for (const auto& o : objects)
     if (!o.proxy) b.extend(o.worldBounds());
+  for (const auto& n : networks) b.extend(n.bounds());
   return b;
 }
 

@@ -18,6 +18,7 @@
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "scene/json_reader.hpp"
+#include "scene/network_json.hpp"
 
 namespace cutaway {
 
@@ -688,10 +689,6 @@ TerrainOpeningOptions terrainOpening(const Context& ctx, const json& j, const st
       o.lines.push_back(std::move(xz));
     }
   }
-  if (o.lines.empty())
-    ctx.fail(ptr,
-             "no network: give \"network\" layers or \"lines\" (Konev18 §4 opens the "
-             "terrain above pipes)");
   if (const json* v = r.take("resolution"))
     o.resolution = integer(ctx, *v, r.at("resolution"), 16, 8192);
   if (const json* v = r.take("metric"))
@@ -938,6 +935,7 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     for (std::size_t i = 0; i < v->size(); ++i)
       readProxy(ctx, (*v)[i], "/proxies/" + std::to_string(i), scene.objects);
   }
+  if (const json* v = r.take("networks")) readNetworks(ctx, *v, "/networks", scene);
   std::set<std::string> names;
   for (const auto& o : scene.objects)
     if (!names.insert(o.name).second)
@@ -957,6 +955,19 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     ctx.fail("/cutters/breakaway",
              "no object has role \"interior\": the breakaway hull is built around them");
   if (scene.terrainOpening) {
+    // Without layers of its own, the terrain opens above the scene's pipe networks.
+    std::vector<std::vector<glm::vec2>>& lines = scene.terrainOpening->lines;
+    if (lines.empty())
+      for (const PipeNetwork& net : scene.networks)
+        for (const Pipe& p : net.pipes) {
+          std::vector<glm::vec2> xz;
+          for (const glm::vec3& q : p.nodes) xz.emplace_back(q.x, q.z);
+          lines.push_back(std::move(xz));
+        }
+    if (lines.empty())
+      ctx.fail("/cutters/terrainOpening",
+               "no network: give \"network\" layers, \"lines\" or scene \"networks\" (Konev18 "
+               "§4 opens the terrain above pipes)");
     const std::regex terrain(scene.terrainOpening->terrain);
     if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
           return !o.proxy && std::regex_match(o.name, terrain);

@@ -27,6 +27,7 @@
 #include "cutaway/cutters/cutout.hpp"
 #include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/geometry/mesh.hpp"
+#include "cutaway/geometry/pipe_network.hpp"
 
 namespace cutaway {
 
@@ -66,8 +67,15 @@ struct Keyframe {
   Trs trs;
 };
 
+// Meshes a pipe network contributes to the object list (Konev18): the shafts' two cylinders,
+// which the §7 wedge cuts and colours by layer, the joints at sharp bends, and the tessellated
+// pipes of the meshed mode.
+enum class NetworkPart { None, ShaftOuter, ShaftInner, Joints, MeshedPipes };
+
 struct SceneObject {
   std::string name;
+  NetworkPart networkPart = NetworkPart::None;
+  int network = -1;  // index in Scene::networks of the network it belongs to
   std::string group;   // optional group name ("" = none)
   std::string source;  // "file" or "file#node" it came from, or "proxy"
   Role role = Role::Context;
@@ -205,6 +213,9 @@ struct Scene {
   std::optional<BreakawayOptions> breakaway;            // "cutters": {"breakaway": {…}}
   std::optional<ClipSurfaceOptions> clipSurfaces;       // "cutters": {"clipSurfaces": {…}}
   std::optional<TerrainOpeningOptions> terrainOpening;  // "cutters": {"terrainOpening": {…}}
+  // Konev18 pipe networks drawn as billboards ("networks": […]). Their object ids in the
+  // renderer's id buffer follow the objects': objects.size() + network index.
+  std::vector<PipeNetwork> networks;
 
   // Bounds of the visible (non-proxy) objects in world space.
   Bounds bounds() const;
