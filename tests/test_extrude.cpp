@@ -49,15 +49,15 @@ void checkFootprint(const Footprint& f, double tolerance = 1e-9) {
   const float base = -3.0f, top = 9.5f;
   Mesh m = extrudeFootprint(f, base, top);
   analyzeTopology(m);
-  EXPECT_TRUE(m.report.watertight) << m.report.boundaryEdges << " boundary, "
-                                   << m.report.nonManifoldEdges << " non-manifold, "
-                                   << m.report.misorientedEdges << " misoriented edges";
+  EXPECT_TRUE(m.report.watertight)
+      << m.report.boundaryEdges << " boundary, " << m.report.nonManifoldEdges << " non-manifold, "
+      << m.report.misorientedEdges << " misoriented edges";
   // Positive: outward. Float positions, so relative 1e-5.
   EXPECT_NEAR(volume(m), area * (top - base), 1e-5 * area * (top - base));
   // Flat normals agree with each triangle's own orientation.
   for (const glm::uvec3& t : m.triangles) {
-    const glm::vec3 n = glm::cross(m.positions[t.y] - m.positions[t.x],
-                                   m.positions[t.z] - m.positions[t.x]);
+    const glm::vec3 n =
+        glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);
     if (glm::length(n) > 1e-6f) EXPECT_GT(glm::dot(n, m.normals[t.x]), 0.0f);
   }
 }

@@ -16,9 +16,13 @@ using namespace cutaway;
 TEST(GeoScene, FootprintsStandOnTheRasterTerrain) {
   const fs::path dir = fs::temp_directory_path() / ("cutaway-geo-" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  writeSyntheticDem(dir / "dem.tif", {.min = {265000, 145000}, .max = {265200, 145200},
-                                      .crs = "EPSG:27700", .cell = 10, .base = 40,
-                                      .relief = 25, .wavelength = 100});
+  writeSyntheticDem(dir / "dem.tif", {.min = {265000, 145000},
+                                      .max = {265200, 145200},
+                                      .crs = "EPSG:27700",
+                                      .cell = 10,
+                                      .base = 40,
+                                      .relief = 25,
+                                      .wavelength = 100});
   std::ofstream(dir / "b.geojson") << R"({"type": "FeatureCollection",
     "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::27700"}},
     "features": [
@@ -51,8 +55,8 @@ TEST(GeoScene, FootprintsStandOnTheRasterTerrain) {
     }
     return h;
   };
-  const float first = lowest({{265050, 145050}, {265080, 145050}, {265080, 145070},
-                              {265050, 145070}});
+  const float first =
+      lowest({{265050, 145050}, {265080, 145050}, {265080, 145070}, {265050, 145070}});
   const float second = lowest({{265120, 145120}, {265150, 145125}, {265130, 145160}});
   std::vector<float> heights;
   for (const glm::vec3& p : blocks.mesh->positions)
@@ -62,8 +66,7 @@ TEST(GeoScene, FootprintsStandOnTheRasterTerrain) {
   std::sort(expected.begin(), expected.end());
   // The rays start at other heights, so t rounds differently: 1e-3 m.
   ASSERT_EQ(heights.size(), expected.size());
-  for (std::size_t i = 0; i < heights.size(); ++i)
-    EXPECT_NEAR(heights[i], expected[i], 1e-3f) << i;
+  for (std::size_t i = 0; i < heights.size(); ++i) EXPECT_NEAR(heights[i], expected[i], 1e-3f) << i;
   // Without "on" the blocks stand on y = 0.
   const Bounds flat = scene.find("flat")->mesh->bounds();
   EXPECT_EQ(flat.min, glm::vec3(50, 0, -160));

@@ -71,10 +71,10 @@ void expectError(F&& f, std::initializer_list<std::string> parts) {
 
 TEST_F(RasterTerrainTest, GridNodesSitAtPixelCentresInTheSceneFrame) {
   // 4 × 3 samples of 10 m, north-west corner at (265000, 150000).
-  const fs::path file = tiff("dem.tif", 4, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12},
-                             {265000, 10, 0, 150000, 0, -10});
-  const RasterTerrain t = importRasterTerrain(
-      file, {.heightScale = 2.0, .offset = {265000.0, 149900.0, 5.0}});
+  const fs::path file =
+      tiff("dem.tif", 4, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}, {265000, 10, 0, 150000, 0, -10});
+  const RasterTerrain t =
+      importRasterTerrain(file, {.heightScale = 2.0, .offset = {265000.0, 149900.0, 5.0}});
   EXPECT_EQ(t.columns, 4);
   EXPECT_EQ(t.rows, 3);
   EXPECT_EQ(t.crs.authority, "EPSG:27700");
@@ -136,10 +136,10 @@ TEST_F(RasterTerrainTest, NodataTakesTheNearestValidHeight) {
 
 TEST_F(RasterTerrainTest, ReprojectsEachNode) {
   // A raster in UTM 30N around Exmoor, placed in British National Grid.
-  const fs::path file = tiff("utm.tif", 2, {10, 20, 30, 40}, {450000, 100, 0, 5670000, 0, -100},
-                             "EPSG:32630");
-  const RasterTerrain t = importRasterTerrain(
-      file, {.targetCrs = "EPSG:27700", .offset = {265000.0, 145000.0, 0.0}});
+  const fs::path file =
+      tiff("utm.tif", 2, {10, 20, 30, 40}, {450000, 100, 0, 5670000, 0, -100}, "EPSG:32630");
+  const RasterTerrain t =
+      importRasterTerrain(file, {.targetCrs = "EPSG:27700", .offset = {265000.0, 145000.0, 0.0}});
   EXPECT_EQ(t.sceneCrs.authority, "EPSG:27700");
   OGRSpatialReference utm, bng;
   utm.SetFromUserInput("EPSG:32630");
@@ -175,8 +175,12 @@ TEST_F(RasterTerrainTest, ErrorsNameTheFileAndTheReason) {
 }
 
 TEST_F(RasterTerrainTest, SyntheticDemReadsBackAsItsNoiseFunction) {
-  const SyntheticDemOptions o{.min = {265000, 145000}, .max = {265400, 145300},
-                              .crs = "EPSG:27700", .cell = 20, .base = 40, .relief = 25,
+  const SyntheticDemOptions o{.min = {265000, 145000},
+                              .max = {265400, 145300},
+                              .crs = "EPSG:27700",
+                              .cell = 20,
+                              .base = 40,
+                              .relief = 25,
                               .seed = 3};
   const fs::path file = dir_ / "synthetic.tif";
   writeSyntheticDem(file, o);
@@ -198,8 +202,11 @@ TEST_F(RasterTerrainTest, SyntheticDemReadsBackAsItsNoiseFunction) {
     EXPECT_GE(p.y, 40.0f);
     EXPECT_LE(p.y, 65.0f);
   }
-  expectError([&] { writeSyntheticDem(dir_ / "odd.tif", {.min = {0, 0}, .max = {15, 20},
-                                                          .crs = "EPSG:27700", .cell = 10}); },
-              {"odd.tif", "whole"});
+  expectError(
+      [&] {
+        writeSyntheticDem(dir_ / "odd.tif",
+                          {.min = {0, 0}, .max = {15, 20}, .crs = "EPSG:27700", .cell = 10});
+      },
+      {"odd.tif", "whole"});
   EXPECT_FALSE(fs::exists(dir_ / "odd.tif"));
 }

@@ -264,8 +264,8 @@ Mesh extrudeFootprint(const Footprint& footprint, float base, float top) {
   const std::uint32_t floorStart = addCapVertices(base, -1.0f);
   for (const glm::uvec3& t : cap) mesh.triangles.push_back(t + floorStart);
   const std::uint32_t roofStart = addCapVertices(top, 1.0f);
-  for (const glm::uvec3& t : cap) mesh.triangles.emplace_back(t.x + roofStart, t.z + roofStart,
-                                                              t.y + roofStart);
+  for (const glm::uvec3& t : cap)
+    mesh.triangles.emplace_back(t.x + roofStart, t.z + roofStart, t.y + roofStart);
   for (const auto& ring : rings)
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const glm::vec2 a = ring[i], b = ring[(i + 1) % ring.size()];

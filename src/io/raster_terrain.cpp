@@ -30,8 +30,7 @@ GDALDatasetUniquePtr openRaster(const std::filesystem::path& file) {
   GDALDatasetUniquePtr dataset(GDALDataset::Open(file.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
                                                  nullptr, nullptr, nullptr));
   if (!dataset || dataset->GetRasterCount() < 1)
-    throw Error(file.string(), "",
-                "cannot open as a raster" + gdal::QuietErrors::lastMessage());
+    throw Error(file.string(), "", "cannot open as a raster" + gdal::QuietErrors::lastMessage());
   return dataset;
 }
 
@@ -135,9 +134,9 @@ RasterTerrain importRasterTerrain(const std::filesystem::path& file,
                   "the raster has no CRS, so it cannot be reprojected to " + options.targetCrs);
     OGRSpatialReference from(*source), to;
     if (to.SetFromUserInput(options.targetCrs.c_str()) != OGRERR_NONE)
-      throw Error(name, "",
-                  "unknown target CRS \"" + options.targetCrs + "\"" +
-                      gdal::QuietErrors::lastMessage());
+      throw Error(
+          name, "",
+          "unknown target CRS \"" + options.targetCrs + "\"" + gdal::QuietErrors::lastMessage());
     from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     out.sceneCrs = gdal::describeCrs(&to);
@@ -155,13 +154,12 @@ RasterTerrain importRasterTerrain(const std::filesystem::path& file,
   if (out.columns < 2 || out.rows < 2)
     throw Error(name, "",
                 "a terrain grid needs at least 2 × 2 nodes, got " + std::to_string(out.columns) +
-                    " × " + std::to_string(out.rows) + " (raster " + std::to_string(width) +
-                    " × " + std::to_string(height) + ", step " + std::to_string(options.step) +
-                    ")");
+                    " × " + std::to_string(out.rows) + " (raster " + std::to_string(width) + " × " +
+                    std::to_string(height) + ", step " + std::to_string(options.step) + ")");
   GDALRasterBand* band = dataset->GetRasterBand(1);
   std::vector<double> samples(std::size_t(width) * std::size_t(height));
-  if (band->RasterIO(GF_Read, 0, 0, width, height, samples.data(), width, height, GDT_Float64, 0,
-                     0, nullptr) != CE_None)
+  if (band->RasterIO(GF_Read, 0, 0, width, height, samples.data(), width, height, GDT_Float64, 0, 0,
+                     nullptr) != CE_None)
     throw Error(name, "", "cannot read band 1" + gdal::QuietErrors::lastMessage());
   int hasNodata = 0;
   const double nodata = band->GetNoDataValue(&hasNodata);
@@ -236,8 +234,8 @@ double syntheticDemHeight(const SyntheticDemOptions& o, double easting, double n
   double sum = 0.0, weights = 0.0;
   for (int octave = 0; octave < o.octaves; ++octave) {
     const double frequency = std::ldexp(1.0, octave), weight = 1.0 / frequency;
-    sum += weight * valueNoise(float(u * frequency), float(v * frequency),
-                               o.seed + std::uint32_t(octave));
+    sum += weight *
+           valueNoise(float(u * frequency), float(v * frequency), o.seed + std::uint32_t(octave));
     weights += weight;
   }
   return std::round((o.base + o.relief * sum / weights) * 100.0) / 100.0;
@@ -252,8 +250,8 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   if (o.octaves < 1 || o.octaves > 16) throw Error(name, "", "octaves must be in [1, 16]");
   const glm::dvec2 size = (o.max - o.min) / o.cell;
   const glm::dvec2 whole = glm::round(size);
-  if (!(size.x >= 1.0 && size.y >= 1.0) || glm::any(glm::greaterThan(glm::abs(size - whole),
-                                                                       glm::dvec2(1e-6))))
+  if (!(size.x >= 1.0 && size.y >= 1.0) ||
+      glm::any(glm::greaterThan(glm::abs(size - whole), glm::dvec2(1e-6))))
     throw Error(name, "",
                 "the extent must hold a whole, positive number of " + std::to_string(o.cell) +
                     " cells along each axis");
@@ -265,8 +263,8 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   std::vector<float> samples(std::size_t(width) * std::size_t(height));
   for (int r = 0; r < height; ++r)
     for (int c = 0; c < width; ++c)
-      samples[std::size_t(r) * std::size_t(width) + std::size_t(c)] = float(syntheticDemHeight(
-          o, o.min.x + (c + 0.5) * o.cell, o.max.y - (r + 0.5) * o.cell));
+      samples[std::size_t(r) * std::size_t(width) + std::size_t(c)] =
+          float(syntheticDemHeight(o, o.min.x + (c + 0.5) * o.cell, o.max.y - (r + 0.5) * o.cell));
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
   if (!driver) throw Error(name, "", "GDAL has no GeoTIFF driver");
   replaceFileAtomically(file, [&](const std::filesystem::path& temporary) {
@@ -274,8 +272,8 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
     creation.SetNameValue("COMPRESS", "DEFLATE");
     creation.SetNameValue("PREDICTOR", "3");  // floating-point differencing: smooth heights
     creation.SetNameValue("ZLEVEL", "9");
-    GDALDatasetUniquePtr dataset(driver->Create(temporary.c_str(), width, height, 1, GDT_Float32,
-                                                creation.List()));
+    GDALDatasetUniquePtr dataset(
+        driver->Create(temporary.c_str(), width, height, 1, GDT_Float32, creation.List()));
     if (!dataset) throw Error(name, "", "cannot create" + gdal::QuietErrors::lastMessage());
     double gt[6] = {o.min.x, o.cell, 0.0, o.max.y, 0.0, -o.cell};
     if (dataset->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, samples.data(), width,

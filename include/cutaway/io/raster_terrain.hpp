@@ -9,7 +9,8 @@
 // and the node is placed as the scene's GeoFrame says: x = E − E0, y = h·heightScale − H0,
 // z = −(N − N0). Nodata samples (and NaN) take the height of the nearest valid node of the
 // sampled grid — fewest steps along rows and columns, ties to the valid node first in row
-// order (a breadth-first search from all valid nodes) — and are counted; a raster with no valid sample is an error.
+// order (a breadth-first search from all valid nodes) — and are counted; a raster with no valid
+// sample is an error.
 //
 //   cutaway::RasterTerrainOptions options{.step = 2, .targetCrs = "EPSG:27700",
 //                                         .offset = {265000.0, 145000.0, 0.0}};
@@ -35,17 +36,17 @@
 namespace cutaway {
 
 struct RasterTerrainOptions {
-  int step = 1;               // use every step-th sample along rows and columns (≥ 1)
-  double heightScale = 1.0;   // raster values × heightScale = heights in the CRS's units
-  std::string targetCrs;      // empty: keep the raster's CRS
-  glm::dvec3 offset{0.0};     // E0, N0, H0, subtracted in double
+  int step = 1;              // use every step-th sample along rows and columns (≥ 1)
+  double heightScale = 1.0;  // raster values × heightScale = heights in the CRS's units
+  std::string targetCrs;     // empty: keep the raster's CRS
+  glm::dvec3 offset{0.0};    // E0, N0, H0, subtracted in double
 };
 
 struct RasterTerrain {
-  Mesh mesh;                 // scene coordinates (y up, north towards −z)
-  int columns = 0, rows = 0;  // grid nodes
-  GisCrs crs;                 // the raster's
-  GisCrs sceneCrs;            // the mesh's: the target CRS, or the raster's
+  Mesh mesh;                             // scene coordinates (y up, north towards −z)
+  int columns = 0, rows = 0;             // grid nodes
+  GisCrs crs;                            // the raster's
+  GisCrs sceneCrs;                       // the mesh's: the target CRS, or the raster's
   std::array<double, 6> geoTransform{};  // GDAL's: x0, dx, 0, y0, 0, dy (dy < 0: north up)
   std::int64_t filledNodata = 0;         // nodes whose height came from a neighbour
   double minHeight = 0, maxHeight = 0;   // of the valid samples used, before heightScale
@@ -64,7 +65,7 @@ struct RasterInfo {
   std::string dataType;  // of band 1: "Float32"
   GisCrs crs;
   std::optional<std::array<double, 6>> geoTransform;
-  std::optional<double> nodata;             // of band 1
+  std::optional<double> nodata;            // of band 1
   std::optional<double> minimum, maximum;  // of band 1's valid samples; absent when none
 };
 
