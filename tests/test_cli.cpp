@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cutaway/core/image.hpp"
+#include "cutaway/io/raster_terrain.hpp"
 #include "run_command.hpp"
 
 namespace fs = std::filesystem;
@@ -325,4 +326,58 @@ TEST(Cli, ClipSurfacesWarnAboutOpenMeshesAndBench) {
   const auto parsed = nlohmann::json::parse(bench.out);
   for (const auto& run : parsed["runs"]) labels.push_back(run["label"]);
   EXPECT_EQ(labels, (std::vector<std::string>{"plain", "clipped", "clipped + capped"}));
+}
+
+TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
+  const std::string out = test::scratchPath("cli", "dem.tif").string();
+  const auto r = run("dem --extent 265000 145000 265300 145200 --crs EPSG:27700 --cell 10 "
+                     "--relief 25 --base 40 --seed 1 -o " + out);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("30x20 Float32, EPSG:27700"), std::string::npos) << r.out;
+  const RasterTerrain t = importRasterTerrain(out, {.offset = {265000.0, 145000.0, 0.0}});
+  EXPECT_EQ(t.columns, 30);
+  EXPECT_EQ(t.rows, 20);
+  EXPECT_EQ(t.geoTransform, (std::array<double, 6>{265000, 10, 0, 145200, 0, -10}));
+  const SyntheticDemOptions o{.min = {265000, 145000}, .max = {265300, 145200},
+                              .crs = "EPSG:27700", .cell = 10, .base = 40, .relief = 25,
+                              .seed = 1};
+  for (const auto& [c, row] : {std::pair{0, 0}, {29, 19}, {11, 7}})
+    EXPECT_EQ(t.mesh.positions[t.node(c, row)].y,
+              float(syntheticDemHeight(o, 265005.0 + 10 * c, 145195.0 - 10 * row)));
+  const auto info = run("info " + out);
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const auto j = nlohmann::json::parse(info.out);
+  EXPECT_EQ(j["raster"]["size"], nlohmann::json({30, 20}));
+  EXPECT_EQ(j["raster"]["crs"]["authority"], "EPSG:27700");
+  EXPECT_EQ(j["raster"]["extent"], nlohmann::json({265000, 145000, 265300, 145200}));
+  EXPECT_GE(j["raster"]["min"].get<double>(), 40.0);
+  // Bad input: one line naming the place and the reason, no file.
+  const std::string odd = test::scratchPath("cli", "odd.tif").string();
+  const auto bad = run("dem --extent 0 0 15 20 --crs EPSG:27700 -o " + odd);
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("odd.tif: the extent must hold a whole"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(odd));
+  const auto crs = run("dem --extent 0 0 20 20 --crs EPSG:999999 -o " + odd);
+  EXPECT_EQ(crs.exitCode, 1);
+  EXPECT_NE(crs.err.find("unknown CRS"), std::string::npos) << crs.err;
+}
+
+TEST(Cli, InfoDescribesGisLayers) {
+  const auto r = run("info /usr/share/plplot5.15.0/ss/ss64ne_Building_Area.shp");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["layers"].size(), 1u);
+  const auto& layer = j["layers"][0];
+  EXPECT_EQ(layer["name"], "ss64ne_Building_Area");
+  EXPECT_EQ(layer["geometryType"], "Polygon");
+  EXPECT_EQ(layer["features"], 253);
+  EXPECT_EQ(layer["crs"]["authority"], "EPSG:27700");
+  EXPECT_EQ(layer["fields"], nlohmann::json({"fid", "FeatCode", "FeatDesc"}));
+  EXPECT_EQ(layer["extent"].size(), 4u);
+  const std::string text = test::scratchPath("cli", "notes.txt").string();
+  std::ofstream(text) << "not GIS data";
+  const auto bad = run("info " + text);
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("notes.txt: cannot open as a GIS vector data source"), std::string::npos)
+      << bad.err;
 }

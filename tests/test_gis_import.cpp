@@ -352,3 +352,56 @@ TEST_F(GisImportTest, ReadsOrdnanceSurveyShapefilesInBritishNationalGrid) {
     }
   }
 }
+
+TEST_F(GisImportTest, PolygonsWithHolesForFootprints) {
+  const fs::path file = geojson(
+      "buildings.geojson",
+      feature(R"({"type": "Polygon", "coordinates": [
+                   [[0, 0], [10, 0], [10, 0], [10, 8], [0, 8], [0, 0]],
+                   [[2, 2], [4, 2], [4, 4], [2, 4], [2, 2]],
+                   [[6, 6], [7, 6], [6, 6]]]})",
+              R"("height": 12)") +
+          "," +
+          feature(R"({"type": "MultiPolygon", "coordinates": [
+                   [[[20, 0, 5], [24, 0, 5], [24, 3, 5], [20, 0, 5]]],
+                   [[[30, 0], [31, 1], [32, 2], [30, 0]]]]})",
+                  R"("height": null)"),
+      27700);
+  const GisPolygons p =
+      importGisPolygons(file, {.attributes = {"height"}, .offset = {0.0, 0.0, 1.0}});
+  EXPECT_TRUE(p.hasZ);
+  EXPECT_EQ(p.crs.authority, "EPSG:27700");
+  ASSERT_EQ(p.polygons.size(), 2u);
+  const GisPolygon& a = p.polygons[0];
+  // The closing node and the repeated (10, 0) are gone; the sliver hole is dropped.
+  EXPECT_EQ(a.outer, (std::vector<glm::vec3>{{0, 0, -1}, {10, 0, -1}, {10, 8, -1}, {0, 8, -1}}));
+  ASSERT_EQ(a.holes.size(), 1u);
+  EXPECT_EQ(a.holes[0].size(), 4u);
+  EXPECT_EQ(a.attributes, std::vector<double>{12});
+  const GisPolygon& b = p.polygons[1];
+  EXPECT_EQ(b.part, 0);
+  EXPECT_EQ(b.outer, (std::vector<glm::vec3>{{20, 0, 4}, {24, 0, 4}, {24, 3, 4}}));
+  EXPECT_TRUE(std::isnan(b.attributes[0]));
+  EXPECT_EQ(p.report.repeatedNodes, 1);      // (10, 0); closing nodes are not repeats
+  EXPECT_EQ(p.report.degenerateRings, 2);    // the sliver hole, the collinear triangle
+  EXPECT_EQ(p.report.degenerateParts, 1);    // the collinear triangle was a whole part
+
+  const fs::path lines = geojson(
+      "lines.geojson", feature(R"({"type": "LineString", "coordinates": [[0, 0], [1, 1]]})", ""));
+  expectError([&] { importGisPolygons(lines); }, {"lines.geojson", "not polygons"});
+}
+
+TEST_F(GisImportTest, OrdnanceSurveyBuildingFootprints) {
+  const GisPolygons b = importGisPolygons(kOsData / "ss64ne_Building_Area.shp",
+                                          {.offset = {265000.0, 145000.0, 0.0}});
+  EXPECT_EQ(b.layer.featureCount, 253);
+  EXPECT_EQ(b.crs.authority, "EPSG:27700");
+  EXPECT_GE(b.polygons.size(), 253u);
+  for (const GisPolygon& p : b.polygons)
+    for (const glm::vec3& v : p.outer) {
+      EXPECT_GE(v.x, 0.0f);
+      EXPECT_LE(v.x, 5000.0f);
+      EXPECT_GE(v.y, 0.0f);
+      EXPECT_LE(v.y, 5000.0f);
+    }
+}

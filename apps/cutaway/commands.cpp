@@ -15,6 +15,8 @@
 #include "cutaway/core/image.hpp"
 #include "cutaway/fields/cutaway_surface.hpp"
 #include "cutaway/gl/context.hpp"
+#include "cutaway/io/gis_import.hpp"
+#include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/render/aov.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/scene/scene.hpp"
@@ -186,7 +188,74 @@ int render(const RenderOptions& options) {
   return 0;
 }
 
+namespace {
+
+nlohmann::json crsJson(const GisCrs& crs) {
+  if (!crs.known()) return nullptr;
+  return {{"name", crs.name}, {"authority", crs.authority}};
+}
+
+int gisInfo(const std::string& path) {
+  nlohmann::json out = {{"file", path}};
+  if (isRaster(path)) {
+    const RasterInfo r = describeRaster(path);
+    out["raster"] = {{"driver", r.driver},
+                     {"size", {r.width, r.height}},
+                     {"bands", r.bands},
+                     {"dataType", r.dataType},
+                     {"crs", crsJson(r.crs)},
+                     {"geoTransform", r.geoTransform ? nlohmann::json(*r.geoTransform) : nullptr},
+                     {"nodata", r.nodata ? nlohmann::json(*r.nodata) : nullptr},
+                     {"min", r.minimum ? nlohmann::json(*r.minimum) : nullptr},
+                     {"max", r.maximum ? nlohmann::json(*r.maximum) : nullptr}};
+    if (r.geoTransform) {
+      const auto& g = *r.geoTransform;
+      if (g[2] == 0.0 && g[4] == 0.0)
+        out["raster"]["extent"] = {std::min(g[0], g[0] + r.width * g[1]),
+                                   std::min(g[3], g[3] + r.height * g[5]),
+                                   std::max(g[0], g[0] + r.width * g[1]),
+                                   std::max(g[3], g[3] + r.height * g[5])};
+    }
+  } else {
+    nlohmann::json layers = nlohmann::json::array();
+    for (const GisLayerInfo& l : listGisLayers(path))
+      layers.push_back({{"name", l.name},
+                        {"geometryType", l.geometryType},
+                        {"features", l.featureCount},
+                        {"crs", crsJson(l.crs)},
+                        {"extent", l.extent ? nlohmann::json({l.extent->min.x, l.extent->min.y,
+                                                              l.extent->max.x, l.extent->max.y})
+                                            : nlohmann::json(nullptr)},
+                        {"fields", l.fields}});
+    out["layers"] = layers;
+  }
+  std::printf("%s\n", out.dump(2).c_str());
+  return 0;
+}
+
+}  // namespace
+
+int dem(const DemOptions& o) {
+  if (o.extent.size() != 4) throw Error("--extent", "", "expected west south east north");
+  writeSyntheticDem(o.output, {.min = {o.extent[0], o.extent[1]},
+                               .max = {o.extent[2], o.extent[3]},
+                               .crs = o.crs,
+                               .cell = o.cell,
+                               .base = o.base,
+                               .relief = o.relief,
+                               .wavelength = o.wavelength,
+                               .octaves = o.octaves,
+                               .seed = o.seed});
+  const RasterInfo r = describeRaster(o.output);
+  std::printf("wrote %s (%dx%d Float32, %s, heights %.2f to %.2f)\n", o.output.c_str(), r.width,
+              r.height, r.crs.authority.empty() ? r.crs.name.c_str() : r.crs.authority.c_str(),
+              r.minimum.value_or(0.0), r.maximum.value_or(0.0));
+  return 0;
+}
+
 int info(const std::string& path) {
+  // Scenes are JSON; anything else is GIS data for GDAL to recognise (or reject clearly).
+  if (std::filesystem::path(path).extension() != ".json") return gisInfo(path);
   const Scene scene = loadScene(path);
   nlohmann::json objects = nlohmann::json::array();
   std::size_t triangles = 0;

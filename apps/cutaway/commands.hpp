@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -30,7 +31,19 @@ struct RenderOptions {
 };
 int render(const RenderOptions& options);
 
-int info(const std::string& scene);
+// A scene file (.json), or any GDAL raster or OGR vector file (layers, CRS, extent, fields;
+// raster size, geotransform, nodata, min/max), as JSON.
+int info(const std::string& path);
+
+struct DemOptions {
+  std::vector<double> extent;  // west south east north
+  std::string crs, output;
+  double cell = 10.0, relief = 25.0, base = 0.0, wavelength = 1000.0;
+  int octaves = 5;
+  unsigned seed = 1;
+};
+// A synthetic DEM GeoTIFF from fractal value noise (io/raster_terrain.hpp).
+int dem(const DemOptions& options);
 
 struct BenchOptions {
   std::string scene;

@@ -3,6 +3,8 @@
 //   cutaway render examples/engine.json -o engine.png [--size 800x600] [--aov out/aovs]
 //   cutaway info examples/engine.json
 //   cutaway bench examples/engine.json --frames 30 [--json]
+//   cutaway info /usr/share/plplot5.15.0/ss/ss64ne_Building_Area.shp
+//   cutaway dem --extent 265000 145000 270000 150000 --crs EPSG:27700 -o dem.tif
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <sstream>
@@ -88,8 +90,33 @@ int main(int argc, char** argv) {
   std::string infoScene;
   auto* info = app.add_subcommand("info",
                                   "Print the scene's objects, triangle counts, bounds "
-                                  "and watertightness as JSON");
-  info->add_option("scene", infoScene, "Scene file (JSON)")->required();
+                                  "and watertightness as JSON; or a GIS file's layers or a "
+                                  "raster's size, CRS, geotransform, nodata and range");
+  info->add_option("file", infoScene, "Scene file (.json), GIS vector file or raster")
+      ->required();
+
+  cutaway::cli::DemOptions demOptions;
+  auto* dem = app.add_subcommand("dem",
+                                 "Write a synthetic DEM (Float32 GeoTIFF) from fractal value "
+                                 "noise, for tiles without real heights");
+  dem->add_option("--extent", demOptions.extent, "West south east north, in the CRS's units")
+      ->expected(4)
+      ->required();
+  dem->add_option("--crs", demOptions.crs, "CRS (EPSG:27700, WKT, PROJ string)")->required();
+  dem->add_option("--cell", demOptions.cell, "Cell size; the extent must hold whole cells")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  dem->add_option("--relief", demOptions.relief, "Height range above the base")
+      ->capture_default_str();
+  dem->add_option("--base", demOptions.base, "Lowest height")->capture_default_str();
+  dem->add_option("--wavelength", demOptions.wavelength, "Size of the largest hills")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  dem->add_option("--octaves", demOptions.octaves, "Noise octaves")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16));
+  dem->add_option("--seed", demOptions.seed, "Noise seed")->capture_default_str();
+  dem->add_option("-o,--output", demOptions.output, "Output GeoTIFF")->required();
 
   cutaway::cli::BenchOptions benchOptions;
   auto* bench = app.add_subcommand("bench",
@@ -117,6 +144,7 @@ int main(int argc, char** argv) {
     if (*render) return cutaway::cli::render(renderOptions);
     if (*info) return cutaway::cli::info(infoScene);
     if (*bench) return cutaway::cli::bench(benchOptions);
+    if (*dem) return cutaway::cli::dem(demOptions);
   } catch (const cutaway::Error& e) {
     std::fprintf(stderr, "cutaway: error: %s\n", e.what());
     return 1;

@@ -1,5 +1,6 @@
 // GIS vector import through GDAL/OGR: Konev18 §5's pipe network ("a set of lines in the .SHP
-// format", each pipe a list of 3-D nodes with a radius and a water level) and its shafts.
+// format", each pipe a list of 3-D nodes with a radius and a water level), its shafts, and
+// the footprints of the buildings over it.
 // Coordinates are reprojected and shifted by a declared offset in double precision before
 // they become floats (see gis_import.hpp for why).
 #include "cutaway/io/gis_import.hpp"
@@ -17,39 +18,15 @@
 #include <mutex>
 
 #include "cutaway/core/error.hpp"
+#include "io/gdal_support.hpp"
 
 namespace cutaway {
 
-namespace {
+namespace gdal {
 
 void registerDrivers() {
   static std::once_flag once;
   std::call_once(once, [] { GDALAllRegister(); });
-}
-
-// GDAL reports problems through a global handler that prints to stderr by default; while we
-// read, errors are kept quiet and the last message goes into our own Error instead.
-class QuietGdalErrors {
- public:
-  QuietGdalErrors() {
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-  }
-  ~QuietGdalErrors() { CPLPopErrorHandler(); }
-  QuietGdalErrors(const QuietGdalErrors&) = delete;
-  QuietGdalErrors& operator=(const QuietGdalErrors&) = delete;
-  static std::string lastMessage() {
-    const char* m = CPLGetLastErrorMsg();
-    return m && *m ? std::string(": ") + m : std::string();
-  }
-};
-
-std::string layerPlace(const OGRLayer& layer) {
-  return "layer " + std::string(const_cast<OGRLayer&>(layer).GetName());
-}
-
-std::string featurePlace(const OGRLayer& layer, GIntBig fid) {
-  return layerPlace(layer) + ", feature " + std::to_string(fid);
 }
 
 GisCrs describeCrs(const OGRSpatialReference* srs) {
@@ -78,12 +55,24 @@ GisCrs describeCrs(const OGRSpatialReference* srs) {
   return crs;
 }
 
+}  // namespace gdal
+
+namespace {
+
+std::string layerPlace(const OGRLayer& layer) {
+  return "layer " + std::string(const_cast<OGRLayer&>(layer).GetName());
+}
+
+std::string featurePlace(const OGRLayer& layer, GIntBig fid) {
+  return layerPlace(layer) + ", feature " + std::to_string(fid);
+}
+
 GisLayerInfo describeLayer(OGRLayer& layer) {
   GisLayerInfo info;
   info.name = layer.GetName();
   info.geometryType = OGRGeometryTypeToName(layer.GetGeomType());
   info.featureCount = layer.GetFeatureCount(TRUE);
-  info.crs = describeCrs(layer.GetSpatialRef());
+  info.crs = gdal::describeCrs(layer.GetSpatialRef());
   OGREnvelope envelope;
   if (info.featureCount > 0 && layer.GetExtent(&envelope, TRUE) == OGRERR_NONE)
     info.extent = GisExtent{{envelope.MinX, envelope.MinY}, {envelope.MaxX, envelope.MaxY}};
@@ -94,14 +83,14 @@ GisLayerInfo describeLayer(OGRLayer& layer) {
 }
 
 GDALDatasetUniquePtr openVectorSource(const std::filesystem::path& file) {
-  registerDrivers();
+  gdal::registerDrivers();
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) throw Error(file.string(), "", "GIS file not found");
   GDALDatasetUniquePtr dataset(GDALDataset::Open(file.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
                                                  nullptr, nullptr, nullptr));
   if (!dataset)
     throw Error(file.string(), "",
-                "cannot open as a GIS vector data source" + QuietGdalErrors::lastMessage());
+                "cannot open as a GIS vector data source" + gdal::QuietErrors::lastMessage());
   return dataset;
 }
 
@@ -161,7 +150,7 @@ class FeatureReader {
       if (to.SetFromUserInput(options.targetCrs.c_str()) != OGRERR_NONE)
         throw Error(
             file.string(), layerPlace(layer),
-            "unknown target CRS \"" + options.targetCrs + "\"" + QuietGdalErrors::lastMessage());
+            "unknown target CRS \"" + options.targetCrs + "\"" + gdal::QuietErrors::lastMessage());
       // x = easting / longitude, y = northing / latitude whatever the CRS's axis order
       // (EPSG:4326 is latitude first), as the layer's own coordinates are.
       from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
@@ -169,10 +158,10 @@ class FeatureReader {
       transform_.reset(OGRCreateCoordinateTransformation(&from, &to));
       if (!transform_)
         throw Error(file.string(), layerPlace(layer),
-                    "no transformation to " + options.targetCrs + QuietGdalErrors::lastMessage());
-      crs_ = describeCrs(&to);
+                    "no transformation to " + options.targetCrs + gdal::QuietErrors::lastMessage());
+      crs_ = gdal::describeCrs(&to);
     } else {
-      crs_ = describeCrs(layer.GetSpatialRef());
+      crs_ = gdal::describeCrs(layer.GetSpatialRef());
     }
   }
 
@@ -201,7 +190,7 @@ class FeatureReader {
     if (transform_ && !transform_->Transform(1, &x, &y, &z))
       throw Error(file_.string(), featurePlace(layer_, fid),
                   "cannot transform (" + std::to_string(sourceX) + ", " + std::to_string(sourceY) +
-                      ") to " + crs_.name + QuietGdalErrors::lastMessage());
+                      ") to " + crs_.name + gdal::QuietErrors::lastMessage());
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
       throw Error(file_.string(), featurePlace(layer_, fid), "non-finite coordinate");
     return glm::vec3(float(x - offset_.x), float(y - offset_.y), float(z - offset_.z));
@@ -229,14 +218,14 @@ void requireNonEmpty(const std::filesystem::path& file, OGRLayer& layer, std::in
 }  // namespace
 
 bool gisCrsKnown(const std::string& crs) {
-  registerDrivers();
-  QuietGdalErrors quiet;
+  gdal::registerDrivers();
+  gdal::QuietErrors quiet;
   OGRSpatialReference srs;
   return srs.SetFromUserInput(crs.c_str()) == OGRERR_NONE;
 }
 
 std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file) {
-  QuietGdalErrors quiet;
+  gdal::QuietErrors quiet;
   GDALDatasetUniquePtr dataset = openVectorSource(file);
   std::vector<GisLayerInfo> layers;
   for (int i = 0; i < dataset->GetLayerCount(); ++i)
@@ -290,7 +279,7 @@ void forEachFeature(OGRLayer& layer, FeatureReader& reader, GisImportReport& rep
 }  // namespace
 
 GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
-  QuietGdalErrors quiet;
+  gdal::QuietErrors quiet;
   OpenedLayer opened = openLayer(file, options, {wkbLineString, wkbMultiLineString}, "lines");
   OGRLayer& layer = *opened.layer;
   GisLines out;
@@ -342,7 +331,7 @@ GisLines importGisLines(const std::filesystem::path& file, const GisImportOption
 }
 
 GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
-  QuietGdalErrors quiet;
+  gdal::QuietErrors quiet;
   OpenedLayer opened = openLayer(file, options, {wkbPoint, wkbMultiPoint}, "points");
   OGRLayer& layer = *opened.layer;
   GisPoints out;
@@ -374,6 +363,88 @@ GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOpti
   if (out.points.empty())
     throw Error(file.string(), layerPlace(layer),
                 "no point in " + std::to_string(out.report.features) + " features");
+  return out;
+}
+
+namespace {
+
+// A ring's nodes without repeats (as float) and without the closing node, or empty when fewer
+// than three distinct nodes or no area are left: such a ring bounds nothing a triangulation or
+// an extrusion could use.
+std::vector<glm::vec3> readRing(const OGRLinearRing& ring, FeatureReader& reader, GIntBig fid,
+                                GisImportReport& report) {
+  std::vector<glm::vec3> nodes;
+  for (int k = 0; k < ring.getNumPoints(); ++k) {
+    const glm::vec3 node = reader.node(ring, k, fid);
+    if (!nodes.empty() && nodes.back() == node) {
+      ++report.repeatedNodes;
+      continue;
+    }
+    nodes.push_back(node);
+  }
+  if (nodes.size() > 1 && nodes.back() == nodes.front()) nodes.pop_back();  // the closing node
+  double twiceArea = 0.0;  // shoelace in the horizontal plane
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const glm::vec3& a = nodes[i];
+    const glm::vec3& b = nodes[(i + 1) % nodes.size()];
+    twiceArea += double(a.x) * double(b.y) - double(b.x) * double(a.y);
+  }
+  if (nodes.size() < 3 || twiceArea == 0.0) {
+    ++report.degenerateRings;
+    return {};
+  }
+  return nodes;
+}
+
+}  // namespace
+
+GisPolygons importGisPolygons(const std::filesystem::path& file, const GisImportOptions& options) {
+  gdal::QuietErrors quiet;
+  OpenedLayer opened = openLayer(file, options, {wkbPolygon, wkbMultiPolygon}, "polygons");
+  OGRLayer& layer = *opened.layer;
+  GisPolygons out;
+  out.layer = opened.info;
+  out.offset = options.offset;
+  out.hasZ = opened.hasZ;
+  FeatureReader reader(file, layer, options, out.report);
+  out.crs = reader.crs();
+  forEachFeature(
+      layer, reader, out.report, out.hasZ,
+      [&](GIntBig fid, const OGRGeometry& geometry, const std::vector<double>& attributes) {
+        std::vector<const OGRPolygon*> parts;
+        switch (wkbFlatten(geometry.getGeometryType())) {
+          case wkbPolygon:
+            parts.push_back(geometry.toPolygon());
+            break;
+          case wkbMultiPolygon:
+            for (const OGRPolygon* part : *geometry.toMultiPolygon()) parts.push_back(part);
+            break;
+          default:
+            throw Error(file.string(), featurePlace(layer, fid),
+                        std::string("geometry is ") + geometry.getGeometryName() +
+                            ", not a polygon");
+        }
+        for (std::size_t p = 0; p < parts.size(); ++p) {
+          const OGRLinearRing* exterior = parts[p]->getExteriorRing();
+          if (!exterior) continue;  // an empty part of a MultiPolygon
+          GisPolygon polygon{fid, int(p), readRing(*exterior, reader, fid, out.report), {},
+                             attributes};
+          if (polygon.outer.empty()) {
+            ++out.report.degenerateParts;
+            continue;
+          }
+          for (int h = 0; h < parts[p]->getNumInteriorRings(); ++h) {
+            std::vector<glm::vec3> hole =
+                readRing(*parts[p]->getInteriorRing(h), reader, fid, out.report);
+            if (!hole.empty()) polygon.holes.push_back(std::move(hole));
+          }
+          out.polygons.push_back(std::move(polygon));
+        }
+      });
+  if (out.polygons.empty())
+    throw Error(file.string(), layerPlace(layer),
+                "no polygon with three distinct nodes in " + std::to_string(out.report.features) +
+                    " features");
   return out;
 }
 

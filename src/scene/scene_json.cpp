@@ -1,6 +1,8 @@
 // The JSON scene format (docs/scene-format.md): strict parsing, every error names the file,
 // the JSON pointer and the reason; unknown keys are errors.
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -14,8 +16,10 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
 #include "cutaway/geometry/convex_hull.hpp"
+#include "cutaway/geometry/extrude.hpp"
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
+#include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/network_json.hpp"
@@ -187,12 +191,167 @@ class MeshCache {
   std::map<std::filesystem::path, std::shared_ptr<const std::vector<ImportedNode>>> files_;
 };
 
+// "raster": a terrain grid from band 1 of a GDAL raster, placed through the scene's frame.
+std::shared_ptr<Mesh> rasterMesh(const Context& ctx, const json& j, const std::string& ptr,
+                                 std::string& source) {
+  ObjectReader r(ctx, j, ptr);
+  const std::string text = string(ctx, r.require("file"), r.at("file"));
+  std::filesystem::path file = text;
+  if (file.is_relative()) file = ctx.baseDir / file;
+  RasterTerrainOptions options{.targetCrs = ctx.geo.crs, .offset = ctx.geo.offset};
+  if (const json* v = r.take("step")) options.step = integer(ctx, *v, r.at("step"), 1, 1 << 20);
+  if (const json* v = r.take("heightScale"))
+    options.heightScale = number(ctx, *v, r.at("heightScale"), -1e6, 1e6);
+  r.finish();
+  if (options.heightScale == 0.0) ctx.fail(r.at("heightScale"), "heightScale must not be zero");
+  source = file.string();
+  try {
+    auto mesh = std::make_shared<Mesh>(importRasterTerrain(file, options).mesh);
+    analyzeTopology(*mesh);
+    return mesh;
+  } catch (const Error& e) {
+    ctx.fail(r.at("file"), e.reason() + " (" + file.string() + ")");
+  }
+}
+
+// The terrain heights under points of the footprint object's space: Möller–Trumbore rays cast
+// straight down against the triangles of `terrain` (already in that space) whose horizontal
+// bounds overlap the footprint's, so that a large grid is searched once per footprint.
+class TerrainProbe {
+ public:
+  explicit TerrainProbe(Mesh terrain) : terrain_(std::move(terrain)) {
+    const Bounds b = terrain_.bounds();
+    top_ = b.max.y + 1.0f + 1e-3f * std::abs(b.max.y);
+    for (const glm::uvec3& t : terrain_.triangles) {
+      Bounds tb;
+      for (int k = 0; k < 3; ++k) tb.extend(terrain_.positions[t[k]]);
+      bounds_.push_back(glm::vec4(tb.min.x, tb.min.z, tb.max.x, tb.max.z));
+    }
+  }
+  // The lowest terrain height under the points (x, z), or nothing when none lies over it.
+  std::optional<float> lowest(const std::vector<glm::vec2>& points) const {
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (const glm::vec2& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    Mesh near;
+    near.positions = terrain_.positions;  // shared indices; only the triangles are selected
+    for (std::size_t i = 0; i < bounds_.size(); ++i)
+      if (bounds_[i].x <= hi.x && bounds_[i].z >= lo.x && bounds_[i].y <= hi.y &&
+          bounds_[i].w >= lo.y)
+        near.triangles.push_back(terrain_.triangles[i]);
+    std::optional<float> lowest;
+    for (const glm::vec2& p : points) {
+      const std::vector<float> hits = rayHits(near, {p.x, top_, p.y}, {0.0f, -1.0f, 0.0f});
+      if (hits.empty()) continue;
+      // The first hit from above is the ground surface (an overhang's underside is not).
+      const float ground = top_ - *std::min_element(hits.begin(), hits.end());
+      lowest = lowest ? std::min(*lowest, ground) : ground;
+    }
+    return lowest;
+  }
+
+ private:
+  Mesh terrain_;
+  float top_ = 0.0f;
+  std::vector<glm::vec4> bounds_;  // per triangle: min x, min z, max x, max z
+};
+
+// "footprints": polygons of a GIS layer extruded to blocks, all of them one mesh. `objects`
+// are those read so far, for "on"; `transform` is this object's.
+std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std::string& ptr,
+                                    const std::vector<SceneObject>& objects,
+                                    const glm::mat4& transform, std::string& source) {
+  ObjectReader r(ctx, j, ptr);
+  const std::string text = string(ctx, r.require("file"), r.at("file"));
+  std::filesystem::path file = text;
+  if (file.is_relative()) file = ctx.baseDir / file;
+  GisImportOptions options = gisOptions(ctx);
+  if (const json* v = r.take("layer")) options.layer = string(ctx, *v, r.at("layer"));
+  // "height": a number, or {"field": NAME, "default": NUMBER} (a footprint with a null or
+  // non-positive value takes the default).
+  double height = 0.0;
+  std::optional<double> fallback;
+  const json& h = r.require("height");
+  if (h.is_number()) {
+    height = number(ctx, h, r.at("height"), 1e-3, 1e4);
+  } else {
+    ObjectReader hr(ctx, h, r.at("height"));
+    options.attributes.push_back(string(ctx, hr.require("field"), hr.at("field")));
+    if (const json* v = hr.take("default")) fallback = number(ctx, *v, hr.at("default"), 1e-3, 1e4);
+    hr.finish();
+  }
+  const SceneObject* ground = nullptr;
+  if (const json* v = r.take("on")) {
+    const std::string name = string(ctx, *v, r.at("on"));
+    for (const SceneObject& o : objects)
+      if (o.name == name) ground = &o;
+    if (!ground)
+      ctx.fail(r.at("on"), "no object named \"" + name + "\" before this one (list the terrain first)");
+  }
+  r.finish();
+  source = file.string();
+  GisPolygons polygons;
+  try {
+    polygons = importGisPolygons(file, options);
+  } catch (const Error& e) {
+    ctx.fail(r.at("file"), e.reason() + (e.place().empty() ? "" : " (" + e.place() + ")") + " (" +
+                               file.string() + ")");
+  }
+  std::optional<TerrainProbe> probe;
+  if (ground) {  // the terrain at rest, in this object's space
+    Mesh terrain;
+    terrain.append(*ground->mesh, glm::inverse(transform) * ground->transform);
+    probe.emplace(std::move(terrain));
+  }
+  auto mesh = std::make_shared<Mesh>();
+  for (const GisPolygon& polygon : polygons.polygons) {
+    Footprint footprint;
+    // GeoFrame: scene x = E − E0, z = −(N − N0).
+    for (const glm::vec3& p : polygon.outer) footprint.outer.emplace_back(p.x, -p.y);
+    for (const auto& hole : polygon.holes) {
+      footprint.holes.emplace_back();
+      for (const glm::vec3& p : hole) footprint.holes.back().emplace_back(p.x, -p.y);
+    }
+    const std::string feature = "feature " + std::to_string(polygon.featureId);
+    double blockHeight = height;
+    if (!polygon.attributes.empty()) {
+      const double value = polygon.attributes[0];
+      if (std::isfinite(value) && value > 0.0)
+        blockHeight = value;
+      else if (fallback)
+        blockHeight = *fallback;
+      else
+        ctx.fail(r.at("height") + "/field",
+                 feature + " of " + file.string() + " has no positive \"" +
+                     options.attributes[0] + "\" value, and no \"default\" is given");
+    }
+    float base = 0.0f;
+    if (probe) {
+      const std::optional<float> lowest = probe->lowest(footprint.outer);
+      if (!lowest)
+        ctx.fail(r.at("on"), feature + " of " + file.string() + " lies outside object \"" +
+                                 ground->name + "\"");
+      base = *lowest;
+    }
+    mesh->append(extrudeFootprint(footprint, base, base + float(blockHeight)), glm::mat4(1.0f));
+  }
+  analyzeTopology(*mesh);
+  return mesh;
+}
+
 void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshCache& cache,
                 std::vector<SceneObject>& out) {
   ObjectReader r(ctx, j, ptr);
   const std::string name = string(ctx, r.require("name"), r.at("name"));
   if (name.empty()) ctx.fail(r.at("name"), "object name must not be empty");
-  const std::string fileText = string(ctx, r.require("file"), r.at("file"));
+  const json* fileKey = r.take("file");
+  const json* rasterKey = r.take("raster");
+  const json* footprintsKey = r.take("footprints");
+  if (int(!!fileKey) + int(!!rasterKey) + int(!!footprintsKey) != 1)
+    ctx.fail(ptr, "an object needs exactly one of \"file\", \"raster\" or \"footprints\"");
+  if (!fileKey)
+    for (const char* k : {"split", "nodes", "overrides"})
+      if (r.has(k)) ctx.fail(r.at(k), std::string("\"") + k + "\" needs a mesh \"file\"");
+  const std::string fileText = fileKey ? string(ctx, *fileKey, r.at("file")) : "";
   std::filesystem::path file = fileText;
   if (file.is_relative()) file = ctx.baseDir / file;
   const bool split =
@@ -230,6 +389,16 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
     if (!split) ctx.fail(r.at("overrides"), "overrides need \"split\": \"nodes\"");
   }
   r.finish();
+
+  if (!fileKey) {
+    SceneObject o = base;
+    auto mesh = rasterKey ? rasterMesh(ctx, *rasterKey, r.at("raster"), o.source)
+                          : footprintMesh(ctx, *footprintsKey, r.at("footprints"), out,
+                                          base.transform, o.source);
+    o.mesh = std::move(mesh);
+    out.push_back(std::move(o));
+    return;
+  }
 
   std::shared_ptr<const std::vector<ImportedNode>> nodes;
   try {

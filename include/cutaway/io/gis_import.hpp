@@ -1,7 +1,7 @@
 // cutaway/io/gis_import.hpp — pipe networks and shafts from GIS vector data through GDAL/OGR
 // (ESRI Shapefile, GeoPackage, GeoJSON and every other OGR vector format): Konev18 §5's input,
 // pipes as polylines of 3-D nodes with per-pipe attributes (radius, water level), shafts as
-// points.
+// points, and building footprints as polygons with holes (extruded by geometry/extrude.hpp).
 //
 // Projected coordinates are large (British National Grid eastings reach 7·10⁵ m, UTM
 // northings 10⁷ m) and a float keeps only 24 bits: 465123.25 is already at float's 1/32 m
@@ -19,7 +19,8 @@
 // missing or unreadable file, no such layer, a layer of the wrong geometry type, an empty
 // layer, a missing or non-numeric attribute field, an unknown CRS or one that cannot be
 // transformed when a reprojection is asked for. Repeated consecutive nodes (zero-length
-// segments) and parts left with a single node are dropped and counted in the report.
+// segments) and parts left with a single node are dropped and counted in the report; so are
+// polygon rings left with fewer than three distinct nodes or no area.
 #pragma once
 
 #include <cstdint>
@@ -73,6 +74,8 @@ struct GisImportReport {
   std::int64_t repeatedNodes = 0;           // consecutive nodes equal (as float) to the previous
   std::int64_t degenerateParts = 0;         // parts with fewer than two distinct nodes
   std::int64_t missingAttributeValues = 0;  // null fields, returned as NaN
+  std::int64_t degenerateRings = 0;  // polygon rings with < 3 distinct nodes or zero area; a
+                                     // degenerate outer ring drops its polygon (its holes too)
 };
 
 struct GisPolyline {
@@ -87,6 +90,17 @@ struct GisPoint {
   std::int64_t featureId = 0;
   int part = 0;  // index within a MultiPoint
   glm::vec3 position{0.0f};
+  std::vector<double> attributes;
+};
+
+// One polygon: an outer ring and its holes, each ring without the closing node (the first
+// node is not repeated at the end), at least three distinct consecutive nodes, non-zero area,
+// in the file's own orientation.
+struct GisPolygon {
+  std::int64_t featureId = 0;
+  int part = 0;  // index within a MultiPolygon
+  std::vector<glm::vec3> outer;
+  std::vector<std::vector<glm::vec3>> holes;
   std::vector<double> attributes;
 };
 
@@ -108,9 +122,21 @@ struct GisPoints {
   GisImportReport report;
 };
 
+struct GisPolygons {
+  GisLayerInfo layer;
+  GisCrs crs;
+  glm::dvec3 offset{0.0};
+  bool hasZ = false;
+  std::vector<GisPolygon> polygons;
+  GisImportReport report;
+};
+
 // A LineString / MultiLineString layer (2-D or 3-D).
 GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options = {});
 // A Point / MultiPoint layer (2-D or 3-D).
 GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options = {});
+// A Polygon / MultiPolygon layer (2-D or 3-D), e.g. building footprints.
+GisPolygons importGisPolygons(const std::filesystem::path& file,
+                              const GisImportOptions& options = {});
 
 }  // namespace cutaway

@@ -1,0 +1,142 @@
+// Footprint extrusion (geometry/extrude.hpp): the ear-clipped roof covers exactly the
+// shoelace area (holes subtracted), the prism is watertight and faces outwards, and its
+// volume by the divergence theorem equals area × height — on squares, concave and holed
+// footprints, either orientation, repeated and collinear nodes, and random star polygons.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "cutaway/geometry/extrude.hpp"
+
+using namespace cutaway;
+
+namespace {
+
+double triangulatedArea(const Footprint& f, const std::vector<glm::uvec3>& triangles) {
+  std::vector<glm::vec2> all = f.outer;
+  for (const auto& h : f.holes) all.insert(all.end(), h.begin(), h.end());
+  double area = 0.0;
+  for (const glm::uvec3& t : triangles) {
+    const glm::dvec2 a = all[t.x], b = all[t.y], c = all[t.z];
+    const double twice = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    EXPECT_GE(twice, 0.0) << "a clockwise triangle";
+    area += 0.5 * twice;
+  }
+  return area;
+}
+
+double shoelaceArea(const Footprint& f) {
+  double area = std::abs(twiceSignedArea(f.outer)) / 2.0;
+  for (const auto& h : f.holes) area -= std::abs(twiceSignedArea(h)) / 2.0;
+  return area;
+}
+
+// Divergence theorem: V = Σ (a · (b × c)) / 6 over outward triangles.
+double volume(const Mesh& m) {
+  double v = 0.0;
+  for (const glm::uvec3& t : m.triangles)
+    v += glm::dot(glm::dvec3(m.positions[t.x]),
+                  glm::cross(glm::dvec3(m.positions[t.y]), glm::dvec3(m.positions[t.z]))) /
+         6.0;
+  return v;
+}
+
+// Checks every property of the file's header on one footprint; `tolerance` relative.
+void checkFootprint(const Footprint& f, double tolerance = 1e-9) {
+  const double area = shoelaceArea(f);
+  EXPECT_NEAR(triangulatedArea(f, triangulateFootprint(f)), area, tolerance * area);
+  const float base = -3.0f, top = 9.5f;
+  Mesh m = extrudeFootprint(f, base, top);
+  analyzeTopology(m);
+  EXPECT_TRUE(m.report.watertight)
+      << m.report.boundaryEdges << " boundary, " << m.report.nonManifoldEdges << " non-manifold, "
+      << m.report.misorientedEdges << " misoriented edges";
+  // Positive: outward. Float positions, so relative 1e-5.
+  EXPECT_NEAR(volume(m), area * (top - base), 1e-5 * area * (top - base));
+  // Flat normals agree with each triangle's own orientation.
+  for (const glm::uvec3& t : m.triangles) {
+    const glm::vec3 n =
+        glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]);
+    if (glm::length(n) > 1e-6f) EXPECT_GT(glm::dot(n, m.normals[t.x]), 0.0f);
+  }
+}
+
+std::vector<glm::vec2> reversed(std::vector<glm::vec2> ring) {
+  std::reverse(ring.begin(), ring.end());
+  return ring;
+}
+
+}  // namespace
+
+TEST(Extrude, SquareInEitherOrientation) {
+  const std::vector<glm::vec2> square = {{0, 0}, {10, 0}, {10, 8}, {0, 8}};
+  checkFootprint({square, {}});
+  checkFootprint({reversed(square), {}});
+  const Mesh m = extrudeFootprint({square, {}}, 0.0f, 12.0f);
+  EXPECT_EQ(m.triangles.size(), 2u + 2u + 8u);  // roof, floor, four walls
+}
+
+TEST(Extrude, ConcaveLShapeAndComb) {
+  checkFootprint({{{0, 0}, {6, 0}, {6, 2}, {2, 2}, {2, 7}, {0, 7}}, {}});
+  std::vector<glm::vec2> comb = {{0, 0}, {9, 0}, {9, 5}};
+  for (int k = 4; k >= 0; --k) {
+    comb.emplace_back(2 * k + 1, 5);
+    comb.emplace_back(2 * k + 1, 1);
+    comb.emplace_back(2 * k, 1);
+    comb.emplace_back(2 * k, 5);
+  }
+  comb.pop_back();
+  comb.back() = {0, 5};
+  checkFootprint({comb, {}});
+  checkFootprint({reversed(comb), {}});
+}
+
+TEST(Extrude, HolesInEitherOrientation) {
+  const std::vector<glm::vec2> outer = {{0, 0}, {20, 0}, {20, 12}, {0, 12}};
+  const std::vector<glm::vec2> a = {{2, 2}, {6, 2}, {6, 6}, {2, 6}};
+  const std::vector<glm::vec2> b = {{9, 3}, {14, 4}, {12, 9}};
+  const std::vector<glm::vec2> c = {{15, 2}, {18, 2}, {18, 10}, {15, 10}, {16.5f, 6}};
+  checkFootprint({outer, {a}});
+  checkFootprint({outer, {a, reversed(b), c}});
+  checkFootprint({reversed(outer), {reversed(a), b, reversed(c)}});
+  // A courtyard whose bridge ray meets a vertex of the boundary exactly.
+  checkFootprint({{{0, 0}, {10, 0}, {10, 4}, {12, 5}, {10, 6}, {10, 10}, {0, 10}},
+                  {{{4, 4}, {4, 6}, {6, 5}}}});
+}
+
+TEST(Extrude, RepeatedAndCollinearNodesAreRemoved) {
+  const Footprint f{{{0, 0}, {0, 0}, {5, 0}, {10, 0}, {10, 0}, {10, 5}, {10, 10}, {0, 10}, {0, 0}},
+                    {{{2, 2}, {3, 2}, {4, 2}, {4, 4}, {2, 4}, {2, 2}}}};
+  checkFootprint(f);
+  const Mesh m = extrudeFootprint(f, 0.0f, 1.0f);
+  // 4 + 4 nodes left: 8 roof and 8 floor triangles (n + 2·holes − 2), 8 walls of 2.
+  EXPECT_EQ(m.triangles.size(), 2u * 8u + 2u * 8u);
+  // Nothing with area: no mesh.
+  EXPECT_TRUE(extrudeFootprint({{{0, 0}, {1, 1}, {2, 2}}, {}}, 0.0f, 1.0f).triangles.empty());
+  EXPECT_TRUE(triangulateFootprint({{{0, 0}, {1, 0}}, {}}).empty());
+}
+
+TEST(Extrude, RandomStarPolygonsWithAndWithoutHoles) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> radius(0.3f, 1.0f);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 3 + trial % 60;
+    Footprint f;
+    for (int i = 0; i < n; ++i) {
+      const float angle = 6.2831853f * float(i) / float(n);
+      const float r = 40.0f * radius(random);
+      f.outer.emplace_back(100.0f + r * std::cos(angle), -50.0f + r * std::sin(angle));
+    }
+    if (trial % 2) {  // a small hole around the star's centre, which lies inside every ray
+      std::vector<glm::vec2> hole;
+      for (int i = 0; i < 7; ++i) {
+        const float angle = -6.2831853f * float(i) / 7.0f + 0.1f * float(trial);
+        hole.emplace_back(100.0f + 8.0f * std::cos(angle), -50.0f + 8.0f * std::sin(angle));
+      }
+      f.holes.push_back(hole);
+    }
+    SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(n) + " nodes");
+    checkFootprint(f, 1e-6);
+  }
+}

@@ -1,0 +1,75 @@
+// Scene objects from GIS data (docs/scene-format.md, "raster" and "footprints"): a synthetic
+// DEM as the ground, footprints on it whose base is the lowest terrain height under their
+// vertices (brute-force rays against the whole ground here), blocks as tall as asked.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cutaway/io/raster_terrain.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace fs = std::filesystem;
+using namespace cutaway;
+
+TEST(GeoScene, FootprintsStandOnTheRasterTerrain) {
+  const fs::path dir = fs::temp_directory_path() / ("cutaway-geo-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  writeSyntheticDem(dir / "dem.tif", {.min = {265000, 145000},
+                                      .max = {265200, 145200},
+                                      .crs = "EPSG:27700",
+                                      .cell = 10,
+                                      .base = 40,
+                                      .relief = 25,
+                                      .wavelength = 100});
+  std::ofstream(dir / "b.geojson") << R"({"type": "FeatureCollection",
+    "crs": {"type": "name", "properties": {"name": "urn:ogc:def:crs:EPSG::27700"}},
+    "features": [
+     {"type": "Feature", "properties": {"h": 12}, "geometry": {"type": "Polygon", "coordinates":
+       [[[265050, 145050], [265080, 145050], [265080, 145070], [265050, 145070], [265050, 145050]]]}},
+     {"type": "Feature", "properties": {"h": null}, "geometry": {"type": "Polygon", "coordinates":
+       [[[265120, 145120], [265150, 145125], [265130, 145160], [265120, 145120]]]}}]})";
+  const std::string text = R"({"geo": {"crs": "EPSG:27700", "offset": [265000, 145000]},
+    "objects": [
+      {"name": "ground", "raster": {"file": "dem.tif", "step": 1}, "color": [0.5, 0.6, 0.4]},
+      {"name": "blocks", "footprints": {"file": "b.geojson", "height": {"field": "h", "default": 7},
+                                        "on": "ground"}, "role": "exterior"},
+      {"name": "flat", "footprints": {"file": "b.geojson", "height": 3}}]})";
+  const Scene scene = parseScene(text, "geo.json", dir);
+  const SceneObject& ground = *scene.find("ground");
+  EXPECT_EQ(ground.mesh->positions.size(), 20u * 20u);
+  EXPECT_EQ(ground.material.color, glm::vec3(0.5f, 0.6f, 0.4f));
+  const SceneObject& blocks = *scene.find("blocks");
+  EXPECT_EQ(blocks.role, Role::Exterior);
+  EXPECT_TRUE(blocks.mesh->report.watertight);
+  // The lowest ground height under each footprint's vertices, by rays against the whole grid.
+  const auto lowest = [&](std::initializer_list<glm::vec2> en) {
+    float h = 1e30f;
+    for (const glm::vec2& p : en) {
+      const glm::vec3 origin(p.x - 265000.0f, 1000.0f, -(p.y - 145000.0f));
+      const std::vector<float> hits = rayHits(*ground.mesh, origin, {0, -1, 0});
+      // Two hits where the vertex lies on an edge shared by two triangles: the same height.
+      EXPECT_GE(hits.size(), 1u);
+      h = std::min(h, 1000.0f - *std::min_element(hits.begin(), hits.end()));
+    }
+    return h;
+  };
+  const float first =
+      lowest({{265050, 145050}, {265080, 145050}, {265080, 145070}, {265050, 145070}});
+  const float second = lowest({{265120, 145120}, {265150, 145125}, {265130, 145160}});
+  std::vector<float> heights;
+  for (const glm::vec3& p : blocks.mesh->positions)
+    if (std::find(heights.begin(), heights.end(), p.y) == heights.end()) heights.push_back(p.y);
+  std::sort(heights.begin(), heights.end());
+  std::vector<float> expected = {first, first + 12.0f, second, second + 7.0f};
+  std::sort(expected.begin(), expected.end());
+  // The rays start at other heights, so t rounds differently: 1e-3 m.
+  ASSERT_EQ(heights.size(), expected.size());
+  for (std::size_t i = 0; i < heights.size(); ++i) EXPECT_NEAR(heights[i], expected[i], 1e-3f) << i;
+  // Without "on" the blocks stand on y = 0.
+  const Bounds flat = scene.find("flat")->mesh->bounds();
+  EXPECT_EQ(flat.min, glm::vec3(50, 0, -160));
+  EXPECT_EQ(flat.max.y, 3.0f);
+  fs::remove_all(dir);
+}
