@@ -80,7 +80,10 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"bunny-clip", "bunny-clip.json", "", 240, 240},
         GoldenCase{"bunny-clip-toon", "bunny-clip.json", "toon", 240, 240},
         // Konev18 terrain opening over real Ordnance Survey roads.
-        GoldenCase{"ss64ne-terrain", "ss64ne-terrain.json", "", 320, 200}),
+        GoldenCase{"ss64ne-terrain", "ss64ne-terrain.json", "", 320, 200},
+        // Konev18 billboard pipes cut open, water, shafts; the SS64NE city.
+        GoldenCase{"pipes-street", "pipes-street.json", "", 480, 300},
+        GoldenCase{"ss64ne-city", "ss64ne-city.json", "", 480, 300}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');

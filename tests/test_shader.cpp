@@ -25,6 +25,7 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                                           "cutters/clip_surfaces/clip_fragment.glsl",
                                           "cutters/clip_surfaces/clip_surfaces.glsl",
                                           "cutters/terrain_opening/terrain_opening.glsl",
+                                          "cutters/shaft_wedge/shaft_wedge.glsl",
                                           "styles/shadows/shadow_lookup.glsl",
                                           "render/gbuffer.glsl"};
   EXPECT_EQ(source.files, expected);

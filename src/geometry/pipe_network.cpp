@@ -312,21 +312,23 @@ Mesh pipeMesh(const PipeNetwork& network, int sides) {
       m.normals.push_back(n);
     }
   };
-  const auto cap = [&](const glm::vec3& c, const glm::vec3& side, const glm::vec3& outward,
-                       float r) {
+  // A flat disc closing the ring that starts at `rim`, its rim copied from the ring so that
+  // the two weld; `reversed` winds it about −dir (the pipe's start).
+  const auto cap = [&](const glm::vec3& c, unsigned rim, const glm::vec3& outward, bool reversed) {
     const auto centre = unsigned(m.positions.size());
     m.positions.push_back(c);
     m.normals.push_back(outward);
-    // The ring's own frame: with `outward` = −dir at the start, the winding flips with it.
-    const glm::vec3 other = glm::cross(outward, side);
     for (int k = 0; k < sides; ++k) {
-      const float a = 2.0f * std::numbers::pi_v<float> * float(k) / float(sides);
-      m.positions.push_back(c + r * (std::cos(a) * side + std::sin(a) * other));
+      m.positions.push_back(m.positions[rim + unsigned(k)]);
       m.normals.push_back(outward);
     }
-    for (int k = 0; k < sides; ++k)
-      m.triangles.emplace_back(centre, centre + 1 + unsigned(k),
-                               centre + 1 + unsigned((k + 1) % sides));
+    for (int k = 0; k < sides; ++k) {
+      const unsigned a = centre + 1 + unsigned(k), b = centre + 1 + unsigned((k + 1) % sides);
+      if (reversed)
+        m.triangles.emplace_back(centre, b, a);
+      else
+        m.triangles.emplace_back(centre, a, b);
+    }
   };
   for (const Pipe& p : network.pipes) {
     const float r = p.radius * network.radiusScale;
@@ -345,10 +347,9 @@ Mesh pipeMesh(const PipeNetwork& network, int sides) {
         m.triangles.emplace_back(a, b, b + unsigned(sides));
         m.triangles.emplace_back(a, b + unsigned(sides), a + unsigned(sides));
       }
-    // The caps reuse the end rings' frames, so their rims weld to the tube's.
-    const glm::vec3 d0 = nodeDirection(p.nodes, 0);
-    cap(p.nodes.front(), anyPerpendicular(d0), -d0, r);
-    cap(p.nodes.back(), side, nodeDirection(p.nodes, p.nodes.size() - 1), r);
+    cap(p.nodes.front(), first, -nodeDirection(p.nodes, 0), true);
+    cap(p.nodes.back(), first + unsigned((p.nodes.size() - 1) * std::size_t(sides)),
+        nodeDirection(p.nodes, p.nodes.size() - 1), false);
   }
   return m;
 }
@@ -394,10 +395,13 @@ Mesh jointMesh(const std::vector<Joint>& joints, int rings, int sides) {
     const auto first = unsigned(m.positions.size());
     for (int i = 0; i <= rings; ++i) {
       const float theta = std::numbers::pi_v<float> * float(i) / float(rings);
+      // Exactly 0 at the poles (sin π is not, in float), so that each pole is one point.
+      const float st = i == 0 || i == rings ? 0.0f : std::sin(theta);
+      const float ct = i == 0 ? 1.0f : i == rings ? -1.0f : std::cos(theta);
       for (int k = 0; k <= sides; ++k) {
-        const float phi = 2.0f * std::numbers::pi_v<float> * float(k) / float(sides);
-        const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
-                          -std::sin(theta) * std::sin(phi));
+        // The seam's last column repeats the first exactly, so that the two weld.
+        const float phi = 2.0f * std::numbers::pi_v<float> * float(k % sides) / float(sides);
+        const glm::vec3 n(st * std::cos(phi), ct, -st * std::sin(phi));
         m.positions.push_back(j.position + j.radius * n);
         m.normals.push_back(n);
       }
@@ -405,8 +409,9 @@ Mesh jointMesh(const std::vector<Joint>& joints, int rings, int sides) {
     const auto at = [&](int i, int k) { return first + unsigned(i * (sides + 1) + k); };
     for (int i = 0; i < rings; ++i)
       for (int k = 0; k < sides; ++k) {
-        if (i > 0) m.triangles.emplace_back(at(i, k), at(i + 1, k), at(i + 1, k + 1));
-        if (i + 1 < rings) m.triangles.emplace_back(at(i, k), at(i + 1, k + 1), at(i, k + 1));
+        // The triangles that would have both corners on a pole are left out.
+        if (i + 1 < rings) m.triangles.emplace_back(at(i, k), at(i + 1, k), at(i + 1, k + 1));
+        if (i > 0) m.triangles.emplace_back(at(i, k), at(i + 1, k + 1), at(i, k + 1));
       }
   }
   return m;

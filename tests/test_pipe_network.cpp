@@ -1,0 +1,224 @@
+// Konev18 §§5–7 on the CPU against hand-worked cases (eqs. 4–16, the shaft wedge), the
+// network operations (sharp bends, cut intersections, junction shafts, meshes), and the
+// rendered frame: the pipes' AOVs, and the §9 interference fix on two crossing pipes.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "cutaway/geometry/pipe_network.hpp"
+#include "cutaway/render/renderer.hpp"
+#include "cutaway/scene/scene.hpp"
+#include "gl_test_context.hpp"
+
+using namespace cutaway;
+
+namespace {
+
+const std::string kSource = CUTAWAY_SOURCE_DIR;
+
+void expectVec(const glm::vec3& a, const glm::vec3& b, float eps = 1e-5f) {
+  EXPECT_NEAR(a.x, b.x, eps);
+  EXPECT_NEAR(a.y, b.y, eps);
+  EXPECT_NEAR(a.z, b.z, eps);
+}
+
+// Signed volume by the divergence theorem: positive for outward-facing closed meshes.
+float volume(const Mesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles)
+    v += glm::dot(m.positions[t.x], glm::cross(m.positions[t.y], m.positions[t.z])) / 6.0;
+  return float(v);
+}
+
+}  // namespace
+
+TEST(PipeBillboard, UpVectorsFollowEquations4To7) {
+  // Along +x seen from (0, 0, 10): v̂_0 = (0, 0, −1), û_0 = v̂_0 × n̂ = (0, −1, 0) (eq. 4); at
+  // the far end v̂ = (1, 0, −1)/√2 gives the same direction (eq. 6).
+  const auto u = billboardUp({{0, 0, 0}, {10, 0, 0}}, {0, 0, 10});
+  expectVec(u[0], {0, -1, 0});
+  expectVec(u[1], {0, -1, 0});
+  // A right-angle bend seen from above: the middle node uses the mean of (1,0,0) and
+  // (0,0,−1) (eq. 5); û = (0,−1,0) × (1,0,−1)/√2 = (1, 0, 1)/√2.
+  const auto b = billboardUp({{0, 0, 0}, {1, 0, 0}, {1, 0, -1}}, {1, 10, 0});
+  const float h = std::sqrt(0.5f);
+  expectVec(b[1], {h, 0, h});
+  // Orthographic: the same v̂ at every node.
+  const auto o = billboardUpOrthographic({{0, 0, 0}, {0, 0, -5}}, {0, -1, 0});
+  expectVec(o[0], {1, 0, 0});  // (0,−1,0) × (0,0,−1)
+  expectVec(o[1], {1, 0, 0});
+}
+
+TEST(PipeBillboard, FaceAndTubeNormalsFollowEquations8To11) {
+  // û = (0, −1, 0) at both ends of a quad along +x: F_a = û × n̂ = (0, 0, 1), towards the eye.
+  const glm::vec3 u(0, -1, 0), n(1, 0, 0);
+  const glm::vec3 f = billboardFaceNormal(u, u, n);
+  expectVec(f, {0, 0, 1});
+  // Eq. 11: on the axis N = 0 and N_f = F_a; at the û edge N = û and N_f = (û + F)/|û + F|.
+  expectVec(tubeNormal(u, u, 0.5f, 0.0f, f), f);
+  const float h = std::sqrt(0.5f);
+  expectVec(tubeNormal(u, u, 0.5f, 1.0f, f), {0, -h, h});
+  expectVec(tubeNormal(u, u, 0.5f, -1.0f, f), {0, h, h});
+  // Twisted ends: F uses the mean of the ends' û.
+  expectVec(billboardFaceNormal({0, -1, 0}, {0, 0, -1}, n), glm::normalize(glm::vec3(0, -1, 1)));
+}
+
+TEST(PipeProxies, TrianglesFollowEquations12To14) {
+  // r_in / r_out = 0.8: d_in = 0.4, d_out = 0.5.
+  EXPECT_FLOAT_EQ(proxyTriangleDistance({0.5f, 0.95f}), 0.45f);  // eq. 12
+  EXPECT_EQ(proxyTriangle(1, 0.45f, 0.8f, 1.0f), ProxyAction::CutSurface);
+  EXPECT_EQ(proxyTriangle(2, 0.45f, 0.8f, 1.0f), ProxyAction::Discard);
+  EXPECT_EQ(proxyTriangle(1, 0.3f, 0.8f, 1.0f), ProxyAction::Discard);
+  EXPECT_EQ(proxyTriangle(2, 0.3f, 0.8f, 1.0f), ProxyAction::MarkInside);
+  for (int pass : {1, 2}) EXPECT_EQ(proxyTriangle(pass, 0.6f, 0.8f, 1.0f), ProxyAction::Discard);
+}
+
+TEST(PipeProxies, QuadsFollowEquations15And16) {
+  // r_in / r_out = 0.8: each wall is t = 0.1 of the diameter.
+  EXPECT_EQ(proxyQuad(1, 0.05f, 0.8f, 1.0f), ProxyAction::CutSurface);
+  EXPECT_EQ(proxyQuad(1, 0.95f, 0.8f, 1.0f), ProxyAction::CutSurface);
+  EXPECT_EQ(proxyQuad(1, 0.5f, 0.8f, 1.0f), ProxyAction::Discard);
+  EXPECT_EQ(proxyQuad(2, 0.5f, 0.8f, 1.0f), ProxyAction::MarkInside);
+  EXPECT_EQ(proxyQuad(2, 0.05f, 0.8f, 1.0f), ProxyAction::Discard);
+  EXPECT_EQ(proxyQuad(2, 0.89f, 0.8f, 1.0f), ProxyAction::MarkInside);
+}
+
+TEST(ShaftWedge, OpensTowardsTheViewerIgnoringHeights) {
+  EXPECT_TRUE(shaftWedgeRemoves({1, 0, 0}, {1, 5, 0}, 0.3f));       // facing, seen from above
+  EXPECT_FALSE(shaftWedgeRemoves({0, 0, 1}, {1, 5, 0}, 0.3f));      // side: n·v = 0
+  EXPECT_FALSE(shaftWedgeRemoves({-1, 0, 0}, {1, 0, 0}, 0.3f));     // back
+  EXPECT_TRUE(shaftWedgeRemoves({1, 0, 1}, {1, -3, 0}, 0.3f));      // cos 45° > 0.3
+  EXPECT_FALSE(shaftWedgeRemoves({1, 0, 1}, {1, -3, 0}, 0.75f));    // the narrower wedge keeps it
+  EXPECT_FALSE(shaftWedgeRemoves({0, 1, 0}, {1, 1, 0}, 0.3f));      // a floor has no radial part
+}
+
+TEST(PipeNetworkOps, SharpBendsSplitWithJoints) {
+  PipeNetwork net;
+  net.pipes.push_back({.nodes = {{0, 0, 0}, {10, 0, 0}, {10, 0, -10}, {11, 0, -20}},
+                       .radius = 0.5f,
+                       .cut = glm::vec2(5, 15)});
+  const auto joints = splitSharpBends(net, 60.0f);
+  ASSERT_EQ(joints.size(), 1u);  // the right angle; the 5.7° turn after it stays
+  expectVec(joints[0].position, {10, 0, 0});
+  ASSERT_EQ(net.pipes.size(), 2u);
+  EXPECT_EQ(net.pipes[0].nodes.size(), 2u);
+  EXPECT_EQ(net.pipes[1].nodes.size(), 3u);
+  ASSERT_TRUE(net.pipes[0].cut && net.pipes[1].cut);
+  EXPECT_FLOAT_EQ(net.pipes[0].cut->x, 5.0f);
+  EXPECT_FLOAT_EQ(net.pipes[0].cut->y, 10.0f);
+  EXPECT_FLOAT_EQ(net.pipes[1].cut->x, 0.0f);
+  EXPECT_FLOAT_EQ(net.pipes[1].cut->y, 5.0f);
+}
+
+TEST(PipeNetworkOps, CrossingCutsKeepTheLargerPipe) {
+  PipeNetwork net;
+  net.pipes.push_back({.nodes = {{0, -2, 0}, {20, -2, 0}}, .radius = 0.5f, .cut = glm::vec2(2, 18)});
+  net.pipes.push_back({.nodes = {{10, -2.5f, 10}, {10, -2.5f, -10}}, .radius = 0.3f, .cut = glm::vec2(1, 19)});
+  net.pipes.push_back({.nodes = {{0, -2, 50}, {20, -2, 50}}, .radius = 0.3f, .cut = glm::vec2(2, 18)});
+  EXPECT_EQ(resolveCutIntersections(net, 0.2f), 1);
+  EXPECT_EQ(*net.pipes[0].cut, glm::vec2(2, 18));  // the larger keeps its cut
+  EXPECT_EQ(*net.pipes[2].cut, glm::vec2(2, 18));  // far away: untouched
+  // The smaller's stretch now stops 0.5 + 0.3 + 0.2 before the crossing at arc length 10.
+  ASSERT_TRUE(net.pipes[1].cut);
+  EXPECT_FLOAT_EQ(net.pipes[1].cut->x, 1.0f);
+  EXPECT_NEAR(net.pipes[1].cut->y, 9.0f, 1e-4f);
+}
+
+TEST(PipeNetworkOps, ShaftsAtJunctionsReachTheGround) {
+  PipeNetwork net;
+  for (const glm::vec3& end : {glm::vec3(-10, -3, 0), glm::vec3(10, -3, 0), glm::vec3(0, -3, -10)})
+    net.pipes.push_back({.nodes = {{0, -2.5f, 0}, end}, .radius = 0.4f});
+  const auto ground = [](glm::vec2 xz) { return 1.0f + 0.1f * xz.x; };
+  addJunctionShafts(net, {.radius = 0.7f, .wallThickness = 0.1f, .ends = false}, ground);
+  ASSERT_EQ(net.shafts.size(), 1u);
+  const Shaft& s = net.shafts[0];
+  expectVec(s.bottom, {0, -2.9f, 0});  // under the lowest pipe: −2.5 − 0.4
+  EXPECT_FLOAT_EQ(s.top, 1.0f);
+  EXPECT_FLOAT_EQ(s.radius, 0.7f);
+  net.shafts.clear();
+  addJunctionShafts(net, {.ends = true}, ground);
+  EXPECT_EQ(net.shafts.size(), 4u);  // and at the three open ends
+}
+
+TEST(PipeNetworkOps, MeshesAreClosedAndOutward) {
+  PipeNetwork net;
+  net.pipes.push_back({.nodes = {{0, 0, 0}, {10, 0, 0}, {14, 0, -3}}, .radius = 0.5f});
+  Mesh pipes = pipeMesh(net, 24);
+  analyzeTopology(pipes);
+  EXPECT_TRUE(pipes.report.watertight);
+  const float r = 0.5f, length = 15.0f;
+  EXPECT_NEAR(volume(pipes), glm::pi<float>() * r * r * length, 0.08f * length);
+  Mesh joint = jointMesh({{{1, 2, 3}, 2.0f}}, 24, 48);
+  analyzeTopology(joint);
+  EXPECT_TRUE(joint.report.watertight);
+  EXPECT_NEAR(volume(joint), 4.0f / 3.0f * glm::pi<float>() * 8.0f, 0.8f);
+  // Shafts: both cylinders with outward normals (§7), the inner one with the floor.
+  net.shafts.push_back({.bottom = {0, -3, 0}, .top = 0.0f, .radius = 1.0f, .wallThickness = 0.2f});
+  const Mesh outer = shaftMesh(net, false, 16), inner = shaftMesh(net, true, 16);
+  for (std::size_t i = 0; i < outer.positions.size(); ++i)
+    EXPECT_GT(glm::dot(outer.normals[i], outer.positions[i] - glm::vec3(0, outer.positions[i].y, 0)), 0.0f);
+  EXPECT_NEAR(glm::length(glm::vec2(inner.positions[0].x, inner.positions[0].z)), 0.8f, 1e-5f);
+}
+
+namespace {
+
+std::vector<Aov> renderAovs(const Scene& scene) {
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  return renderer.readAovs();
+}
+
+const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
+  for (const auto& a : aovs)
+    if (a.name == name) return a.image;
+  throw std::runtime_error("no AOV " + name);
+}
+
+}  // namespace
+
+TEST(PipeRendering, StreetShowsEveryPipeClass) {
+  const Scene scene = loadScene(kSource + "/examples/pipes-street.json");
+  const auto aovs = renderAovs(scene);
+  const FloatImage &stencil = aov(aovs, "pipeStencil"), &cls = aov(aovs, "pipeClass");
+  int stencilCounts[3] = {0, 0, 0}, classCounts[5] = {0, 0, 0, 0, 0};
+  for (int y = 0; y < cls.height; ++y)
+    for (int x = 0; x < cls.width; ++x) {
+      const float s = stencil.at(x, y)[0];
+      ASSERT_TRUE(s == 0.0f || s == 1.0f || s == 2.0f) << s;
+      ++stencilCounts[int(s)];
+      ++classCounts[int(std::lround(cls.at(x, y)[0] * 4.0f))];
+    }
+  EXPECT_GT(stencilCounts[1], 100);  // proxy pass 2: insides
+  EXPECT_GT(stencilCounts[2], 50);   // proxy pass 1: cut surfaces
+  for (int c = 1; c <= 4; ++c) EXPECT_GT(classCounts[c], 30) << "class " << c;
+}
+
+TEST(PipeRendering, CrossingPipeOverAnOpeningStaysOutside) {
+  // Konev18 §9: B is cut open under A; A (uncut) passes over B's inside area. Every pixel of
+  // A's billboard must be A's outside, not B's inside.
+  const std::string text = R"({"resolution": [200, 150], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false},
+    "camera": {"eye": [0, 12, 6], "target": [0, -2, 0], "fov": 40},
+    "objects": [{"name": "floor", "file": ")" + kSource + R"(/examples/data/tile.obj",
+                 "transform": {"translate": [-20, -6, 20], "scale": [40, 1, 40]}}],
+    "networks": [{"name": "n", "wallThickness": 0.1,
+      "pipes": [{"lines": [[[-10, -1, 0], [10, -1, 0]]], "radius": 0.4},
+                {"lines": [[[0, -3, -10], [0, -3, 10]]], "radius": 1.0}]}]})";
+  Scene scene = parseScene(text, "crossing.json", kSource);
+  scene.networks[0].pipes[1].cut = glm::vec2(2, 18);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &cls = aov(aovs, "pipeClass"), &pos = aov(aovs, "position"),
+                   &stencil = aov(aovs, "pipeStencil");
+  int onA = 0, overOpening = 0;
+  for (int y = 0; y < cls.height; ++y)
+    for (int x = 0; x < cls.width; ++x) {
+      const glm::vec3 p = glm::make_vec3(pos.at(x, y));
+      if (cls.at(x, y)[0] < 0.1f || std::abs(p.y + 1.0f) > 0.45f || std::abs(p.z) > 0.45f) continue;
+      ++onA;
+      overOpening += stencil.at(x, y)[0] == 1.0f;
+      EXPECT_NEAR(cls.at(x, y)[0], 0.25f, 0.01f) << x << "," << y;  // an 8-bit class
+    }
+  EXPECT_GT(onA, 200);
+  EXPECT_GT(overOpening, 20);  // the case exists: A crosses B's marked inside
+}
