@@ -218,6 +218,14 @@ const BadScene kBadScenes[] = {
     // The geographic frame.
     {"geo_unknown_crs.json", "/geo/crs", "unknown CRS \"EPSG:999999\""},
     {"geo_offset_short.json", "/geo/offset", "expected [easting, northing]"},
+    // Konev18 pipe networks.
+    {"network_no_pipes.json", "/networks/0/pipes", "non-empty array"},
+    {"network_repeated_nodes.json", "/networks/0/pipes/0/lines/0", "at least two distinct nodes"},
+    {"network_missing_value.json", "/networks/0/pipes/0/file", "feature 1 has no value for \"DIAM\""},
+    {"network_missing_field.json", "/networks/0/pipes/0/file", "no attribute field \"WIDTH\""},
+    {"network_empty_layer.json", "/networks/0/pipes/0/file", "the layer is empty"},
+    {"network_shafts_both.json", "/networks/0/shafts", "exactly one of \"file\""},
+    {"network_terrain_matches_nothing.json", "/networks/0/terrain", "no object name matches"},
     // Cutters: Konev18 terrain opening.
     {"terrain_no_network.json", "/cutters/terrainOpening", "no network"},
     {"terrain_matches_nothing.json", "/cutters/terrainOpening/terrain", "no object name matches"},
