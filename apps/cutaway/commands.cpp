@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
+#include <tuple>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -19,6 +21,7 @@
 #include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/render/aov.hpp"
 #include "cutaway/render/renderer.hpp"
+#include "cutaway/scene/benchmark_city.hpp"
 #include "cutaway/scene/scene.hpp"
 
 namespace cutaway::cli {
@@ -456,15 +459,74 @@ nlohmann::json statsJson(const Stats& s) {
 
 }  // namespace
 
+// Konev18 Table 1's rows for a scene with pipe networks: the empty scene, the (opened)
+// terrain, the shafts, the billboard pipes and the same pipes meshed, each alone, at the
+// paper's two resolutions.
+void pipeTable(const Scene& scene, const gl::ContextInfo& info, int frames,
+               std::vector<Measurement>& runs) {
+  const auto only = [&](bool terrain, bool shafts, std::optional<PipeNetwork::Mode> pipes) {
+    Scene s = scene;
+    s.objects.clear();
+    for (const SceneObject& o : scene.objects) {
+      const bool shaft = o.networkPart == NetworkPart::ShaftOuter ||
+                         o.networkPart == NetworkPart::ShaftInner;
+      if ((shaft && shafts) || (o.networkPart == NetworkPart::None && terrain))
+        s.objects.push_back(o);
+    }
+    // Networks keep their indices (the shafts' colours); each keeps only the row's parts.
+    for (PipeNetwork& net : s.networks) {
+      if (!shafts) net.shafts.clear();
+      if (!pipes) {
+        net.pipes.clear();
+        continue;
+      }
+      net.mode = *pipes;
+      if (*pipes == PipeNetwork::Mode::Mesh) {
+        SceneObject o;
+        o.name = net.name + "/pipes";
+        o.role = Role::Interest;
+        o.networkPart = NetworkPart::MeshedPipes;
+        o.material.color = net.color;
+        o.mesh = std::make_shared<Mesh>(pipeMesh(net));
+        s.objects.push_back(std::move(o));
+      }
+    }
+    if (!shafts && !pipes) s.networks.clear();
+    if (!terrain) s.terrainOpening.reset();
+    // The camera stays the whole scene's.
+    s.camera = scene.resolvedCamera();
+    s.camera.fit = false;
+    return s;
+  };
+  const std::pair<const char*, Scene> rows[] = {
+      {"Empty", only(false, false, std::nullopt)},
+      {"Terrain", only(true, false, std::nullopt)},
+      {"Shafts", only(false, true, std::nullopt)},
+      {"Pipes (B)", only(false, false, PipeNetwork::Mode::Billboards)},
+      {"Pipes (M)", only(false, false, PipeNetwork::Mode::Mesh)}};
+  for (const auto& [w, h, size] : {std::tuple{1280, 960, "L"}, std::tuple{1920, 1200, "H"}})
+    for (const auto& [label, row] : rows) {
+      Scene s = row;
+      s.width = w, s.height = h;
+      runs.push_back(measure(std::string(label) + " " + size, s, info, frames));
+      runs.back().plain = runs.size() - 1;
+    }
+}
+
 int bench(const BenchOptions& options) {
-  Scene scene = loadScene(options.scene);
+  if (options.city == 0 && options.scene.empty())
+    throw Error("bench", "", "give a scene file or --city SCALE");
+  Scene scene = options.city > 0 ? benchmarkCity({.scale = options.city})
+                                 : loadScene(options.scene);
   applyOverrides(scene, options.overrides);
   const auto context = gl::HeadlessContext::create();
   const gl::ContextInfo& info = context->info();
   std::vector<Measurement> runs;
   nlohmann::json references = nlohmann::json::object(), accuracy = nlohmann::json::object();
   constexpr int kAccuracySize = 256;
-  if (scene.cutout || scene.breakaway) {
+  if (!scene.networks.empty()) {
+    pipeTable(scene, info, options.frames, runs);
+  } else if (scene.cutout || scene.breakaway) {
     // Diepstraten03 §6's table: plain, cutout and breakaway for every style, in one run; a
     // cutter the scene does not configure runs with its defaults where the roles allow it.
     const bool interior =
@@ -586,7 +648,10 @@ int bench(const BenchOptions& options) {
     std::printf("%s\n", out.dump(2).c_str());
     return 0;
   }
-  std::printf("%s, %dx%d, %d samples, %d frames on %s\n", options.scene.c_str(), scene.width,
+  std::printf("%s, %dx%d, %d samples, %d frames on %s\n",
+              options.city > 0 ? ("benchmark city x" + std::to_string(options.city)).c_str()
+                               : options.scene.c_str(),
+              scene.width,
               scene.height, scene.samples, options.frames, info.renderer.c_str());
   for (const auto& m : runs) {
     // CPU: wall time inside the pass's own code. On a software rasteriser a pass's commands
@@ -599,7 +664,14 @@ int bench(const BenchOptions& options) {
     std::printf("%-26s %10.3f %10.3f %10.3f\n", "frame (wall ms)", m.frame.median, m.frame.min,
                 m.frame.max);
   }
-  if (scene.cutout || scene.breakaway || scene.clipSurfaces) {
+  if (!scene.networks.empty()) {
+    std::printf("\nKonev18 Table 1 (frame ms, median):\n%-12s %12s %12s\n", "feature", "L 1280x960",
+                "H 1920x1200");
+    const std::size_t half = runs.size() / 2;
+    for (std::size_t i = 0; i < half; ++i)
+      std::printf("%-12s %12.3f %12.3f\n", runs[i].label.substr(0, runs[i].label.size() - 2).c_str(),
+                  runs[i].frame.median, runs[i + half].frame.median);
+  } else if (scene.cutout || scene.breakaway || scene.clipSurfaces) {
     std::printf("\n%-24s %12s %12s\n", "summary", "frame ms", "× plain");
     for (const auto& m : runs)
       std::printf("%-24s %12.3f %12.3f\n", m.label.c_str(), m.frame.median,

@@ -47,6 +47,7 @@ int dem(const DemOptions& options);
 
 struct BenchOptions {
   std::string scene;
+  int city = 0;  // > 0: Konev18's generated benchmark city at this scale instead of a scene
   int frames = 60;
   bool json = false;
   SceneOverrides overrides;

@@ -122,7 +122,13 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench",
                                    "Render frames and report per-pass GPU times and "
                                    "frame times");
-  bench->add_option("scene", benchOptions.scene, "Scene file (JSON)")->required();
+  auto* benchScene = bench->add_option("scene", benchOptions.scene, "Scene file (JSON)");
+  bench
+      ->add_option("--city", benchOptions.city,
+                   "Konev18 Table 1 on a generated city (1190 pipes, 1156 shafts, a 2.9M-triangle "
+                   "terrain) times this scale, instead of a scene file")
+      ->check(CLI::Range(1, 100))
+      ->excludes(benchScene);
   bench
       ->add_option("--frames", benchOptions.frames,
                    "Frames to time per run (after one warm-up frame). With a cutter, bench runs "
