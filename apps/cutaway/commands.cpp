@@ -481,15 +481,9 @@ void pipeTable(const Scene& scene, const gl::ContextInfo& info, int frames,
         continue;
       }
       net.mode = *pipes;
-      if (*pipes == PipeNetwork::Mode::Mesh) {
-        SceneObject o;
-        o.name = net.name + "/pipes";
-        o.role = Role::Interest;
-        o.networkPart = NetworkPart::MeshedPipes;
-        o.material.color = net.color;
-        o.mesh = std::make_shared<Mesh>(pipeMesh(net));
-        s.objects.push_back(std::move(o));
-      }
+      if (*pipes == PipeNetwork::Mode::Mesh)
+        s.objects.push_back(networkObject(net, int(&net - s.networks.data()),
+                                          NetworkPart::MeshedPipes, pipeMesh(net)));
     }
     if (!shafts && !pipes) s.networks.clear();
     if (!terrain) s.terrainOpening.reset();

@@ -59,27 +59,29 @@ float segmentDistance2(glm::vec3 p1, glm::vec3 q1, glm::vec3 p2, glm::vec3 q2, f
   return glm::dot(d, d);
 }
 
-// The nodes of `pipe` between arc lengths a and b, with the cut points interpolated; and the
-// arc length at each.
-void stretch(const Pipe& pipe, float a, float b, std::vector<glm::vec3>& points,
-             std::vector<float>& arcs) {
-  points.clear(), arcs.clear();
+}  // namespace
+
+std::vector<glm::vec3> cutStretch(const Pipe& pipe, glm::vec2 range, std::vector<float>* arcs) {
+  std::vector<glm::vec3> points;
+  if (arcs) arcs->clear();
+  const auto add = [&](const glm::vec3& p, float arc) {
+    points.push_back(p);
+    if (arcs) arcs->push_back(arc);
+  };
   float s = 0.0f;
   for (std::size_t k = 0; k + 1 < pipe.nodes.size(); ++k) {
     const float len = glm::length(pipe.nodes[k + 1] - pipe.nodes[k]);
     const float s0 = s, s1 = s + len;
     s = s1;
-    if (s1 < a || s0 > b) continue;
+    if (s1 < range.x || s0 > range.y) continue;
     const auto at = [&](float x) {
       return glm::mix(pipe.nodes[k], pipe.nodes[k + 1], std::clamp((x - s0) / len, 0.0f, 1.0f));
     };
-    if (points.empty()) points.push_back(at(std::max(a, s0))), arcs.push_back(std::max(a, s0));
-    points.push_back(at(std::min(b, s1)));
-    arcs.push_back(std::min(b, s1));
+    if (points.empty()) add(at(std::max(range.x, s0)), std::max(range.x, s0));
+    add(at(std::min(range.y, s1)), std::min(range.y, s1));
   }
+  return points;
 }
-
-}  // namespace
 
 float Pipe::length() const {
   float s = 0.0f;
@@ -194,7 +196,7 @@ int resolveCutIntersections(PipeNetwork& network, float margin) {
     const Pipe& p = network.pipes[i];
     if (!p.cut) continue;
     Stretch s{i, {}, {}, {}};
-    stretch(p, p.cut->x, p.cut->y, s.points, s.arcs);
+    s.points = cutStretch(p, *p.cut, &s.arcs);
     if (s.points.size() < 2) continue;
     for (const glm::vec3& q : s.points) s.box.extend(q);
     stretches.push_back(std::move(s));

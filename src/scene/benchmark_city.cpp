@@ -111,17 +111,9 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
     net.shafts.push_back(shaft);
   }
   resolveCutIntersections(net, 0.0f);
-  for (const bool inner : {false, true}) {
-    SceneObject o;
-    o.name = inner ? "sewers/shaft-insides" : "sewers/shafts";
-    o.source = "network sewers";
-    o.role = Role::Interest;
-    o.networkPart = inner ? NetworkPart::ShaftInner : NetworkPart::ShaftOuter;
-    o.network = 0;
-    o.material.color = inner ? net.cutColor : net.color;
-    o.mesh = std::make_shared<Mesh>(shaftMesh(net, inner));
-    scene.objects.push_back(std::move(o));
-  }
+  for (const bool inner : {false, true})
+    scene.objects.push_back(networkObject(
+        net, 0, inner ? NetworkPart::ShaftInner : NetworkPart::ShaftOuter, shaftMesh(net, inner)));
   scene.networks.push_back(std::move(net));
 
   TerrainOpeningOptions opening;

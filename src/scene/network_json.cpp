@@ -285,25 +285,15 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
     r.finish();
 
     // The meshes the network adds to the object list.
-    const auto add = [&](NetworkPart part, const std::string& suffix, Mesh mesh,
-                         glm::vec3 color) {
-      if (mesh.triangles.empty()) return;
-      SceneObject o;
-      o.name = net.name + "/" + suffix;
-      o.source = "network " + net.name;
-      o.role = Role::Interest;
-      o.importance = 1.0f;
-      o.networkPart = part;
-      o.network = int(scene.networks.size());
-      o.material.color = color;
-      analyzeTopology(mesh);
-      o.mesh = std::make_shared<Mesh>(std::move(mesh));
-      scene.objects.push_back(std::move(o));
+    const int index = int(scene.networks.size());
+    const auto add = [&](NetworkPart part, Mesh mesh) {
+      if (!mesh.triangles.empty())
+        scene.objects.push_back(networkObject(net, index, part, std::move(mesh)));
     };
-    add(NetworkPart::ShaftOuter, "shafts", shaftMesh(net, false), net.color);
-    add(NetworkPart::ShaftInner, "shaft-insides", shaftMesh(net, true), net.cutColor);
-    add(NetworkPart::Joints, "joints", jointMesh(joints), net.color);
-    if (net.mode == PipeNetwork::Mode::Mesh) add(NetworkPart::MeshedPipes, "pipes", pipeMesh(net), net.color);
+    add(NetworkPart::ShaftOuter, shaftMesh(net, false));
+    add(NetworkPart::ShaftInner, shaftMesh(net, true));
+    add(NetworkPart::Joints, jointMesh(joints));
+    if (net.mode == PipeNetwork::Mode::Mesh) add(NetworkPart::MeshedPipes, pipeMesh(net));
     scene.networks.push_back(std::move(net));
   }
 }

@@ -95,6 +95,24 @@ glm::mat4 Camera::projectionMatrix(float aspect) const {
   return glm::perspective(glm::radians(fovY), aspect, near, far);
 }
 
+SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part, Mesh mesh) {
+  SceneObject o;
+  o.name = net.name + "/" +
+           (part == NetworkPart::ShaftOuter   ? "shafts"
+            : part == NetworkPart::ShaftInner ? "shaft-insides"
+            : part == NetworkPart::Joints     ? "joints"
+                                              : "pipes");
+  o.source = "network " + net.name;
+  o.role = Role::Interest;
+  o.importance = 1.0f;
+  o.networkPart = part;
+  o.network = network;
+  o.material.color = part == NetworkPart::ShaftInner ? net.cutColor : net.color;
+  analyzeTopology(mesh);
+  o.mesh = std::make_shared<Mesh>(std::move(mesh));
+  return o;
+}
+
 Bounds Scene::bounds() const {
   Bounds b;
   for (const auto& o : objects)

@@ -92,6 +92,12 @@ ProxyAction proxyTriangle(int pass, float d, float innerRadius, float outerRadiu
 // the walls, pass 2 (Q1) marks the inside between them.
 ProxyAction proxyQuad(int pass, float v, float innerRadius, float outerRadius);
 
+// The nodes of `pipe` between arc lengths range.x and range.y (from its first node), the ends
+// interpolated; `arcs` receives each point's arc length. Fewer than two points: the range
+// misses the pipe.
+std::vector<glm::vec3> cutStretch(const Pipe& pipe, glm::vec2 range,
+                                  std::vector<float>* arcs = nullptr);
+
 // §7: a shaft fragment with outward radial normal n is removed when n·v, both with their
 // height ignored and normalised, exceeds the opening coefficient; v points to the eye.
 bool shaftWedgeRemoves(const glm::vec3& normal, const glm::vec3& toEye, float coefficient);

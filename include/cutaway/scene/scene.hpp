@@ -228,6 +228,11 @@ struct Scene {
   const SceneObject* find(const std::string& name) const;
 };
 
+// The object a network contributes for `part` ("NAME/shafts", "NAME/shaft-insides",
+// "NAME/joints", "NAME/pipes"): an object of interest in the network's colours (the shaft
+// insides in its cut colour, §7), its topology analysed; `network` is its index.
+SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part, Mesh mesh);
+
 // Loads and validates a scene file and imports its meshes; throws cutaway::Error naming the
 // file, the JSON pointer and the reason.
 Scene loadScene(const std::filesystem::path& path);

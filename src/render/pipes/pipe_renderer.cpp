@@ -45,20 +45,7 @@ glm::vec3 cutUp(const glm::vec3& d) {
 // its base on that plane and its apex h = √2 r_out above the axis, so the upper half of the
 // pipe's cross-section (radius r_out) fits inside; its front faces the opened stretch.
 void appendProxies(const Pipe& pipe, GLint index, std::vector<ProxyVertex>& out) {
-  std::vector<glm::vec3> q;
-  float s = 0.0f;
-  const glm::vec2 cut = *pipe.cut;
-  for (std::size_t k = 0; k + 1 < pipe.nodes.size(); ++k) {
-    const float len = glm::length(pipe.nodes[k + 1] - pipe.nodes[k]);
-    const float s0 = s, s1 = s + len;
-    s = s1;
-    if (s1 < cut.x || s0 > cut.y) continue;
-    const auto at = [&](float x) {
-      return glm::mix(pipe.nodes[k], pipe.nodes[k + 1], std::clamp((x - s0) / len, 0.0f, 1.0f));
-    };
-    if (q.empty()) q.push_back(at(std::max(cut.x, s0)));
-    q.push_back(at(std::min(cut.y, s1)));
-  }
+  const std::vector<glm::vec3> q = cutStretch(pipe, *pipe.cut);
   if (q.size() < 2) return;
   std::vector<glm::vec3> dirs(q.size());
   for (std::size_t i = 0; i < q.size(); ++i) {
