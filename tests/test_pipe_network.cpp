@@ -85,12 +85,12 @@ TEST(PipeProxies, QuadsFollowEquations15And16) {
 }
 
 TEST(ShaftWedge, OpensTowardsTheViewerIgnoringHeights) {
-  EXPECT_TRUE(shaftWedgeRemoves({1, 0, 0}, {1, 5, 0}, 0.3f));       // facing, seen from above
-  EXPECT_FALSE(shaftWedgeRemoves({0, 0, 1}, {1, 5, 0}, 0.3f));      // side: n·v = 0
-  EXPECT_FALSE(shaftWedgeRemoves({-1, 0, 0}, {1, 0, 0}, 0.3f));     // back
-  EXPECT_TRUE(shaftWedgeRemoves({1, 0, 1}, {1, -3, 0}, 0.3f));      // cos 45° > 0.3
-  EXPECT_FALSE(shaftWedgeRemoves({1, 0, 1}, {1, -3, 0}, 0.75f));    // the narrower wedge keeps it
-  EXPECT_FALSE(shaftWedgeRemoves({0, 1, 0}, {1, 1, 0}, 0.3f));      // a floor has no radial part
+  EXPECT_TRUE(shaftWedgeRemoves({1, 0, 0}, {1, 5, 0}, 0.3f));     // facing, seen from above
+  EXPECT_FALSE(shaftWedgeRemoves({0, 0, 1}, {1, 5, 0}, 0.3f));    // side: n·v = 0
+  EXPECT_FALSE(shaftWedgeRemoves({-1, 0, 0}, {1, 0, 0}, 0.3f));   // back
+  EXPECT_TRUE(shaftWedgeRemoves({1, 0, 1}, {1, -3, 0}, 0.3f));    // cos 45° > 0.3
+  EXPECT_FALSE(shaftWedgeRemoves({1, 0, 1}, {1, -3, 0}, 0.75f));  // the narrower wedge keeps it
+  EXPECT_FALSE(shaftWedgeRemoves({0, 1, 0}, {1, 1, 0}, 0.3f));    // a floor has no radial part
 }
 
 TEST(PipeNetworkOps, SharpBendsSplitWithJoints) {
@@ -113,9 +113,12 @@ TEST(PipeNetworkOps, SharpBendsSplitWithJoints) {
 
 TEST(PipeNetworkOps, CrossingCutsKeepTheLargerPipe) {
   PipeNetwork net;
-  net.pipes.push_back({.nodes = {{0, -2, 0}, {20, -2, 0}}, .radius = 0.5f, .cut = glm::vec2(2, 18)});
-  net.pipes.push_back({.nodes = {{10, -2.5f, 10}, {10, -2.5f, -10}}, .radius = 0.3f, .cut = glm::vec2(1, 19)});
-  net.pipes.push_back({.nodes = {{0, -2, 50}, {20, -2, 50}}, .radius = 0.3f, .cut = glm::vec2(2, 18)});
+  net.pipes.push_back(
+      {.nodes = {{0, -2, 0}, {20, -2, 0}}, .radius = 0.5f, .cut = glm::vec2(2, 18)});
+  net.pipes.push_back(
+      {.nodes = {{10, -2.5f, 10}, {10, -2.5f, -10}}, .radius = 0.3f, .cut = glm::vec2(1, 19)});
+  net.pipes.push_back(
+      {.nodes = {{0, -2, 50}, {20, -2, 50}}, .radius = 0.3f, .cut = glm::vec2(2, 18)});
   EXPECT_EQ(resolveCutIntersections(net, 0.2f), 1);
   EXPECT_EQ(*net.pipes[0].cut, glm::vec2(2, 18));  // the larger keeps its cut
   EXPECT_EQ(*net.pipes[2].cut, glm::vec2(2, 18));  // far away: untouched
@@ -157,7 +160,9 @@ TEST(PipeNetworkOps, MeshesAreClosedAndOutward) {
   net.shafts.push_back({.bottom = {0, -3, 0}, .top = 0.0f, .radius = 1.0f, .wallThickness = 0.2f});
   const Mesh outer = shaftMesh(net, false, 16), inner = shaftMesh(net, true, 16);
   for (std::size_t i = 0; i < outer.positions.size(); ++i)
-    EXPECT_GT(glm::dot(outer.normals[i], outer.positions[i] - glm::vec3(0, outer.positions[i].y, 0)), 0.0f);
+    EXPECT_GT(
+        glm::dot(outer.normals[i], outer.positions[i] - glm::vec3(0, outer.positions[i].y, 0)),
+        0.0f);
   EXPECT_NEAR(glm::length(glm::vec2(inner.positions[0].x, inner.positions[0].z)), 0.8f, 1e-5f);
 }
 
@@ -200,7 +205,8 @@ TEST(PipeRendering, CrossingPipeOverAnOpeningStaysOutside) {
   const std::string text = R"({"resolution": [200, 150], "samples": 1,
     "style": {"name": "blinn-phong", "lines": false},
     "camera": {"eye": [0, 12, 6], "target": [0, -2, 0], "fov": 40},
-    "objects": [{"name": "floor", "file": ")" + kSource + R"(/examples/data/tile.obj",
+    "objects": [{"name": "floor", "file": ")" +
+                           kSource + R"(/examples/data/tile.obj",
                  "transform": {"translate": [-20, -6, 20], "scale": [40, 1, 40]}}],
     "networks": [{"name": "n", "wallThickness": 0.1,
       "pipes": [{"lines": [[[-10, -1, 0], [10, -1, 0]]], "radius": 0.4},
@@ -221,4 +227,30 @@ TEST(PipeRendering, CrossingPipeOverAnOpeningStaysOutside) {
     }
   EXPECT_GT(onA, 200);
   EXPECT_GT(overOpening, 20);  // the case exists: A crosses B's marked inside
+}
+
+TEST(PipeRendering, RadiusScaleAppliesWithoutANewRenderer) {
+  // Konev18 §5: the billboards are built from the node buffer every frame, so a radius scale
+  // set between two frames of one renderer widens the pipe on screen. Looking straight down
+  // with an orthographic camera 20 units high on 200 rows, a pipe of radius r·scale along x
+  // covers 2·r·scale·10 rows.
+  const std::string text = R"({"resolution": [200, 200], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false},
+    "camera": {"projection": "orthographic", "eye": [0, 10, 0.001], "target": [0, 0, 0],
+               "up": [0, 0, -1], "height": 20, "fit": false, "near": 1, "far": 30},
+    "networks": [{"name": "n", "wallThickness": 0.05,
+                  "pipes": [{"lines": [[[-20, 0, 0], [20, 0, 0]]], "radius": 0.5}]}]})";
+  Scene scene = parseScene(text, "radius.json", kSource);
+  Renderer renderer(scene, test::glContext().info());
+  const auto rowsCovered = [&] {
+    renderer.render();
+    const auto aovs = renderer.readAovs();
+    const FloatImage& cls = aov(aovs, "pipeClass");
+    int rows = 0;
+    for (int y = 0; y < cls.height; ++y) rows += cls.at(cls.width / 2, y)[0] > 0.1f;
+    return rows;
+  };
+  EXPECT_NEAR(rowsCovered(), 10, 1);
+  scene.networks[0].radiusScale = 2.5f;
+  EXPECT_NEAR(rowsCovered(), 25, 1);
 }

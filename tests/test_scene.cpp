@@ -75,7 +75,7 @@ const BadScene kBadScenes[] = {
     {"unknown_key_with_slash.json", "/style~1name",
      "unknown key \"style/name\""},  // RFC 6901 escape
     {"missing_objects.json", "/", "missing required key \"objects\""},
-    {"empty_objects.json", "/objects", "a scene needs at least one object"},
+    {"empty_objects.json", "/objects", "a scene needs at least one object or pipe network"},
     {"objects_not_array.json", "/objects", "expected an array, got object"},
     {"version_two.json", "/version", "value 2 is outside [1, 1]"},
     {"resolution_one_number.json", "/resolution", "expected [width, height]"},
@@ -221,7 +221,8 @@ const BadScene kBadScenes[] = {
     // Konev18 pipe networks.
     {"network_no_pipes.json", "/networks/0/pipes", "non-empty array"},
     {"network_repeated_nodes.json", "/networks/0/pipes/0/lines/0", "at least two distinct nodes"},
-    {"network_missing_value.json", "/networks/0/pipes/0/file", "feature 1 has no value for \"DIAM\""},
+    {"network_missing_value.json", "/networks/0/pipes/0/file",
+     "feature 1 has no value for \"DIAM\""},
     {"network_missing_field.json", "/networks/0/pipes/0/file", "no attribute field \"WIDTH\""},
     {"network_empty_layer.json", "/networks/0/pipes/0/file", "the layer is empty"},
     {"network_shafts_both.json", "/networks/0/shafts", "exactly one of \"file\""},
@@ -370,6 +371,16 @@ TEST(SceneErrors, ProxyNameClashesWithAnObject) {
 
 // ---------------------------------------------------------------------------------------------
 // Valid scenes.
+
+TEST(SceneLoad, PipeNetworksAloneMakeAScene) {
+  const Scene s = parse(R"({"networks": [{"name": "n", "wallThickness": 0.1,
+      "pipes": [{"lines": [[[0, 0, 0], [4, 0, 0]]], "radius": 0.5}]}]})");
+  EXPECT_TRUE(s.objects.empty());
+  ASSERT_EQ(s.networks.size(), 1u);
+  // The camera fits the network: its bounds are the pipe's, radius included.
+  EXPECT_NEAR(s.bounds().max.x, 4.5f, 1e-5f);
+  EXPECT_NEAR(s.bounds().min.y, -0.5f, 1e-5f);
+}
 
 TEST(SceneLoad, MinimalSceneGetsTheDefaults) {
   const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}]})");

@@ -70,6 +70,45 @@ int pixelsOf(const FloatImage& objectId, const std::set<int>& ids) {
   return n;
 }
 
+// `cutaway` on the rasteriser the viewer ran on: under Xvfb the viewer runs on Mesa (GLX has
+// no other driver there); on a machine with a GPU the CLI would take the GPU's EGL device:
+// keep it on Mesa's EGL too, so that both rasterise alike.
+std::string cliLike(const Result& viewer) {
+  const std::string mesaEgl = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
+  return (viewer.out.find("llvmpipe") != std::string::npos && fs::exists(mesaEgl)
+              ? "__EGL_VENDOR_LIBRARY_FILENAMES=" + mesaEgl + " "
+              : std::string()) +
+         kCli;
+}
+
+// The viewer's screenshot against `cutaway render` of the scene it saved. Both run Mesa's
+// llvmpipe (GLX in the window, EGL surfaceless in the CLI) on the same scene values, bit for
+// bit (floats are saved in their shortest exact form); the images were identical when this
+// was written. The slack (a mean of 0.1/255, 0.05% of the pixels off by more than 32) is for
+// a driver whose window and headless paths differ in rounding, not for a different image.
+void expectSameImage(const Rgba8Image& shot, const Rgba8Image& ref) {
+  ASSERT_EQ(ref.width, shot.width);
+  ASSERT_EQ(ref.height, shot.height);
+  double sum = 0;
+  int different = 0;
+  for (std::size_t i = 0; i < shot.pixels.size(); i += 4) {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int d = std::abs(int(shot.pixels[i + c]) - int(ref.pixels[i + c]));
+      sum += d;
+      worst = std::max(worst, d);
+    }
+    different += worst > 32;
+  }
+  const double mean = sum / (3.0 * shot.width * shot.height);
+  const double fraction = double(different) / (shot.width * shot.height);
+  std::printf(
+      "viewer vs cutaway render: mean difference %.4f / 255, %.5f%% of pixels off by > 32\n", mean,
+      100.0 * fraction);
+  EXPECT_LE(mean, 0.1) << "mean channel difference (of 255)";
+  EXPECT_LE(fraction, 0.0005) << "fraction of pixels off by more than 32";
+}
+
 }  // namespace
 
 TEST(Viewer, WithoutADisplayFailsWithOneLineSuggestingRender) {
@@ -161,44 +200,13 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
   EXPECT_GT(covered, shot.width * shot.height / 10);
 
   // `cutaway render` of the saved scene (at time 0: the first key of its camera path, the
-  // screenshot's camera): the same image. Both run Mesa's llvmpipe (GLX in the
-  // window, EGL surfaceless in the CLI) on the same scene values, bit for bit (floats are
-  // saved in their shortest exact form); the images were identical when this was written.
-  // The slack (a mean of 0.1/255, 0.05% of the pixels off by more than 32) is for a driver
-  // whose window and headless paths differ in rounding, not for a different image.
-  // Under Xvfb the viewer runs on Mesa (GLX has no other driver there); on a machine with a
-  // GPU the CLI would take the GPU's EGL device: keep it on Mesa's EGL too, so that both
-  // rasterise alike.
-  const std::string mesaEgl = "/usr/share/glvnd/egl_vendor.d/50_mesa.json";
-  const std::string cli = (r.out.find("llvmpipe") != std::string::npos && fs::exists(mesaEgl)
-                               ? "__EGL_VENDOR_LIBRARY_FILENAMES=" + mesaEgl + " "
-                               : std::string()) +
-                          kCli;
+  // screenshot's camera): the same image.
+  const std::string cli = cliLike(r);
   const fs::path reference = scratch("reference.png");
   const Result rendered = run(cli + " render " + saved.string() + " -o " + reference.string() +
                               " --aov " + scratch("saved-aovs").string());
   ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
-  const Rgba8Image ref = readPng(reference);
-  ASSERT_EQ(ref.width, shot.width);
-  ASSERT_EQ(ref.height, shot.height);
-  double sum = 0;
-  int different = 0;
-  for (std::size_t i = 0; i < shot.pixels.size(); i += 4) {
-    int worst = 0;
-    for (int c = 0; c < 3; ++c) {
-      const int d = std::abs(int(shot.pixels[i + c]) - int(ref.pixels[i + c]));
-      sum += d;
-      worst = std::max(worst, d);
-    }
-    different += worst > 32;
-  }
-  const double mean = sum / (3.0 * shot.width * shot.height);
-  const double fraction = double(different) / (shot.width * shot.height);
-  std::printf(
-      "viewer vs cutaway render: mean difference %.4f / 255, %.5f%% of pixels off by > 32\n", mean,
-      100.0 * fraction);
-  EXPECT_LE(mean, 0.1) << "mean channel difference (of 255)";
-  EXPECT_LE(fraction, 0.0005) << "fraction of pixels off by more than 32";
+  expectSameImage(shot, readPng(reference));
 
   // The cutaway shows the objects of interest: their pixels in the viewer's object ids
   // against those of a plain render (--no-cutaway) of the saved scene.
@@ -237,4 +245,38 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
   for (int y = 60; y < 100; ++y)
     for (int x = 20; x < 60; ++x) panel += ui.at(x, y)[0] + ui.at(x, y)[1] + ui.at(x, y)[2];
   EXPECT_LT(panel / (3.0 * 40 * 40), 90.0);
+}
+
+// Konev18 §5's radius and §6's colours changed in a running viewer: the renderer is kept and
+// draws them the next frame, which must be the image a fresh `cutaway render` of the saved
+// scene makes.
+TEST(Viewer, NetworkOptionsChangeLiveAndSave) {
+  if (!hasXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const fs::path view = scratch("pipes.png"), saved = scratch("pipes.json"),
+                 script = scratch("pipes.txt");
+  std::ofstream(script) << "wait 1\n"
+                           "set networks.radiusScale 1.8\n"
+                           "set networks.cutColor 0.1,0.1,0.9\n"
+                           "set networks.waterLow 0.9,0.1,0.1\n"
+                           "set networks.waterHigh 0.9,0.1,0.1\n"
+                           "set networks.shaftOpening 0\n"
+                           "screenshot "
+                        << view.string() << "\nsave " << saved.string() << "\nquit\n";
+  const Result r = runUnderXvfb(kSource + "/examples/pipes-street.json --size 320x200 --script " +
+                                script.string());
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  const fs::path reference = scratch("pipes-reference.png");
+  const Result rendered =
+      run(cliLike(r) + " render " + saved.string() + " -o " + reference.string());
+  ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+  const Rgba8Image shot = readPng(view);
+  expectSameImage(shot, readPng(reference));
+  // The water took the new colour: strongly red pixels, which the example has none of.
+  int red = 0;
+  for (int y = 0; y < shot.height; ++y)
+    for (int x = 0; x < shot.width; ++x)
+      red += shot.at(x, y)[0] > 150 && shot.at(x, y)[1] < 80 && shot.at(x, y)[2] < 80;
+  EXPECT_GT(red, 50);
+  std::ifstream in(saved);
+  EXPECT_EQ(nlohmann::json::parse(in)["networks"][0]["radiusScale"].get<float>(), 1.8f);
 }

@@ -177,6 +177,7 @@ TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
   Scene scene;
   // Clip surfaces come from the scene file; the viewer edits those there are.
   scene.clipSurfaces = ClipSurfaceOptions{.surfaces = std::vector<ClipSurface>(kMaxClipSurfaces)};
+  scene.networks.resize(2);  // likewise the pipe networks
   for (const auto& group : parameterGroups())
     for (const auto& p : *group.parameters) {
       SCOPED_TRACE(p.key);
@@ -219,6 +220,37 @@ TEST(ViewerParameters, SettingACutterOptionAddsTheCutter) {
   EXPECT_EQ(scene.adaptive->angle, 20.0f);
   findParameter("adaptive.enabled")->set(scene, false);
   EXPECT_FALSE(scene.adaptive);
+}
+
+// Konev18's run-time options: every network at once, the shafts' object colours with them,
+// and a redraw instead of a new renderer.
+TEST(ViewerParameters, NetworkOptionsApplyToEveryNetworkLive) {
+  ViewerState state;
+  state.scene = loadScene(fs::path(CUTAWAY_SOURCE_DIR) / "examples/pipes-street.json");
+  state.scene.networks.push_back(state.scene.networks.front());
+  const Parameter& radius = *findParameter("networks.radiusScale");
+  setParameter(state, radius, 1.5);
+  EXPECT_TRUE(state.viewChanged);
+  EXPECT_FALSE(state.sceneChanged);
+  for (const PipeNetwork& n : state.scene.networks) EXPECT_EQ(n.radiusScale, 1.5f);
+  EXPECT_THROW(parseParameterValue(radius, "0"), std::invalid_argument);
+  const glm::vec3 outside(0.1f, 0.2f, 0.3f), cut(0.7f, 0.6f, 0.5f);
+  setParameter(state, *findParameter("networks.color"), outside);
+  setParameter(state, *findParameter("networks.cutColor"), cut);
+  int shafts = 0;
+  for (const SceneObject& o : state.scene.objects) {
+    if (o.networkPart == NetworkPart::None) {
+      EXPECT_NE(o.material.color, outside);
+      continue;
+    }
+    EXPECT_EQ(o.material.color, o.networkPart == NetworkPart::ShaftInner ? cut : outside);
+    ++shafts;
+  }
+  EXPECT_EQ(shafts, 2);
+  // A cutter option still rebuilds.
+  state.viewChanged = false;
+  setParameter(state, *findParameter("terrain.w"), 0.02);
+  EXPECT_TRUE(state.sceneChanged);
 }
 
 TEST(ViewerParameters, StyleChoicesAreTheLibrarysStyles) {
@@ -481,6 +513,27 @@ TEST(ViewerSave, RelativeMeshPathsFollowTheFileElsewhere) {
 TEST(ViewerSave, EscapedNamesMatchThemselvesOnly) {
   EXPECT_EQ(escapeRegex("nodes[2]"), "nodes\\[2\\]");
   EXPECT_EQ(escapeRegex("a.b*c(d)|e"), "a\\.b\\*c\\(d\\)\\|e");
+}
+
+// The networks' edited options saved into their entries; the pipes stay as written.
+TEST(ViewerSave, NetworkOptionsReadBack) {
+  const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
+  const Scene original = loadScene(examples / "pipes-street.json");
+  Scene current = original;
+  current.camera = original.resolvedCamera();
+  current.camera.fit = false;
+  findParameter("networks.radiusScale")->set(current, 2.0);
+  findParameter("networks.shaftOpening")->set(current, -0.25);
+  findParameter("networks.waterHigh")->set(current, glm::vec3(0.0f, 0.1f, 0.4f));
+  const fs::path target = scratch("pipes-street.json");
+  SceneDocument::load(examples / "pipes-street.json").save(original, current, target);
+  const Scene saved = loadScene(target);
+  ASSERT_EQ(saved.networks.size(), 1u);
+  EXPECT_EQ(saved.networks[0].radiusScale, 2.0f);
+  EXPECT_EQ(saved.networks[0].shaftOpening, -0.25f);
+  EXPECT_EQ(saved.networks[0].waterHigh, glm::vec3(0.0f, 0.1f, 0.4f));
+  EXPECT_EQ(saved.networks[0].waterLow, original.networks[0].waterLow);
+  EXPECT_EQ(saved.networks[0].pipes.size(), original.networks[0].pipes.size());
 }
 
 // The Diepstraten03 and Trapp13 cutters' parameters saved: each edited value reads back, the

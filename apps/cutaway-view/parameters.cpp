@@ -14,6 +14,7 @@ const std::vector<ParameterGroup>& parameterGroups() {
       {"breakaway", "Breakaway (Diepstraten03)", &breakawayParameters()},
       {"clipSurfaces", "Clip surfaces (Trapp13)", &clipSurfaceParameters()},
       {"terrain", "Terrain opening (Konev18)", &terrainParameters()},
+      {"networks", "Pipe networks (Konev18)", &networkParameters()},
       {"style", "Style", &styleParameters()},
   };
   return groups;

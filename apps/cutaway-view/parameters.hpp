@@ -40,6 +40,9 @@ struct Parameter {
   // Whether the parameter applies now (e.g. ghost distance only with ghost lines on); the
   // UI greys it out otherwise. Null: always.
   std::function<bool(const Scene&)> applies;
+  // Read by the renderer every frame (a uniform): a change redraws the view and keeps the
+  // renderer, instead of building a new one.
+  bool live = false;
 };
 
 struct ParameterGroup {
@@ -54,6 +57,7 @@ const std::vector<Parameter>& cutoutParameters();       // parameters/diepstrate
 const std::vector<Parameter>& breakawayParameters();    // parameters/diepstraten.cpp
 const std::vector<Parameter>& clipSurfaceParameters();  // parameters/clip_surfaces.cpp
 const std::vector<Parameter>& terrainParameters();      // parameters/terrain.cpp
+const std::vector<Parameter>& networkParameters();      // parameters/networks.cpp
 const std::vector<ParameterGroup>& parameterGroups();
 const Parameter* findParameter(const std::string& key);
 

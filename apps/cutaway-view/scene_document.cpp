@@ -1,5 +1,6 @@
 #include "scene_document.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <sstream>
@@ -252,6 +253,16 @@ json terrainJson(const TerrainOpeningOptions& o) {
   return j;
 }
 
+// A network's keys the viewer edits; its pipes, shafts and attributes stay as written.
+json networkJson(const PipeNetwork& n) {
+  return {{"radiusScale", exact(n.radiusScale)},
+          {"shaftOpening", exact(n.shaftOpening)},
+          {"color", vec(n.color)},
+          {"insideColor", vec(n.insideColor)},
+          {"cutColor", vec(n.cutColor)},
+          {"waterColors", {vec(n.waterLow), vec(n.waterHigh)}}};
+}
+
 // Writes `current` as doc["cutters"][key] when it differs from `original` (or removes it).
 template <typename Options, typename ToJson>
 void patchCutter(json& doc, const char* key, const std::optional<Options>& original,
@@ -292,7 +303,10 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
     doc["resolution"] = {current.width, current.height};
 
   std::size_t k = 0;
-  const std::size_t n = current.objects.size();
+  // The networks' shafts and meshed pipes come last and have no entry of their own.
+  const std::size_t n = std::size_t(
+      std::count_if(current.objects.begin(), current.objects.end(),
+                    [](const SceneObject& o) { return o.networkPart == NetworkPart::None; }));
   for (auto& entry : doc["objects"]) {
     if (k >= n) break;  // reported below
     const std::string name = entry.at("name").get<std::string>();
@@ -345,6 +359,10 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
     for (const json edited = terrainJson(*current.terrainOpening);
          auto& [key, value] : edited.items())
       doc["cutters"]["terrainOpening"][key] = value;
+  for (std::size_t i = 0; i < current.networks.size() && i < original.networks.size(); ++i)
+    if (const json edited = networkJson(current.networks[i]);
+        edited != networkJson(original.networks[i]))
+      for (auto& [key, value] : edited.items()) doc["networks"][i][key] = value;
   const fs::path from = fs::weakly_canonical(fs::absolute(path_)).parent_path();
   const fs::path to = fs::weakly_canonical(fs::absolute(target)).parent_path();
   if (from != to) makePathsAbsolute(doc, path_.parent_path());
@@ -383,6 +401,10 @@ void SceneDocument::save(const Scene& original, const Scene& current,
   if (differ(saved.breakaway, current.breakaway, breakawayJson)) mismatch("breakaway");
   if (differ(saved.clipSurfaces, current.clipSurfaces, clipSurfacesJson)) mismatch("clip surfaces");
   if (styleJson(saved.style) != styleJson(current.style)) mismatch("style");
+  if (saved.networks.size() != current.networks.size()) mismatch("pipe networks");
+  for (std::size_t i = 0; i < saved.networks.size(); ++i)
+    if (networkJson(saved.networks[i]) != networkJson(current.networks[i]))
+      mismatch("pipe network \"" + current.networks[i].name + "\"");
   if (saved.width != current.width || saved.height != current.height) mismatch("resolution");
   writeFileAtomically(target, [&](std::ostream& os) { os << text; });
 }

@@ -343,8 +343,7 @@ void Viewer::execute(const ScriptCommand& c) {
       setLocalAngle(state_, c.text == "off" ? std::nullopt : std::optional<float>(n[0]));
       break;
     case Kind::Set:
-      c.parameter->set(state_.scene, c.value);
-      state_.sceneChanged = true;
+      setParameter(state_, *c.parameter, c.value);
       break;
     case Kind::Aov:
       update();
@@ -664,6 +663,8 @@ void Viewer::drawPanels() {
          [](const Scene& s) { return s.clipSurfaces.has_value(); }},
         {"Terrain opening (Konev18)", terrainPanel,
          [](const Scene& s) { return s.terrainOpening.has_value(); }},
+        {"Pipe networks (Konev18)", networkPanel,
+         [](const Scene& s) { return !s.networks.empty(); }},
     };
     for (const auto& panel : kCutterPanels)
       if (ImGui::CollapsingHeader(panel.title,

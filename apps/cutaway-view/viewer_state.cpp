@@ -51,6 +51,11 @@ void setLocalAngle(ViewerState& state, std::optional<float> degrees) {
   }
 }
 
+void setParameter(ViewerState& state, const Parameter& p, const ParameterValue& value) {
+  p.set(state.scene, value);
+  (p.live ? state.viewChanged : state.sceneChanged) = true;
+}
+
 Bounds selectionBounds(const ViewerState& state) {
   if (state.selection.empty()) return state.scene.bounds();
   Bounds b;

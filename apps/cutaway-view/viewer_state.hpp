@@ -14,6 +14,7 @@
 #include "colormap.hpp"
 #include "cutaway/render/frame.hpp"
 #include "cutaway/scene/scene.hpp"
+#include "parameters.hpp"
 
 namespace cutaway::view {
 
@@ -64,6 +65,9 @@ void setRole(ViewerState& state, Role role);
 void setImportance(ViewerState& state, float importance);
 // The local cutaway angle (object parameter cutawayAngle); nullopt: the cutter's angle.
 void setLocalAngle(ViewerState& state, std::optional<float> degrees);
+// Sets `p` to `value` on the scene and flags what must follow: a live parameter renders again,
+// any other rebuilds the renderer.
+void setParameter(ViewerState& state, const Parameter& p, const ParameterValue& value);
 // Bounds of the selection, or of the whole scene when nothing is selected.
 Bounds selectionBounds(const ViewerState& state);
 // Appends a key with the current camera; throws cutaway::Error unless `time` is later than

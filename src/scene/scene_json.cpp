@@ -2,13 +2,13 @@
 // the JSON pointer and the reason; unknown keys are errors.
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -30,7 +30,6 @@ namespace {
 
 using namespace scene_json;
 using json = nlohmann::json;
-
 
 // The renderer's light array (kMaxLights in src/render/frame_uniforms.glsl); more would be
 // dropped without a word.
@@ -285,7 +284,8 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
     for (const SceneObject& o : objects)
       if (o.name == name) ground = &o;
     if (!ground)
-      ctx.fail(r.at("on"), "no object named \"" + name + "\" before this one (list the terrain first)");
+      ctx.fail(r.at("on"),
+               "no object named \"" + name + "\" before this one (list the terrain first)");
   }
   r.finish();
   source = file.string();
@@ -320,9 +320,9 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
       else if (fallback)
         blockHeight = *fallback;
       else
-        ctx.fail(r.at("height") + "/field",
-                 feature + " of " + file.string() + " has no positive \"" +
-                     options.attributes[0] + "\" value, and no \"default\" is given");
+        ctx.fail(r.at("height") + "/field", feature + " of " + file.string() +
+                                                " has no positive \"" + options.attributes[0] +
+                                                "\" value, and no \"default\" is given");
     }
     float base = 0.0f;
     if (probe) {
@@ -885,7 +885,8 @@ GeoFrame geoFrame(const Context& ctx, const json& j, const std::string& ptr) {
     if (!v->is_array() || (v->size() != 2 && v->size() != 3))
       ctx.fail(r.at("offset"), "expected [easting, northing] or [easting, northing, height]");
     for (std::size_t i = 0; i < v->size(); ++i)
-      g.offset[int(i)] = number(ctx, (*v)[i], r.at("offset") + "/" + std::to_string(i), -1e12, 1e12);
+      g.offset[int(i)] =
+          number(ctx, (*v)[i], r.at("offset") + "/" + std::to_string(i), -1e12, 1e12);
   }
   r.finish();
   return g;
@@ -1094,9 +1095,13 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   }
 
   MeshCache cache;
-  const json& objects = r.require("objects");
+  // Pipe networks alone make a scene (Konev18's pipes without terrain); otherwise objects.
+  const bool networks = r.has("networks");
+  const json noObjects = json::array();
+  const json& objects = networks && !r.has("objects") ? noObjects : r.require("objects");
   if (!objects.is_array()) ctx.fail("/objects", "expected an array, got " + typeName(objects));
-  if (objects.empty()) ctx.fail("/objects", "a scene needs at least one object");
+  if (objects.empty() && !networks)
+    ctx.fail("/objects", "a scene needs at least one object or pipe network");
   for (std::size_t i = 0; i < objects.size(); ++i)
     readObject(ctx, objects[i], "/objects/" + std::to_string(i), cache, scene.objects);
   if (const json* v = r.take("proxies")) {

@@ -1,6 +1,6 @@
 // The panels of the Diepstraten03, Trapp13 and Konev18 cutters: their parameter tables
-// (parameters/diepstraten.cpp, parameters/clip_surfaces.cpp) and what the scene gives them to
-// work on.
+// (parameters/diepstraten.cpp, parameters/clip_surfaces.cpp, parameters/terrain.cpp,
+// parameters/networks.cpp) and what the scene gives them to work on.
 #include <imgui.h>
 
 #include <algorithm>
@@ -47,6 +47,18 @@ void terrainPanel(ViewerState& state) {
   }
   parameterTable(terrainParameters(), state);
   ImGui::TextDisabled("%zu network polylines", state.scene.terrainOpening->lines.size());
+}
+
+void networkPanel(ViewerState& state) {
+  if (state.scene.networks.empty()) {
+    ImGui::TextDisabled("no pipe networks in this scene (networks)");
+    return;
+  }
+  parameterTable(networkParameters(), state);
+  for (const PipeNetwork& net : state.scene.networks)
+    ImGui::TextDisabled("%s: %zu pipes, %zu shafts, %s", net.name.c_str(), net.pipes.size(),
+                        net.shafts.size(),
+                        net.mode == PipeNetwork::Mode::Billboards ? "billboards" : "meshed");
 }
 
 }  // namespace cutaway::view

@@ -4,6 +4,7 @@
 // the cutter needs besides; the viewer calls it from its "Cutters" section.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "../parameters.hpp"
@@ -11,9 +12,11 @@
 
 namespace cutaway::view {
 
-// One parameter's widget (checkbox, slider, combo, colour); true when the user changed it.
-bool parameterWidget(const Parameter& parameter, Scene& scene);
-// Every parameter of `table`, greyed out where it does not apply; flags sceneChanged.
+// One parameter's widget (checkbox, slider, combo, colour); the new value when the user
+// changed it.
+std::optional<ParameterValue> parameterWidget(const Parameter& parameter, const Scene& scene);
+// Every parameter of `table`, greyed out where it does not apply; a change goes through
+// setParameter.
 void parameterTable(const std::vector<Parameter>& table, ViewerState& state);
 
 void scenePanel(ViewerState& state);        // objects by group, selection, role, importance, angle
@@ -24,6 +27,7 @@ void cutoutPanel(ViewerState& state);       // Diepstraten03 cutout (panels/cutt
 void breakawayPanel(ViewerState& state);    // Diepstraten03 breakaway
 void clipSurfacePanel(ViewerState& state);  // Trapp13 clip surfaces
 void terrainPanel(ViewerState& state);      // Konev18 terrain opening
+void networkPanel(ViewerState& state);      // Konev18 pipe networks
 void stylePanel(ViewerState& state);        // shading and lines
 void aovPanel(ViewerState& state);          // AOV inspector: buffer, colour map, range, value
 void timingsPanel(const ViewerState& state, float framesPerSecond);

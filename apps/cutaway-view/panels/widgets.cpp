@@ -7,37 +7,38 @@
 
 namespace cutaway::view {
 
-bool parameterWidget(const Parameter& p, Scene& scene) {
+std::optional<ParameterValue> parameterWidget(const Parameter& p, const Scene& scene) {
   using Type = Parameter::Type;
   const ParameterValue value = p.get(scene);
-  bool changed = false;
+  std::optional<ParameterValue> changed;
   ImGui::PushID(p.key.c_str());
   switch (p.type) {
     case Type::Bool: {
       bool v = std::get<bool>(value);
-      if (ImGui::Checkbox(p.label.c_str(), &v)) p.set(scene, v), changed = true;
+      if (ImGui::Checkbox(p.label.c_str(), &v)) changed = v;
       break;
     }
     case Type::Int: {
       int v = int(std::get<double>(value));
       const int hi = int(p.sliderMax > p.min ? p.sliderMax : p.max);
       if (ImGui::SliderInt(p.label.c_str(), &v, int(p.min), hi, "%d", ImGuiSliderFlags_AlwaysClamp))
-        p.set(scene, double(v)), changed = true;
+        changed = double(v);
       break;
     }
     case Type::Float: {
       float v = float(std::get<double>(value));
       const bool unbounded = p.max > 1e6 && !(p.sliderMax > p.min);
+      bool moved = false;
       if (unbounded) {
         const float speed = std::max(std::abs(v), 1.0f) * 0.01f;
-        changed = ImGui::DragFloat(p.label.c_str(), &v, speed, float(p.min), float(p.max), "%.3g",
-                                   ImGuiSliderFlags_AlwaysClamp);
+        moved = ImGui::DragFloat(p.label.c_str(), &v, speed, float(p.min), float(p.max), "%.3g",
+                                 ImGuiSliderFlags_AlwaysClamp);
       } else {
         const float hi = float(p.sliderMax > p.min ? p.sliderMax : p.max);
-        changed = ImGui::SliderFloat(p.label.c_str(), &v, float(p.min), hi, "%.3g",
-                                     ImGuiSliderFlags_AlwaysClamp);
+        moved = ImGui::SliderFloat(p.label.c_str(), &v, float(p.min), hi, "%.3g",
+                                   ImGuiSliderFlags_AlwaysClamp);
       }
-      if (changed) p.set(scene, double(v));
+      if (moved) changed = double(v);
       break;
     }
     case Type::Choice: {
@@ -45,22 +46,21 @@ bool parameterWidget(const Parameter& p, Scene& scene) {
       if (ImGui::BeginCombo(p.label.c_str(), current.c_str())) {
         for (const auto& choice : p.choices())
           if (ImGui::Selectable(choice.c_str(), choice == current) && choice != current)
-            p.set(scene, choice), changed = true;
+            changed = choice;
         ImGui::EndCombo();
       }
       break;
     }
     case Type::Color: {
       glm::vec3 v = std::get<glm::vec3>(value);
-      if (ImGui::ColorEdit3(p.label.c_str(), &v[0], ImGuiColorEditFlags_Float))
-        p.set(scene, v), changed = true;
+      if (ImGui::ColorEdit3(p.label.c_str(), &v[0], ImGuiColorEditFlags_Float)) changed = v;
       break;
     }
     case Type::Direction: {
       glm::vec3 v = std::get<glm::vec3>(value);
       if (ImGui::SliderFloat3(p.label.c_str(), &v[0], -1.0f, 1.0f, "%.2f") &&
           glm::length(v) > 1e-3f)
-        p.set(scene, glm::normalize(v)), changed = true;
+        changed = glm::normalize(v);
       break;
     }
   }
@@ -74,7 +74,7 @@ void parameterTable(const std::vector<Parameter>& table, ViewerState& state) {
   for (const auto& p : table) {
     const bool applies = !p.applies || p.applies(state.scene);
     ImGui::BeginDisabled(!applies);
-    if (parameterWidget(p, state.scene)) state.sceneChanged = true;
+    if (const auto value = parameterWidget(p, state.scene)) setParameter(state, p, *value);
     ImGui::EndDisabled();
   }
 }
