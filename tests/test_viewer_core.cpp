@@ -182,6 +182,8 @@ TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
     for (const auto& p : *group.parameters) {
       SCOPED_TRACE(p.key);
       ASSERT_TRUE(p.get && p.set);
+      // A slider spans part of the accepted range.
+      if (p.sliderMax) EXPECT_TRUE(*p.sliderMax > p.min && *p.sliderMax <= p.max);
       ParameterValue v;
       switch (p.type) {
         case Parameter::Type::Bool:

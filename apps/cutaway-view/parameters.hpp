@@ -11,6 +11,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -30,9 +31,10 @@ struct Parameter {
   std::string label;  // for the UI
   Type type = Type::Float;
   double min = 0, max = 1;  // Int and Float: the accepted range (closed)
-  // Float sliders span [min, sliderMax] when sliderMax > min (e.g. world units without a
-  // natural bound); values up to `max` are still accepted from the script.
-  double sliderMax = 0;
+  // Sliders span [min, sliderMax] when it is given (e.g. world units without a natural
+  // bound); values up to `max` are still accepted from the script. Without it, a Float with
+  // an unbounded range is dragged instead.
+  std::optional<double> sliderMax;
   std::function<std::vector<std::string>()> choices;  // Choice
   std::string help;                                   // tooltip: what it is, which paper
   std::function<ParameterValue(const Scene&)> get;

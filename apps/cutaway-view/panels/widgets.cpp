@@ -20,21 +20,21 @@ std::optional<ParameterValue> parameterWidget(const Parameter& p, const Scene& s
     }
     case Type::Int: {
       int v = int(std::get<double>(value));
-      const int hi = int(p.sliderMax > p.min ? p.sliderMax : p.max);
+      const int hi = int(p.sliderMax.value_or(p.max));
       if (ImGui::SliderInt(p.label.c_str(), &v, int(p.min), hi, "%d", ImGuiSliderFlags_AlwaysClamp))
         changed = double(v);
       break;
     }
     case Type::Float: {
       float v = float(std::get<double>(value));
-      const bool unbounded = p.max > 1e6 && !(p.sliderMax > p.min);
+      const bool unbounded = p.max > 1e6 && !p.sliderMax;
       bool moved = false;
       if (unbounded) {
         const float speed = std::max(std::abs(v), 1.0f) * 0.01f;
         moved = ImGui::DragFloat(p.label.c_str(), &v, speed, float(p.min), float(p.max), "%.3g",
                                  ImGuiSliderFlags_AlwaysClamp);
       } else {
-        const float hi = float(p.sliderMax > p.min ? p.sliderMax : p.max);
+        const float hi = float(p.sliderMax.value_or(p.max));
         moved = ImGui::SliderFloat(p.label.c_str(), &v, float(p.min), hi, "%.3g",
                                    ImGuiSliderFlags_AlwaysClamp);
       }
