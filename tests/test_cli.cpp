@@ -381,3 +381,28 @@ TEST(Cli, InfoDescribesGisLayers) {
   EXPECT_NE(bad.err.find("notes.txt: cannot open as a GIS vector data source"), std::string::npos)
       << bad.err;
 }
+
+// Konev18 Fig. 15 as a frame sequence: the camera backs away from a junction of the SS64NE
+// sewers (60 to 500 m; the opening closes at d_c = s² = 400 m, eq. 1), so the opened area
+// shrinks from frame to frame and is gone at the junction in the last one.
+TEST(Cli, ZoomSequenceClosesTheTerrainOpening) {
+  const fs::path dir = scratch("zoom");
+  fs::create_directories(dir);
+  const Result r = run("render " + kSource + "/examples/ss64ne-zoom.json --size 192x120 --frames 4 -o " +
+                       (dir / "frame_%d.png").string() + " --aov " + (dir / "aovs").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  int previous = 192 * 120 + 1;
+  bool centreOpen[4];
+  for (int f = 0; f < 4; ++f) {
+    char name[8];
+    std::snprintf(name, sizeof name, "%04d", f + 1);
+    const FloatImage cls = readPfm(dir / "aovs" / name / "terrainClass.pfm");
+    int discarded = 0;
+    for (float v : cls.data) discarded += v == 3.0f;
+    EXPECT_LT(discarded, previous) << "frame " << f + 1;
+    previous = discarded;
+    centreOpen[f] = cls.at(96, 60)[0] == 3.0f;
+  }
+  EXPECT_TRUE(centreOpen[0]);
+  EXPECT_FALSE(centreOpen[3]);
+}
