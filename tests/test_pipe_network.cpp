@@ -1,6 +1,7 @@
 // Konev18 §§5–7 on the CPU against hand-worked cases (eqs. 4–16, the shaft wedge), the
 // network operations (sharp bends, cut intersections, junction shafts, meshes), and the
-// rendered frame: the pipes' AOVs, and the §9 interference fix on two crossing pipes.
+// rendered frame: the pipes' AOVs, and the §9 interference fix on two crossing pipes; the
+// generated benchmark city of Table 1.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/constants.hpp>
@@ -8,6 +9,7 @@
 
 #include "cutaway/geometry/pipe_network.hpp"
 #include "cutaway/render/renderer.hpp"
+#include "cutaway/scene/benchmark_city.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "gl_test_context.hpp"
 
@@ -164,6 +166,31 @@ TEST(PipeNetworkOps, MeshesAreClosedAndOutward) {
         glm::dot(outer.normals[i], outer.positions[i] - glm::vec3(0, outer.positions[i].y, 0)),
         0.0f);
   EXPECT_NEAR(glm::length(glm::vec2(inner.positions[0].x, inner.positions[0].z)), 0.8f, 1e-5f);
+}
+
+TEST(BenchmarkCity, HasTable1sSizesAndAGroundFacingUp) {
+  const Scene city = benchmarkCity({});
+  ASSERT_EQ(city.networks.size(), 1u);
+  const PipeNetwork& net = city.networks[0];
+  EXPECT_EQ(net.pipes.size(), 1190u);
+  EXPECT_EQ(net.shafts.size(), 1156u);
+  std::size_t nodes = 0;
+  for (const Pipe& p : net.pipes) nodes += p.nodes.size();
+  EXPECT_NEAR(double(nodes) / double(net.pipes.size()), 4.6, 0.1);
+  const Mesh& ground = *city.find("terrain")->mesh;
+  EXPECT_NEAR(double(ground.triangles.size()), 2.9e6, 0.01 * 2.9e6);
+  // Every triangle is a front face seen from above, as its vertex normals say.
+  std::size_t downward = 0;
+  for (const glm::uvec3& t : ground.triangles) {
+    const glm::vec3 a = ground.positions[t.x], b = ground.positions[t.y], c = ground.positions[t.z];
+    const glm::vec3 face = glm::cross(b - a, c - a);
+    downward += face.y <= 0.0f || glm::dot(face, ground.normals[t.x]) <= 0.0f;
+  }
+  EXPECT_EQ(downward, 0u);
+  // The shafts reach from their pipe up to the ground; the opening follows every pipe.
+  for (const Shaft& s : net.shafts) ASSERT_GT(s.top, s.bottom.y);
+  ASSERT_TRUE(city.terrainOpening);
+  EXPECT_EQ(city.terrainOpening->lines.size(), net.pipes.size());
 }
 
 namespace {

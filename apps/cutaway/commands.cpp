@@ -89,6 +89,12 @@ Stats stats(std::vector<double> v) {
   return {median, v.front(), v.back()};
 }
 
+// The scene file, or Konev18's generated benchmark city at `city` times its size.
+Scene sceneOrCity(const std::string& file, int city, const char* command) {
+  if (city == 0 && file.empty()) throw Error(command, "", "give a scene file or --city SCALE");
+  return city > 0 ? benchmarkCity({.scale = city}) : loadScene(file);
+}
+
 }  // namespace
 
 // The file name of frame `index` (1-based): a printf pattern in `output`, or the number
@@ -138,7 +144,7 @@ void warnAboutUncappedObjects(const Scene& scene) {
 }
 
 int render(const RenderOptions& options) {
-  Scene scene = loadScene(options.scene);
+  Scene scene = sceneOrCity(options.scene, options.city, "render");
   applyOverrides(scene, options.overrides);
   warnAboutOpenExteriors(scene);
   warnAboutUncappedObjects(scene);
@@ -508,10 +514,7 @@ void pipeTable(const Scene& scene, const gl::ContextInfo& info, int frames,
 }
 
 int bench(const BenchOptions& options) {
-  if (options.city == 0 && options.scene.empty())
-    throw Error("bench", "", "give a scene file or --city SCALE");
-  Scene scene = options.city > 0 ? benchmarkCity({.scale = options.city})
-                                 : loadScene(options.scene);
+  Scene scene = sceneOrCity(options.scene, options.city, "bench");
   applyOverrides(scene, options.overrides);
   const auto context = gl::HeadlessContext::create();
   const gl::ContextInfo& info = context->info();

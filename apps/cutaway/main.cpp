@@ -62,6 +62,10 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
                     "Render without any of the scene's cutters (the plain model)");
 }
 
+constexpr const char* kCityHelp =
+    "Konev18's generated benchmark city of Table 1 (1190 pipes, 1156 shafts, a 2.9M-triangle "
+    "terrain) times this scale, instead of a scene file";
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -71,7 +75,11 @@ int main(int argc, char** argv) {
 
   cutaway::cli::RenderOptions renderOptions;
   auto* render = app.add_subcommand("render", "Render a scene to a PNG image, headless");
-  render->add_option("scene", renderOptions.scene, "Scene file (JSON)")->required();
+  auto* renderScene = render->add_option("scene", renderOptions.scene, "Scene file (JSON)");
+  render
+      ->add_option("--city", renderOptions.city, kCityHelp)
+      ->check(CLI::Range(1, 100))
+      ->excludes(renderScene);
   render->add_option("-o,--output", renderOptions.output, "Output PNG file")->required();
   render->add_option("--aov", renderOptions.aovDir,
                      "Directory for the frame's intermediate buffers (PFM + aovs.json); with "
@@ -124,9 +132,7 @@ int main(int argc, char** argv) {
                                    "frame times");
   auto* benchScene = bench->add_option("scene", benchOptions.scene, "Scene file (JSON)");
   bench
-      ->add_option("--city", benchOptions.city,
-                   "Konev18 Table 1 on a generated city (1190 pipes, 1156 shafts, a 2.9M-triangle "
-                   "terrain) times this scale, instead of a scene file")
+      ->add_option("--city", benchOptions.city, kCityHelp)
       ->check(CLI::Range(1, 100))
       ->excludes(benchScene);
   bench

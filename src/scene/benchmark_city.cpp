@@ -57,8 +57,9 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const unsigned a = unsigned(j * (n + 1) + i), b = a + 1, c = a + unsigned(n + 1), d = c + 1;
-      terrain->triangles.emplace_back(a, c, b);  // z decreases with j: counter-clockwise from +y
-      terrain->triangles.emplace_back(b, c, d);
+      // z decreases with j, so a → b → c turns counter-clockwise seen from +y: front faces up.
+      terrain->triangles.emplace_back(a, b, c);
+      terrain->triangles.emplace_back(b, d, c);
     }
   SceneObject ground;
   ground.name = "terrain";
