@@ -330,16 +330,22 @@ TEST(Cli, ClipSurfacesWarnAboutOpenMeshesAndBench) {
 
 TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   const std::string out = test::scratchPath("cli", "dem.tif").string();
-  const auto r = run("dem --extent 265000 145000 265300 145200 --crs EPSG:27700 --cell 10 "
-                     "--relief 25 --base 40 --seed 1 -o " + out);
+  const auto r =
+      run("dem --extent 265000 145000 265300 145200 --crs EPSG:27700 --cell 10 "
+          "--relief 25 --base 40 --seed 1 -o " +
+          out);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("30x20 Float32, EPSG:27700"), std::string::npos) << r.out;
   const RasterTerrain t = importRasterTerrain(out, {.offset = {265000.0, 145000.0, 0.0}});
   EXPECT_EQ(t.columns, 30);
   EXPECT_EQ(t.rows, 20);
   EXPECT_EQ(t.geoTransform, (std::array<double, 6>{265000, 10, 0, 145200, 0, -10}));
-  const SyntheticDemOptions o{.min = {265000, 145000}, .max = {265300, 145200},
-                              .crs = "EPSG:27700", .cell = 10, .base = 40, .relief = 25,
+  const SyntheticDemOptions o{.min = {265000, 145000},
+                              .max = {265300, 145200},
+                              .crs = "EPSG:27700",
+                              .cell = 10,
+                              .base = 40,
+                              .relief = 25,
                               .seed = 1};
   for (const auto& [c, row] : {std::pair{0, 0}, {29, 19}, {11, 7}})
     EXPECT_EQ(t.mesh.positions[t.node(c, row)].y,
@@ -388,8 +394,9 @@ TEST(Cli, InfoDescribesGisLayers) {
 TEST(Cli, ZoomSequenceClosesTheTerrainOpening) {
   const fs::path dir = scratch("zoom");
   fs::create_directories(dir);
-  const Result r = run("render " + kSource + "/examples/ss64ne-zoom.json --size 192x120 --frames 4 -o " +
-                       (dir / "frame_%d.png").string() + " --aov " + (dir / "aovs").string());
+  const Result r =
+      run("render " + kSource + "/examples/ss64ne-zoom.json --size 192x120 --frames 4 -o " +
+          (dir / "frame_%d.png").string() + " --aov " + (dir / "aovs").string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   int previous = 192 * 120 + 1;
   bool centreOpen[4];
@@ -405,4 +412,37 @@ TEST(Cli, ZoomSequenceClosesTheTerrainOpening) {
   }
   EXPECT_TRUE(centreOpen[0]);
   EXPECT_FALSE(centreOpen[3]);
+}
+
+// Konev18 Table 1's rows from one bench run of a scene with pipe networks, at both sizes.
+TEST(Cli, BenchOfANetworkSceneGivesTable1sRows) {
+  const Result r = run("bench " + kSource + "/examples/pipes-street.json --frames 1 --json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto result = nlohmann::json::parse(r.out);
+  std::vector<std::string> labels;
+  for (const auto& row : result["runs"]) labels.push_back(row["label"]);
+  std::vector<std::string> expected;
+  for (const char* size : {"L", "H"})
+    for (const char* row : {"Empty", "Terrain", "Shafts", "Pipes (B)", "Pipes (M)"})
+      expected.push_back(std::string(row) + " " + size);
+  EXPECT_EQ(labels, expected);
+}
+
+// The generated city renders as a lit ground seen from above (green, not the black of a
+// ground facing down) with the network's openings; without a scene or --city, one error.
+TEST(Cli, RenderOfTheBenchmarkCity) {
+  const fs::path out = scratch("city.png");
+  const Result r = run("render --city 1 --size 160x100 -o " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Rgba8Image image = readPng(out);
+  int ground = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const auto* p = image.at(x, y);
+      ground += p[1] > 100 && p[1] > p[0] + 10 && p[1] > p[2] + 20;
+    }
+  EXPECT_GT(ground, image.width * image.height / 4);
+  const Result none = run("render -o " + scratch("none.png").string());
+  EXPECT_EQ(none.exitCode, 1);
+  EXPECT_EQ(none.err, "cutaway: error: render: give a scene file or --city SCALE\n");
 }

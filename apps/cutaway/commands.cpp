@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <functional>
 #include <map>
-#include <optional>
-#include <tuple>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
+#include <tuple>
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
@@ -220,10 +220,9 @@ int gisInfo(const std::string& path) {
     if (r.geoTransform) {
       const auto& g = *r.geoTransform;
       if (g[2] == 0.0 && g[4] == 0.0)
-        out["raster"]["extent"] = {std::min(g[0], g[0] + r.width * g[1]),
-                                   std::min(g[3], g[3] + r.height * g[5]),
-                                   std::max(g[0], g[0] + r.width * g[1]),
-                                   std::max(g[3], g[3] + r.height * g[5])};
+        out["raster"]["extent"] = {
+            std::min(g[0], g[0] + r.width * g[1]), std::min(g[3], g[3] + r.height * g[5]),
+            std::max(g[0], g[0] + r.width * g[1]), std::max(g[3], g[3] + r.height * g[5])};
     }
   } else {
     nlohmann::json layers = nlohmann::json::array();
@@ -474,8 +473,8 @@ void pipeTable(const Scene& scene, const gl::ContextInfo& info, int frames,
     Scene s = scene;
     s.objects.clear();
     for (const SceneObject& o : scene.objects) {
-      const bool shaft = o.networkPart == NetworkPart::ShaftOuter ||
-                         o.networkPart == NetworkPart::ShaftInner;
+      const bool shaft =
+          o.networkPart == NetworkPart::ShaftOuter || o.networkPart == NetworkPart::ShaftInner;
       if ((shaft && shafts) || (o.networkPart == NetworkPart::None && terrain))
         s.objects.push_back(o);
     }
@@ -648,8 +647,7 @@ int bench(const BenchOptions& options) {
   std::printf("%s, %dx%d, %d samples, %d frames on %s\n",
               options.city > 0 ? ("benchmark city x" + std::to_string(options.city)).c_str()
                                : options.scene.c_str(),
-              scene.width,
-              scene.height, scene.samples, options.frames, info.renderer.c_str());
+              scene.width, scene.height, scene.samples, options.frames, info.renderer.c_str());
   for (const auto& m : runs) {
     // CPU: wall time inside the pass's own code. On a software rasteriser a pass's commands
     // run when the next pass flushes, so a GPU pass's CPU time holds the previous pass's work.
@@ -666,8 +664,9 @@ int bench(const BenchOptions& options) {
                 "H 1920x1200");
     const std::size_t half = runs.size() / 2;
     for (std::size_t i = 0; i < half; ++i)
-      std::printf("%-12s %12.3f %12.3f\n", runs[i].label.substr(0, runs[i].label.size() - 2).c_str(),
-                  runs[i].frame.median, runs[i + half].frame.median);
+      std::printf("%-12s %12.3f %12.3f\n",
+                  runs[i].label.substr(0, runs[i].label.size() - 2).c_str(), runs[i].frame.median,
+                  runs[i + half].frame.median);
   } else if (scene.cutout || scene.breakaway || scene.clipSurfaces) {
     std::printf("\n%-24s %12s %12s\n", "summary", "frame ms", "× plain");
     for (const auto& m : runs)

@@ -76,8 +76,7 @@ int main(int argc, char** argv) {
   cutaway::cli::RenderOptions renderOptions;
   auto* render = app.add_subcommand("render", "Render a scene to a PNG image, headless");
   auto* renderScene = render->add_option("scene", renderOptions.scene, "Scene file (JSON)");
-  render
-      ->add_option("--city", renderOptions.city, kCityHelp)
+  render->add_option("--city", renderOptions.city, kCityHelp)
       ->check(CLI::Range(1, 100))
       ->excludes(renderScene);
   render->add_option("-o,--output", renderOptions.output, "Output PNG file")->required();
@@ -100,8 +99,7 @@ int main(int argc, char** argv) {
                                   "Print the scene's objects, triangle counts, bounds "
                                   "and watertightness as JSON; or a GIS file's layers or a "
                                   "raster's size, CRS, geotransform, nodata and range");
-  info->add_option("file", infoScene, "Scene file (.json), GIS vector file or raster")
-      ->required();
+  info->add_option("file", infoScene, "Scene file (.json), GIS vector file or raster")->required();
 
   cutaway::cli::DemOptions demOptions;
   auto* dem = app.add_subcommand("dem",
@@ -131,8 +129,7 @@ int main(int argc, char** argv) {
                                    "Render frames and report per-pass GPU times and "
                                    "frame times");
   auto* benchScene = bench->add_option("scene", benchOptions.scene, "Scene file (JSON)");
-  bench
-      ->add_option("--city", benchOptions.city, kCityHelp)
+  bench->add_option("--city", benchOptions.city, kCityHelp)
       ->check(CLI::Range(1, 100))
       ->excludes(benchScene);
   bench

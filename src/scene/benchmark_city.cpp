@@ -48,9 +48,9 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
       const float x = float(i) * cell, z = -float(j) * cell;
       terrain->positions.emplace_back(x, terrainHeight(x, z, options.seed), z);
       const float e = 0.5f * cell;
-      const glm::vec3 g(terrainHeight(x + e, z, options.seed) - terrainHeight(x - e, z, options.seed),
-                        0.0f,
-                        terrainHeight(x, z + e, options.seed) - terrainHeight(x, z - e, options.seed));
+      const glm::vec3 g(
+          terrainHeight(x + e, z, options.seed) - terrainHeight(x - e, z, options.seed), 0.0f,
+          terrainHeight(x, z + e, options.seed) - terrainHeight(x, z - e, options.seed));
       terrain->normals.push_back(glm::normalize(glm::vec3(-g.x, 2.0f * e, -g.z)));
     }
   terrain->triangles.reserve(std::size_t(2) * std::size_t(n) * std::size_t(n));
