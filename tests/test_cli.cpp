@@ -446,3 +446,22 @@ TEST(Cli, RenderOfTheBenchmarkCity) {
   EXPECT_EQ(none.exitCode, 1);
   EXPECT_EQ(none.err, "cutaway: error: render: give a scene file or --city SCALE\n");
 }
+
+// `info` describes each pipe network as loaded: pipes after the bend splitting, their cut
+// stretches (the example cuts every pipe from 15% to 85% of its length) and the junction
+// shaft.
+TEST(Cli, InfoDescribesPipeNetworks) {
+  const Result r = run("info " + kSource + "/examples/pipes-street.json");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto info = nlohmann::json::parse(r.out);
+  ASSERT_EQ(info["networks"].size(), 1u);
+  const auto& net = info["networks"][0];
+  EXPECT_EQ(net["name"], "sewers");
+  EXPECT_EQ(net["mode"], "billboards");
+  EXPECT_EQ(net["pipes"], 4);
+  EXPECT_EQ(net["cutPipes"], 4);
+  EXPECT_NEAR(net["cutLength"].get<double>(), 0.7 * net["length"].get<double>(), 1e-3);
+  EXPECT_EQ(net["shafts"], 1);
+  EXPECT_EQ(net["radius"][0].get<float>(), 0.3f);
+  EXPECT_EQ(net["radius"][1].get<float>(), 0.5f);
+}

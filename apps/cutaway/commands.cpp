@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -364,6 +365,31 @@ int info(const std::string& path) {
         {"w", t->w},
         {"s", t->s},
         {"cameraDistance", t->cameraDistance}};
+  }
+  // Konev18 §§5–7: what each network holds after splitting at sharp bends and trimming
+  // crossing cuts (§9).
+  for (const PipeNetwork& net : scene.networks) {
+    std::size_t nodes = 0, cut = 0;
+    float length = 0.0f, cutLength = 0.0f;
+    float rMin = std::numeric_limits<float>::max(), rMax = 0.0f;
+    for (const Pipe& p : net.pipes) {
+      nodes += p.nodes.size();
+      length += p.length();
+      rMin = std::min(rMin, p.radius), rMax = std::max(rMax, p.radius);
+      if (p.cut) ++cut, cutLength += p.cut->y - p.cut->x;
+    }
+    out["networks"].push_back(
+        {{"name", net.name},
+         {"mode", net.mode == PipeNetwork::Mode::Billboards ? "billboards" : "mesh"},
+         {"pipes", net.pipes.size()},
+         {"nodes", nodes},
+         {"length", length},
+         {"radius", {rMin, rMax}},
+         {"radiusScale", net.radiusScale},
+         {"cutPipes", cut},
+         {"cutLength", cutLength},
+         {"shafts", net.shafts.size()},
+         {"bounds", boundsJson(net.bounds())}});
   }
   if (const auto& b = scene.breakaway) {
     const BreakawayExtent extent = breakawayExtent(scene, *b);
