@@ -311,3 +311,68 @@ TEST(PipeRendering, BillboardsCoverWhatTheMeshedPipesCover) {
   EXPECT_GT(both, 2000);
   EXPECT_GT(double(both) / either, 0.93) << both << " of " << either;
 }
+
+TEST(PipeRendering, BillboardsCastTheOutlineOfTubesAndTroughs) {
+  // The shadow map from the key light: a pipe along x, cut open over its middle half, against
+  // the same pipe closed. From straight above an opened stretch (the lower half-tube) casts
+  // the full width, so both maps hold as many texels; from the side (across the pipe) it casts
+  // half the height, so the cut pipe's map holds 1 − ½·½ = 3/4 of the closed one's.
+  const auto texels = [&](const char* direction, bool cut) {
+    const std::string text = std::string(R"({"resolution": [64, 64], "samples": 1,
+      "style": {"name": "blinn-phong", "lines": false, "shadows": {"size": 1024}},
+      "lights": [{"type": "directional", "direction": )") +
+                             direction + R"(, "space": "world"}],
+      "camera": {"eye": [0, 5, 12], "target": [0, 0, 0], "fov": 45},
+      "networks": [{"name": "n", "wallThickness": 0.1,)" +
+                             (cut ? R"("cut": {"from": 0.25, "to": 0.75},)" : "") + R"(
+                    "pipes": [{"lines": [[[-5, 0, 0], [5, 0, 0]]], "radius": 0.5}]}]})";
+    const auto aovs = renderAovs(parseScene(text, "shadow.json", kSource));
+    int n = 0;
+    for (float v : aov(aovs, "shadowMap").data) n += v > 0.0f;
+    return double(n);
+  };
+  EXPECT_NEAR(texels("[0.001, -1, 0]", true) / texels("[0.001, -1, 0]", false), 1.0, 0.02);
+  EXPECT_NEAR(texels("[0, -0.001, -1]", true) / texels("[0, -0.001, -1]", false), 0.75, 0.03);
+}
+
+TEST(PipeRendering, OpenedPipesAreLitInsideAndShadowTheGround) {
+  // Light from above: the inside and the water of the cut stretch look as without shadows
+  // (the light falls into the trough), while the floor under the pipe darkens.
+  const auto render = [&](bool shadows) {
+    const std::string text = std::string(R"({"resolution": [240, 150], "samples": 1,
+      "style": {"name": "blinn-phong", "lines": false, "shadows": )") +
+                             (shadows ? "true" : "false") + R"(},
+      "lights": [{"type": "directional", "direction": [-0.2, -1, -0.3], "space": "world"}],
+      "camera": {"eye": [0, 8, 10], "target": [0, 0, 0], "fov": 45},
+      "objects": [{"name": "floor", "file": ")" +
+                             kSource + R"(/examples/data/tile.obj",
+                   "transform": {"translate": [-10, 0, 10], "scale": [20, 1, 20]}}],
+      "networks": [{"name": "n", "wallThickness": 0.1, "waterLevel": 0.3,
+                    "cut": {"from": 0.3, "to": 0.7},
+                    "pipes": [{"lines": [[[-6, 1.5, 0], [6, 1.5, 0]]], "radius": 0.6}]}]})";
+    Scene scene = parseScene(text, "lit.json", kSource);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    return std::pair{renderer.readColor(), renderer.readAovs()};
+  };
+  const auto [plain, plainAovs] = render(false);
+  const auto [shadowed, aovs] = render(true);
+  const FloatImage &cls = aov(aovs, "pipeClass"), &id = aov(aovs, "objectId");
+  double insideDifference = 0;
+  int inside = 0, darkFloor = 0;
+  for (int y = 0; y < cls.height; ++y)
+    for (int x = 0; x < cls.width; ++x) {
+      const auto* a = plain.at(x, y);
+      const auto* b = shadowed.at(x, y);
+      const float c = cls.at(x, y)[0];
+      if ((c > 0.4f && c < 0.6f) || c > 0.9f) {  // inside or water
+        ++inside;
+        for (int k = 0; k < 3; ++k) insideDifference += std::abs(int(a[k]) - int(b[k]));
+      } else if (id.at(x, y)[0] == 0.0f && b[1] < 0.7 * a[1]) {
+        ++darkFloor;
+      }
+    }
+  ASSERT_GT(inside, 200);
+  EXPECT_LT(insideDifference / (3.0 * inside), 4.0) << "mean channel difference inside";
+  EXPECT_GT(darkFloor, 500);
+}

@@ -106,13 +106,14 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
   // The active cutters' #defines for cutters.glsl.
   std::map<std::string, std::string> cutters;
-  for (const auto& [on, define] : {std::pair{adaptive != nullptr, "CUTTER_ADAPTIVE"},
-                                   std::pair{bool(g.cutout), "CUTTER_CUTOUT"},
-                                   std::pair{bool(g.breakaway), "CUTTER_BREAKAWAY"},
-                                   std::pair{bool(g.clipSurfaces), "CUTTER_CLIP_SURFACES"},
-                                   std::pair{bool(g.terrain), "CUTTER_TERRAIN"},
-                                   std::pair{std::any_of(scene.objects.begin(), scene.objects.end(), isShaft),
-                                             "CUTTER_SHAFT_WEDGE"}})
+  for (const auto& [on, define] :
+       {std::pair{adaptive != nullptr, "CUTTER_ADAPTIVE"},
+        std::pair{bool(g.cutout), "CUTTER_CUTOUT"},
+        std::pair{bool(g.breakaway), "CUTTER_BREAKAWAY"},
+        std::pair{bool(g.clipSurfaces), "CUTTER_CLIP_SURFACES"},
+        std::pair{bool(g.terrain), "CUTTER_TERRAIN"},
+        std::pair{std::any_of(scene.objects.begin(), scene.objects.end(), isShaft),
+                  "CUTTER_SHAFT_WEDGE"}})
     if (on) cutters.emplace(define, "1");
   g.meshProgram = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER, "render/mesh.frag"}},
@@ -232,6 +233,8 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
     geometryOutputs.pop_back();  // the depth target: the pipe passes add their own
     g.pipes = std::make_unique<PipeRenderer>(scene, f, cutters, styleFile(scene.style.name),
                                              geometryOutputs);
+    if (g.shadowMap)
+      g.shadowMap->setOtherCasters([pipes = g.pipes.get()] { pipes->drawShadowCasters(); });
   }
   if (g.clipSurfaces) {
     f.declare("capMask", {.format = GL_R32F,
@@ -527,6 +530,9 @@ void Renderer::render(const Camera& camera, float time) {
       fromLight.inverseProjection = glm::inverse(light.projection);
       fromLight.inverseView = glm::inverse(light.view);
       fromLight.counts.y = light.orthographic ? 1 : 0;
+      // The light as the eye, for casters that face it (billboard pipes).
+      fromLight.eye = glm::vec4(glm::vec3(fromLight.inverseView[3]), 1.0f);
+      fromLight.forward = glm::vec4(-glm::vec3(fromLight.inverseView[2]), 0.0f);
       glNamedBufferSubData(impl_->shadowMap->lightUniforms(), 0, sizeof fromLight, &fromLight);
     }
   }

@@ -22,7 +22,9 @@ layout(location = PIPE_CLASS_LOCATION) out float outPipeClass;
 layout(binding = 24) uniform isampler2D uProxyOwner;  // global pipe id + 1; 0: none
 layout(location = 37) uniform int uPass;             // 0 outside, 1 inside, 2 over a cut
 
-SurfacePoint surface(vec3 position, vec3 normal, vec3 color) {
+// `onTube`: the point of the tube (or water) the fragment shows, where the shadow map is
+// read; the quad itself lies through the axis, half of it behind the light's quad.
+SurfacePoint surface(vec3 position, vec3 normal, vec3 color, vec3 onTube) {
   SurfacePoint s;
   s.position = position;
   s.normal = normal;
@@ -30,7 +32,7 @@ SurfacePoint surface(vec3 position, vec3 normal, vec3 color) {
   s.baseColor = color;
   s.specular = 0.35;
   s.shininess = 24.0;
-  s.keyLightVisibility = keyLightVisibility(position);
+  s.keyLightVisibility = keyLightVisibility(onTube);
   return s;
 }
 
@@ -52,7 +54,7 @@ void main() {
   if (uPass == 2 && own) discard;          // this pipe's own cut surface stays
   if (uPass != 1 || !own) {
     if (uPass == 0 && cut && upper) discard;  // Fig. 11: the removed upper half
-    write(surface(vWorld, tube, uPipeColor), kClassOutside);
+    write(surface(vWorld, tube, uPipeColor, vAxis + outerRadius(vPipe) * tube), kClassOutside);
     return;
   }
   // The inside, seen through the opening: the water surface where the view ray meets it
@@ -73,10 +75,11 @@ void main() {
       vec3 side = normalize(cross(vDirection, up));
       float halfChord = sqrt(max(innerR * innerR - level * level, 0.0));
       if (abs(dot(w - vAxis, side)) < halfChord) {
-        write(surface(w, up, waterColor(depth, innerR)), kClassWater);
+        write(surface(w, up, waterColor(depth, innerR), w), kClassWater);
         return;
       }
     }
   }
-  write(surface(vWorld, normalize(vFace - vNormal), uInsideColor), kClassInside);
+  vec3 inward = normalize(vFace - vNormal);
+  write(surface(vWorld, inward, uInsideColor, vAxis - innerR * inward), kClassInside);
 }

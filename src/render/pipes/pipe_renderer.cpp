@@ -110,8 +110,9 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
     std::vector<ProxyVertex> proxies;
     for (std::size_t i = 0; i < net.pipes.size(); ++i) {
       const Pipe& p = net.pipes[i];
-      records.push_back({glm::vec4(p.radius, p.wallThickness, p.waterLevel, float(pipeBase + GLint(i))),
-                         p.cut ? glm::vec4(p.cut->x, p.cut->y, 1.0f, 0.0f) : glm::vec4(0.0f)});
+      records.push_back(
+          {glm::vec4(p.radius, p.wallThickness, p.waterLevel, float(pipeBase + GLint(i))),
+           p.cut ? glm::vec4(p.cut->x, p.cut->y, 1.0f, 0.0f) : glm::vec4(0.0f)});
       // A line strip with adjacency whose ends repeat: the geometry shader sees an end as an
       // adjacent node equal to the segment's own (eqs. 4 and 6).
       const auto first = GLuint(nodes.size());
@@ -143,7 +144,8 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
     glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Node, position));
     glVertexArrayAttribFormat(vao, 1, 1, GL_FLOAT, GL_FALSE, offsetof(Node, arc));
     glVertexArrayAttribIFormat(vao, 2, 1, GL_INT, offsetof(Node, pipe));
-    for (GLuint a = 0; a < 3; ++a) glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
+    for (GLuint a = 0; a < 3; ++a)
+      glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
 
     g.proxy = upload(proxies);
     g.proxyVertexCount = GLsizei(proxies.size());
@@ -156,7 +158,8 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
     glVertexArrayAttribIFormat(vao, 3, 1, GL_INT, offsetof(ProxyVertex, pipe));
     glVertexArrayAttribIFormat(vao, 4, 1, GL_INT, offsetof(ProxyVertex, kind));
     glVertexArrayAttribFormat(vao, 5, 3, GL_FLOAT, GL_FALSE, offsetof(ProxyVertex, normal));
-    for (GLuint a = 0; a < 6; ++a) glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
+    for (GLuint a = 0; a < 6; ++a)
+      glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
 
     g.water = upload(water);
     g.waterCount = GLsizei(water.size());
@@ -166,18 +169,24 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
     glVertexArrayBindingDivisor(vao, 0, 1);
     glVertexArrayAttribFormat(vao, 0, 4, GL_FLOAT, GL_FALSE, offsetof(WaterDisc, disc));
     glVertexArrayAttribFormat(vao, 1, 1, GL_FLOAT, GL_FALSE, offsetof(WaterDisc, fill));
-    for (GLuint a = 0; a < 2; ++a) glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
+    for (GLuint a = 0; a < 2; ++a)
+      glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
     networks_.push_back(std::move(g));
   }
   if (networks_.empty()) return;
 
   defines.emplace("PIPE_CLASS_LOCATION", std::to_string(gbuffer.size()));
   const std::map<std::string, std::string> aliases{{"style.glsl", style}};
-  billboardProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/billboard.vert"},
-                                                   {GL_GEOMETRY_SHADER, "render/pipes/billboard.geom"},
-                                                   {GL_FRAGMENT_SHADER, "render/pipes/billboard.frag"}},
-                                        .defines = defines,
-                                        .aliases = aliases});
+  billboardProgram_ =
+      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/billboard.vert"},
+                                   {GL_GEOMETRY_SHADER, "render/pipes/billboard.geom"},
+                                   {GL_FRAGMENT_SHADER, "render/pipes/billboard.frag"}},
+                        .defines = defines,
+                        .aliases = aliases});
+  shadowProgram_ =
+      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/billboard.vert"},
+                                   {GL_GEOMETRY_SHADER, "render/pipes/billboard.geom"},
+                                   {GL_FRAGMENT_SHADER, "render/pipes/billboard_shadow.frag"}}});
   proxyProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/proxy.vert"},
                                                {GL_FRAGMENT_SHADER, "render/pipes/proxy.frag"}},
                                     .defines = defines,
@@ -188,10 +197,11 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
                                                {GL_FRAGMENT_SHADER, "render/pipes/proxy.frag"}},
                                     .defines = ownerDefines,
                                     .aliases = aliases});
-  waterProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/water_disc.vert"},
-                                               {GL_FRAGMENT_SHADER, "render/pipes/water_disc.frag"}},
-                                    .defines = defines,
-                                    .aliases = aliases});
+  waterProgram_ =
+      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/water_disc.vert"},
+                                   {GL_FRAGMENT_SHADER, "render/pipes/water_disc.frag"}},
+                        .defines = defines,
+                        .aliases = aliases});
   aovProgram_ = buildFullscreenProgram("render/pipes/pipe_aovs.frag");
 
   frame.declare("pipeOwner", {.format = GL_R32I});
@@ -221,7 +231,8 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
                    const GLint zero = 0;
                    const float none[4] = {0, 0, 0, 0};
                    glClearNamedFramebufferiv(pass.framebuffer, GL_STENCIL, 0, &zero);
-                   glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, GLint(gbufferTargets_), none);
+                   glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, GLint(gbufferTargets_),
+                                             none);
                    drawPipes();
                  }});
   frame.addPass({.name = "pipeAovs",
@@ -248,6 +259,21 @@ void PipeRenderer::setNetworkUniforms(GLuint program, const NetworkGpu& n) const
   glProgramUniform3fv(program, 35, 1, &net.waterHigh[0]);
   glProgramUniform1i(program, 36, n.objectId);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, n.pipes.id());
+}
+
+void PipeRenderer::drawShadowCasters() const {
+  const GLuint program = shadowProgram_.id();
+  glUseProgram(program);
+  glEnable(GL_PRIMITIVE_RESTART);
+  glPrimitiveRestartIndex(kPrimitiveRestart);
+  for (const NetworkGpu& n : networks_) {
+    // Only the radii: the shadow program has no colours.
+    glProgramUniform1f(program, 30, scene_.networks[n.network].radiusScale);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, n.pipes.id());
+    glBindVertexArray(n.nodeArray.id());
+    glDrawElements(GL_LINE_STRIP_ADJACENCY, n.nodeIndexCount, GL_UNSIGNED_INT, nullptr);
+  }
+  glDisable(GL_PRIMITIVE_RESTART);
 }
 
 void PipeRenderer::drawOwners() {

@@ -27,6 +27,9 @@ class PipeRenderer {
                const std::string& style, const std::vector<std::string>& gbuffer);
   // Whether any network is drawn as billboards (else the renderer adds no passes).
   bool active() const { return !networks_.empty(); }
+  // The billboards into the bound shadow-map target, with the light's frame uniforms bound
+  // (src/styles/shadows): each quad faces the light.
+  void drawShadowCasters() const;
 
  private:
   struct NetworkGpu {
@@ -45,7 +48,8 @@ class PipeRenderer {
   const Scene& scene_;
   Frame& frame_;
   std::vector<NetworkGpu> networks_;
-  gl::Program billboardProgram_, proxyProgram_, ownerProgram_, waterProgram_, aovProgram_;
+  gl::Program billboardProgram_, shadowProgram_, proxyProgram_, ownerProgram_, waterProgram_,
+      aovProgram_;
   gl::Texture stencilView_;
   FullscreenTriangle fullscreen_;
   GLuint gbufferTargets_ = 0;

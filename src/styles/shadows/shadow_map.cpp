@@ -138,6 +138,7 @@ ShadowMap::ShadowMap(const SceneGpu& sceneGpu, const ShadowStyle& style, Frame& 
                    sceneGpu_.draw(
                        program_.id(), [](const SceneObject& o) { return castsShadow(o); },
                        [](const SceneObject&, std::size_t) {});
+                   if (otherCasters_) otherCasters_();
                    glDisable(GL_POLYGON_OFFSET_FILL);
                    glBindBufferBase(GL_UNIFORM_BUFFER, 0, GLuint(frameUniforms));
                  }});

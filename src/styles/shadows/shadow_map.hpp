@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 
 #include <glm/glm.hpp>
 
@@ -57,6 +58,9 @@ class ShadowMap {
   void setActive(bool active) { active_ = active; }
   // Binds the depth map, with hardware depth comparison, for the geometry pass.
   void bindForLookup() const;
+  // Casters that are no scene object (Konev18's billboard pipes): drawn after the objects,
+  // into the same targets, with the light's uniforms bound.
+  void setOtherCasters(std::function<void()> draw) { otherCasters_ = std::move(draw); }
 
  private:
   const SceneGpu& sceneGpu_;
@@ -65,6 +69,7 @@ class ShadowMap {
   gl::Program program_;
   gl::Buffer lightUniforms_;
   bool active_ = false;
+  std::function<void()> otherCasters_;
 };
 
 }  // namespace cutaway
