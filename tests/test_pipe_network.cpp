@@ -146,6 +146,29 @@ TEST(PipeNetworkOps, ShaftsAtJunctionsReachTheGround) {
   EXPECT_EQ(net.shafts.size(), 4u);  // and at the three open ends
 }
 
+TEST(PipeNetworkOps, PipesOpenIntoTheShaftsTheyReach) {
+  PipeNetwork net;
+  net.pipes.push_back({.nodes = {{0, -2, 0}, {5, -2, 0}}, .radius = 0.3f, .cut = glm::vec2(0.5f, 3.0f)});
+  net.pipes.push_back({.nodes = {{-5, -2, 0}, {-2, -2, 0}, {0, -2, 0}}, .radius = 0.3f});
+  net.pipes.push_back({.nodes = {{0, -2, -5}, {0, -2, 0}, {0, -2, 5}}, .radius = 0.3f});  // through
+  net.pipes.push_back({.nodes = {{0.1f, -2, 0}, {0.3f, -2, 0}}, .radius = 0.1f});  // wholly inside
+  net.shafts.push_back({.bottom = {0, -2.5f, 0}, .top = 0, .radius = 1.0f, .wallThickness = 0.1f});
+  EXPECT_EQ(trimAtShafts(net), 2);
+  // Ends on the inner wall (radius 0.9); the cut keeps its place along the pipe.
+  expectVec(net.pipes[0].nodes.front(), {0.9f, -2, 0});
+  ASSERT_TRUE(net.pipes[0].cut);
+  EXPECT_NEAR(net.pipes[0].cut->x, 0.0f, 1e-5f);
+  EXPECT_NEAR(net.pipes[0].cut->y, 2.1f, 1e-5f);
+  ASSERT_EQ(net.pipes[1].nodes.size(), 3u);
+  expectVec(net.pipes[1].nodes.back(), {-0.9f, -2, 0});
+  EXPECT_EQ(net.pipes[2].nodes.size(), 3u);
+  expectVec(net.pipes[3].nodes.front(), {0.1f, -2, 0});
+  // A shaft elsewhere in height leaves the ends alone.
+  net.pipes[0].nodes.front() = {0, -2, 0};
+  net.shafts[0].bottom.y = -10, net.shafts[0].top = -5;
+  EXPECT_EQ(trimAtShafts(net), 0);
+}
+
 TEST(PipeNetworkOps, MeshesAreClosedAndOutward) {
   PipeNetwork net;
   net.pipes.push_back({.nodes = {{0, 0, 0}, {10, 0, 0}, {14, 0, -3}}, .radius = 0.5f});
@@ -213,12 +236,12 @@ TEST(PipeRendering, StreetShowsEveryPipeClass) {
   const Scene scene = loadScene(kSource + "/examples/pipes-street.json");
   const auto aovs = renderAovs(scene);
   const FloatImage &stencil = aov(aovs, "pipeStencil"), &cls = aov(aovs, "pipeClass");
-  int stencilCounts[3] = {0, 0, 0}, classCounts[5] = {0, 0, 0, 0, 0};
+  int stencilCounts[4] = {0, 0, 0, 0}, classCounts[5] = {0, 0, 0, 0, 0};
   for (int y = 0; y < cls.height; ++y)
     for (int x = 0; x < cls.width; ++x) {
       const float s = stencil.at(x, y)[0];
-      ASSERT_TRUE(s == 0.0f || s == 1.0f || s == 2.0f) << s;
-      ++stencilCounts[int(s)];
+      ASSERT_TRUE(s == 0.0f || s == 1.0f || s == 2.0f || s == 4.0f) << s;
+      ++stencilCounts[std::min(int(s), 3)];
       ++classCounts[int(std::lround(cls.at(x, y)[0] * 4.0f))];
     }
   EXPECT_GT(stencilCounts[1], 100);  // proxy pass 2: insides

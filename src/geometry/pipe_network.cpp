@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <tuple>
 #include <numbers>
 #include <numeric>
+#include <optional>
+#include <tuple>
 
 namespace cutaway {
 
@@ -41,8 +42,7 @@ glm::vec3 up(const glm::vec3& v, const glm::vec3& direction) {
 
 // Closest points of segments p1q1 and p2q2 (Ericson, Real-Time Collision Detection §5.1.9):
 // returns the squared distance and the parameters along each.
-float segmentDistance2(glm::vec3 p1, glm::vec3 q1, glm::vec3 p2, glm::vec3 q2, float& s,
-                       float& t) {
+float segmentDistance2(glm::vec3 p1, glm::vec3 q1, glm::vec3 p2, glm::vec3 q2, float& s, float& t) {
   const glm::vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const float a = glm::dot(d1, d1), e = glm::dot(d2, d2), f = glm::dot(d2, r);
   const float c = glm::dot(d1, r), b = glm::dot(d1, d2), denom = a * e - b * b;
@@ -213,8 +213,9 @@ int resolveCutIntersections(PipeNetwork& network, float margin) {
   const float reach = 2.0f * maxRadius + margin;
   std::vector<std::size_t> order(stretches.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return stretches[a].box.min.x < stretches[b].box.min.x; });
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return stretches[a].box.min.x < stretches[b].box.min.x;
+  });
   std::vector<bool> trimmed(stretches.size(), false);
   std::vector<std::vector<std::size_t>> near(stretches.size());
   for (std::size_t oi = 0; oi < order.size(); ++oi)
@@ -302,10 +303,73 @@ void addJunctionShafts(PipeNetwork& network, const ShaftDefaults& defaults,
   }
 }
 
+namespace {
+
+// How far along `nodes` (from the first) the polyline leaves the disc of radius `r` around
+// `centre` in plan (x, z); nullopt if it never does.
+std::optional<float> leaveDisc(const std::vector<glm::vec3>& nodes, glm::vec2 centre, float r) {
+  float arc = 0.0f;
+  for (std::size_t k = 0; k + 1 < nodes.size(); ++k) {
+    const glm::vec2 a = glm::vec2(nodes[k].x, nodes[k].z) - centre;
+    const glm::vec2 d = glm::vec2(nodes[k + 1].x - nodes[k].x, nodes[k + 1].z - nodes[k].z);
+    const float segment = glm::length(nodes[k + 1] - nodes[k]);
+    // |a + t d|² = r², the larger root: where the segment crosses the circle outwards.
+    const float qa = glm::dot(d, d), qb = 2.0f * glm::dot(a, d), qc = glm::dot(a, a) - r * r;
+    if (qa > 0.0f && qb * qb - 4.0f * qa * qc >= 0.0f) {
+      const float t = (-qb + std::sqrt(qb * qb - 4.0f * qa * qc)) / (2.0f * qa);
+      if (t >= 0.0f && t <= 1.0f) return arc + t * segment;
+    }
+    arc += segment;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+int trimAtShafts(PipeNetwork& network) {
+  int moved = 0;
+  for (Pipe& pipe : network.pipes)
+    for (const bool front : {true, false})
+      for (const Shaft& shaft : network.shafts) {
+        const glm::vec3 end = front ? pipe.nodes.front() : pipe.nodes.back();
+        const glm::vec2 axis(shaft.bottom.x, shaft.bottom.z);
+        const float r = shaft.innerRadius();
+        if (glm::length(glm::vec2(end.x, end.z) - axis) >= r ||
+            end.y < shaft.bottom.y - pipe.radius || end.y > shaft.top + pipe.radius)
+          continue;
+        std::vector<glm::vec3> walk = pipe.nodes;
+        if (!front) std::reverse(walk.begin(), walk.end());
+        const std::optional<float> out = leaveDisc(walk, axis, r);
+        const float length = pipe.length();
+        if (!out || *out >= length) continue;
+        // The part of the pipe from `out` on, in the walk's direction.
+        std::vector<glm::vec3> kept;
+        float arc = 0.0f;
+        for (std::size_t k = 0; k + 1 < walk.size(); ++k) {
+          const float segment = glm::length(walk[k + 1] - walk[k]);
+          if (arc + segment > *out) {
+            if (kept.empty())
+              kept.push_back(walk[k] + (walk[k + 1] - walk[k]) * ((*out - arc) / segment));
+            kept.push_back(walk[k + 1]);
+          }
+          arc += segment;
+        }
+        if (!front) std::reverse(kept.begin(), kept.end());
+        pipe.nodes = std::move(kept);
+        if (pipe.cut) {
+          // Arc lengths count from the first node: a trimmed front shifts them.
+          glm::vec2 c = front ? *pipe.cut - *out : *pipe.cut;
+          c = glm::clamp(c, 0.0f, length - *out);
+          pipe.cut = c.y > c.x ? std::optional<glm::vec2>(c) : std::nullopt;
+        }
+        ++moved;
+      }
+  return moved;
+}
+
 Mesh pipeMesh(const PipeNetwork& network, int sides) {
   Mesh m;
-  const auto ring = [&](const glm::vec3& c, const glm::vec3& side, const glm::vec3& dir,
-                        float r) {
+  const auto ring = [&](const glm::vec3& c, const glm::vec3& side, const glm::vec3& dir, float r) {
     const glm::vec3 other = glm::cross(dir, side);
     for (int k = 0; k < sides; ++k) {
       const float a = 2.0f * std::numbers::pi_v<float> * float(k) / float(sides);

@@ -112,6 +112,7 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
     net.shafts.push_back(shaft);
   }
   resolveCutIntersections(net, 0.0f);
+  trimAtShafts(net);
   for (const bool inner : {false, true})
     scene.objects.push_back(networkObject(
         net, 0, inner ? NetworkPart::ShaftInner : NetworkPart::ShaftOuter, shaftMesh(net, inner)));

@@ -283,6 +283,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       }
     }
     r.finish();
+    trimAtShafts(net);
 
     // The meshes the network adds to the object list.
     const int index = int(scene.networks.size());

@@ -123,11 +123,18 @@ int resolveCutIntersections(PipeNetwork& network, float margin);
 // terrain height `groundAt(x, z)`.
 struct ShaftDefaults {
   float radius = 0.6f, wallThickness = 0.1f, waterLevel = 0.0f;
-  bool ends = true;          // also at pipe ends that meet no other pipe
+  bool ends = true;  // also at pipe ends that meet no other pipe
   float weldDistance = 0.05f;
 };
 void addJunctionShafts(PipeNetwork& network, const ShaftDefaults& defaults,
                        const std::function<float(glm::vec2)>& groundAt);
+
+// §7: pipes open into the shafts they reach. A pipe end within a shaft (inside its inner
+// radius in plan, between its floor and rim) is moved back along the pipe to the inner wall,
+// so that the opened shaft shows its inside and water instead of the pipes crossing it; the
+// cut stretch keeps its place along the pipe. Returns how many ends moved. A pipe lying
+// wholly inside a shaft is left as it is.
+int trimAtShafts(PipeNetwork& network);
 
 // Meshes of a network (scene units): tessellated pipes with mitred rings at the nodes (the
 // comparison of Table 1), the shafts' outer and inner cylinders (open at the top, the outer

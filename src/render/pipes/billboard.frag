@@ -1,10 +1,11 @@
 #version 450 core
-// Konev18 §§5–6: a billboard quad shaded as a tube (eq. 11) in one of three stencil-selected
+// Konev18 §§5–6: a billboard quad shaded as a tube (eq. 11) in one of four stencil-selected
 // passes: outside (stencil 0: the outer wall; the upper halves inside a cut are discarded,
 // Fig. 11), inside (stencil 1: the inner wall with inverted normals and its own colour, and
-// the water surface, §6.4) and over a cut surface (stencil 2). A region marked by another
-// pipe's proxies is shaded as this pipe's outside (Konev18 §9's interference): the proxies'
-// nearest pipe id per pixel tells whose region it is.
+// the water surface, §6.4), over a cut surface (stencil 2), and outside over the back of an
+// end triangle (stencil 4, Fig. 10: the closed tube's end, so the upper half stays). A region
+// marked by another pipe's proxies is shaded as this pipe's outside (Konev18 §9's
+// interference): the proxies' nearest pipe id per pixel tells whose region it is.
 #include "../frame_uniforms.glsl"
 #include "../../styles/surface.glsl"
 #include "style.glsl"
@@ -20,7 +21,8 @@ flat in vec3 vDirection;
 flat in int vPipe;
 layout(location = PIPE_CLASS_LOCATION) out float outPipeClass;
 layout(binding = 24) uniform isampler2D uProxyOwner;  // global pipe id + 1; 0: none
-layout(location = 37) uniform int uPass;             // 0 outside, 1 inside, 2 over a cut
+// 0 outside, 1 inside, 2 over a cut, 3 outside over an end triangle seen from behind
+layout(location = 37) uniform int uPass;
 
 // `onTube`: the point of the tube (or water) the fragment shows, where the shadow map is
 // read; the quad itself lies through the axis, half of it behind the light's quad.

@@ -32,7 +32,7 @@ struct WaterDisc {
 constexpr GLuint kPrimitiveRestart = 0xffffffffu;
 constexpr GLint kPass = 37;
 constexpr GLuint kOwnerUnit = 24;
-constexpr int kStencilInside = 1, kStencilCut = 2;
+constexpr int kStencilInside = 1, kStencilCut = 2, kStencilBackEnd = 4;
 
 glm::vec3 cutUp(const glm::vec3& d) {
   glm::vec3 u = glm::vec3(0, 1, 0) - d.y * d;
@@ -211,7 +211,8 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
                 {.format = GL_R32F,
                  .meaning = "Konev18 §6: the stencil buffer after the proxy passes: 0 the pipes' "
                             "outside, 1 a cut pipe's inside (proxy pass 2: eqs. 14-15), 2 a cut "
-                            "surface (pass 1: eqs. 13, 16); Fig. 10's back faces reset to 0; "
+                            "surface (pass 1: eqs. 13, 16), 4 the outside over an end triangle seen "
+                            "from behind (Fig. 10's reset); "
                             "sample 0"});
   frame.declare("pipeClass",
                 {.format = GL_R32F,
@@ -328,8 +329,10 @@ void PipeRenderer::drawPipes() {
   glStencilFunc(GL_EQUAL, kStencilInside, kStencilCut);
   glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
   proxies(2);
-  // Fig. 10: an end triangle seen from behind resets its area to 0 (the pipe's outside).
-  glStencilFunc(GL_EQUAL, 0, kStencilCut);
+  // Fig. 10: an end triangle seen from behind resets its area to the pipe's outside, marked
+  // apart (4): there the closed tube's end covers the disc beyond the flat end of its quad,
+  // so the cut stretch's quad keeps its upper half.
+  glStencilFunc(GL_EQUAL, kStencilBackEnd, kStencilCut);
   proxies(3);
   colorWrites(true);
 
@@ -340,8 +343,8 @@ void PipeRenderer::drawPipes() {
   glBindTextureUnit(kOwnerUnit, frame_.texture("pipeOwner").id());
   glEnable(GL_PRIMITIVE_RESTART);
   glPrimitiveRestartIndex(kPrimitiveRestart);
-  for (const int pass : {0, 1, 2}) {
-    glStencilFunc(GL_EQUAL, pass, 0xff);
+  for (const int pass : {0, 1, 2, 3}) {
+    glStencilFunc(GL_EQUAL, pass == 3 ? kStencilBackEnd : pass, 0xff);
     glProgramUniform1i(billboard, kPass, pass);
     for (const NetworkGpu& n : networks_) {
       setNetworkUniforms(billboard, n);
