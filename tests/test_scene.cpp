@@ -227,6 +227,13 @@ const BadScene kBadScenes[] = {
     {"network_empty_layer.json", "/networks/0/pipes/0/file", "the layer is empty"},
     {"network_shafts_both.json", "/networks/0/shafts", "exactly one of \"file\""},
     {"network_terrain_matches_nothing.json", "/networks/0/terrain", "no object name matches"},
+    {"network_wall_too_thick.json", "/networks/0/pipes/0/lines/0",
+     "wall thickness 0.5 must be less than the radius 0.5"},
+    {"network_shaft_wall_too_thick.json", "/networks/0/shafts/wallThickness",
+     "wall thickness must be less than their radius"},
+    {"network_duplicate_name.json", "/networks/1/name", "two networks are named \"n\""},
+    {"terrain_buildings_match_nothing.json", "/cutters/terrainOpening/buildings",
+     "no object name matches \"houses.*\""},
     // Cutters: Konev18 terrain opening.
     {"terrain_no_network.json", "/cutters/terrainOpening", "no network"},
     {"terrain_matches_nothing.json", "/cutters/terrainOpening/terrain", "no object name matches"},

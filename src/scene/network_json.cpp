@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <regex>
+#include <sstream>
 
 #include "cutaway/geometry/ground_height.hpp"
 #include "cutaway/io/gis_import.hpp"
@@ -72,9 +73,17 @@ void attributeKeys(const Context& ctx, ObjectReader& r, PipeAttributes& a) {
 }
 
 // Radius, wall and water made consistent: 0 < wall ≤ r, water within the bore.
-Pipe makePipe(const Context& ctx, const std::string& where, double radius, double wall,
-              double water) {
-  if (!(radius > 0)) ctx.fail(where, "pipe radius must be positive, got " + std::to_string(radius));
+// `feature`: the GIS feature the values came from, −1 for inline lines.
+Pipe makePipe(const Context& ctx, const std::string& where, std::int64_t feature, double radius,
+              double wall, double water) {
+  std::ostringstream problem;
+  if (!(radius > 0))
+    problem << "pipe radius " << radius << " must be positive";
+  else if (!(wall < radius))
+    problem << "wall thickness " << wall << " must be less than the radius " << radius;
+  if (!problem.str().empty())
+    ctx.fail(where,
+             (feature >= 0 ? "feature " + std::to_string(feature) + ": " : "") + problem.str());
   Pipe p;
   p.radius = float(radius);
   p.wallThickness = float(std::clamp(wall, 1e-6 * radius, radius));
@@ -92,6 +101,9 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
     PipeNetwork net;
     net.name = string(ctx, r.require("name"), r.at("name"));
     if (net.name.empty()) ctx.fail(r.at("name"), "network name must not be empty");
+    for (const PipeNetwork& other : scene.networks)
+      if (other.name == net.name)
+        ctx.fail(r.at("name"), "two networks are named \"" + net.name + "\"");
 
     // Heights come from the terrain objects: nodes without z, and the shafts' rims.
     std::vector<const Mesh*> meshes;
@@ -103,7 +115,8 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       for (const auto& o : scene.objects)
         if (!o.proxy && std::regex_match(o.name, pattern))
           meshes.push_back(o.mesh.get()), transforms.push_back(o.transform);
-      if (meshes.empty()) ctx.fail(r.at("terrain"), "no object name matches \"" + terrainPattern + "\"");
+      if (meshes.empty())
+        ctx.fail(r.at("terrain"), "no object name matches \"" + terrainPattern + "\"");
     }
     const GroundHeight ground(meshes, transforms);
     const auto groundAt = [&](glm::vec2 xz) -> float { return ground.at(xz).value_or(0.0f); };
@@ -124,7 +137,8 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
                      ? PipeNetwork::Mode::Mesh
                      : PipeNetwork::Mode::Billboards;
     if (const json* v = r.take("color")) net.color = color(ctx, *v, r.at("color"));
-    if (const json* v = r.take("insideColor")) net.insideColor = color(ctx, *v, r.at("insideColor"));
+    if (const json* v = r.take("insideColor"))
+      net.insideColor = color(ctx, *v, r.at("insideColor"));
     if (const json* v = r.take("cutColor")) net.cutColor = color(ctx, *v, r.at("cutColor"));
     if (const json* v = r.take("waterColors")) {
       if (!v->is_array() || v->size() != 2) ctx.fail(r.at("waterColors"), "expected [low, high]");
@@ -136,7 +150,8 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
     if (const json* v = r.take("radiusScale"))
       net.radiusScale = float(number(ctx, *v, r.at("radiusScale"), 1e-3, 1e3));
     float maxBend = 60.0f;
-    if (const json* v = r.take("maxBend")) maxBend = float(number(ctx, *v, r.at("maxBend"), 1, 180));
+    if (const json* v = r.take("maxBend"))
+      maxBend = float(number(ctx, *v, r.at("maxBend"), 1, 180));
 
     const json& pipes = r.require("pipes");
     if (!pipes.is_array() || pipes.empty())
@@ -148,7 +163,8 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       attributeKeys(ctx, er, a);
       const json* file = er.take("file");
       const json* lines = er.take("lines");
-      if (!!file == !!lines) ctx.fail(ep, "a pipe entry needs exactly one of \"file\" or \"lines\"");
+      if (!!file == !!lines)
+        ctx.fail(ep, "a pipe entry needs exactly one of \"file\" or \"lines\"");
       std::string layer;
       if (const json* v = er.take("layer")) layer = string(ctx, *v, er.at("layer"));
       er.finish();
@@ -171,7 +187,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
           const auto get = [&](const Attribute& at) {
             return value(ctx, at, gis.attributes, line.attributes, er.at("file"), line.featureId);
           };
-          Pipe p = makePipe(ctx, er.at("file"), get(a.radius), get(a.wallThickness),
+          Pipe p = makePipe(ctx, er.at("file"), line.featureId, get(a.radius), get(a.wallThickness),
                             get(a.waterLevel));
           p.featureId = line.featureId;
           const double depth = get(a.depth);
@@ -187,16 +203,16 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
           const std::string lp = er.at("lines") + "/" + std::to_string(i);
           const json& line = (*lines)[i];
           if (!line.is_array()) ctx.fail(lp, "expected an array of [x, y, z] or [x, z] nodes");
-          Pipe p = makePipe(ctx, lp, a.radius.constant, a.wallThickness.constant,
+          Pipe p = makePipe(ctx, lp, -1, a.radius.constant, a.wallThickness.constant,
                             a.waterLevel.constant);
           for (std::size_t k = 0; k < line.size(); ++k) {
             const std::string q = lp + "/" + std::to_string(k);
             if (!line[k].is_array() || (line[k].size() != 3 && line[k].size() != 2))
               ctx.fail(q, "expected [x, y, z] or [x, z] (y from the terrain minus \"depth\")");
             const bool hasZ = line[k].size() == 3;
-            glm::vec3 node(float(number(ctx, line[k][0], q + "/0", -1e9, 1e9)), 0.0f,
-                           float(number(ctx, line[k][hasZ ? 2 : 1], q + (hasZ ? "/2" : "/1"),
-                                        -1e9, 1e9)));
+            glm::vec3 node(
+                float(number(ctx, line[k][0], q + "/0", -1e9, 1e9)), 0.0f,
+                float(number(ctx, line[k][hasZ ? 2 : 1], q + (hasZ ? "/2" : "/1"), -1e9, 1e9)));
             if (hasZ) node.y = float(number(ctx, line[k][1], q + "/1", -1e9, 1e9));
             node = place(node, hasZ, a.depth.constant);
             // Zero-length segments carry no direction (eqs. 4–6): repeated nodes are dropped.
@@ -219,7 +235,8 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       ObjectReader sr(ctx, *v, r.at("shafts"));
       ShaftDefaults sd;
       Attribute radius{sd.radius}, wall{sd.wallThickness}, water{sd.waterLevel};
-      if (const json* x = sr.take("radius")) radius = attribute(ctx, *x, sr.at("radius"), 1e-4, 1e3);
+      if (const json* x = sr.take("radius"))
+        radius = attribute(ctx, *x, sr.at("radius"), 1e-4, 1e3);
       if (const json* x = sr.take("wallThickness"))
         wall = attribute(ctx, *x, sr.at("wallThickness"), 1e-5, 1e3);
       if (const json* x = sr.take("waterLevel"))
@@ -232,11 +249,15 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       if (const json* x = sr.take("depth")) depth = float(number(ctx, *x, sr.at("depth"), 0, 1e4));
       sr.finish();
       if (!!file == !!generate)
-        ctx.fail(r.at("shafts"), "shafts need exactly one of \"file\" (a point layer) or \"generate\"");
+        ctx.fail(r.at("shafts"),
+                 "shafts need exactly one of \"file\" (a point layer) or \"generate\"");
       if (generate) {
         const std::string what = oneOf(ctx, *generate, sr.at("generate"), {"junctions", "nodes"});
         if (!radius.field.empty() || !wall.field.empty() || !water.field.empty())
           ctx.fail(r.at("shafts"), "generated shafts have no attribute fields: give constants");
+        if (!(wall.constant < radius.constant))
+          ctx.fail(sr.at("wallThickness"),
+                   "the shafts' wall thickness must be less than their radius");
         sd.radius = float(radius.constant), sd.wallThickness = float(wall.constant);
         sd.waterLevel = float(water.constant);
         sd.ends = what == "nodes";
@@ -245,8 +266,8 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
         GisImportOptions gis = gisOptions(ctx);
         gis.layer = layer;
         for (const Attribute* at : {&radius, &wall, &water})
-          if (!at->field.empty() &&
-              std::find(gis.attributes.begin(), gis.attributes.end(), at->field) == gis.attributes.end())
+          if (!at->field.empty() && std::find(gis.attributes.begin(), gis.attributes.end(),
+                                              at->field) == gis.attributes.end())
             gis.attributes.push_back(at->field);
         GisPoints points;
         try {
@@ -261,7 +282,10 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
           Shaft s;
           const glm::vec3 p = GeoFrame::toScene(q.position);
           s.radius = float(get(radius));
-          s.wallThickness = float(std::clamp(get(wall), 1e-6, double(s.radius)));
+          s.wallThickness = float(get(wall));
+          if (!(s.wallThickness < s.radius))
+            ctx.fail(sr.at("file"), "shaft feature " + std::to_string(q.featureId) +
+                                        ": wall thickness must be less than the radius");
           s.top = groundAt({p.x, p.z});
           // The floor: the point's own height, else `depth` under the terrain, else under
           // the lowest pipe node within the shaft.

@@ -1142,12 +1142,16 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
       ctx.fail("/cutters/terrainOpening",
                "no network: give \"network\" layers, \"lines\" or scene \"networks\" (Konev18 "
                "§4 opens the terrain above pipes)");
-    const std::regex terrain(scene.terrainOpening->terrain);
-    if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
-          return !o.proxy && std::regex_match(o.name, terrain);
-        }))
-      ctx.fail("/cutters/terrainOpening/terrain",
-               "no object name matches \"" + scene.terrainOpening->terrain + "\"");
+    for (const auto& [key, pattern] : {std::pair{"terrain", scene.terrainOpening->terrain},
+                                       std::pair{"buildings", scene.terrainOpening->buildings}}) {
+      if (pattern.empty()) continue;
+      const std::regex re(pattern);
+      if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
+            return !o.proxy && std::regex_match(o.name, re);
+          }))
+        ctx.fail(std::string("/cutters/terrainOpening/") + key,
+                 "no object name matches \"" + pattern + "\"");
+    }
   }
   // The camera may "fit" to the objects, so it is read after them.
   if (const json* v = r.take("camera"))
