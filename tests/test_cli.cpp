@@ -466,3 +466,24 @@ TEST(Cli, InfoDescribesPipeNetworks) {
   EXPECT_EQ(net["radius"][0].get<float>(), 0.3f);
   EXPECT_EQ(net["radius"][1].get<float>(), 0.5f);
 }
+
+// --projection orthographic on a perspective scene keeps the view's height at the target, as
+// the viewer's P does: a square in the target's plane covers as many pixels either way.
+TEST(Cli, ProjectionOverrideKeepsTheSizeAtTheTarget) {
+  const fs::path scene = scratch("flat.json");
+  std::ofstream(scene) << R"({"resolution": [80, 60], "samples": 1,
+    "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40},
+    "objects": [{"name": "flat", "file": ")" + kData + R"(/meshes/flat.obj"}]})";
+  const auto covered = [&](const std::string& options) {
+    const fs::path dir = scratch("flat-aovs");
+    const Result r = run("render " + scene.string() + " -o " + scratch("flat.png").string() +
+                         " --aov " + dir.string() + options);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    int n = 0;
+    for (float v : readPfm(dir / "objectId.pfm").data) n += v >= 0.0f;
+    return n;
+  };
+  const int perspective = covered(""), orthographic = covered(" --projection orthographic");
+  EXPECT_GT(perspective, 100);
+  EXPECT_NEAR(orthographic, perspective, 0.03 * perspective);
+}

@@ -301,7 +301,7 @@ TEST(ViewerCamera, LookTurnsTheGazeAboutTheEye) {
 
 TEST(ViewerCamera, PanMovesByViewHeights) {
   Camera c = testCamera();
-  const float h = viewHeightAtTarget(c);
+  const float h = c.viewHeightAtTarget();
   EXPECT_NEAR(h, 2.0f * 10.0f * std::tan(glm::radians(20.0f)), 1e-5f);
   pan(c, 0.5f, 0.25f);
   EXPECT_NEAR(c.target.x, 0.5f * h, 1e-5f);
@@ -322,12 +322,12 @@ TEST(ViewerCamera, ZoomAndFly) {
 
 TEST(ViewerCamera, ProjectionSwitchKeepsTheSizeAtTheTarget) {
   Camera c = testCamera();
-  const float before = viewHeightAtTarget(c);
-  setProjection(c, Projection::Orthographic);
+  const float before = c.viewHeightAtTarget();
+  c.setProjection(Projection::Orthographic);
   EXPECT_NEAR(c.height, before, 1e-5f);
   c.height *= 0.5f;
-  setProjection(c, Projection::Perspective);
-  EXPECT_NEAR(viewHeightAtTarget(c), before * 0.5f, 1e-4f);
+  c.setProjection(Projection::Perspective);
+  EXPECT_NEAR(c.viewHeightAtTarget(), before * 0.5f, 1e-4f);
   EXPECT_NEAR(glm::length(c.eye - c.target), 5.0f, 1e-4f);
 }
 

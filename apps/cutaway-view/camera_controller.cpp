@@ -51,16 +51,10 @@ void look(Camera& camera, float yawDegrees, float pitchDegrees) {
       camera.eye + turn(camera.target - camera.eye, camera.up, -yawDegrees, pitchDegrees);
 }
 
-float viewHeightAtTarget(const Camera& camera) {
-  if (camera.projection == Projection::Orthographic) return camera.height;
-  return 2.0f * glm::length(camera.target - camera.eye) *
-         std::tan(glm::radians(camera.fovY) * 0.5f);
-}
-
 void pan(Camera& camera, float dx, float dy) {
   glm::vec3 right, up, forward;
   viewAxes(camera, right, up, forward);
-  const float h = viewHeightAtTarget(camera);
+  const float h = camera.viewHeightAtTarget();
   const glm::vec3 move = (right * dx + up * dy) * h;
   camera.eye += move;
   camera.target += move;
@@ -81,20 +75,6 @@ void fly(Camera& camera, const glm::vec3& move) {
   const glm::vec3 world = right * move.x + up * move.y + forward * move.z;
   camera.eye += world;
   camera.target += world;
-}
-
-void setProjection(Camera& camera, Projection projection) {
-  if (camera.projection == projection) return;
-  const float distance = glm::length(camera.target - camera.eye);
-  const float tanHalf = std::tan(glm::radians(camera.fovY) * 0.5f);
-  if (projection == Projection::Orthographic) {
-    camera.height = 2.0f * distance * tanHalf;
-  } else {
-    // Back off so that the orthographic view's height is seen at the target's distance.
-    const float wanted = camera.height * 0.5f / tanHalf;
-    camera.eye = camera.target + (camera.eye - camera.target) / distance * wanted;
-  }
-  camera.projection = projection;
 }
 
 void frameBounds(Camera& camera, const Bounds& bounds, float aspect) {

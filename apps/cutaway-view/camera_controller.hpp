@@ -31,14 +31,8 @@ void pan(Camera& camera, float dx, float dy);
 void zoom(Camera& camera, float factor);
 // Moves eye and target by `move` in view axes (x right, y up, z forward), world units.
 void fly(Camera& camera, const glm::vec3& move);
-// Switches projection keeping the size of what is at the target: the orthographic height is
-// the perspective view's height at the target's distance, and back.
-void setProjection(Camera& camera, Projection projection);
 // Aims at the bounds' centre and backs off (or sets the height) so that their bounding
 // sphere fills the view with a small margin, keeping the viewing direction.
 void frameBounds(Camera& camera, const Bounds& bounds, float aspect);
-
-// Height of the view at the target's distance, world units (both projections).
-float viewHeightAtTarget(const Camera& camera);
 
 }  // namespace cutaway::view

@@ -210,8 +210,8 @@ void Viewer::handleInput(float seconds) {
     if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) state_.screenshotRequested = true;
     if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) state_.saveRequested = true;
     if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
-      setProjection(camera, camera.projection == Projection::Perspective ? Projection::Orthographic
-                                                                         : Projection::Perspective);
+      camera.setProjection(camera.projection == Projection::Perspective ? Projection::Orthographic
+                                                                        : Projection::Perspective);
       state_.viewChanged = true;
     }
     if (state_.flyMode && !io.KeyCtrl) {
@@ -299,8 +299,8 @@ void Viewer::execute(const ScriptCommand& c) {
       fly(camera, glm::vec3(n[0], n[1], n[2])), state_.viewChanged = true;
       break;
     case Kind::Projection:
-      setProjection(camera,
-                    c.text == "orthographic" ? Projection::Orthographic : Projection::Perspective);
+      camera.setProjection(c.text == "orthographic" ? Projection::Orthographic
+                                                    : Projection::Perspective);
       state_.viewChanged = true;
       break;
     case Kind::Frame:

@@ -49,9 +49,20 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.fit) c.fit = true;
   if (o.up) c.up = *o.up;
   if (o.fov) c.fovY = *o.fov;
-  if (!o.projection.empty())
-    c.projection =
+  if (!o.projection.empty()) {
+    const Projection to =
         o.projection == "orthographic" ? Projection::Orthographic : Projection::Perspective;
+    // The view keeps its height at the target (a path's first key), as the viewer's P does;
+    // a fitted camera is framed again for the new projection.
+    if (!c.fit && c.projection != to) {
+      Camera at = c;
+      if (!c.path.empty()) at.eye = c.path.front().eye, at.target = c.path.front().target;
+      at.setProjection(to);
+      c.height = at.height;
+      if (c.path.empty()) c.eye = at.eye;
+    }
+    c.projection = to;
+  }
   if (glm::length(c.eye - c.target) < 1e-9f) throw Error("--eye", "", "eye and target coincide");
   if (glm::length(glm::cross(glm::normalize(c.eye - c.target), glm::normalize(c.up))) < 1e-6f)
     throw Error("--up", "", "up is parallel to the viewing direction");

@@ -127,6 +127,22 @@ const SceneObject* Scene::find(const std::string& name) const {
   return nullptr;
 }
 
+float Camera::viewHeightAtTarget() const {
+  if (projection == Projection::Orthographic) return height;
+  return 2.0f * glm::length(target - eye) * std::tan(glm::radians(fovY) * 0.5f);
+}
+
+void Camera::setProjection(Projection to) {
+  if (projection == to) return;
+  const float distance = glm::length(target - eye);
+  const float tanHalf = std::tan(glm::radians(fovY) * 0.5f);
+  if (to == Projection::Orthographic)
+    height = 2.0f * distance * tanHalf;
+  else
+    eye = target + (eye - target) / distance * (height * 0.5f / tanHalf);
+  projection = to;
+}
+
 Camera Scene::resolvedCamera(float time) const {
   Camera c = camera;
   if (!c.path.empty()) {

@@ -17,7 +17,7 @@ void cameraPanel(ViewerState& state) {
   ImGui::SameLine();
   switched |= ImGui::RadioButton("orthographic (P)", &projection, 1);
   if (switched) {
-    setProjection(c, projection ? Projection::Orthographic : Projection::Perspective);
+    c.setProjection(projection ? Projection::Orthographic : Projection::Perspective);
     state.viewChanged = true;
   }
   if (c.projection == Projection::Perspective)
@@ -25,8 +25,8 @@ void cameraPanel(ViewerState& state) {
   else
     state.viewChanged |=
         ImGui::DragFloat("height", &c.height, c.height * 0.01f, 1e-6f, 1e9f, "%.4g");
-  state.viewChanged |= ImGui::DragFloat3("eye", &c.eye[0], 0.01f * viewHeightAtTarget(c));
-  state.viewChanged |= ImGui::DragFloat3("target", &c.target[0], 0.01f * viewHeightAtTarget(c));
+  state.viewChanged |= ImGui::DragFloat3("eye", &c.eye[0], 0.01f * c.viewHeightAtTarget());
+  state.viewChanged |= ImGui::DragFloat3("target", &c.target[0], 0.01f * c.viewHeightAtTarget());
   ImGui::Checkbox("fly mode (Tab): WASD, Q/E", &state.flyMode);
   if (ImGui::Button(state.selection.empty() ? "Frame scene (F)" : "Frame selection (F)"))
     state.frameRequested = true;

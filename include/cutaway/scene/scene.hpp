@@ -75,7 +75,7 @@ enum class NetworkPart { None, ShaftOuter, ShaftInner, Joints, MeshedPipes };
 struct SceneObject {
   std::string name;
   NetworkPart networkPart = NetworkPart::None;
-  int network = -1;  // index in Scene::networks of the network it belongs to
+  int network = -1;    // index in Scene::networks of the network it belongs to
   std::string group;   // optional group name ("" = none)
   std::string source;  // "file" or "file#node" it came from, or "proxy"
   Role role = Role::Context;
@@ -102,8 +102,8 @@ struct SceneObject {
 // subtracted in double precision, so large projected coordinates (British National Grid, UTM)
 // keep their centimetres as floats.
 struct GeoFrame {
-  std::string crs;          // anything OGR's SetFromUserInput takes; empty: keep each layer's
-  glm::dvec3 offset{0.0};   // E0, N0, H0
+  std::string crs;         // anything OGR's SetFromUserInput takes; empty: keep each layer's
+  glm::dvec3 offset{0.0};  // E0, N0, H0
   // A layer's point as imported with `importOptions` (x = E − E0, y = N − N0, z = H − H0).
   static glm::vec3 toScene(const glm::vec3& p) { return {p.x, p.z, -p.y}; }
   static glm::vec3 fromScene(const glm::vec3& p) { return {p.x, -p.z, p.y}; }
@@ -127,6 +127,12 @@ struct Camera {
 
   glm::mat4 view() const;
   glm::mat4 projectionMatrix(float aspect) const;
+  // World units of the view's height at the target (orthographic: `height`).
+  float viewHeightAtTarget() const;
+  // Switches the projection keeping the view's height at the target: the orthographic height
+  // of the perspective frustum there, or a perspective eye backed off along its line of sight
+  // until it sees the orthographic height.
+  void setProjection(Projection to);
 };
 
 struct Light {
@@ -207,7 +213,7 @@ struct Scene {
   int width = 800, height = 600;
   int samples = 4;  // MSAA samples of the final image
   Style style;
-  GeoFrame geo;  // "geo": {"crs": …, "offset": […]}
+  GeoFrame geo;                                         // "geo": {"crs": …, "offset": […]}
   std::optional<AdaptiveCutawayOptions> adaptive;       // "cutters": {"adaptive": {…}}
   std::optional<CutoutOptions> cutout;                  // "cutters": {"cutout": {…}}
   std::optional<BreakawayOptions> breakaway;            // "cutters": {"breakaway": {…}}
