@@ -460,8 +460,7 @@ TEST(Cli, InfoDescribesPipeNetworks) {
   EXPECT_EQ(net["mode"], "billboards");
   EXPECT_EQ(net["pipes"], 4);
   EXPECT_EQ(net["cutPipes"], 4);
-  EXPECT_NEAR(net["cutLength"].get<double>(), 0.7 * (net["length"].get<double>() + 4 * 0.58),
-              1e-3);
+  EXPECT_NEAR(net["cutLength"].get<double>(), 0.7 * (net["length"].get<double>() + 4 * 0.58), 1e-3);
   EXPECT_EQ(net["shafts"], 1);
   EXPECT_EQ(net["radius"][0].get<float>(), 0.3f);
   EXPECT_EQ(net["radius"][1].get<float>(), 0.5f);
@@ -473,7 +472,8 @@ TEST(Cli, ProjectionOverrideKeepsTheSizeAtTheTarget) {
   const fs::path scene = scratch("flat.json");
   std::ofstream(scene) << R"({"resolution": [80, 60], "samples": 1,
     "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40},
-    "objects": [{"name": "flat", "file": ")" + kData + R"(/meshes/flat.obj"}]})";
+    "objects": [{"name": "flat", "file": ")" +
+                              kData + R"(/meshes/flat.obj"}]})";
   const auto covered = [&](const std::string& options) {
     const fs::path dir = scratch("flat-aovs");
     const Result r = run("render " + scene.string() + " -o " + scratch("flat.png").string() +
@@ -486,4 +486,19 @@ TEST(Cli, ProjectionOverrideKeepsTheSizeAtTheTarget) {
   const int perspective = covered(""), orthographic = covered(" --projection orthographic");
   EXPECT_GT(perspective, 100);
   EXPECT_NEAR(orthographic, perspective, 0.03 * perspective);
+}
+
+// Coordinates in a projected CRS without the geo frame's offset: floats step by centimetres
+// there; the render says which part lies far away and the offset that would bring it near.
+TEST(Cli, FarCoordinatesAreWarnedAbout) {
+  const fs::path scene = scratch("far.json");
+  std::ofstream(scene) << R"({"resolution": [40, 30], "samples": 1, "camera": {"fit": true},
+    "networks": [{"name": "mains", "wallThickness": 0.1,
+                  "pipes": [{"lines": [[[265000, -2, -145000], [265010, -2, -145000]]], "radius": 0.5}]}]})";
+  const Result r = run("render " + scene.string() + " -o " + scratch("far.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: " + scene.string() + ": \"mains\" lies 2.65e+05 scene units"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("about [265005, 145000]"), std::string::npos) << r.err;
 }

@@ -155,9 +155,36 @@ void warnAboutUncappedObjects(const Scene& scene) {
                names.c_str());
 }
 
+// The GPU works in 32-bit floats: far from the origin they step by centimetres or more, and a
+// camera placed near the origin sees nothing. GIS data in projected coordinates (British
+// National Grid, UTM: 10⁵–10⁶ m) needs the geo frame's offset. Names the farthest part.
+void warnAboutFarCoordinates(const Scene& scene) {
+  std::string name;
+  Bounds farthest;
+  float reach = 1e5f;
+  const auto consider = [&](const std::string& what, const Bounds& b) {
+    if (b.empty()) return;
+    const glm::vec3 c = glm::abs(b.center());
+    if (std::max({c.x, c.y, c.z}) > reach)
+      reach = std::max({c.x, c.y, c.z}), name = what, farthest = b;
+  };
+  for (const auto& n : scene.networks) consider(n.name, n.bounds());
+  for (const auto& o : scene.objects)
+    if (!o.proxy && o.networkPart == NetworkPart::None) consider(o.name, o.worldBounds());
+  if (name.empty()) return;
+  const glm::dvec3 at = glm::dvec3(GeoFrame::fromScene(farthest.center())) + scene.geo.offset;
+  std::fprintf(stderr,
+               "warning: %s: \"%s\" lies %.3g scene units from the origin, where floats step by "
+               "%.2g; move it nearer (GIS data: a \"geo\" offset near its coordinates, about "
+               "[%.0f, %.0f])\n",
+               scene.file.string().c_str(), name.c_str(), double(reach),
+               double(std::nextafter(reach, 2 * reach) - reach), at.x, at.y);
+}
+
 int render(const RenderOptions& options) {
   Scene scene = sceneOrCity(options.scene, options.city, "render");
   applyOverrides(scene, options.overrides);
+  warnAboutFarCoordinates(scene);
   warnAboutOpenExteriors(scene);
   warnAboutUncappedObjects(scene);
   if (options.frames > 0 && options.output.find('%') != std::string::npos) {
