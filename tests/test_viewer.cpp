@@ -261,10 +261,13 @@ TEST(Viewer, NetworkOptionsChangeLiveAndSave) {
                            "set networks.waterHigh 0.9,0.1,0.1\n"
                            "set networks.shaftOpening 0\n"
                            "screenshot "
-                        << view.string() << "\nsave " << saved.string() << "\nquit\n";
+                        << view.string() << "\nsave " << saved.string()
+                        << "\naov terrainDistance\nprobe 10 10\nquit\n";
   const Result r = runUnderXvfb(kSource + "/examples/pipes-street.json --size 320x200 --script " +
                                 script.string());
   ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  // The terrain opening's distance texture is no frame target, yet the inspector shows it.
+  EXPECT_NE(r.out.find("probe 10 10: terrainDistance"), std::string::npos) << r.out;
   const fs::path reference = scratch("pipes-reference.png");
   const Result rendered =
       run(cliLike(r) + " render " + saved.string() + " -o " + reference.string());

@@ -446,6 +446,10 @@ void Viewer::update() {
     state_.aovMeanings.clear();
     for (const auto& name : state_.aovNames)
       state_.aovMeanings[name] = renderer_->frame().desc(name).meaning;
+    for (const Aov& extra : renderer_->extraAovs()) {
+      state_.aovNames.push_back(extra.name);
+      state_.aovMeanings[extra.name] = extra.meaning;
+    }
     if (!state_.aov.empty() && std::find(state_.aovNames.begin(), state_.aovNames.end(),
                                          state_.aov) == state_.aovNames.end())
       state_.aov.clear();  // e.g. the cutter's buffers after turning it off
@@ -483,11 +487,20 @@ void Viewer::refreshAov() {
     return;
   }
   const Frame& frame = renderer_->frame();
-  const TargetDesc& d = frame.desc(state_.aov);
-  const int channels = d.aovChannels ? d.aovChannels : 1;
-  aovImage_ =
-      FloatImage(d.width ? d.width : frame.width(), d.height ? d.height : frame.height(), channels);
-  aovImage_.data = frame.read(state_.aov, channels);
+  if (frame.has(state_.aov)) {
+    const TargetDesc& d = frame.desc(state_.aov);
+    const int channels = d.aovChannels ? d.aovChannels : 1;
+    aovImage_ = FloatImage(d.width ? d.width : frame.width(), d.height ? d.height : frame.height(),
+                           channels);
+    aovImage_.data = frame.read(state_.aov, channels);
+  } else {
+    // A cutter's own buffer (the terrain's distance texture, the clip surfaces' sprites):
+    // rows top-down like a PFM, the view's bottom-up.
+    for (Aov& extra : renderer_->extraAovs())
+      if (extra.name == state_.aov) aovImage_ = std::move(extra.image);
+    aovImage_.flipVertically();
+  }
+  const int channels = aovImage_.channels;
   const Colormap map = resolveColormap(state_.colormap, state_.aov, channels);
   state_.shownColormap = map;
   if (state_.autoRange) {

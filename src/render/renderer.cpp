@@ -567,8 +567,13 @@ std::vector<Aov> Renderer::readAovs() const {
     image.flipVertically();
     aovs.push_back({name, d.meaning, std::move(image)});
   }
-  if (impl_->clipSurfaces)
-    for (auto& aov : impl_->clipSurfaces->spriteAovs()) aovs.push_back(std::move(aov));
+  for (auto& aov : extraAovs()) aovs.push_back(std::move(aov));
+  return aovs;
+}
+
+std::vector<Aov> Renderer::extraAovs() const {
+  std::vector<Aov> aovs;
+  if (impl_->clipSurfaces) aovs = impl_->clipSurfaces->spriteAovs();
   if (impl_->terrain) aovs.push_back(impl_->terrain->fieldAov());
   return aovs;
 }

@@ -49,7 +49,12 @@ class Renderer {
   void renderAt(float time) { render(scene_.resolvedCamera(time), time); }
 
   Rgba8Image readColor() const;
+  // Every AOV: the frame's targets with a meaning, then the cutters' own (extraAovs), rows
+  // top-down.
   std::vector<Aov> readAovs() const;
+  // The AOVs that are no frame target: the clip surfaces' depth sprites, the terrain
+  // opening's distance texture.
+  std::vector<Aov> extraAovs() const;
   std::vector<PassTiming> timings() { return frame_->timings(); }
   const Frame& frame() const { return *frame_; }
   // The final colour texture (single sample, RGBA8), e.g. for a window's blit.
