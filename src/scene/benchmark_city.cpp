@@ -67,6 +67,21 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
   ground.material.color = {0.62f, 0.72f, 0.5f};
   ground.mesh = terrain;
   scene.objects.push_back(ground);
+  // What the openings show below the pipes: one quad of soil under the whole city (two
+  // triangles; the terrain row's count stays the paper's).
+  float lowest = 1e30f;
+  for (const glm::vec3& p : terrain->positions) lowest = std::min(lowest, p.y);
+  auto soil = std::make_shared<Mesh>();
+  const float y = lowest - 8.0f;
+  soil->positions = {{0, y, 0}, {side, y, 0}, {side, y, -side}, {0, y, -side}};
+  soil->normals.assign(4, glm::vec3(0, 1, 0));
+  soil->triangles = {{0, 1, 2}, {0, 2, 3}};
+  SceneObject subsurface;
+  subsurface.name = "subsurface";
+  subsurface.source = "generated";
+  subsurface.material.color = {0.45f, 0.4f, 0.36f};
+  subsurface.mesh = soil;
+  scene.objects.push_back(subsurface);
 
   // Streets on a jittered grid; each pipe walks 2–6 segments along them (4.6 nodes on average).
   PipeNetwork net;
