@@ -22,6 +22,15 @@ float terrainHeight(float x, float z, std::uint32_t seed) {
   return h;
 }
 
+SceneObject generatedObject(std::string name, glm::vec3 color, std::shared_ptr<Mesh> mesh) {
+  SceneObject o;
+  o.name = std::move(name);
+  o.source = "generated";
+  o.material.color = color;
+  o.mesh = std::move(mesh);
+  return o;
+}
+
 }  // namespace
 
 Scene benchmarkCity(const BenchmarkCityOptions& options) {
@@ -61,12 +70,7 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
       terrain->triangles.emplace_back(a, b, c);
       terrain->triangles.emplace_back(b, d, c);
     }
-  SceneObject ground;
-  ground.name = "terrain";
-  ground.source = "generated";
-  ground.material.color = {0.62f, 0.72f, 0.5f};
-  ground.mesh = terrain;
-  scene.objects.push_back(ground);
+  scene.objects.push_back(generatedObject("terrain", {0.62f, 0.72f, 0.5f}, terrain));
   // What the openings show below the pipes: one quad of soil under the whole city (two
   // triangles; the terrain row's count stays the paper's).
   float lowest = 1e30f;
@@ -76,12 +80,7 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
   soil->positions = {{0, y, 0}, {side, y, 0}, {side, y, -side}, {0, y, -side}};
   soil->normals.assign(4, glm::vec3(0, 1, 0));
   soil->triangles = {{0, 1, 2}, {0, 2, 3}};
-  SceneObject subsurface;
-  subsurface.name = "subsurface";
-  subsurface.source = "generated";
-  subsurface.material.color = {0.45f, 0.4f, 0.36f};
-  subsurface.mesh = soil;
-  scene.objects.push_back(subsurface);
+  scene.objects.push_back(generatedObject("subsurface", {0.45f, 0.4f, 0.36f}, soil));
 
   // Streets on a jittered grid; each pipe walks 2–6 segments along them (4.6 nodes on average).
   PipeNetwork net;
