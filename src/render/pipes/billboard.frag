@@ -39,7 +39,11 @@ SurfacePoint surface(vec3 position, vec3 normal, vec3 color, vec3 onTube) {
 }
 
 void write(SurfacePoint s, float pipeClass) {
-  writeGBuffer(s, shadeSurface(s), 1.0, uNetworkObjectId, false, false);
+  // No feature lines from inside an opened pipe: the inside, the water and the rims alternate
+  // within a few pixels on a distant pipe, and their creases and depth steps would draw it as
+  // a dashed line. The outside keeps its silhouettes and the opening's outline.
+  float lines = pipeClass == kClassOutside ? 1.0 : 0.0;
+  writeGBuffer(s, shadeSurface(s), lines, uNetworkObjectId, false, false);
 #ifdef CUTTER_CUTOUT
   outCutoutDistance = uintBitsToFloat(0x7fc00000u);
 #endif

@@ -48,7 +48,8 @@ void main() {
   s.specular = 0.1;
   s.shininess = 16.0;
   s.keyLightVisibility = keyLightVisibility(vWorld);
-  writeGBuffer(s, shadeSurface(s), 1.0, uNetworkObjectId, true, false);
+  // No feature lines on the thin rims either (see billboard.frag).
+  writeGBuffer(s, shadeSurface(s), 0.0, uNetworkObjectId, true, false);
 #ifdef CUTTER_CUTOUT
   outCutoutDistance = uintBitsToFloat(0x7fc00000u);
 #endif
