@@ -575,7 +575,8 @@ std::string Viewer::valueAt(int x, int y) const {
   const int tx = std::min(aovImage_.width - 1, x * aovImage_.width / width_);
   const int ty = std::min(aovImage_.height - 1, row * aovImage_.height / height_);
   const float* v = aovImage_.at(tx, ty);
-  out = state_.aov + " [" + std::to_string(tx) + ", " + std::to_string(ty) +
+  // The texel as [column, row] with rows from the top, as in the saved PFM's image.
+  out = state_.aov + " [" + std::to_string(tx) + ", " + std::to_string(aovImage_.height - 1 - ty) +
         "] = " + formatValue(v, aovImage_.channels);
   if (state_.aov == "objectId") out += " (" + objectAt(int(std::lround(v[0]))) + ")";
   return out;
