@@ -379,6 +379,7 @@ TEST(Cli, InfoDescribesGisLayers) {
   EXPECT_EQ(layer["features"], 253);
   EXPECT_EQ(layer["crs"]["authority"], "EPSG:27700");
   EXPECT_EQ(layer["fields"], nlohmann::json({"fid", "FeatCode", "FeatDesc"}));
+  EXPECT_EQ(layer["fieldTypes"], nlohmann::json({"String", "Integer64", "String"}));
   EXPECT_EQ(layer["extent"].size(), 4u);
   const std::string text = test::scratchPath("cli", "notes.txt").string();
   std::ofstream(text) << "not GIS data";

@@ -273,7 +273,8 @@ int gisInfo(const std::string& path) {
                         {"extent", l.extent ? nlohmann::json({l.extent->min.x, l.extent->min.y,
                                                               l.extent->max.x, l.extent->max.y})
                                             : nlohmann::json(nullptr)},
-                        {"fields", l.fields}});
+                        {"fields", l.fields},
+                        {"fieldTypes", l.fieldTypes}});
     out["layers"] = layers;
   }
   std::printf("%s\n", out.dump(2).c_str());

@@ -77,8 +77,11 @@ GisLayerInfo describeLayer(OGRLayer& layer) {
   if (info.featureCount > 0 && layer.GetExtent(&envelope, TRUE) == OGRERR_NONE)
     info.extent = GisExtent{{envelope.MinX, envelope.MinY}, {envelope.MaxX, envelope.MaxY}};
   const OGRFeatureDefn* definition = layer.GetLayerDefn();
-  for (int i = 0; i < definition->GetFieldCount(); ++i)
-    info.fields.emplace_back(definition->GetFieldDefn(i)->GetNameRef());
+  for (int i = 0; i < definition->GetFieldCount(); ++i) {
+    const OGRFieldDefn* field = definition->GetFieldDefn(i);
+    info.fields.emplace_back(field->GetNameRef());
+    info.fieldTypes.emplace_back(OGRFieldDefn::GetFieldTypeName(field->GetType()));
+  }
   return info;
 }
 

@@ -51,7 +51,8 @@ struct GisLayerInfo {
   std::int64_t featureCount = 0;
   GisCrs crs;
   std::optional<GisExtent> extent;  // absent for an empty layer
-  std::vector<std::string> fields;  // attribute field names, in the layer's order
+  std::vector<std::string> fields;      // attribute field names, in the layer's order
+  std::vector<std::string> fieldTypes;  // their OGR types: "Integer", "Real", "String"…
 };
 
 // Whether OGR understands `crs` ("EPSG:27700", WKT, a PROJ string).
