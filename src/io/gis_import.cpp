@@ -279,13 +279,19 @@ void forEachFeature(OGRLayer& layer, FeatureReader& reader, GisImportReport& rep
   }
 }
 
-}  // namespace
-
-GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
+// What the importers share: the layer opened and checked for `Single` / `Multi` geometries,
+// the output's layer, CRS, offset and heights, then visit(out, reader, fid, part index, part,
+// attributes) for each single part of every feature (a feature of another geometry is an
+// error); an error too when no item came out. `noun`: "line", "point", "polygon"; `none` ends
+// the message for an empty result ("with two distinct nodes").
+template <class Single, class Multi, class Out, class Item, class Visit>
+Out importParts(const std::filesystem::path& file, const GisImportOptions& options,
+                OGRwkbGeometryType single, OGRwkbGeometryType multi, const std::string& noun,
+                std::vector<Item> Out::*items, const std::string& none, Visit visit) {
   gdal::QuietErrors quiet;
-  OpenedLayer opened = openLayer(file, options, {wkbLineString, wkbMultiLineString}, "lines");
+  OpenedLayer opened = openLayer(file, options, {single, multi}, (noun + "s").c_str());
   OGRLayer& layer = *opened.layer;
-  GisLines out;
+  Out out;
   out.layer = opened.info;
   out.offset = options.offset;
   out.hasZ = opened.hasZ;
@@ -294,79 +300,59 @@ GisLines importGisLines(const std::filesystem::path& file, const GisImportOption
   forEachFeature(
       layer, reader, out.report, out.hasZ,
       [&](GIntBig fid, const OGRGeometry& geometry, const std::vector<double>& attributes) {
-        std::vector<const OGRLineString*> parts;
-        switch (wkbFlatten(geometry.getGeometryType())) {
-          case wkbLineString:
-            parts.push_back(geometry.toLineString());
-            break;
-          case wkbMultiLineString:
-            for (const OGRLineString* part : *geometry.toMultiLineString()) parts.push_back(part);
-            break;
-          default:
-            throw Error(file.string(), featurePlace(layer, fid),
-                        std::string("geometry is ") + geometry.getGeometryName() + ", not a line");
-        }
-        for (std::size_t p = 0; p < parts.size(); ++p) {
-          GisPolyline polyline{fid, int(p), {}, attributes};
-          for (int k = 0; k < parts[p]->getNumPoints(); ++k) {
-            const glm::vec3 node = reader.node(*parts[p], k, fid);
-            // A node equal (as the renderer will see it, in float) to the previous one makes a
-            // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
-            // need a direction per segment, so it is dropped.
-            if (!polyline.points.empty() && polyline.points.back() == node) {
-              ++out.report.repeatedNodes;
-              continue;
-            }
-            polyline.points.push_back(node);
-          }
-          if (polyline.points.size() < 2) {
-            ++out.report.degenerateParts;
-            continue;
-          }
-          out.polylines.push_back(std::move(polyline));
-        }
+        const OGRwkbGeometryType type = wkbFlatten(geometry.getGeometryType());
+        std::vector<const Single*> parts;
+        if (type == single)
+          parts.push_back(static_cast<const Single*>(&geometry));
+        else if (type == multi)
+          for (const Single* part : *static_cast<const Multi*>(&geometry)) parts.push_back(part);
+        else
+          throw Error(file.string(), featurePlace(layer, fid),
+                      std::string("geometry is ") + geometry.getGeometryName() + ", not a " + noun);
+        for (std::size_t p = 0; p < parts.size(); ++p)
+          visit(out, reader, fid, int(p), *parts[p], attributes);
       });
-  if (out.polylines.empty())
-    throw Error(
-        file.string(), layerPlace(layer),
-        "no line with two distinct nodes in " + std::to_string(out.report.features) + " features");
+  if ((out.*items).empty())
+    throw Error(file.string(), layerPlace(layer),
+                "no " + noun + none + " in " + std::to_string(out.report.features) + " features");
   return out;
 }
 
-GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
-  gdal::QuietErrors quiet;
-  OpenedLayer opened = openLayer(file, options, {wkbPoint, wkbMultiPoint}, "points");
-  OGRLayer& layer = *opened.layer;
-  GisPoints out;
-  out.layer = opened.info;
-  out.offset = options.offset;
-  out.hasZ = opened.hasZ;
-  FeatureReader reader(file, layer, options, out.report);
-  out.crs = reader.crs();
-  forEachFeature(
-      layer, reader, out.report, out.hasZ,
-      [&](GIntBig fid, const OGRGeometry& geometry, const std::vector<double>& attributes) {
-        std::vector<const OGRPoint*> parts;
-        switch (wkbFlatten(geometry.getGeometryType())) {
-          case wkbPoint:
-            parts.push_back(geometry.toPoint());
-            break;
-          case wkbMultiPoint:
-            for (const OGRPoint* part : *geometry.toMultiPoint()) parts.push_back(part);
-            break;
-          default:
-            throw Error(file.string(), featurePlace(layer, fid),
-                        std::string("geometry is ") + geometry.getGeometryName() + ", not a point");
+}  // namespace
+
+GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
+  return importParts<OGRLineString, OGRMultiLineString>(
+      file, options, wkbLineString, wkbMultiLineString, "line", &GisLines::polylines,
+      " with two distinct nodes",
+      [](GisLines& out, FeatureReader& reader, GIntBig fid, int part, const OGRLineString& line,
+         const std::vector<double>& attributes) {
+        GisPolyline polyline{fid, part, {}, attributes};
+        for (int k = 0; k < line.getNumPoints(); ++k) {
+          const glm::vec3 node = reader.node(line, k, fid);
+          // A node equal (as the renderer will see it, in float) to the previous one makes a
+          // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
+          // need a direction per segment, so it is dropped.
+          if (!polyline.points.empty() && polyline.points.back() == node) {
+            ++out.report.repeatedNodes;
+            continue;
+          }
+          polyline.points.push_back(node);
         }
-        for (std::size_t p = 0; p < parts.size(); ++p)
-          out.points.push_back(
-              {fid, int(p), reader.place(parts[p]->getX(), parts[p]->getY(), parts[p]->getZ(), fid),
-               attributes});
+        if (polyline.points.size() < 2)
+          ++out.report.degenerateParts;
+        else
+          out.polylines.push_back(std::move(polyline));
       });
-  if (out.points.empty())
-    throw Error(file.string(), layerPlace(layer),
-                "no point in " + std::to_string(out.report.features) + " features");
-  return out;
+}
+
+GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
+  return importParts<OGRPoint, OGRMultiPoint>(
+      file, options, wkbPoint, wkbMultiPoint, "point", &GisPoints::points, "",
+      [](GisPoints& out, FeatureReader& reader, GIntBig fid, int part, const OGRPoint& point,
+         const std::vector<double>& attributes) {
+        out.points.push_back(
+            {fid, part, reader.place(point.getX(), point.getY(), point.getZ(), fid), attributes});
+      });
 }
 
 namespace {
@@ -402,53 +388,25 @@ std::vector<glm::vec3> readRing(const OGRLinearRing& ring, FeatureReader& reader
 }  // namespace
 
 GisPolygons importGisPolygons(const std::filesystem::path& file, const GisImportOptions& options) {
-  gdal::QuietErrors quiet;
-  OpenedLayer opened = openLayer(file, options, {wkbPolygon, wkbMultiPolygon}, "polygons");
-  OGRLayer& layer = *opened.layer;
-  GisPolygons out;
-  out.layer = opened.info;
-  out.offset = options.offset;
-  out.hasZ = opened.hasZ;
-  FeatureReader reader(file, layer, options, out.report);
-  out.crs = reader.crs();
-  forEachFeature(
-      layer, reader, out.report, out.hasZ,
-      [&](GIntBig fid, const OGRGeometry& geometry, const std::vector<double>& attributes) {
-        std::vector<const OGRPolygon*> parts;
-        switch (wkbFlatten(geometry.getGeometryType())) {
-          case wkbPolygon:
-            parts.push_back(geometry.toPolygon());
-            break;
-          case wkbMultiPolygon:
-            for (const OGRPolygon* part : *geometry.toMultiPolygon()) parts.push_back(part);
-            break;
-          default:
-            throw Error(file.string(), featurePlace(layer, fid),
-                        std::string("geometry is ") + geometry.getGeometryName() +
-                            ", not a polygon");
+  return importParts<OGRPolygon, OGRMultiPolygon>(
+      file, options, wkbPolygon, wkbMultiPolygon, "polygon", &GisPolygons::polygons,
+      " with three distinct nodes",
+      [](GisPolygons& out, FeatureReader& reader, GIntBig fid, int part, const OGRPolygon& shape,
+         const std::vector<double>& attributes) {
+        const OGRLinearRing* exterior = shape.getExteriorRing();
+        if (!exterior) return;  // an empty part of a MultiPolygon
+        GisPolygon polygon{fid, part, readRing(*exterior, reader, fid, out.report), {}, attributes};
+        if (polygon.outer.empty()) {
+          ++out.report.degenerateParts;
+          return;
         }
-        for (std::size_t p = 0; p < parts.size(); ++p) {
-          const OGRLinearRing* exterior = parts[p]->getExteriorRing();
-          if (!exterior) continue;  // an empty part of a MultiPolygon
-          GisPolygon polygon{fid, int(p), readRing(*exterior, reader, fid, out.report), {},
-                             attributes};
-          if (polygon.outer.empty()) {
-            ++out.report.degenerateParts;
-            continue;
-          }
-          for (int h = 0; h < parts[p]->getNumInteriorRings(); ++h) {
-            std::vector<glm::vec3> hole =
-                readRing(*parts[p]->getInteriorRing(h), reader, fid, out.report);
-            if (!hole.empty()) polygon.holes.push_back(std::move(hole));
-          }
-          out.polygons.push_back(std::move(polygon));
+        for (int h = 0; h < shape.getNumInteriorRings(); ++h) {
+          std::vector<glm::vec3> hole =
+              readRing(*shape.getInteriorRing(h), reader, fid, out.report);
+          if (!hole.empty()) polygon.holes.push_back(std::move(hole));
         }
+        out.polygons.push_back(std::move(polygon));
       });
-  if (out.polygons.empty())
-    throw Error(file.string(), layerPlace(layer),
-                "no polygon with three distinct nodes in " + std::to_string(out.report.features) +
-                    " features");
-  return out;
 }
 
 }  // namespace cutaway
