@@ -14,9 +14,12 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/io/gis_import.hpp"
+#include "expect_error.hpp"
 
 namespace fs = std::filesystem;
 using namespace cutaway;
+
+using test::expectError;
 
 namespace {
 
@@ -55,19 +58,6 @@ class GisImportTest : public ::testing::Test {
 
   fs::path dir_;
 };
-
-// Runs `f`, expects a cutaway::Error whose message contains every one of `parts`.
-template <typename F>
-void expectError(F&& f, std::initializer_list<std::string> parts) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected one mentioning " << *parts.begin();
-  } catch (const Error& e) {
-    for (const std::string& p : parts)
-      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
-          << "\"" << e.what() << "\" does not mention \"" << p << "\"";
-  }
-}
 
 }  // namespace
 
@@ -354,19 +344,18 @@ TEST_F(GisImportTest, ReadsOrdnanceSurveyShapefilesInBritishNationalGrid) {
 }
 
 TEST_F(GisImportTest, PolygonsWithHolesForFootprints) {
-  const fs::path file = geojson(
-      "buildings.geojson",
-      feature(R"({"type": "Polygon", "coordinates": [
+  const fs::path file = geojson("buildings.geojson",
+                                feature(R"({"type": "Polygon", "coordinates": [
                    [[0, 0], [10, 0], [10, 0], [10, 8], [0, 8], [0, 0]],
                    [[2, 2], [4, 2], [4, 4], [2, 4], [2, 2]],
                    [[6, 6], [7, 6], [6, 6]]]})",
-              R"("height": 12)") +
-          "," +
-          feature(R"({"type": "MultiPolygon", "coordinates": [
+                                        R"("height": 12)") +
+                                    "," +
+                                    feature(R"({"type": "MultiPolygon", "coordinates": [
                    [[[20, 0, 5], [24, 0, 5], [24, 3, 5], [20, 0, 5]]],
                    [[[30, 0], [31, 1], [32, 2], [30, 0]]]]})",
-                  R"("height": null)"),
-      27700);
+                                            R"("height": null)"),
+                                27700);
   const GisPolygons p =
       importGisPolygons(file, {.attributes = {"height"}, .offset = {0.0, 0.0, 1.0}});
   EXPECT_TRUE(p.hasZ);
@@ -382,9 +371,9 @@ TEST_F(GisImportTest, PolygonsWithHolesForFootprints) {
   EXPECT_EQ(b.part, 0);
   EXPECT_EQ(b.outer, (std::vector<glm::vec3>{{20, 0, 4}, {24, 0, 4}, {24, 3, 4}}));
   EXPECT_TRUE(std::isnan(b.attributes[0]));
-  EXPECT_EQ(p.report.repeatedNodes, 1);      // (10, 0); closing nodes are not repeats
-  EXPECT_EQ(p.report.degenerateRings, 2);    // the sliver hole, the collinear triangle
-  EXPECT_EQ(p.report.degenerateParts, 1);    // the collinear triangle was a whole part
+  EXPECT_EQ(p.report.repeatedNodes, 1);    // (10, 0); closing nodes are not repeats
+  EXPECT_EQ(p.report.degenerateRings, 2);  // the sliver hole, the collinear triangle
+  EXPECT_EQ(p.report.degenerateParts, 1);  // the collinear triangle was a whole part
 
   const fs::path lines = geojson(
       "lines.geojson", feature(R"({"type": "LineString", "coordinates": [[0, 0], [1, 1]]})", ""));

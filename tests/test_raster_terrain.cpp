@@ -13,9 +13,12 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/io/raster_terrain.hpp"
+#include "expect_error.hpp"
 
 namespace fs = std::filesystem;
 using namespace cutaway;
+
+using test::expectError;
 
 namespace {
 
@@ -54,18 +57,6 @@ class RasterTerrainTest : public ::testing::Test {
 
   fs::path dir_;
 };
-
-template <typename F>
-void expectError(F&& f, std::initializer_list<std::string> parts) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected one mentioning " << *parts.begin();
-  } catch (const Error& e) {
-    for (const std::string& p : parts)
-      EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
-          << "\"" << e.what() << "\" does not mention \"" << p << "\"";
-  }
-}
 
 }  // namespace
 
