@@ -105,31 +105,25 @@ struct GisPolygon {
   std::vector<double> attributes;
 };
 
-struct GisLines {
+// What every import returns besides its items.
+struct GisLayerImport {
   GisLayerInfo layer;  // the source layer (its CRS, and its extent in that CRS)
-  GisCrs crs;          // the CRS of `polylines`: the target CRS, or the layer's
+  GisCrs crs;          // the CRS of the items: the target CRS, or the layer's
   glm::dvec3 offset{0.0};
   bool hasZ = false;  // the layer's geometries carry heights
+  GisImportReport report;
+};
+
+struct GisLines : GisLayerImport {
   std::vector<GisPolyline> polylines;
-  GisImportReport report;
 };
 
-struct GisPoints {
-  GisLayerInfo layer;
-  GisCrs crs;
-  glm::dvec3 offset{0.0};
-  bool hasZ = false;
+struct GisPoints : GisLayerImport {
   std::vector<GisPoint> points;
-  GisImportReport report;
 };
 
-struct GisPolygons {
-  GisLayerInfo layer;
-  GisCrs crs;
-  glm::dvec3 offset{0.0};
-  bool hasZ = false;
+struct GisPolygons : GisLayerImport {
   std::vector<GisPolygon> polygons;
-  GisImportReport report;
 };
 
 // A LineString / MultiLineString layer (2-D or 3-D).
