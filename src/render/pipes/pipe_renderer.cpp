@@ -183,10 +183,11 @@ PipeRenderer::PipeRenderer(const Scene& scene, Frame& frame,
                                    {GL_FRAGMENT_SHADER, "render/pipes/billboard.frag"}},
                         .defines = defines,
                         .aliases = aliases});
-  shadowProgram_ =
-      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/billboard.vert"},
-                                   {GL_GEOMETRY_SHADER, "render/pipes/billboard.geom"},
-                                   {GL_FRAGMENT_SHADER, "render/pipes/billboard_shadow.frag"}}});
+  if (scene.style.shadows.enabled)
+    shadowProgram_ =
+        gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/billboard.vert"},
+                                     {GL_GEOMETRY_SHADER, "render/pipes/billboard.geom"},
+                                     {GL_FRAGMENT_SHADER, "render/pipes/billboard_shadow.frag"}}});
   proxyProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/pipes/proxy.vert"},
                                                {GL_FRAGMENT_SHADER, "render/pipes/proxy.frag"}},
                                     .defines = defines,

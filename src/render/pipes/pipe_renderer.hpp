@@ -28,7 +28,8 @@ class PipeRenderer {
   // Whether any network is drawn as billboards (else the renderer adds no passes).
   bool active() const { return !networks_.empty(); }
   // The billboards into the bound shadow-map target, with the light's frame uniforms bound
-  // (src/styles/shadows): each quad faces the light.
+  // (src/styles/shadows): each quad faces the light. Only with the scene's shadows on (the
+  // program is built for them).
   void drawShadowCasters() const;
 
  private:
