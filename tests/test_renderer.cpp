@@ -136,12 +136,10 @@ TEST(Renderer, BackgroundAovsAreMarked) {
 TEST(Frame, RejectsReadBeforeWrite) {
   test::glContext();
   Frame frame(8, 8, false);
-  frame.declare("a", {.format = GL_RGBA8});
-  frame.declare("b", {.format = GL_RGBA8});
-  frame.addPass(
-      {.name = "first", .reads = {"b"}, .writes = {"a"}, .run = [](const PassContext&) {}});
-  frame.addPass(
-      {.name = "second", .reads = {"a"}, .writes = {"b"}, .run = [](const PassContext&) {}});
+  const Target a = frame.declare("a", {.format = GL_RGBA8});
+  const Target b = frame.declare("b", {.format = GL_RGBA8});
+  frame.addPass({.name = "first", .reads = {b}, .writes = {a}, .run = [](const PassContext&) {}});
+  frame.addPass({.name = "second", .reads = {a}, .writes = {b}, .run = [](const PassContext&) {}});
   try {
     frame.execute();
     FAIL() << "expected an error";
@@ -153,11 +151,25 @@ TEST(Frame, RejectsReadBeforeWrite) {
   }
 }
 
-TEST(Frame, RejectsUndeclaredTarget) {
+// A handle names a target of the frame that declared it; another frame's, or a default one,
+// is refused with the pass's name.
+TEST(Frame, RejectsHandlesOfAnotherFrame) {
   test::glContext();
-  Frame frame(8, 8, false);
-  frame.addPass({.name = "p", .writes = {"missing"}, .run = [](const PassContext&) {}});
-  EXPECT_THROW(frame.execute(), Error);
+  Frame frame(8, 8, false), other(8, 8, false);
+  const Target foreign = other.declare("a", {.format = GL_RGBA8});
+  frame.addPass({.name = "p", .writes = {foreign}, .run = [](const PassContext&) {}});
+  try {
+    frame.execute();
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("another frame"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("p"), std::string::npos) << e.what();
+  }
+  Frame third(8, 8, false);
+  third.addPass({.name = "q", .writes = {Target{}}, .run = [](const PassContext&) {}});
+  EXPECT_THROW(third.execute(), Error);
+  (void)third.declare("x", {});
+  EXPECT_THROW((void)third.declare("x", {}), Error);  // declared twice
 }
 
 // On llvmpipe the GL_TIME_ELAPSED queries need a flush after glBeginQuery (gl/timer.cpp);

@@ -14,7 +14,7 @@
 
 #include "camera_controller.hpp"
 #include "cutaway/core/error.hpp"
-#include "cutaway/render/aov.hpp"
+#include "cutaway/frame/aov.hpp"
 #include "panels/panels.hpp"
 
 namespace cutaway::view {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "colormap.hpp"
-#include "cutaway/render/frame.hpp"
+#include "cutaway/frame/frame.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "parameters.hpp"
 

@@ -20,7 +20,7 @@
 #include "cutaway/gl/context.hpp"
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/raster_terrain.hpp"
-#include "cutaway/render/aov.hpp"
+#include "cutaway/frame/aov.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/scene/benchmark_city.hpp"
 #include "cutaway/scene/scene.hpp"

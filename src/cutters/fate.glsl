@@ -1,8 +1,13 @@
-// What a cutter decides about a fragment, and which cutters cut an object (a bit each; the
-// renderer sets uCutBy per object). Included by every cutter's GLSL.
+// What a cutter decides about a fragment (cutters/cutter.hpp), and what it decides it from.
+// Included by every cutter's GLSL.
 #ifndef CUTTERS_FATE_GLSL
 #define CUTTERS_FATE_GLSL
 const int kKeep = 0, kDiscard = 1, kCutSurface = 2;
-const int kCutByAdaptive = 1, kCutByCutout = 2, kCutByBreakaway = 4, kCutByClipSurfaces = 8,
-          kCutByTerrain = 16, kCutByShaftOuter = 32, kCutByShaftInner = 64;
+// A fragment of a cut object: world position, interpolated world normal (not normalised), and
+// the side seen.
+struct CutFragment {
+  vec3 position;
+  vec3 normal;
+  bool frontFacing;
+};
 #endif

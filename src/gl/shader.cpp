@@ -20,9 +20,10 @@ std::string folderOf(const std::string& name) {
 std::string resolveInclude(const std::string& includer, const std::string& name,
                            const ProgramDesc& desc) {
   if (auto alias = desc.aliases.find(name); alias != desc.aliases.end()) return alias->second;
+  if (desc.sources.count(name)) return name;
   const std::string relative =
       std::filesystem::path(folderOf(includer) + name).lexically_normal().generic_string();
-  if (hasShader(relative)) return relative;
+  if (hasShader(relative) || desc.sources.count(relative)) return relative;
   return name;
 }
 
@@ -39,9 +40,13 @@ struct Expander {
   }
 
   void expand(const std::string& file, const std::string& includedFrom, int includeLine) {
-    const auto& shaders = embeddedShaders();
-    const auto it = shaders.find(file);
-    if (it == shaders.end()) {
+    // A source generated for this program (e.g. the cutter composition) comes first.
+    std::string_view text;
+    if (const auto generated = desc.sources.find(file); generated != desc.sources.end()) {
+      text = generated->second;
+    } else if (const auto it = embeddedShaders().find(file); it != embeddedShaders().end()) {
+      text = it->second;
+    } else {
       if (includedFrom.empty()) throw Error(file, "", "no such shader file");
       throw Error(includedFrom, "line " + std::to_string(includeLine),
                   "#include of unknown shader file \"" + file + "\"");
@@ -54,7 +59,7 @@ struct Expander {
     const int index = fileIndex(file);
     static const std::regex includeRe(R"re(^\s*#\s*include\s+"([^"]+)"\s*$)re");
     static const std::regex versionRe(R"(^\s*#\s*version\b.*$)");
-    std::istringstream in{std::string(it->second)};
+    std::istringstream in{std::string(text)};
     std::string line;
     int number = 0;
     auto emit = [&](const std::string& text, int sourceLine) {

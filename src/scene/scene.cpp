@@ -83,18 +83,6 @@ float Scene::duration() const {
   return d;
 }
 
-glm::mat4 Camera::view() const {
-  return glm::lookAt(eye, target, up);
-}
-
-glm::mat4 Camera::projectionMatrix(float aspect) const {
-  if (projection == Projection::Orthographic) {
-    const float h = height * 0.5f, w = h * aspect;
-    return glm::ortho(-w, w, -h, h, near, far);
-  }
-  return glm::perspective(glm::radians(fovY), aspect, near, far);
-}
-
 SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part, Mesh mesh) {
   SceneObject o;
   o.name = net.name + "/" +
@@ -125,22 +113,6 @@ const SceneObject* Scene::find(const std::string& name) const {
   for (const auto& o : objects)
     if (o.name == name) return &o;
   return nullptr;
-}
-
-float Camera::viewHeightAtTarget() const {
-  if (projection == Projection::Orthographic) return height;
-  return 2.0f * glm::length(target - eye) * std::tan(glm::radians(fovY) * 0.5f);
-}
-
-void Camera::setProjection(Projection to) {
-  if (projection == to) return;
-  const float distance = glm::length(target - eye);
-  const float tanHalf = std::tan(glm::radians(fovY) * 0.5f);
-  if (to == Projection::Orthographic)
-    height = 2.0f * distance * tanHalf;
-  else
-    eye = target + (eye - target) / distance * (height * 0.5f / tanHalf);
-  projection = to;
 }
 
 Camera Scene::resolvedCamera(float time) const {

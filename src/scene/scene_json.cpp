@@ -31,7 +31,7 @@ namespace {
 using namespace scene_json;
 using json = nlohmann::json;
 
-// The renderer's light array (kMaxLights in src/render/frame_uniforms.glsl); more would be
+// The renderer's light array (kMaxLights in src/frame/frame_uniforms.glsl); more would be
 // dropped without a word.
 constexpr std::size_t kMaxLights = 8;
 

@@ -4,12 +4,14 @@
 // named by their path relative to src/. A source may `#include "name"`: the name is looked up
 // relative to the including file's folder, then from src/, then in the program's aliases
 // (which is how a geometry shader picks the active style: alias "style.glsl" to
-// "styles/gooch/gooch.glsl"). Variants are made by `#define`s injected after `#version`.
+// "styles/gooch/gooch.glsl"), or among the program's generated sources (text made at run time,
+// such as the composition of the active cutters, under a file name of its own). Variants are
+// made by `#define`s injected after `#version`.
 // Compile and link errors throw cutaway::Error naming the file and line, with the info log.
 //
 //   cutaway::gl::ProgramDesc desc{
-//       .stages = {{GL_VERTEX_SHADER, "render/mesh.vert"}, {GL_FRAGMENT_SHADER,
-//       "render/mesh.frag"}}, .defines = {{"LINES", "1"}}, .aliases = {{"style.glsl",
+//       .stages = {{GL_VERTEX_SHADER, "kinds/meshes/mesh.vert"}, {GL_FRAGMENT_SHADER,
+//       "kinds/meshes/mesh.frag"}}, .defines = {{"LINES", "1"}}, .aliases = {{"style.glsl",
 //       "styles/gooch/gooch.glsl"}}};
 //   cutaway::gl::Program program = cutaway::gl::buildProgram(desc);
 #pragma once
@@ -27,6 +29,7 @@ struct ProgramDesc {
   std::vector<std::pair<GLenum, std::string>> stages;  // stage, shader file name
   std::map<std::string, std::string> defines;
   std::map<std::string, std::string> aliases;
+  std::map<std::string, std::string> sources;  // generated files: name → GLSL text
 };
 
 // The source of one stage after #include expansion and #define injection. `origins[i]` is

@@ -23,16 +23,11 @@
 
 #include "cutaway/core/image.hpp"
 #include "cutaway/gl/context.hpp"
-#include "cutaway/render/frame.hpp"
+#include "cutaway/frame/aov.hpp"
+#include "cutaway/frame/frame.hpp"
 #include "cutaway/scene/scene.hpp"
 
 namespace cutaway {
-
-struct Aov {
-  std::string name;     // file stem, e.g. "depth"
-  std::string meaning;  // what a texel holds, with units and conventions
-  FloatImage image;     // rows top to bottom
-};
 
 class Renderer {
  public:
@@ -55,22 +50,17 @@ class Renderer {
   // The AOVs that are no frame target: the clip surfaces' depth sprites, the terrain
   // opening's distance texture.
   std::vector<Aov> extraAovs() const;
-  std::vector<PassTiming> timings() { return frame_->timings(); }
-  const Frame& frame() const { return *frame_; }
+  std::vector<PassTiming> timings();
+  const Frame& frame() const;
   // The final colour texture (single sample, RGBA8), e.g. for a window's blit.
   GLuint colorTexture() const;
   // Where the adaptive cutter's jump flooding runs ("gpu" or "cpu"), or null without it.
   const char* cutawayComputePath() const;
 
  private:
-  void drawGeometry(GLuint framebuffer);
-  void drawLines(GLuint program, const std::string& buffer, bool featureLines);
-  void composite();
-
   struct Impl;
   const Scene& scene_;
   std::unique_ptr<Impl> impl_;
-  std::unique_ptr<Frame> frame_;
 };
 
 }  // namespace cutaway

@@ -28,6 +28,7 @@
 #include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/geometry/mesh.hpp"
 #include "cutaway/geometry/pipe_network.hpp"
+#include "cutaway/scene/camera.hpp"
 
 namespace cutaway {
 
@@ -107,32 +108,6 @@ struct GeoFrame {
   // A layer's point as imported with `importOptions` (x = E − E0, y = N − N0, z = H − H0).
   static glm::vec3 toScene(const glm::vec3& p) { return {p.x, p.z, -p.y}; }
   static glm::vec3 fromScene(const glm::vec3& p) { return {p.x, -p.z, p.y}; }
-};
-
-enum class Projection { Perspective, Orthographic };
-
-struct CameraKey {
-  float time;
-  glm::vec3 eye, target;
-};
-
-struct Camera {
-  Projection projection = Projection::Perspective;
-  glm::vec3 eye{0, 0, 5}, target{0, 0, 0}, up{0, 1, 0};
-  float fovY = 40.0f;           // degrees, perspective
-  float height = 2.0f;          // world units of the view's height, orthographic
-  float near = 0, far = 0;      // 0: derived from the scene bounds
-  bool fit = false;             // place eye/target so the scene fills the view
-  std::vector<CameraKey> path;  // eye/target over time (overrides eye, target, fit)
-
-  glm::mat4 view() const;
-  glm::mat4 projectionMatrix(float aspect) const;
-  // World units of the view's height at the target (orthographic: `height`).
-  float viewHeightAtTarget() const;
-  // Switches the projection keeping the view's height at the target: the orthographic height
-  // of the perspective frustum there, or a perspective eye backed off along its line of sight
-  // until it sees the orthographic height.
-  void setProjection(Projection to);
 };
 
 struct Light {

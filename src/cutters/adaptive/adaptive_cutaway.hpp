@@ -1,47 +1,55 @@
-// The adaptive cutter's preparation passes (Burns08 §5, Burns11 §5.1): seed the region of
-// interest's rear hull, grow the cutaway surface by jump flooding (on the GPU, or on the CPU
-// where that is faster: Mesa's llvmpipe), and dilate it for back faces.
+// The adaptive cutter (Burns08 §5, Burns11 §5.1) in the frame: seed the region of interest's
+// rear hull, grow the cutaway surface by jump flooding (on the GPU, or on the CPU where that is
+// faster: Mesa's llvmpipe), dilate it for back faces; clip the secondary objects against it in
+// the geometry pass (clip.glsl) and draw the removed material's ghost lines (Burns08 §4.3).
 #pragma once
 
 #include <memory>
 #include <string>
 
-#include "cutaway/gl/context.hpp"
-#include "cutaway/render/frame.hpp"
-#include "render/scene_gpu.hpp"
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutters/cutter.hpp"
 
 namespace cutaway {
 
-class AdaptiveCutaway {
+class AdaptiveCutaway : public Cutter {
  public:
-  // Declares the cutter's render targets and adds its passes to `frame` (before geometry).
-  AdaptiveCutaway(const SceneGpu& sceneGpu, const AdaptiveCutawayOptions& options,
-                  const gl::ContextInfo& info, Frame& frame);
-  ~AdaptiveCutaway();
-  AdaptiveCutaway(const AdaptiveCutaway&) = delete;
-  AdaptiveCutaway& operator=(const AdaptiveCutaway&) = delete;
+  // Declares the cutter's render targets and allocates its texture units.
+  explicit AdaptiveCutaway(FrameSetup& setup);
+  ~AdaptiveCutaway() override;
 
-  // Per-frame camera state for the passes; call before the frame executes.
-  void setCamera(const Camera& camera, float aspect);
-  // Binds the cutaway depth (unit 8) and its dilation (unit 9) for clip.glsl.
-  void bindForClipping() const;
-  // "gpu" or "cpu": where jump flooding runs.
-  const char* computePath() const { return cpu_ ? "cpu" : "gpu"; }
-  // The local angle θ of an object of interest, radians (Burns11 §6.2.1).
-  float angleOf(const SceneObject& object) const;
-  // Rear hulls of every object of interest and interest proxy (Burns11 §4.2.2).
-  static bool seedsCutaway(const SceneObject& object) { return object.role == Role::Interest; }
+  void beginFrame(const FrameState& state) override;
+  void addPreparationPasses(Frame& frame) override;
+  std::vector<Target> geometryInputs() const override { return {cutawayDepth_, cutawayDilated_}; }
+  void bindForGeometry() const override;
+  // Every visible object but the objects of interest (Burns08 §4.1).
+  bool cuts(std::size_t index) const override;
+  CutLook look(std::size_t index) const override;
+  void addPassesAfterGeometry(Frame& frame) override;
+  std::optional<glm::vec3> cutOutlineColor() const override;
+  std::optional<GhostBuffers> ghosts() const override;
+  std::vector<std::pair<std::string, std::string>> facts() const override;
+
+  // The local angle θ of an object of interest, radians (Burns11 §6.2.1); the scene's angle
+  // for geometry that is no scene object.
+  float angleOf(const SceneObject* object) const;
 
  private:
-  void addGpuPasses();
-  void addCpuPass();
+  const AdaptiveCutawayOptions& options() const { return *setup_.scene.adaptive; }
+  void addGpuPasses(Frame& frame);
   void computeOnCpu();
+  void drawGhostGeometry(GLuint framebuffer) const;
 
-  const SceneGpu& sceneGpu_;
-  AdaptiveCutawayOptions options_;
-  bool cpu_;
-  Frame& frame_;
+  FrameSetup& setup_;
+  // What a change rebuilds the renderer for: the buffer, the path and the variant.
+  const int bufferSize_;
+  const fields::JumpFloodingVariant variant_;
+  const bool cpu_;
   CutawayProjection camera_{};
+  GLuint depthUnit_, dilatedUnit_;
+  Target seedDepth_, seedAngle_, seedDepthTest_, cutawayDepth_, cutawayDilated_;
+  Target anchorCone_, anchorFloor_, anchorsA_, anchorsB_;
+  Target ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_;
   struct Programs;
   std::unique_ptr<Programs> programs_;
 };

@@ -1,6 +1,6 @@
 #version 450 core
 // Per seed pixel: its cone (src/cutters/adaptive/cutaway_function.cpp, the same equations).
-#include "../../render/frame_uniforms.glsl"
+#include "frame/frame_uniforms.glsl"
 layout(binding = 0) uniform sampler2D uSeedDepth;
 layout(binding = 1) uniform sampler2D uSeedAngle;
 layout(location = 0) uniform int uEdgeCompression;

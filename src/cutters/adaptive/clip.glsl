@@ -1,8 +1,8 @@
 // The adaptive cutter's per-fragment decision in the geometry passes (Burns08 §4.1,
 // Burns11 §5.2.2 and §5.2.4.1). Needs frame_uniforms.glsl.
-layout(binding = 8) uniform sampler2D uCutawayDepth;    // C(p), window depth, linear filter
-layout(binding = 9) uniform sampler2D uCutawayDilated;  // 1-pixel minimum of C (Burns08 §4.2)
-#include "../fate.glsl"
+#include "cutters/fate.glsl"
+layout(binding = UNIT_CUTAWAY_DEPTH) uniform sampler2D uCutawayDepth;  // C(p), window depth, linear filter
+layout(binding = UNIT_CUTAWAY_DILATED) uniform sampler2D uCutawayDilated;  // 1-pixel minimum of C (Burns08 §4.2)
 
 // The cutaway surface at screen position uv, in view space.
 vec3 cutawayViewPoint(vec2 uv) {
@@ -13,7 +13,8 @@ vec3 cutawayViewPoint(vec2 uv) {
 // kDiscard in the clear region, kKeep in the base region, kCutSurface for a back face seen
 // through the cut: there it stands for the solid's cut surface, with the cutaway surface's
 // position and normal (from neighbouring depths, Burns11 §5.2.4.1).
-int adaptiveFragment(bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
+int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+  bool frontFacing = f.frontFacing;
   vec2 uv = gl_FragCoord.xy * uViewport.zw;
   // Burns11 eq. 5.4: Ω = 1 − step(C(p), p_z); back faces use the dilated surface.
   float c = frontFacing ? texture(uCutawayDepth, uv).r : texture(uCutawayDilated, uv).r;

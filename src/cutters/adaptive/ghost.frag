@@ -3,7 +3,7 @@
 // of the cutaway surface, written to a G-buffer whose feature lines are drawn faded. Kept
 // front faces are written too, with weight 0: they fill the G-buffer where the removed layer
 // ends at the cut, so that boundary (already drawn as the cut outline) is no silhouette.
-#include "../../render/frame_uniforms.glsl"
+#include "frame/frame_uniforms.glsl"
 #include "clip.glsl"
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;

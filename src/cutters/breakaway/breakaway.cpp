@@ -4,6 +4,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/geometry/convex_hull.hpp"
+#include "cutaway/cutters/cutout.hpp"
 #include "cutaway/gl/shader.hpp"
 
 namespace cutaway {
@@ -76,37 +77,55 @@ std::vector<BreakawayCluster> breakawayClusters(const Scene& scene,
   return clusters;
 }
 
-Breakaway::Breakaway(const Scene& scene, const BreakawayOptions& options, Frame& frame)
-    : frame_(frame), clusters_(breakawayClusters(scene, options)) {
-  for (const auto& c : clusters_) {
+CutterType breakawayCutterType() {
+  return {.key = "breakaway",
+          .title = "Breakaway (Diepstraten03)",
+          .glsl = "cutters/breakaway/breakaway.glsl",
+          .name = "breakaway",
+          .active = [](const Scene& s) { return s.breakaway.has_value(); },
+          .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
+            return std::make_unique<Breakaway>(setup);
+          }};
+}
+
+Breakaway::Breakaway(FrameSetup& setup)
+    : setup_(setup),
+      clipUnit_(setup.bindings.textureUnit("BREAKAWAY_CLIP_DEPTH")),
+      innerUnit_(setup.bindings.textureUnit("BREAKAWAY_INNER_DEPTH")),
+      normalUnit_(setup.bindings.textureUnit("BREAKAWAY_HULL_NORMAL")) {
+  for (const auto& c : breakawayClusters(setup.scene, options())) {
     outer_.emplace_back(c.outerHull);
     inner_.emplace_back(c.innerHull);
   }
   hullProgram_ =
-      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
+      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                    {GL_FRAGMENT_SHADER, "cutters/breakaway/hull.frag"}}});
   const glm::mat4 identity(1.0f);
   glProgramUniformMatrix4fv(hullProgram_.id(), meshUniform::kModel, 1, GL_FALSE, &identity[0][0]);
   glProgramUniformMatrix4fv(hullProgram_.id(), meshUniform::kNormalMatrix, 1, GL_FALSE,
                             &identity[0][0]);
-  frame.declare("breakawayClipDepth",
-                {.format = GL_DEPTH_COMPONENT32F,
-                 .meaning = "window depth in [0,1] of the foremost surface of the interior "
-                            "objects' inflated convex hulls (Diepstraten03 §5); exterior front "
-                            "faces at or in front of it are removed; 0 where no hull covers the "
-                            "pixel"});
-  frame.declare("breakawayInnerDepth",
-                {.format = GL_DEPTH_COMPONENT32F,
-                 .meaning = "the same for the smaller hulls (offset minus wall thickness) that "
-                            "clip exterior back faces"});
-  frame.declare("breakawayHullNormal", {.format = GL_RGBA16F});
+  Frame& frame = setup.frame;
+  clipDepth_ = frame.declare(
+      "breakawayClipDepth",
+      {.format = GL_DEPTH_COMPONENT32F,
+       .meaning = "window depth in [0,1] of the foremost surface of the interior objects' inflated "
+                  "convex hulls (Diepstraten03 §5); exterior front faces at or in front of it are "
+                  "removed; 0 where no hull covers the pixel"});
+  innerDepth_ = frame.declare("breakawayInnerDepth",
+                              {.format = GL_DEPTH_COMPONENT32F,
+                               .meaning = "the same for the smaller hulls (offset minus wall "
+                                          "thickness) that clip exterior back faces"});
+  hullNormal_ = frame.declare("breakawayHullNormal", {.format = GL_RGBA16F});
+}
+
+void Breakaway::addPreparationPasses(Frame& frame) {
   frame.addPass(
       {.name = "breakawayClip",
-       .writes = {"breakawayHullNormal", "breakawayClipDepth"},
+       .writes = {hullNormal_, clipDepth_},
        .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, outer_); }});
   frame.addPass(
       {.name = "breakawayInnerClip",
-       .writes = {"breakawayInnerDepth"},  // back faces need no hull normal
+       .writes = {innerDepth_},  // back faces need no hull normal
        .run = [this](const PassContext& pass) { drawClipDepth(pass.framebuffer, inner_); }});
 }
 
@@ -129,10 +148,21 @@ void Breakaway::drawClipDepth(GLuint framebuffer, const std::vector<GpuMesh>& hu
   for (const auto& h : hulls) h.draw();
 }
 
-void Breakaway::bind() const {
-  glBindTextureUnit(11, frame_.texture("breakawayClipDepth").id());
-  glBindTextureUnit(12, frame_.texture("breakawayInnerDepth").id());
-  glBindTextureUnit(21, frame_.texture("breakawayHullNormal").id());
+void Breakaway::bindForGeometry() const {
+  glBindTextureUnit(clipUnit_, setup_.frame.texture(clipDepth_).id());
+  glBindTextureUnit(innerUnit_, setup_.frame.texture(innerDepth_).id());
+  glBindTextureUnit(normalUnit_, setup_.frame.texture(hullNormal_).id());
+}
+
+bool Breakaway::cuts(std::size_t index) const {
+  return setup_.scene.objects[index].role == Role::Exterior;
+}
+
+CutLook Breakaway::look(std::size_t index) const {
+  const SceneObject& o = setup_.scene.objects[index];
+  return {.cutSurface = o.solid(),
+          .cutColor = options().wallColor.value_or(kDefaultWallColor),
+          .backColor = options().insideColor.value_or(o.material.color * 0.55f)};
 }
 
 }  // namespace cutaway

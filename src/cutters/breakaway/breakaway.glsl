@@ -2,14 +2,15 @@
 // inflated convex hull of the interior objects are removed; back faces are clipped by a
 // slightly smaller hull so the cut shows a wall of finite thickness. Needs
 // frame_uniforms.glsl.
-#include "../fate.glsl"
+#include "cutters/fate.glsl"
 // Window depth of the hulls' foremost surface (0 where no hull covers the pixel: nothing is
 // clipped there), and the outer hull's world normal there.
-layout(binding = 11) uniform sampler2D uBreakawayClipDepth;
-layout(binding = 12) uniform sampler2D uBreakawayInnerDepth;
-layout(binding = 21) uniform sampler2D uBreakawayHullNormal;
+layout(binding = UNIT_BREAKAWAY_CLIP_DEPTH) uniform sampler2D uBreakawayClipDepth;
+layout(binding = UNIT_BREAKAWAY_INNER_DEPTH) uniform sampler2D uBreakawayInnerDepth;
+layout(binding = UNIT_BREAKAWAY_HULL_NORMAL) uniform sampler2D uBreakawayHullNormal;
 
-int breakawayFragment(bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
+int breakawayFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+  bool frontFacing = f.frontFacing;
   ivec2 p = ivec2(gl_FragCoord.xy);
   float outer = texelFetch(uBreakawayClipDepth, p, 0).r;
   float clip = frontFacing ? outer : texelFetch(uBreakawayInnerDepth, p, 0).r;

@@ -7,27 +7,31 @@
 #include <vector>
 
 #include "cutaway/cutters/breakaway.hpp"
-#include "cutaway/render/frame.hpp"
-#include "cutaway/scene/scene.hpp"
-#include "render/scene_gpu.hpp"
+#include "cutters/cutter.hpp"
 
 namespace cutaway {
 
-class Breakaway {
+class Breakaway : public Cutter {
  public:
-  // Builds the hulls, declares the clip targets and adds the clip passes (before geometry).
-  Breakaway(const Scene& scene, const BreakawayOptions& options, Frame& frame);
-  // Binds the clip depths (units 11, 12) and hull normals (21) for breakaway.glsl.
-  void bind() const;
-  const std::vector<BreakawayCluster>& clusters() const { return clusters_; }
+  // Builds the hulls, declares the clip targets and allocates its texture units.
+  explicit Breakaway(FrameSetup& setup);
+  void addPreparationPasses(Frame& frame) override;
+  std::vector<Target> geometryInputs() const override { return {clipDepth_, innerDepth_, hullNormal_}; }
+  void bindForGeometry() const override;
+  // Diepstraten03 rule 1: only the exterior objects.
+  bool cuts(std::size_t index) const override;
+  CutLook look(std::size_t index) const override;
+  std::optional<glm::vec3> cutOutlineColor() const override { return glm::vec3(0.0f); }
 
  private:
+  const BreakawayOptions& options() const { return *setup_.scene.breakaway; }
   void drawClipDepth(GLuint framebuffer, const std::vector<GpuMesh>& hulls) const;
 
-  Frame& frame_;
-  std::vector<BreakawayCluster> clusters_;
+  FrameSetup& setup_;
   std::vector<GpuMesh> outer_, inner_;
   gl::Program hullProgram_;
+  GLuint clipUnit_, innerUnit_, normalUnit_;
+  Target clipDepth_, innerDepth_, hullNormal_;
 };
 
 }  // namespace cutaway

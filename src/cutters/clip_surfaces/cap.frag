@@ -3,13 +3,13 @@
 // volumetric parity test against its layered depth image) and where no other clip surface
 // removes it; it is shaded with the active style from the relief's normal, occlusion and an
 // optional solid texture.
-#include "../../render/frame_uniforms.glsl"
-#include "../../styles/surface.glsl"
+#include "frame/frame_uniforms.glsl"
+#include "styles/surface.glsl"
 #include "style.glsl"
 #include "clip_surfaces.glsl"
 #include "parity.glsl"
-#include "../../styles/shadows/shadow_lookup.glsl"
-#include "../../render/gbuffer.glsl"
+#include "styles/shadows/shadow_lookup.glsl"
+#include "frame/gbuffer.glsl"
 in vec3 vWorldPosition;
 in vec2 vST;
 layout(location = 11) uniform int uObjectId;
@@ -18,9 +18,9 @@ layout(location = 41) uniform mat4 uCapToTexture;  // world → LDI space of the
 layout(location = 45) uniform int uDepthComplexity;
 layout(location = 46) uniform vec3 uCapColor;
 layout(location = 49) uniform int uHasDiffuse;
-layout(binding = 22) uniform sampler2D uCapDiffuse;  // §6.1 diffuse map, sampled at T
+layout(binding = UNIT_CAP_DIFFUSE) uniform sampler2D uCapDiffuse;  // §6.1 diffuse map, sampled at T
 // Per pixel, the parity results of cap fragments: 1 = one was outside, 2 = one was inside.
-layout(binding = 1, r32ui) uniform coherent uimage2D uCapParity;
+layout(binding = IMAGE_CAP_PARITY, r32ui) uniform coherent uimage2D uCapParity;
 
 // A procedural solid texture (Trapp13 Fig. 11): marble-like veins from 3-D value noise.
 float solidHash(ivec3 c) {
@@ -85,7 +85,5 @@ void main() {
   s.keyLightVisibility = keyLightVisibility(s.position);
   float occlusion = mix(1.0, relief.a, uCapStyle.x);
   writeGBuffer(s, shadeSurface(s) * occlusion, 1.0, uObjectId, false, true);
-#ifdef CUTTER_CUTOUT
-  outCutoutDistance = uintBitsToFloat(0x7fc00000u);
-#endif
+  writeNoChannels();
 }

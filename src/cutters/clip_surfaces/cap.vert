@@ -2,7 +2,7 @@
 // Trapp13 §5.1: the cap surface, a grid over the clip surface's (U, V) extent (the part of it
 // a capped object spans) refined to the offset map's resolution, displaced by the offset map:
 // X = O + sU + tV − S_z·h(T)·N.
-#include "../../render/frame_uniforms.glsl"
+#include "frame/frame_uniforms.glsl"
 #include "clip_surfaces.glsl"
 layout(location = 0) in vec2 aST;
 layout(location = 40) uniform int uCapSurface;

@@ -5,6 +5,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
+#include "frame/fullscreen.hpp"
 
 namespace cutaway {
 
@@ -133,8 +134,21 @@ DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const g
   return out;
 }
 
+CutterType clipSurfacesCutterType() {
+  return {.key = "clipSurfaces",
+          .title = "Clip surfaces (Trapp13)",
+          .glsl = "cutters/clip_surfaces/clip_fragment.glsl",
+          .name = "clipSurfaces",
+          .active = [](const Scene& s) { return s.clipSurfaces.has_value(); },
+          .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
+            return std::make_unique<ClipSurfaceCutter>(setup);
+          }};
+}
+
 struct ClipSurfaceCutter::Gpu {
   gl::Program peel = buildDepthPeelProgram();
+  gl::Program cap, capMask;
+  FullscreenTriangle fullscreen;
   gl::Buffer block;
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
   std::vector<CapGrid> grids;                // 2^k cells per side, k = 3 … 10
@@ -143,9 +157,17 @@ struct ClipSurfaceCutter::Gpu {
   std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
 };
 
-ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurfaceOptions& options,
-                                     Frame& frame)
-    : sceneGpu_(sceneGpu), options_(options), frame_(frame), gpu_(std::make_unique<Gpu>()) {
+ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
+    : setup_(setup),
+      options_(*setup.scene.clipSurfaces),
+      gpu_(std::make_unique<Gpu>()),
+      blockBinding_(setup.bindings.uniformBlock("CLIP_SURFACES")),
+      reliefUnit_(setup.bindings.textureUnit("CLIP_RELIEF", kMaxClipSurfaces)),
+      layersUnit_(setup.bindings.textureUnit("CAP_LAYERS")),
+      diffuseUnit_(setup.bindings.textureUnit("CAP_DIFFUSE")),
+      clipMaskImage_(setup.bindings.imageUnit("CLIP_MASK")),
+      parityImage_(setup.bindings.imageUnit("CAP_PARITY")) {
+  const ClipSurfaceOptions& options = options_;
   Gpu& g = *gpu_;
   ClipSurfaceBlock block{};
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
@@ -182,7 +204,7 @@ ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurface
   block.count = glm::ivec4(int(options.surfaces.size()),
                            options.combine == ClipSurfaceOptions::Combine::Intersection,
                            options.capNormalMap, 0);
-  const Scene& scene = sceneGpu.scene();
+  const Scene& scene = setup.scene;
   const float solidFrequency = options.solidTextureScale / std::max(scene.bounds().radius(), 1e-6f);
   block.capStyle = glm::vec4(options.capOcclusion, options.capSolidTexture, solidFrequency, 0.0f);
   g.block = gl::Buffer::create(sizeof block, &block);
@@ -201,35 +223,57 @@ ClipSurfaceCutter::ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurface
       g.capColors.push_back(options.surfaces.front().capColor.value_or(o.material.color * 0.7f));
       if (options.parity == ClipSurfaceOptions::Parity::Static)
         g.sprites.push_back(buildDepthSprite(
-            g.peel.id(), sceneGpu.mesh(i),
+            g.peel.id(), setup.meshes.mesh(i),
             depthSpriteFrame(g.capBounds.back(), glm::mat3(1.0f), options.depthSpriteResolution),
             options.depthSpriteResolution, true));
     }
+  if (options.parity == ClipSurfaceOptions::Parity::PerFrame) g.sprites.resize(capped_.size());
 
-  frame.declare("clipMask", {.format = GL_R32UI,
-                             .meaning = "1 where a clip surface removed a fragment (at any depth), "
-                                        "else 0 (Trapp13 eq. 1)"});
-  frame.declare("capParity",
-                {.format = GL_R32UI,
-                 .meaning = "volumetric parity test of the cap fragments at this pixel (Trapp13 "
-                            "§5.3): 0 none tested, 1 only outside the solid (discarded), 2 at "
-                            "least one inside (kept)"});
-  if (options.parity == ClipSurfaceOptions::Parity::PerFrame && !capped_.empty()) {
-    g.sprites.resize(capped_.size());
-    frame.addPass({.name = "clipSurfaceSprites", .writes = {}, .run = [this](const PassContext&) {
-                     buildPerFrameSprites(sceneGpu_.time());
-                   }});
-  }
+  Frame& frame = setup.frame;
+  clipMask_ = frame.declare("clipMask", {.format = GL_R32UI,
+                                         .meaning = "1 where a clip surface removed a fragment (at "
+                                                    "any depth), else 0 (Trapp13 eq. 1)"});
+  capParity_ = frame.declare(
+      "capParity", {.format = GL_R32UI,
+                    .meaning = "volumetric parity test of the cap fragments at this pixel (Trapp13 "
+                               "§5.3): 0 none tested, 1 only outside the solid (discarded), 2 at "
+                               "least one inside (kept)"});
+  capMask_ = frame.declare("capMask", {.format = GL_R32F,
+                                       .meaning = "1 where a cap surface covers a clip surface's "
+                                                  "cut (Trapp13 §5), else 0; sample 0"});
+  g.capMask = buildFullscreenProgram("cutters/clip_surfaces/cap_mask.frag");
 }
 
 ClipSurfaceCutter::~ClipSurfaceCutter() = default;
+
+void ClipSurfaceCutter::prepareGeometryPrograms() {
+  gpu_->cap = gl::buildProgram(
+      setup_.geometryProgram({{GL_VERTEX_SHADER, "cutters/clip_surfaces/cap.vert"},
+                              {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/cap.frag"}}));
+}
+
+void ClipSurfaceCutter::addPreparationPasses(Frame& frame) {
+  if (options_.parity == ClipSurfaceOptions::Parity::PerFrame && !capped_.empty())
+    frame.addPass({.name = "clipSurfaceSprites", .writes = {}, .run = [this](const PassContext&) {
+                     buildPerFrameSprites(setup_.meshes.time());
+                   }});
+}
+
+bool ClipSurfaceCutter::cuts(std::size_t index) const {
+  return setup_.scene.objects[index].role != Role::Interest;
+}
+
+CutLook ClipSurfaceCutter::look(std::size_t index) const {
+  // Its cuts are covered by caps, never shown as cut surfaces.
+  return {.cutSurface = false, .cutColor = setup_.scene.objects[index].material.color};
+}
 
 void ClipSurfaceCutter::buildPerFrameSprites(float time) {
   // Trapp13 §6.3: peeled along the first clip surface's normal, in world space, every frame,
   // so moving and deforming solids keep exact caps.
   const ClipSurface& cs = options_.surfaces.front();
   const glm::mat3 basis(glm::normalize(cs.u), glm::normalize(cs.v), cs.normal());
-  const Scene& scene = sceneGpu_.scene();
+  const Scene& scene = setup_.scene;
   for (std::size_t k = 0; k < capped_.size(); ++k) {
     const SceneObject& o = scene.objects[capped_[k]];
     const glm::mat4 model = o.transformAt(time);
@@ -243,31 +287,33 @@ void ClipSurfaceCutter::buildPerFrameSprites(float time) {
     const glm::mat4 worldToTexture =
         depthSpriteFrame(inBasis, basis, options_.depthSpriteResolution);
     gpu_->sprites[k] =
-        buildDepthSprite(gpu_->peel.id(), sceneGpu_.mesh(capped_[k]), worldToTexture * model,
+        buildDepthSprite(gpu_->peel.id(), setup_.meshes.mesh(capped_[k]), worldToTexture * model,
                          options_.depthSpriteResolution, false);
     gpu_->sprites[k].sprite.toTexture = worldToTexture * model;
   }
 }
 
-void ClipSurfaceCutter::bind() const {
-  glBindBufferBase(GL_UNIFORM_BUFFER, 2, gpu_->block.id());
-  for (std::size_t i = 0; i < gpu_->relief.size(); ++i)
-    glBindTextureUnit(GLuint(16 + i), gpu_->relief[i].id());
-  glBindImageTexture(0, frame_.texture("clipMask").id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-  glBindImageTexture(1, frame_.texture("capParity").id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
-}
-
-void ClipSurfaceCutter::clearMasks() const {
+void ClipSurfaceCutter::bindForGeometry() const {
   const GLuint zero = 0;
-  glClearTexImage(frame_.texture("clipMask").id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearTexImage(frame_.texture("capParity").id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  const Frame& frame = setup_.frame;
+  glClearTexImage(frame.texture(clipMask_).id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearTexImage(frame.texture(capParity_).id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glBindBufferBase(GL_UNIFORM_BUFFER, blockBinding_, gpu_->block.id());
+  for (std::size_t i = 0; i < gpu_->relief.size(); ++i)
+    glBindTextureUnit(GLuint(reliefUnit_ + i), gpu_->relief[i].id());
+  glBindImageTexture(clipMaskImage_, frame.texture(clipMask_).id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                     GL_R32UI);
+  glBindImageTexture(parityImage_, frame.texture(capParity_).id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+                     GL_R32UI);
 }
 
-void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
+void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   // Locations of cap.vert / cap.frag.
   constexpr GLint kObjectId = 11, kCapSurface = 40, kCapToTexture = 41, kDepthComplexity = 45,
                   kCapColor = 46, kCapRect = 48, kHasDiffuse = 49;
-  const Scene& scene = sceneGpu_.scene();
+  const Scene& scene = setup_.scene;
+  const float time = draw.time;
+  const GLuint program = gpu_->cap.id();
   glUseProgram(program);
   for (std::size_t k = 0; k < capped_.size(); ++k) {
     const DepthSpriteGpu& sprite = gpu_->sprites[k];
@@ -278,7 +324,7 @@ void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
     glProgramUniformMatrix4fv(program, kCapToTexture, 1, GL_FALSE, &toTexture[0][0]);
     glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
     glProgramUniform3fv(program, kCapColor, 1, &gpu_->capColors[k][0]);
-    glBindTextureUnit(20, sprite.layers.id());
+    glBindTextureUnit(layersUnit_, sprite.layers.id());
     const SceneObject& o = scene.objects[capped_[k]];
     const glm::mat4 model = o.transformAt(time);
     const Bounds& b = gpu_->capBounds[k];
@@ -310,16 +356,28 @@ void ClipSurfaceCutter::drawCaps(GLuint program, float time) const {
       glProgramUniform4f(program, kCapRect, lo.x, lo.y, hi.x, hi.y);
       const GLuint diffuse = gpu_->diffuse[i].id();
       glProgramUniform1i(program, kHasDiffuse, diffuse != 0);
-      if (diffuse) glBindTextureUnit(22, diffuse);
+      if (diffuse) glBindTextureUnit(diffuseUnit_, diffuse);
       glBindVertexArray(gpu_->grids[grid].vertexArray.id());
       glDrawElements(GL_TRIANGLES, gpu_->grids[grid].indexCount, GL_UNSIGNED_INT, nullptr);
     }
   }
 }
 
-std::vector<Aov> ClipSurfaceCutter::spriteAovs() const {
+void ClipSurfaceCutter::addPassesAfterGeometry(Frame& frame) {
+  frame.addPass({.name = "capMask",
+                 .reads = {setup_.gbuffer.cutMask()},
+                 .writes = {capMask_},
+                 .run = [this](const PassContext&) {
+                   glDisable(GL_DEPTH_TEST);
+                   glUseProgram(gpu_->capMask.id());
+                   glBindTextureUnit(0, setup_.frame.texture(setup_.gbuffer.cutMask()).id());
+                   gpu_->fullscreen.draw();
+                 }});
+}
+
+std::vector<Aov> ClipSurfaceCutter::extraAovs() const {
   std::vector<Aov> aovs;
-  const Scene& scene = sceneGpu_.scene();
+  const Scene& scene = setup_.scene;
   for (std::size_t k = 0; k < capped_.size(); ++k) {
     const DepthSpriteGpu& s = gpu_->sprites[k];
     const int n = s.sprite.width, d = s.sprite.depthComplexity;

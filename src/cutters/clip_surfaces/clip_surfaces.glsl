@@ -1,9 +1,9 @@
 // Trapp13 §4: 2.5D clip surfaces, several evaluated in one pass (§4.5); mirrors
 // src/cutters/clip_surfaces/clip_surface_function.cpp. Shared by the fragment test
 // (clip_fragment.glsl) and the caps (cap.vert, cap.frag). Needs frame_uniforms.glsl.
-#include "../fate.glsl"
+#include "cutters/fate.glsl"
 const int kMaxClipSurfaces = 4;
-layout(std140, binding = 2) uniform ClipSurfaces {
+layout(std140, binding = BLOCK_CLIP_SURFACES) uniform ClipSurfaces {
   vec4 uClipOrigin[kMaxClipSurfaces];  // xyz: O, w: 1 if enabled
   vec4 uClipU[kMaxClipSurfaces];       // xyz: U
   vec4 uClipV[kMaxClipSurfaces];       // xyz: V
@@ -12,7 +12,7 @@ layout(std140, binding = 2) uniform ClipSurfaces {
   vec4 uCapStyle;                      // x: occlusion strength, y: solid texture, z: its frequency
 };
 // Per surface: r = offset h, g = ∂h/∂s, b = ∂h/∂t, a = ambient occlusion (derived at load).
-layout(binding = 16) uniform sampler2D uClipRelief[kMaxClipSurfaces];
+layout(binding = UNIT_CLIP_RELIEF) uniform sampler2D uClipRelief[kMaxClipSurfaces];
 
 vec3 clipSurfaceNormal(int i) {
   return normalize(cross(normalize(uClipU[i].xyz), normalize(uClipV[i].xyz)));

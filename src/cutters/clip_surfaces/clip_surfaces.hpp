@@ -7,10 +7,7 @@
 #include <vector>
 
 #include "cutaway/cutters/clip_surfaces.hpp"
-#include "cutaway/render/frame.hpp"
-#include "cutaway/render/renderer.hpp"
-#include "cutaway/scene/scene.hpp"
-#include "render/scene_gpu.hpp"
+#include "cutters/cutter.hpp"
 
 namespace cutaway {
 
@@ -32,32 +29,38 @@ DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const g
 // [0,1]³ along the orthonormal basis `basis` (columns), rays along its third axis.
 glm::mat4 depthSpriteFrame(const Bounds& boxInBasis, const glm::mat3& basis, int resolution);
 
-class ClipSurfaceCutter {
+class ClipSurfaceCutter : public Cutter {
  public:
   // Uploads the surfaces, builds the static depth sprites of the capped objects (watertight,
-  // cut, visible), declares the masks and adds the per-frame sprite pass if asked for.
-  ClipSurfaceCutter(const SceneGpu& sceneGpu, const ClipSurfaceOptions& options, Frame& frame);
-  ~ClipSurfaceCutter();
-  // Binds the uniform block (2), relief textures (16–19) and mask images (0, 1).
-  void bind() const;
-  // Clears the clip-mask and parity images (before the geometry pass draws).
-  void clearMasks() const;
-  // Draws every cap of every capped object with `capProgram` (cap.vert + cap.frag).
-  void drawCaps(GLuint capProgram, float time) const;
+  // cut, visible) and declares the masks.
+  explicit ClipSurfaceCutter(FrameSetup& setup);
+  ~ClipSurfaceCutter() override;
+  void prepareGeometryPrograms() override;
+  // The per-frame sprite pass, if asked for (Trapp13 §6.3).
+  void addPreparationPasses(Frame& frame) override;
+  // Clears the clip-mask and parity images; binds the block, relief textures and images.
+  void bindForGeometry() const override;
+  bool cuts(std::size_t index) const override;
+  CutLook look(std::size_t index) const override;
+  // Every cap of every capped object (cap.vert + cap.frag).
+  void drawGeometry(const GeometryDraw& draw) const override;
+  // The cap mask, from the G-buffer's cut mask.
+  void addPassesAfterGeometry(Frame& frame) override;
+  // The depth sprites' layers.
+  std::vector<Aov> extraAovs() const override;
   // Objects whose caps are skipped because their meshes are not watertight.
   const std::vector<std::size_t>& uncappable() const { return uncappable_; }
-  // The depth sprites' layers as AOVs (name, meaning, image).
-  std::vector<Aov> spriteAovs() const;
 
  private:
   void buildPerFrameSprites(float time);
 
-  const SceneGpu& sceneGpu_;
+  FrameSetup& setup_;
   ClipSurfaceOptions options_;
-  Frame& frame_;
   struct Gpu;
   std::unique_ptr<Gpu> gpu_;
   std::vector<std::size_t> capped_, uncappable_;
+  GLuint blockBinding_, reliefUnit_, layersUnit_, diffuseUnit_, clipMaskImage_, parityImage_;
+  Target clipMask_, capParity_, capMask_;
 };
 
 }  // namespace cutaway

@@ -1,6 +1,7 @@
 #include "cutters/cutout/cutout.hpp"
 
 #include <map>
+#include <memory>
 
 #include "cutaway/core/error.hpp"
 
@@ -37,13 +38,34 @@ std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
   return units;
 }
 
-Cutout::Cutout(const Scene& scene, const CutoutOptions& options)
-    : options_(options), units_(exteriorUnits(scene)), unitOfObject_(scene.objects.size(), -1) {
+CutterType cutoutCutterType() {
+  return {.key = "cutout",
+          .title = "Cutout (Diepstraten03)",
+          .glsl = "cutters/cutout/cutout.glsl",
+          .name = "cutout",
+          .active = [](const Scene& s) { return s.cutout.has_value(); },
+          .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
+            return std::make_unique<Cutout>(setup);
+          }};
+}
+
+Cutout::Cutout(FrameSetup& setup)
+    : setup_(setup),
+      method_(options().method),
+      units_(exteriorUnits(setup.scene)),
+      unitOfObject_(setup.scene.objects.size(), -1),
+      imageUnit_(setup.bindings.textureUnit("CUTOUT_IMAGE")),
+      planesLocation_(setup.bindings.uniformLocation("CUTOUT_PLANES", kMaxCutoutPlanes)),
+      planeCountLocation_(setup.bindings.uniformLocation("CUTOUT_PLANE_COUNT")),
+      originLocation_(setup.bindings.uniformLocation("CUTOUT_ORIGIN")),
+      axisLocation_(setup.bindings.uniformLocation("CUTOUT_AXIS")),
+      jitterLocation_(setup.bindings.uniformLocation("CUTOUT_JITTER")) {
   for (std::size_t u = 0; u < units_.size(); ++u)
     for (const std::size_t i : units_[u].objects) unitOfObject_[i] = int(u);
   wedges_.resize(units_.size());
-  if (options.jitter.pattern == CutoutJitter::Pattern::Image) {
-    const FloatImage& image = options.jitter.imageData;
+  const CutoutJitter& jitter = options().jitter;
+  if (jitter.pattern == CutoutJitter::Pattern::Image) {
+    const FloatImage& image = jitter.imageData;
     imageTexture_ = gl::Texture::create(GL_TEXTURE_2D);
     const GLuint id = imageTexture_.id();
     glTextureStorage2D(id, 1, GL_R32F, image.width, image.height);
@@ -54,20 +76,28 @@ Cutout::Cutout(const Scene& scene, const CutoutOptions& options)
     glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_REPEAT);
   }
+  if (method_ == CutoutOptions::Method::Texture)
+    setup.gbuffer.addChannel(
+        {.name = "cutoutDistance",
+         .meaning = "signed distance of the visible exterior surface to the cutout wedge, "
+                    "perturbed by the jitter (Diepstraten03 §4.5), scene units; > 0 would be "
+                    "removed, so visible surfaces are <= 0; NaN where no exterior object is "
+                    "visible; sample 0"});
 }
 
-void Cutout::setCamera(const Camera& camera) {
+void Cutout::beginFrame(const FrameState& state) {
+  const Camera& camera = state.camera;
   for (std::size_t u = 0; u < units_.size(); ++u) {
     const PrincipalAxes& axes = units_[u].axes;
     const glm::vec3 towardsViewer = camera.projection == Projection::Orthographic
                                         ? camera.eye - camera.target
                                         : camera.eye - axes.center;
-    wedges_[u] = cutoutWedge(axes, options_, towardsViewer);
+    wedges_[u] = cutoutWedge(axes, options(), towardsViewer);
   }
 }
 
-void Cutout::bind() const {
-  if (imageTexture_.id()) glBindTextureUnit(10, imageTexture_.id());
+void Cutout::bindForGeometry() const {
+  if (imageTexture_.id()) glBindTextureUnit(imageUnit_, imageTexture_.id());
 }
 
 const CutoutWedge* Cutout::wedgeOf(std::size_t index) const {
@@ -75,20 +105,46 @@ const CutoutWedge* Cutout::wedgeOf(std::size_t index) const {
   return u < 0 ? nullptr : &wedges_[std::size_t(u)];
 }
 
-void Cutout::setUniforms(GLuint program, std::size_t index) const {
-  // Locations of src/cutters/cutout/cutout.glsl.
-  constexpr GLint kPlanes = 20, kPlaneCount = 24, kOrigin = 25, kAxis = 26, kJitter = 27;
+bool Cutout::cuts(std::size_t index) const {
+  return method_ == CutoutOptions::Method::Texture && unitOfObject_[index] >= 0;
+}
+
+int Cutout::clipPasses(std::size_t index) const {
+  return method_ == CutoutOptions::Method::ClipPlanes && unitOfObject_[index] >= 0
+             ? kMaxCutoutPlanes
+             : 0;
+}
+
+glm::vec4 Cutout::clipPlane(std::size_t index, int pass) const {
+  // Diepstraten03 §4.3: each pass keeps the far side of one plane (n·x + w <= 0); the union of
+  // the passes is everything outside the wedge. A wedge with fewer planes clips the pass away.
+  const CutoutWedge* w = wedgeOf(index);
+  return w && pass < int(w->planes.size()) ? -w->planes[std::size_t(pass)]
+                                           : glm::vec4(0, 0, 0, -1);
+}
+
+CutLook Cutout::look(std::size_t index) const {
+  // Rule 5: a solid exterior shows its cut wall, in a colour unlike any object's (rule 1);
+  // a hollow one its inside.
+  const SceneObject& o = setup_.scene.objects[index];
+  return {.cutSurface = o.solid(),
+          .cutColor = options().wallColor.value_or(kDefaultWallColor),
+          .backColor = options().insideColor.value_or(o.material.color * 0.55f)};
+}
+
+void Cutout::setObjectUniforms(GLuint program, std::size_t index) const {
   const CutoutWedge* w = wedgeOf(index);
   if (!w) {
-    glProgramUniform1i(program, kPlaneCount, 0);
+    glProgramUniform1i(program, planeCountLocation_, 0);
     return;
   }
-  glProgramUniform4fv(program, kPlanes, GLsizei(w->planes.size()), &w->planes[0][0]);
-  glProgramUniform1i(program, kPlaneCount, GLint(w->planes.size()));
-  glProgramUniform4f(program, kOrigin, w->origin.x, w->origin.y, w->origin.z, w->axisLength);
-  glProgramUniform3fv(program, kAxis, 1, &w->axis[0]);
-  const CutoutJitter& j = options_.jitter;
-  glProgramUniform4f(program, kJitter, float(int(j.pattern)), j.amplitude * w->axisLength,
+  glProgramUniform4fv(program, planesLocation_, GLsizei(w->planes.size()), &w->planes[0][0]);
+  glProgramUniform1i(program, planeCountLocation_, GLint(w->planes.size()));
+  glProgramUniform4f(program, originLocation_, w->origin.x, w->origin.y, w->origin.z,
+                     w->axisLength);
+  glProgramUniform3fv(program, axisLocation_, 1, &w->axis[0]);
+  const CutoutJitter& j = options().jitter;
+  glProgramUniform4f(program, jitterLocation_, float(int(j.pattern)), j.amplitude * w->axisLength,
                      j.frequency / w->axisLength, float(j.octaves));
 }
 

@@ -1,15 +1,15 @@
 // Diepstraten03 §4.5 texture-based cutout: per-fragment signed distances to the wedge's
 // planes, perturbed by a jitter pattern; mirrors src/cutters/cutout/cutout_function.cpp.
 // Needs frame_uniforms.glsl.
-#include "../fate.glsl"
-layout(location = 20) uniform vec4 uCutoutPlanes[4];  // n·x + w > 0 on the removed side
-layout(location = 24) uniform int uCutoutPlaneCount;   // 0: this object has no wedge
-layout(location = 25) uniform vec4 uCutoutOrigin;      // xyz: origin on the main axis, w: axis length
-layout(location = 26) uniform vec3 uCutoutAxis;
+#include "cutters/fate.glsl"
+layout(location = LOC_CUTOUT_PLANES) uniform vec4 uCutoutPlanes[4];  // n·x + w > 0 on the removed side
+layout(location = LOC_CUTOUT_PLANE_COUNT) uniform int uCutoutPlaneCount;  // 0: this object has no wedge
+layout(location = LOC_CUTOUT_ORIGIN) uniform vec4 uCutoutOrigin;  // xyz: origin on the main axis, w: axis length
+layout(location = LOC_CUTOUT_AXIS) uniform vec3 uCutoutAxis;
 // x: pattern (0 none, 1 sawtooth, 2 noise, 3 image), y: amplitude (world units),
 // z: frequency (per world unit), w: noise octaves
-layout(location = 27) uniform vec4 uCutoutJitter;
-layout(binding = 10) uniform sampler2D uCutoutImage;  // grey levels, repeat, bilinear
+layout(location = LOC_CUTOUT_JITTER) uniform vec4 uCutoutJitter;
+layout(binding = UNIT_CUTOUT_IMAGE) uniform sampler2D uCutoutImage;  // grey levels, repeat, bilinear
 
 float cutoutLatticeValue(int ix, int iy) {
   uint h = uint(ix) * 0x8da6b343u + uint(iy) * 0xd8163841u;
@@ -68,7 +68,9 @@ float cutoutDistance(vec3 x) {
 
 // kDiscard inside the wedge; a back face outside it is seen through the cut (Diepstraten03
 // rule 5: the cut wall is visible): the wall lies where the view ray leaves the wedge.
-int cutoutFragment(vec3 x, bool frontFacing, out vec3 cutPosition, out vec3 cutNormal) {
+int cutoutFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+  vec3 x = f.position;
+  bool frontFacing = f.frontFacing;
   if (uCutoutPlaneCount == 0) return kKeep;
   if (cutoutDistance(x) > 0.0) return kDiscard;
   if (frontFacing) return kKeep;
@@ -104,4 +106,9 @@ int cutoutFragment(vec3 x, bool frontFacing, out vec3 cutPosition, out vec3 cutN
     cutNormal = uCutoutPlanes[keeper].xyz;
   }
   return kCutSurface;
+}
+
+// The G-buffer channel cutoutDistance: the signed distance at a fragment of an exterior object.
+float cutoutChannel0(CutFragment f) {
+  return uCutoutPlaneCount > 0 ? cutoutDistance(f.position) : uintBitsToFloat(0x7fc00000u);
 }

@@ -1,34 +1,44 @@
 // The cutout cutter in the frame (Diepstraten03 §4): the exterior units' main axes at set-up,
-// their wedges per frame, and the uniforms of src/cutters/cutout/cutout.glsl per object.
+// their wedges per frame, and the uniforms of src/cutters/cutout/cutout.glsl per object; with
+// the clip-plane method (§4.3), the exterior drawn once per plane instead.
 #pragma once
 
 #include <vector>
 
 #include "cutaway/cutters/cutout.hpp"
 #include "cutaway/gl/objects.hpp"
-#include "cutaway/scene/scene.hpp"
+#include "cutters/cutter.hpp"
 
 namespace cutaway {
 
-class Cutout {
+class Cutout : public Cutter {
  public:
-  Cutout(const Scene& scene, const CutoutOptions& options);
-  // The wedges face the camera (unless the rotation is fixed): call before each frame.
-  void setCamera(const Camera& camera);
-  // Binds the perturbation image (unit 10) for cutout.glsl.
-  void bind() const;
-  // Sets cutout.glsl's uniforms for object `index`: its unit's wedge, or none.
-  void setUniforms(GLuint program, std::size_t index) const;
-  // The wedge that cuts object `index`, or null when it is not exterior.
-  const CutoutWedge* wedgeOf(std::size_t index) const;
-  const std::vector<ExteriorUnit>& units() const { return units_; }
+  explicit Cutout(FrameSetup& setup);
+  // The wedges face the camera (unless the rotation is fixed).
+  void beginFrame(const FrameState& state) override;
+  void bindForGeometry() const override;
+  // Diepstraten03 rule 1: only the exterior objects, per fragment with the texture method…
+  bool cuts(std::size_t index) const override;
+  // … or with one hardware clip plane per pass.
+  int clipPasses(std::size_t index) const override;
+  glm::vec4 clipPlane(std::size_t index, int pass) const override;
+  CutLook look(std::size_t index) const override;
+  void setObjectUniforms(GLuint program, std::size_t index) const override;
+  std::optional<glm::vec3> cutOutlineColor() const override { return glm::vec3(0.0f); }
 
  private:
-  CutoutOptions options_;
+  const CutoutOptions& options() const { return *setup_.scene.cutout; }
+  // The wedge that cuts object `index`, or null when it is not exterior.
+  const CutoutWedge* wedgeOf(std::size_t index) const;
+
+  FrameSetup& setup_;
+  const CutoutOptions::Method method_;
   std::vector<ExteriorUnit> units_;
   std::vector<int> unitOfObject_;  // -1: not exterior
   std::vector<CutoutWedge> wedges_;
   gl::Texture imageTexture_;
+  GLuint imageUnit_;
+  GLint planesLocation_, planeCountLocation_, originLocation_, axisLocation_, jitterLocation_;
 };
 
 }  // namespace cutaway

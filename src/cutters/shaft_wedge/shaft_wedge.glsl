@@ -3,10 +3,13 @@
 // discarded, so a wedge always opens towards the viewer. The outer cylinder's back faces and
 // the inner one's front faces are the wall seen edge-on in the wedge: the cut surface. Mirrors
 // shaftWedgeRemoves in src/geometry/pipe_network.cpp.
-layout(location = 52) uniform float uShaftOpening;
+#include "cutters/fate.glsl"
+layout(location = LOC_SHAFT_OPENING) uniform float uShaftOpening;
+layout(location = LOC_SHAFT_INNER) uniform int uShaftInner;  // 1: the inner cylinder
 
-int shaftFragment(bool inner, vec3 x, vec3 normal, bool frontFacing, out vec3 cutPosition,
-                  out vec3 cutNormal) {
+int shaftFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+  bool inner = uShaftInner != 0, frontFacing = f.frontFacing;
+  vec3 x = f.position, normal = f.normal;
   vec3 toEye = uCounts.y == 1 ? -uForward.xyz : uEye.xyz - x;
   vec2 n = normal.xz, v = toEye.xz;
   cutPosition = x;

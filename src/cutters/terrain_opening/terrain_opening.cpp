@@ -6,12 +6,28 @@
 
 namespace cutaway {
 
-TerrainOpening::TerrainOpening(const Scene& scene, const TerrainOpeningOptions& options,
-                               Frame& frame)
-    : options_(options),
-      frame_(frame),
-      terrain_(scene.objects.size(), false),
-      cutBuildings_(scene.objects.size(), false) {
+CutterType terrainOpeningCutterType() {
+  return {.key = "terrainOpening",
+          .title = "Terrain opening (Konev18)",
+          .glsl = "cutters/terrain_opening/terrain_opening.glsl",
+          .name = "terrain",
+          .active = [](const Scene& s) { return s.terrainOpening.has_value(); },
+          .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
+            return std::make_unique<TerrainOpening>(setup);
+          }};
+}
+
+TerrainOpening::TerrainOpening(FrameSetup& setup)
+    : setup_(setup),
+      terrain_(setup.scene.objects.size(), false),
+      cutBuildings_(setup.scene.objects.size(), false),
+      distanceUnit_(setup.bindings.textureUnit("TERRAIN_DISTANCE")),
+      thresholdImage_(setup.bindings.imageUnit("TERRAIN_THRESHOLD")),
+      classImage_(setup.bindings.imageUnit("TERRAIN_CLASS")),
+      frameLocation_(setup.bindings.uniformLocation("TERRAIN_FRAME")),
+      paramsLocation_(setup.bindings.uniformLocation("TERRAIN_PARAMS")) {
+  const TerrainOpeningOptions& options = this->options();
+  const Scene& scene = setup.scene;
   const std::regex terrain(options.terrain);
   const std::regex buildings(options.buildings.empty() ? "$^" : options.buildings);
   Bounds bounds;
@@ -31,43 +47,54 @@ TerrainOpening::TerrainOpening(const Scene& scene, const TerrainOpeningOptions& 
   const int n = field_.resolution;
   texture_ = gl::Texture::create2D(GL_R32F, n, n);
   glTextureSubImage2D(texture_.id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT, field_.distance.data());
-  frame.declare("terrainThreshold",
-                {.format = GL_RG32F,
-                 .meaning = "Konev18 eq. 1 at the last terrain fragment of the pixel: x = camera "
-                            "distance d_c (scene units), y = threshold t, z = 0",
-                 .aovChannels = 3});
-  frame.declare("terrainClass", {.format = GL_R32UI,
-                                 .meaning = "Konev18 eqs. 2-3 over the pixel's terrain fragments: "
-                                            "0 none, 1 terrain drawn, 2 artificial thickness, 3 "
-                                            "a fragment discarded (the largest seen)"});
+  threshold_ = setup.frame.declare(
+      "terrainThreshold",
+      {.format = GL_RG32F,
+       .meaning = "Konev18 eq. 1 at the last terrain fragment of the pixel: x = camera distance "
+                  "d_c (scene units), y = threshold t, z = 0",
+       .aovChannels = 3});
+  class_ = setup.frame.declare("terrainClass",
+                               {.format = GL_R32UI,
+                                .meaning = "Konev18 eqs. 2-3 over the pixel's terrain fragments: "
+                                           "0 none, 1 terrain drawn, 2 artificial thickness, 3 a "
+                                           "fragment discarded (the largest seen)"});
 }
 
-void TerrainOpening::prepare(GLuint program) const {
+void TerrainOpening::bindForGeometry() const {
   const float zero[4] = {0, 0, 0, 0};
   const GLuint none = 0;
-  glClearTexImage(frame_.texture("terrainThreshold").id(), 0, GL_RG, GL_FLOAT, zero);
-  glClearTexImage(frame_.texture("terrainClass").id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
-  glBindTextureUnit(23, texture_.id());
-  glBindImageTexture(2, frame_.texture("terrainThreshold").id(), 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                     GL_RG32F);
-  glBindImageTexture(3, frame_.texture("terrainClass").id(), 0, GL_FALSE, 0, GL_READ_WRITE,
+  const Frame& frame = setup_.frame;
+  glClearTexImage(frame.texture(threshold_).id(), 0, GL_RG, GL_FLOAT, zero);
+  glClearTexImage(frame.texture(class_).id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &none);
+  glBindTextureUnit(distanceUnit_, texture_.id());
+  glBindImageTexture(thresholdImage_, frame.texture(threshold_).id(), 0, GL_FALSE, 0,
+                     GL_WRITE_ONLY, GL_RG32F);
+  glBindImageTexture(classImage_, frame.texture(class_).id(), 0, GL_FALSE, 0, GL_READ_WRITE,
                      GL_R32UI);
-  // Locations of terrain_opening.glsl.
-  glProgramUniform4f(program, 50, field_.min.x, field_.min.y, 1.0f / field_.size.x,
+}
+
+void TerrainOpening::setProgramUniforms(GLuint program) const {
+  const TerrainOpeningOptions& o = options();
+  glProgramUniform4f(program, frameLocation_, field_.min.x, field_.min.y, 1.0f / field_.size.x,
                      1.0f / field_.size.y);
-  glProgramUniform4f(program, 51, options_.w, options_.s, options_.cameraDistance ? 1.0f : 0.0f,
+  glProgramUniform4f(program, paramsLocation_, o.w, o.s, o.cameraDistance ? 1.0f : 0.0f,
                      float(field_.resolution));
 }
 
-Aov TerrainOpening::fieldAov() const {
+CutLook TerrainOpening::look(std::size_t) const {
+  // Eq. 3's artificial thickness is shown as the cut surface.
+  return {.cutSurface = true, .cutColor = options().thicknessColor.value_or(kSoilColor)};
+}
+
+std::vector<Aov> TerrainOpening::extraAovs() const {
   const int n = field_.resolution;
   FloatImage image(n, n, 1);
   image.data = field_.distance;
   image.flipVertically();  // rows of increasing z stored first; AOVs run top to bottom
-  return {"terrainDistance",
-          "D_p (Konev18 §4): distance from texel to the closest pipe, min(texels, 255) / 255, "
-          "over the terrain's x (columns) and z (rows, decreasing downwards) extent",
-          std::move(image)};
+  return {{"terrainDistance",
+           "D_p (Konev18 §4): distance from texel to the closest pipe, min(texels, 255) / 255, "
+           "over the terrain's x (columns) and z (rows, decreasing downwards) extent",
+           std::move(image)}};
 }
 
 }  // namespace cutaway

@@ -1,13 +1,13 @@
 // Konev18 §4: the terrain opened above the pipe network, per fragment (eqs. 1–3); mirrors
 // terrainFate in terrain_function.cpp. Needs frame_uniforms.glsl.
-#include "../fate.glsl"
-layout(location = 50) uniform vec4 uTerrainFrame;   // min x, min z, 1 / size x, 1 / size z
-layout(location = 51) uniform vec4 uTerrainParams;  // w, s, camera-distance dependency (0/1), T
-layout(binding = 23) uniform sampler2D uTerrainDistance;  // D_p in [0, 1]
+#include "cutters/fate.glsl"
+layout(location = LOC_TERRAIN_FRAME) uniform vec4 uTerrainFrame;   // min x, min z, 1 / size x, 1 / size z
+layout(location = LOC_TERRAIN_PARAMS) uniform vec4 uTerrainParams;  // w, s, camera-distance dependency (0/1), T
+layout(binding = UNIT_TERRAIN_DISTANCE) uniform sampler2D uTerrainDistance;  // D_p in [0, 1]
 // Per pixel: d_c and t of the last terrain fragment; the largest fate seen (1 terrain,
 // 2 thickness, 3 discarded).
-layout(binding = 2, rg32f) uniform writeonly image2D uTerrainThreshold;
-layout(binding = 3, r32ui) uniform coherent uimage2D uTerrainClass;
+layout(binding = IMAGE_TERRAIN_THRESHOLD, rg32f) uniform writeonly image2D uTerrainThreshold;
+layout(binding = IMAGE_TERRAIN_CLASS, r32ui) uniform coherent uimage2D uTerrainClass;
 
 // Nearest texel, as TerrainField::at.
 float terrainDistanceAt(vec2 uv) {
@@ -16,7 +16,8 @@ float terrainDistanceAt(vec2 uv) {
   return texelFetch(uTerrainDistance, texel, 0).r;
 }
 
-int terrainFragment(vec3 x, out vec3 cutPosition, out vec3 cutNormal) {
+int terrainFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+  vec3 x = f.position;
   ivec2 pixel = ivec2(gl_FragCoord.xy);
   vec2 uv = (x.xz - uTerrainFrame.xy) * uTerrainFrame.zw;
   float dc = length(uEye.xyz - x);

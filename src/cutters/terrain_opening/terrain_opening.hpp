@@ -6,32 +6,34 @@
 #include <vector>
 
 #include "cutaway/cutters/terrain_opening.hpp"
-#include "cutaway/render/frame.hpp"
-#include "cutaway/render/renderer.hpp"
-#include "cutaway/scene/scene.hpp"
+#include "cutters/cutter.hpp"
 
 namespace cutaway {
 
-class TerrainOpening {
+class TerrainOpening : public Cutter {
  public:
   // Matches the terrain and building objects, builds D_p over the terrain's extent and
   // declares the per-pixel images (d_c and t, the fate seen).
-  TerrainOpening(const Scene& scene, const TerrainOpeningOptions& options, Frame& frame);
-  bool isTerrain(std::size_t object) const { return terrain_[object]; }
+  explicit TerrainOpening(FrameSetup& setup);
+  // Clears the images and binds the distance texture and the images.
+  void bindForGeometry() const override;
+  void setProgramUniforms(GLuint program) const override;
   // Terrain objects, and buildings when the scene asks for them to be opened too.
-  bool cuts(std::size_t object) const { return terrain_[object] || cutBuildings_[object]; }
-  // Clears the images and binds texture unit 23 and image units 2, 3; sets the uniforms.
-  void prepare(GLuint program) const;
-  const TerrainField& field() const { return field_; }
-  // The distance texture as an AOV.
-  Aov fieldAov() const;
+  bool cuts(std::size_t index) const override { return terrain_[index] || cutBuildings_[index]; }
+  CutLook look(std::size_t index) const override;
+  // The distance texture.
+  std::vector<Aov> extraAovs() const override;
 
  private:
-  TerrainOpeningOptions options_;
-  Frame& frame_;
+  const TerrainOpeningOptions& options() const { return *setup_.scene.terrainOpening; }
+
+  FrameSetup& setup_;
   std::vector<bool> terrain_, cutBuildings_;
   TerrainField field_;
   gl::Texture texture_;
+  GLuint distanceUnit_, thresholdImage_, classImage_;
+  GLint frameLocation_, paramsLocation_;
+  Target threshold_, class_;
 };
 
 }  // namespace cutaway

@@ -14,7 +14,7 @@
 // in uniform control flow.
 //
 // In the key light's shadow the surface counts as unlit, so shadows are hatched darkest.
-layout(binding = 14) uniform sampler2DArray uTonalArtMap;
+layout(binding = UNIT_TONAL_ART_MAP) uniform sampler2DArray uTonalArtMap;
 
 // Ink coverage of the TAM at `uv`, blended between the tones bracketing `darkness` ∈ [0, 1].
 // Tone position u = darkness · tones − 1: −1 is bare paper, tones − 1 the darkest tone, so

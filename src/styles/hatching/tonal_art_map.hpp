@@ -17,9 +17,6 @@
 
 namespace cutaway {
 
-// Texture unit of the TAM in the geometry pass (src/styles/hatching/hatching.glsl).
-constexpr GLuint kTonalArtMapUnit = 14;
-
 struct TonalArtMapOptions {
   int tones = 6;   // lightest (0) to darkest (tones − 1)
   int size = 256;  // texels per side of the finest level (a power of two)

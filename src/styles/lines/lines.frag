@@ -8,7 +8,7 @@
 // - with CUT_OUTLINES, the outline of the cut surfaces (Burns08 §4.2): cut-mask pixels next
 //   to a pixel outside the mask.
 // A line's weight is the normal's w: 0 for objects without lines, a fade for ghost lines.
-#include "../../render/frame_uniforms.glsl"
+#include "frame/frame_uniforms.glsl"
 layout(binding = 0) uniform sampler2DMS uNormal;     // world normal, w: lines flag
 layout(binding = 1) uniform sampler2DMS uPosition;   // w: linear view depth
 layout(binding = 2) uniform isampler2DMS uObjectId;  // -1: background

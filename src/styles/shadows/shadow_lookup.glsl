@@ -4,7 +4,7 @@
 // around the point that lie behind it, over a (2r + 1)² grid of hardware-filtered 2×2
 // comparisons (sampler2DShadow with linear filtering), so shadow edges are soft over about
 // 2r + 2 texels instead of stair-stepped.
-layout(binding = 15) uniform sampler2DShadow uShadowMap;
+layout(binding = UNIT_SHADOW_MAP) uniform sampler2DShadow uShadowMap;
 
 // Needs surface.glsl (towardsLight).
 float keyLightVisibility(vec3 position) {

@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cutaway/gl/shader.hpp"
+#include "frame/frame_uniforms.hpp"
 
 namespace cutaway {
 
@@ -85,14 +86,15 @@ bool castsShadow(const SceneObject& object) {
   return object.role != Role::Exterior;
 }
 
-ShadowMap::ShadowMap(const SceneGpu& sceneGpu, const ShadowStyle& style, Frame& frame,
-                     std::size_t uniformBytes)
-    : sceneGpu_(sceneGpu), style_(style), frame_(frame) {
-  program_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "render/mesh.vert"},
+ShadowMap::ShadowMap(FrameSetup& setup)
+    : setup_(setup), unit_(setup.bindings.textureUnit("SHADOW_MAP")) {
+  program_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                           {GL_FRAGMENT_SHADER, "styles/shadows/shadow_map.frag"}}});
-  lightUniforms_ = gl::Buffer::create(GLsizeiptr(uniformBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  const int n = style.size;
-  frame.declare("shadowMap",
+  lightUniforms_ =
+      gl::Buffer::create(GLsizeiptr(sizeof(FrameUniforms)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const int n = style().size;
+  Frame& frame = setup.frame;
+  map_ = frame.declare("shadowMap",
                 {.format = GL_R32F,
                  .width = n,
                  .height = n,
@@ -101,8 +103,8 @@ ShadowMap::ShadowMap(const SceneGpu& sceneGpu, const ShadowStyle& style, Frame& 
                             "castsShadow false are not drawn); 0 where no caster (" +
                             std::to_string(n) + "x" + std::to_string(n) +
                             " shadow map, light-space texels)"});
-  frame.declare("shadowDepth", {.format = GL_DEPTH_COMPONENT32F, .width = n, .height = n});
-  const GLuint depth = frame.texture("shadowDepth").id();
+  depth_ = frame.declare("shadowDepth", {.format = GL_DEPTH_COMPONENT32F, .width = n, .height = n});
+  const GLuint depth = frame.texture(depth_).id();
   // Hardware percentage-closer filtering: each lookup compares the 2×2 nearest texels and
   // filters the results bilinearly; shadow_lookup.glsl averages a grid of such lookups.
   glTextureParameteri(depth, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
@@ -114,9 +116,11 @@ ShadowMap::ShadowMap(const SceneGpu& sceneGpu, const ShadowStyle& style, Frame& 
   glTextureParameteri(depth, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
   glTextureParameteri(depth, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
   glTextureParameterfv(depth, GL_TEXTURE_BORDER_COLOR, border);
+}
 
+void ShadowMap::addPass(Frame& frame) {
   frame.addPass({.name = "shadowMap",
-                 .writes = {"shadowMap", "shadowDepth"},
+                 .writes = {map_, depth_},
                  .run = [this](const PassContext& pass) {
                    const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
                    glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, 0, zero);
@@ -134,18 +138,19 @@ ShadowMap::ShadowMap(const SceneGpu& sceneGpu, const ShadowStyle& style, Frame& 
                    // not shadow themselves ("shadow acne") where they are at a grazing angle
                    // to the light and the PCF taps reach across a texel.
                    glEnable(GL_POLYGON_OFFSET_FILL);
-                   glPolygonOffset(style_.slopeBias, 4.0f);
-                   sceneGpu_.draw(
-                       program_.id(), [](const SceneObject& o) { return castsShadow(o); },
+                   glPolygonOffset(style().slopeBias, 4.0f);
+                   setup_.meshes.draw(
+                       program_.id(),
+                       [](const SceneObject& o, std::size_t) { return castsShadow(o); },
                        [](const SceneObject&, std::size_t) {});
-                   if (otherCasters_) otherCasters_();
+                   if (setup_.drawShadowCasters) setup_.drawShadowCasters();
                    glDisable(GL_POLYGON_OFFSET_FILL);
                    glBindBufferBase(GL_UNIFORM_BUFFER, 0, GLuint(frameUniforms));
                  }});
 }
 
 void ShadowMap::bindForLookup() const {
-  glBindTextureUnit(kShadowMapUnit, frame_.texture("shadowDepth").id());
+  glBindTextureUnit(unit_, setup_.frame.texture(depth_).id());
 }
 
 }  // namespace cutaway

@@ -9,9 +9,10 @@
 // objects cast: every visible object except those of role `exterior` (a closed outer shell
 // would otherwise shadow everything inside it); the object parameter `castsShadow` overrides.
 //
-//   ShadowMap shadows(sceneGpu, scene.style.shadows, frame, sizeof(FrameUniforms));
-//   // per frame: fill shadows.lightUniforms() with the frame uniforms seen from the light,
-//   // then after the pass: shadows.bindForLookup();
+//   ShadowMap shadows(setup);
+//   shadows.addPass(frame);
+//   // per frame: fill shadows.lightUniforms() with the frame uniforms seen from the light;
+//   // in the geometry pass: shadows.bindForLookup();
 #pragma once
 
 #include <cstddef>
@@ -20,14 +21,11 @@
 #include <glm/glm.hpp>
 
 #include "cutaway/geometry/mesh.hpp"
-#include "cutaway/render/frame.hpp"
+#include "cutaway/frame/frame.hpp"
 #include "cutaway/scene/scene.hpp"
-#include "render/scene_gpu.hpp"
+#include "frame/frame_setup.hpp"
 
 namespace cutaway {
-
-// Texture unit of the shadow map in the geometry pass (src/styles/shadows/shadow_lookup.glsl).
-constexpr GLuint kShadowMapUnit = 15;
 
 struct LightFrustum {
   glm::mat4 view, projection;
@@ -47,29 +45,31 @@ bool castsShadow(const SceneObject& object);
 
 class ShadowMap {
  public:
-  // Declares the targets "shadowMap" (AOV: linear depth from the light) and "shadowDepth",
-  // and adds the "shadowMap" pass to `frame`. `uniformBytes`: size of the frame uniform
-  // block, of which the pass binds its own copy (the light as the camera) while it draws.
-  ShadowMap(const SceneGpu& sceneGpu, const ShadowStyle& style, Frame& frame,
-            std::size_t uniformBytes);
-  // The uniform buffer the pass binds at binding 0 instead of the frame's.
+  // Declares the targets "shadowMap" (AOV: linear depth from the light) and "shadowDepth" and
+  // allocates the lookup's texture unit.
+  explicit ShadowMap(FrameSetup& setup);
+  // The "shadowMap" pass: the scene meshes that cast, then the other kinds' casters
+  // (FrameSetup::drawShadowCasters), with the light's uniforms bound.
+  void addPass(Frame& frame);
+  // The depth map the geometry pass reads.
+  Target depth() const { return depth_; }
+  // The uniform buffer the pass binds at the frame's block instead of the frame's: the frame
+  // uniforms with the light as the camera, filled by the composer every frame.
   GLuint lightUniforms() const { return lightUniforms_.id(); }
   // Whether this frame has a key light to cast shadows from (the pass draws nothing without).
   void setActive(bool active) { active_ = active; }
   // Binds the depth map, with hardware depth comparison, for the geometry pass.
   void bindForLookup() const;
-  // Casters that are no scene object (Konev18's billboard pipes): drawn after the objects,
-  // into the same targets, with the light's uniforms bound.
-  void setOtherCasters(std::function<void()> draw) { otherCasters_ = std::move(draw); }
 
  private:
-  const SceneGpu& sceneGpu_;
-  ShadowStyle style_;
-  Frame& frame_;
+  const ShadowStyle& style() const { return setup_.scene.style.shadows; }
+
+  FrameSetup& setup_;
   gl::Program program_;
   gl::Buffer lightUniforms_;
+  GLuint unit_;
+  Target map_, depth_;
   bool active_ = false;
-  std::function<void()> otherCasters_;
 };
 
 }  // namespace cutaway

@@ -6,7 +6,7 @@
 // highlight (Lake00 §3.1, "specular highlight" as a second ramp of two tones) appears where
 // the Blinn term passes a threshold. Silhouettes come from the line pass (styles/lines).
 // The key light is the first light (a headlight without lights); its colour is not used.
-layout(binding = 13) uniform sampler1D uToonRamp;
+layout(binding = UNIT_TOON_RAMP) uniform sampler1D uToonRamp;
 vec3 shadeSurface(SurfacePoint s) {
   vec3 l = uCounts.x > 0 ? towardsLight(0, s.position) : s.toEye;
   float nDotL = max(dot(s.normal, l), 0.0) * step(0.5, s.keyLightVisibility);

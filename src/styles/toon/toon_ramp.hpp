@@ -12,9 +12,6 @@
 
 namespace cutaway {
 
-// Texture unit of the ramp in the geometry pass (src/styles/toon/toon.glsl).
-constexpr GLuint kToonRampUnit = 13;
-
 // The ramp's texels, dark to light: one per tone, RGB multipliers of the object colour.
 std::vector<glm::vec3> toonRampTexels(const ToonStyle& style);
 

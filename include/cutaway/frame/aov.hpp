@@ -1,0 +1,33 @@
+// cutaway/frame/aov.hpp — a frame's intermediate buffers (AOVs), and writing them for
+// inspection.
+//
+// Every AOV becomes DIR/<name>.pfm, and DIR/aovs.json lists, per AOV, its file, size,
+// channels and meaning (units and depth conventions), plus the camera matrices so that
+// values can be checked from outside.
+//
+//   cutaway::writeAovs("out/aovs", renderer.readAovs(), camera, aspect);
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cutaway/core/image.hpp"
+#include "cutaway/frame/frame.hpp"
+#include "cutaway/scene/camera.hpp"
+
+namespace cutaway {
+
+struct Aov {
+  std::string name;     // file stem, e.g. "depth"
+  std::string meaning;  // what a texel holds, with units and conventions
+  FloatImage image;     // rows top to bottom
+};
+
+// The frame's targets that have a meaning, in declaration order, rows top-down.
+std::vector<Aov> readFrameAovs(const Frame& frame);
+
+void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
+               float aspect);
+
+}  // namespace cutaway

@@ -1,0 +1,130 @@
+// cutaway/frame/frame.hpp — a frame as a sequence of named passes over render targets.
+//
+// A frame owns its render targets (textures with a format, a size and, for AOVs, a meaning)
+// and a list of passes. `declare` returns a typed handle to the new target; a pass names the
+// targets it reads and writes by their handles, and `execute` checks that every read was
+// written by an earlier pass, binds a framebuffer with the written targets attached (colour
+// targets in the order given, a depth-format target as the depth attachment), sets the
+// viewport and times the pass with GL_TIME_ELAPSED. Targets keep their names for the AOV
+// dumps and for tools that look them up (`find`).
+//
+//   cutaway::Frame frame(640, 480, context.info().software);
+//   const cutaway::Target color = frame.declare("color", {.format = GL_RGBA8});
+//   frame.addPass({.name = "background", .writes = {color},
+//                  .run = [](const cutaway::PassContext&) { /* draw */ }});
+//   frame.execute();
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cutaway/gl/objects.hpp"
+#include "cutaway/gl/timer.hpp"
+
+namespace cutaway {
+
+struct TargetDesc {
+  GLenum format = GL_RGBA8;
+  int samples = 0;            // 0: a plain 2-D texture; ≥ 1: a multisample texture
+  int width = 0, height = 0;  // 0: the frame's size
+  // For AOV dumps: what a texel means (units, conventions); empty = not an AOV.
+  std::string meaning;
+  int aovChannels = 0;  // channels written to the PFM (1 or 3); 0 = derived from the format
+};
+
+// A render target of one frame. Only `Frame::declare` makes valid handles, so a pass cannot
+// name a target that does not exist; a handle carries its frame, so it cannot be used with
+// another one.
+class Target {
+ public:
+  Target() = default;
+  bool valid() const { return index_ >= 0; }
+  friend bool operator==(Target, Target) = default;
+
+ private:
+  friend class Frame;
+  Target(unsigned frame, int index) : frame_(frame), index_(index) {}
+  unsigned frame_ = 0;
+  int index_ = -1;
+};
+
+struct PassContext {
+  int width, height;  // viewport of this pass
+  GLuint framebuffer;
+};
+
+struct PassDesc {
+  std::string name;
+  std::vector<Target> reads, writes;
+  std::function<void(const PassContext&)> run;
+};
+
+struct PassTiming {
+  std::string name;
+  double gpuMs;  // GL_TIME_ELAPSED
+  double cpuMs;  // wall time of the pass's own code (CPU kernels, command submission)
+};
+
+class Frame {
+ public:
+  Frame(int width, int height, bool software);
+  // Throws cutaway::Error for a name declared twice.
+  [[nodiscard]] Target declare(const std::string& name, TargetDesc desc);
+  void addPass(PassDesc pass);
+  // Runs every pass once; throws cutaway::Error for an ill-formed frame (a read before its
+  // write, a handle of another frame, an incomplete framebuffer).
+  void execute();
+  // GPU time of each pass in the last `execute` (waits for the queries).
+  std::vector<PassTiming> timings();
+  // The passes' names in execution order.
+  std::vector<std::string> passNames() const;
+
+  const gl::Texture& texture(Target target) const;
+  const TargetDesc& desc(Target target) const;
+  // A single-sample target's texels as floats, `channels` (1: red, 3: RGB) per texel, rows
+  // bottom to top as OpenGL stores them.
+  std::vector<float> read(Target target, int channels) const;
+
+  // Lookup by name, for tools outside the frame's passes (AOV inspectors, tests).
+  std::optional<Target> find(const std::string& name) const;
+  Target at(const std::string& name) const;  // throws cutaway::Error when there is none
+  bool has(const std::string& name) const { return find(name).has_value(); }
+  const gl::Texture& texture(const std::string& name) const { return texture(at(name)); }
+  const TargetDesc& desc(const std::string& name) const { return desc(at(name)); }
+  std::vector<float> read(const std::string& name, int channels) const {
+    return read(at(name), channels);
+  }
+  // Targets with a meaning, in declaration order.
+  std::vector<std::string> aovNames() const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  struct TargetData {
+    std::string name;
+    TargetDesc desc;
+    gl::Texture texture;
+  };
+  struct Pass {
+    PassDesc desc;
+    gl::Framebuffer framebuffer;
+    int width = 0, height = 0;
+  };
+  const TargetData& target(Target t, const std::string& user) const;
+  void prepare(Pass& pass);
+
+  unsigned serial_;  // this frame's handles carry it
+  int width_, height_;
+  gl::PassTimer timer_;
+  std::vector<TargetData> targets_;  // in declaration order, indexed by Target
+  std::vector<Pass> passes_;
+  std::vector<double> cpuMs_;
+  bool prepared_ = false;
+};
+
+// Whether `format` is a depth format (attached as GL_DEPTH_ATTACHMENT).
+bool isDepthFormat(GLenum format);
+
+}  // namespace cutaway

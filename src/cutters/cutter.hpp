@@ -1,0 +1,117 @@
+// The one interface every cutter implements, and its entry in the registry
+// (src/cutters/registry.cpp). A cutter decides, per fragment of the objects it cuts, whether the
+// fragment is kept, removed, or shows the solid's cut surface (Diepstraten03's separation of the
+// cut from the rendering style): it may prepare buffers in passes of its own before the
+// geometry pass, binds what its GLSL reads, sets per-object uniforms, and may draw geometry
+// of its own and add passes after the geometry pass.
+//
+// Its GLSL file (CutterType::glsl) defines, for the composition the registry generates into
+// every geometry program:
+//   int <name>Fragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal);
+// returning kKeep, kDiscard or kCutSurface (cutters/fate.glsl), and for each G-buffer channel
+// its constructor adds (GBuffer::addChannel), `float <name>Channel<k>(CutFragment f)` (k: 0,
+// 1, … in the order added), the channel's value on the fragments of the objects it cuts.
+//
+// Adding a cutter: its folder (options, this interface, GLSL, README citing the equations) and
+// one line in registry.cpp (docs/architecture.md).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cutaway/frame/aov.hpp"
+#include "cutaway/frame/frame.hpp"
+#include "frame/frame_setup.hpp"
+#include "frame/frame_uniforms.hpp"
+
+namespace cutaway {
+
+// How the cut of one object looks where this cutter made it.
+struct CutLook {
+  bool cutSurface = false;  // back faces seen through its cut are the solid's cut surface
+  glm::vec3 cutColor{0.0f};
+  // Back faces that are no cut surface (an open or hollow inside); unset: the object's colour.
+  std::optional<glm::vec3> backColor;
+};
+
+// A G-buffer of removed material whose feature lines the composer draws faded over the image
+// (Burns08 §4.3's ghost lines): the normal's w is each sample's line weight.
+struct GhostBuffers {
+  Target normal, position, objectId;  // multisampled, as the scene G-buffer's
+  std::function<float()> opacity;     // read every frame
+};
+
+// What a geometry program needs at the moment it draws.
+struct GeometryDraw {
+  float time;  // the objects' animation time
+};
+
+class Cutter {
+ public:
+  virtual ~Cutter() = default;
+
+  // Once the geometry programs' shading is known (FrameSetup::geometryProgram): builds the
+  // geometry programs of its own (Trapp13's caps).
+  virtual void prepareGeometryPrograms() {}
+  // Per frame, before any pass: the camera (e.g. wedges facing it) and live options.
+  virtual void beginFrame(const FrameState&) {}
+  // Its passes before the geometry pass, in order.
+  virtual void addPreparationPasses(Frame&) {}
+  // The targets its GLSL reads in the geometry pass (written by its preparation passes).
+  virtual std::vector<Target> geometryInputs() const { return {}; }
+  // In the geometry pass, before anything is drawn: binds its textures, images and blocks,
+  // clears its per-pixel images.
+  virtual void bindForGeometry() const {}
+  // Uniforms of its GLSL in a geometry program, set before the program draws.
+  virtual void setProgramUniforms(GLuint /*program*/) const {}
+
+  // Whether its GLSL decides the fragments of scene object `index` (a mesh object).
+  virtual bool cuts(std::size_t index) const = 0;
+  // Diepstraten03 §4.3's classic method: the object drawn this many times, each pass with one
+  // hardware clip plane (kept where plane·x ≥ 0); 0: drawn once.
+  virtual int clipPasses(std::size_t /*index*/) const { return 0; }
+  virtual glm::vec4 clipPlane(std::size_t /*index*/, int /*pass*/) const { return glm::vec4(0, 0, 0, -1); }
+  // The look of its cuts of object `index` (called for the objects it cuts or clips).
+  virtual CutLook look(std::size_t index) const = 0;
+  virtual void setObjectUniforms(GLuint /*program*/, std::size_t /*index*/) const {}
+
+  // Geometry of its own, drawn into the G-buffer after the kinds' objects (Trapp13's caps).
+  virtual void drawGeometry(const GeometryDraw&) const {}
+  // Its passes after the geometry passes (e.g. an AOV made from the G-buffer).
+  virtual void addPassesAfterGeometry(Frame&) {}
+  // Whether the line pass outlines the cut surfaces it makes (Burns08 §4.2), and in which
+  // colour.
+  virtual std::optional<glm::vec3> cutOutlineColor() const { return std::nullopt; }
+  // Its ghost G-buffer, written by its passes after the geometry pass.
+  virtual std::optional<GhostBuffers> ghosts() const { return std::nullopt; }
+  // Buffers of its own that are no frame target, as AOVs.
+  virtual std::vector<Aov> extraAovs() const { return {}; }
+  // Facts about how it runs, for `cutaway bench` and the viewer (e.g. "computePath": "cpu").
+  virtual std::vector<std::pair<std::string, std::string>> facts() const { return {}; }
+};
+
+// A registered cutter.
+struct CutterType {
+  std::string key;    // "adaptive": its JSON key under "cutters", the viewer's and CLI's prefix
+  std::string title;  // for panels: "Adaptive cutaway (Burns08/11)"
+  std::string glsl;   // its GLSL file, e.g. "cutters/adaptive/clip.glsl"
+  std::string name;   // GLSL prefix: <name>Fragment, <name>Channel<k>
+  bool (*active)(const Scene&);
+  std::unique_ptr<Cutter> (*create)(FrameSetup&);
+};
+
+// An active cutter of one renderer: its slot (the registry index: its bit in uCutBy and its
+// index in the per-cutter uniform arrays) and the instance.
+struct ActiveCutter {
+  int slot;
+  const CutterType* type;
+  std::unique_ptr<Cutter> cutter;
+  std::vector<int> channels;  // the G-buffer channels it added, in order
+};
+
+}  // namespace cutaway

@@ -1,0 +1,71 @@
+#include "cutaway/frame/aov.hpp"
+
+#include <epoxy/gl.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cutaway/core/atomic_file.hpp"
+#include "cutaway/core/error.hpp"
+
+namespace cutaway {
+
+namespace {
+nlohmann::json matrixRows(const glm::mat4& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r) rows.push_back({m[0][r], m[1][r], m[2][r], m[3][r]});
+  return rows;
+}
+nlohmann::json vec(const glm::vec3& v) {
+  return {v.x, v.y, v.z};
+}
+}  // namespace
+
+std::vector<Aov> readFrameAovs(const Frame& frame) {
+  std::vector<Aov> aovs;
+  // Image stores (clip mask, cap parity) must land before the read-back.
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  for (const auto& name : frame.aovNames()) {
+    const TargetDesc& d = frame.desc(name);
+    const int channels = d.aovChannels ? d.aovChannels : 1;
+    FloatImage image(d.width, d.height, channels);
+    image.data = frame.read(name, channels);
+    image.flipVertically();
+    aovs.push_back({name, d.meaning, std::move(image)});
+  }
+  return aovs;
+}
+
+void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
+               float aspect) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(dir.string(), "", "cannot create AOV directory: " + ec.message());
+  nlohmann::json index;
+  index["camera"] = {
+      {"projection", camera.projection == Projection::Perspective ? "perspective" : "orthographic"},
+      {"eye", vec(camera.eye)},
+      {"target", vec(camera.target)},
+      {"up", vec(camera.up)},
+      {"fov", camera.fovY},
+      {"height", camera.height},
+      {"near", camera.near},
+      {"far", camera.far},
+      {"view", matrixRows(camera.view())},
+      {"projectionMatrix", matrixRows(camera.projectionMatrix(aspect))}};
+  index["rowOrder"] = "PFM files store rows bottom to top, as the format requires";
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& aov : aovs) {
+    const std::string file = aov.name + ".pfm";
+    writePfm(dir / file, aov.image);
+    list.push_back({{"name", aov.name},
+                    {"file", file},
+                    {"width", aov.image.width},
+                    {"height", aov.image.height},
+                    {"channels", aov.image.channels},
+                    {"meaning", aov.meaning}});
+  }
+  index["aovs"] = list;
+  writeFileAtomically(dir / "aovs.json", [&](std::ostream& os) { os << index.dump(2) << "\n"; });
+}
+
+}  // namespace cutaway

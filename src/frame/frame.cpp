@@ -1,0 +1,168 @@
+#include "cutaway/frame/frame.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <vector>
+
+#include "cutaway/core/error.hpp"
+
+namespace cutaway {
+
+namespace {
+std::atomic<unsigned> nextFrameSerial{1};
+}  // namespace
+
+bool isDepthFormat(GLenum format) {
+  return format == GL_DEPTH_COMPONENT32F || format == GL_DEPTH_COMPONENT24 ||
+         format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8 ||
+         format == GL_DEPTH_COMPONENT16;
+}
+
+Frame::Frame(int width, int height, bool software)
+    : serial_(nextFrameSerial++), width_(width), height_(height), timer_(software) {}
+
+Target Frame::declare(const std::string& name, TargetDesc desc) {
+  if (find(name)) throw Error("frame", name, "render target declared twice");
+  if (desc.width == 0) desc.width = width_;
+  if (desc.height == 0) desc.height = height_;
+  gl::Texture texture = gl::Texture::create2D(desc.format, desc.width, desc.height, desc.samples);
+  targets_.push_back(TargetData{name, std::move(desc), std::move(texture)});
+  return Target(serial_, int(targets_.size() - 1));
+}
+
+void Frame::addPass(PassDesc pass) {
+  passes_.push_back(Pass{std::move(pass), {}, 0, 0});
+  prepared_ = false;
+}
+
+const Frame::TargetData& Frame::target(Target t, const std::string& user) const {
+  if (t.frame_ != serial_ || t.index_ < 0 || std::size_t(t.index_) >= targets_.size())
+    throw Error("frame", user, "uses a render target of another frame (or none)");
+  return targets_[std::size_t(t.index_)];
+}
+
+const gl::Texture& Frame::texture(Target t) const {
+  return target(t, "texture").texture;
+}
+
+const TargetDesc& Frame::desc(Target t) const {
+  return target(t, "desc").desc;
+}
+
+std::optional<Target> Frame::find(const std::string& name) const {
+  for (std::size_t i = 0; i < targets_.size(); ++i)
+    if (targets_[i].name == name) return Target(serial_, int(i));
+  return std::nullopt;
+}
+
+Target Frame::at(const std::string& name) const {
+  if (const auto t = find(name)) return *t;
+  throw Error("frame", name, "no such render target");
+}
+
+std::vector<float> Frame::read(Target t, int channels) const {
+  const TargetData& data = target(t, "read");
+  const TargetDesc& d = data.desc;
+  std::vector<float> texels(std::size_t(d.width) * std::size_t(d.height) * std::size_t(channels));
+  if (d.format == GL_R32UI) {  // counters and flags written by image stores
+    std::vector<GLuint> values(texels.size());
+    glGetTextureImage(data.texture.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      GLsizei(values.size() * sizeof(GLuint)), values.data());
+    std::copy(values.begin(), values.end(), texels.begin());
+    return texels;
+  }
+  const GLenum format = isDepthFormat(d.format) ? GL_DEPTH_COMPONENT
+                        : channels == 3         ? GL_RGB
+                                                : GL_RED;
+  glGetTextureImage(data.texture.id(), 0, format, GL_FLOAT,
+                    GLsizei(texels.size() * sizeof(float)), texels.data());
+  return texels;
+}
+
+std::vector<std::string> Frame::aovNames() const {
+  std::vector<std::string> names;
+  for (const auto& t : targets_)
+    if (!t.desc.meaning.empty()) names.push_back(t.name);
+  return names;
+}
+
+std::vector<std::string> Frame::passNames() const {
+  std::vector<std::string> names;
+  for (const auto& p : passes_) names.push_back(p.desc.name);
+  return names;
+}
+
+void Frame::prepare(Pass& pass) {
+  pass.framebuffer = gl::Framebuffer::create();
+  std::vector<GLenum> drawBuffers;
+  pass.width = width_;
+  pass.height = height_;
+  bool first = true;
+  for (const Target written : pass.desc.writes) {
+    const TargetData& t = target(written, pass.desc.name);
+    const TargetDesc& d = t.desc;
+    if (first) pass.width = d.width, pass.height = d.height;
+    if (d.width != pass.width || d.height != pass.height)
+      throw Error("frame", pass.desc.name, "writes render targets of different sizes");
+    first = false;
+    if (isDepthFormat(d.format)) {
+      const bool stencil = d.format == GL_DEPTH24_STENCIL8 || d.format == GL_DEPTH32F_STENCIL8;
+      glNamedFramebufferTexture(pass.framebuffer.id(),
+                                stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
+                                t.texture.id(), 0);
+    } else {
+      const GLenum attachment = GL_COLOR_ATTACHMENT0 + GLenum(drawBuffers.size());
+      glNamedFramebufferTexture(pass.framebuffer.id(), attachment, t.texture.id(), 0);
+      drawBuffers.push_back(attachment);
+    }
+  }
+  glNamedFramebufferDrawBuffers(pass.framebuffer.id(), GLsizei(drawBuffers.size()),
+                                drawBuffers.empty() ? nullptr : drawBuffers.data());
+  if (!pass.desc.writes.empty()) {
+    const GLenum status = glCheckNamedFramebufferStatus(pass.framebuffer.id(), GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+      throw Error("frame", pass.desc.name,
+                  "incomplete framebuffer (status " + std::to_string(status) + ")");
+  }
+}
+
+void Frame::execute() {
+  if (!prepared_) {
+    std::vector<bool> written(targets_.size(), false);
+    for (auto& pass : passes_) {
+      for (const Target r : pass.desc.reads) {
+        const TargetData& t = target(r, pass.desc.name);
+        if (!written[std::size_t(r.index_)])
+          throw Error("frame", pass.desc.name,
+                      "reads \"" + t.name + "\" before any pass writes it");
+      }
+      prepare(pass);  // validates the written handles
+      for (const Target w : pass.desc.writes) written[std::size_t(w.index_)] = true;
+    }
+    prepared_ = true;
+  }
+  cpuMs_.clear();
+  for (auto& pass : passes_) {
+    const auto start = std::chrono::steady_clock::now();
+    timer_.begin(pass.desc.name);
+    glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.id());
+    glViewport(0, 0, pass.width, pass.height);
+    pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
+    timer_.end();
+    cpuMs_.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+std::vector<PassTiming> Frame::timings() {
+  std::vector<PassTiming> out;
+  const auto gpu = timer_.collect();
+  for (std::size_t i = 0; i < gpu.size(); ++i)
+    out.push_back({gpu[i].first, gpu[i].second, i < cpuMs_.size() ? cpuMs_[i] : 0.0});
+  return out;
+}
+
+}  // namespace cutaway

@@ -1,0 +1,177 @@
+#include "frame/gbuffer.hpp"
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/gl/shader.hpp"
+
+namespace cutaway {
+
+namespace {
+
+// The composite's inputs: units 0–5 are the fixed buffers, then the overlays, then the
+// channels (composite.frag).
+constexpr int kFirstOverlayUnit = 6;
+constexpr int kFirstOverlayLocation = 8;
+// Outputs 0–6 are the fixed AOVs (composite.frag).
+constexpr int kFirstChannelOutput = 7;
+
+std::string upperFirst(std::string name) {
+  if (!name.empty()) name[0] = char(std::toupper(static_cast<unsigned char>(name[0])));
+  return name;
+}
+
+}  // namespace
+
+int GBuffer::addChannel(Channel channel) {
+  if (color_.valid()) throw Error("gbuffer", channel.name, "a channel added after declare");
+  channels_.push_back(std::move(channel));
+  return int(channels_.size() - 1);
+}
+
+void GBuffer::declare(Frame& f, int samples, bool stencil) {
+  samples_ = samples;
+  color_ = f.declare("sceneColor", {.format = GL_RGBA8, .samples = samples});
+  normal_ = f.declare("sceneNormal", {.format = GL_RGBA16F, .samples = samples});
+  position_ = f.declare("scenePosition", {.format = GL_RGBA32F, .samples = samples});
+  objectId_ = f.declare("sceneObjectId", {.format = GL_R32I, .samples = samples});
+  cutMask_ = f.declare("sceneCutMask", {.format = GL_R8, .samples = samples});
+  for (const Channel& c : channels_) {
+    channelTargets_.push_back(
+        f.declare("scene" + upperFirst(c.name), {.format = GL_R32F, .samples = samples}));
+    channelAovs_.push_back(f.declare(c.name, {.format = GL_R32F, .meaning = c.meaning}));
+  }
+  // Konev18 §6's billboard pipes mark the stencil buffer.
+  depth_ = f.declare("sceneDepth",
+                     {.format = stencil ? GLenum(GL_DEPTH32F_STENCIL8) : GLenum(GL_DEPTH_COMPONENT32F),
+                      .samples = samples});
+  backgroundProgram_ = buildFullscreenProgram("frame/background.frag");
+}
+
+std::vector<Target> GBuffer::colorTargets() const {
+  std::vector<Target> t{color_, normal_, position_, objectId_, cutMask_};
+  t.insert(t.end(), channelTargets_.begin(), channelTargets_.end());
+  return t;
+}
+
+std::vector<Target> GBuffer::targets() const {
+  std::vector<Target> t = colorTargets();
+  t.push_back(depth_);
+  return t;
+}
+
+void GBuffer::clearWithBackground(GLuint framebuffer) const {
+  const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+  const GLint noObject[4] = {-1, 0, 0, 0};
+  const float nan[4] = {std::nanf(""), 0, 0, 0};  // a channel's "no value here"
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 2, zero);
+  glClearNamedFramebufferiv(framebuffer, GL_COLOR, 3, noObject);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 4, zero);
+  const GLuint attachments = GLuint(colorAttachmentCount());
+  for (GLuint i = 5; i < attachments; ++i)
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, GLint(i), nan);
+  glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
+  // The background gradient into the colour target only.
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  for (GLuint i = 1; i < attachments; ++i) glColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glUseProgram(backgroundProgram_.id());
+  fullscreen_.draw();
+  for (GLuint i = 1; i < attachments; ++i) glColorMaski(i, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+}
+
+std::string GBuffer::channelsGlsl() const {
+  std::string glsl, none;
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    const std::string name = "outChannel" + std::to_string(i);
+    glsl += "layout(location = " + std::to_string(5 + i) + ") out float " + name + ";  // " +
+            channels_[i].name + "\n";
+    none += "  " + name + " = uintBitsToFloat(0x7fc00000u);\n";  // NaN: no value here
+  }
+  return glsl + "void writeNoChannels() {\n" + none + "}\n";
+}
+
+void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
+  overlays_ = std::move(overlays);
+  std::string parts;
+  std::string blend = "vec3 blendOverlays(ivec2 p, vec3 c) {\n";
+  for (std::size_t i = 0; i < overlays_.size(); ++i) {
+    const std::string n = std::to_string(i);
+    parts += "layout(binding = " + std::to_string(kFirstOverlayUnit + int(i)) +
+             ") uniform sampler2D uOverlay" + n + ";\n";
+    parts += "layout(location = " + std::to_string(kFirstOverlayLocation + int(i)) +
+             ") uniform vec4 uOverlayColor" + n + ";  // rgb, opacity\n";
+    blend += "  c = mix(c, uOverlayColor" + n + ".rgb, uOverlayColor" + n +
+             ".a * texelFetch(uOverlay" + n + ", p, 0).r);\n";
+  }
+  blend += "  return c;\n}\n";
+  std::string copy = "void copyChannels(ivec2 p) {\n";
+  const int firstChannelUnit = kFirstOverlayUnit + int(overlays_.size());
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    const std::string n = std::to_string(i);
+    parts += "layout(binding = " + std::to_string(firstChannelUnit + int(i)) +
+             ") uniform sampler2DMS uChannel" + n + ";\n";
+    parts += "layout(location = " + std::to_string(kFirstChannelOutput + int(i)) +
+             ") out float outChannel" + n + ";  // " + channels_[i].name + "\n";
+    copy += "  outChannel" + n + " = texelFetch(uChannel" + n + ", p, 0).r;\n";
+  }
+  copy += "}\n";
+  compositeProgram_ = gl::buildProgram(
+      {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                  {GL_FRAGMENT_SHADER, "frame/composite.frag"}},
+       .sources = {{"frame/composite_parts.glsl", parts + blend + copy}}});
+
+  const Target color = f.declare("color", {.format = GL_RGBA8});
+  finalColor_ = color;
+  const Target normal = f.declare(
+      "normal", {.format = GL_RGBA16F,
+                 .meaning = "world-space unit normal of the visible surface, turned towards "
+                            "the viewer (the cutaway surface's on cut surfaces); (0,0,0) on "
+                            "background; sample 0",
+                 .aovChannels = 3});
+  const Target position =
+      f.declare("position", {.format = GL_RGBA32F,
+                             .meaning = "world-space position of the visible surface, scene units; "
+                                        "(0,0,0) on background; sample 0",
+                             .aovChannels = 3});
+  const Target viewDepth =
+      f.declare("viewDepth", {.format = GL_R32F,
+                              .meaning = "linear eye-space depth: distance from the eye along the "
+                                         "viewing direction, scene units; 0 on background; "
+                                         "sample 0"});
+  const Target objectId = f.declare(
+      "objectId", {.format = GL_R32F,
+                   .meaning = "index of the visible object in the scene's object list (as "
+                              "printed by `cutaway info`); -1 on background; sample 0"});
+  const Target depth =
+      f.declare("depth", {.format = GL_R32F,
+                          .meaning = "window-space depth in [0,1] (OpenGL default depth range, "
+                                     "0 = near plane, 1 = far plane and background); sample 0"});
+  const Target cutMask =
+      f.declare("cutMask", {.format = GL_R32F,
+                            .meaning = "1 where a cut surface or cut wall is shown (a back face of "
+                                       "a solid seen through the cut: Burns08 §4.1, Diepstraten03 "
+                                       "rule 5), else 0; sample 0"});
+  std::vector<Target> reads{color_, normal_, position_, objectId_, depth_, cutMask_};
+  for (const Overlay& o : overlays_) reads.push_back(o.coverage);
+  reads.insert(reads.end(), channelTargets_.begin(), channelTargets_.end());
+  std::vector<Target> writes{color, normal, position, viewDepth, objectId, depth, cutMask};
+  writes.insert(writes.end(), channelAovs_.begin(), channelAovs_.end());
+  f.addPass({.name = "composite",
+             .reads = reads,
+             .writes = writes,
+             .run = [this, &f, reads](const PassContext&) {
+               const GLuint program = compositeProgram_.id();
+               glDisable(GL_DEPTH_TEST);
+               glUseProgram(program);
+               for (std::size_t unit = 0; unit < reads.size(); ++unit)
+                 glBindTextureUnit(GLuint(unit), f.texture(reads[unit]).id());
+               glProgramUniform1i(program, 0, samples_);
+               for (std::size_t i = 0; i < overlays_.size(); ++i) {
+                 const glm::vec4 c = overlays_[i].colorOpacity();
+                 glProgramUniform4fv(program, kFirstOverlayLocation + GLint(i), 1, &c[0]);
+               }
+               fullscreen_.draw();
+             }});
+}
+
+}  // namespace cutaway

@@ -1,0 +1,19 @@
+// The geometry pass's multisampled G-buffer (frame/gbuffer.cpp), written by every program
+// that draws visible surfaces (kinds/meshes/mesh.frag, the clip-surface caps, the pipes),
+// attached in this order, then the techniques' channels (generated: outChannel<i>).
+layout(location = 0) out vec4 outColor;
+layout(location = 1) out vec4 outNormal;     // world normal, w: lines flag
+layout(location = 2) out vec4 outPosition;   // world position, w: linear view depth
+layout(location = 3) out int outObjectId;
+// 0.5 on cut surfaces and cut walls, 1 on Trapp13 caps (both count as cut: >= 0.5)
+layout(location = 4) out float outCutMask;
+#include "frame/gbuffer_channels.glsl"
+
+// Writes a shaded surface point to the G-buffer.
+void writeGBuffer(SurfacePoint s, vec3 color, float lines, int objectId, bool cut, bool cap) {
+  outColor = vec4(color, 1.0);
+  outNormal = vec4(s.normal, lines);
+  outPosition = vec4(s.position, -(uView * vec4(s.position, 1.0)).z);
+  outObjectId = objectId;
+  outCutMask = cap ? 1.0 : cut ? 0.5 : 0.0;
+}

@@ -1,0 +1,41 @@
+// The one interface every geometry kind implements: how one kind of scene geometry (triangle
+// meshes, Konev18's procedural pipe networks; volumes next) reaches the frame. A kind draws its
+// geometry into the G-buffer with the active cutters' decisions composed into its programs,
+// casts into the key light's shadow map, and draws its objects of interest's rear hulls for the
+// cutters that grow a cutaway around them (Burns08 §5.1), so that any kind can be cut and any
+// kind can be of interest.
+//
+// Adding a kind: its folder and one line in the composer's list (src/render/renderer.cpp), as
+// docs/architecture.md says.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "cutaway/frame/aov.hpp"
+#include "cutters/cutter.hpp"
+#include "frame/frame_setup.hpp"
+
+namespace cutaway {
+
+class GeometryKind {
+ public:
+  virtual ~GeometryKind() = default;
+
+  // Whether the G-buffer's depth needs a stencil (Konev18 §6's proxy passes).
+  virtual bool needsStencil() const { return false; }
+  // Once the geometry programs' shading is known: builds its programs, declares its targets.
+  virtual void prepare(const std::vector<ActiveCutter>& /*cutters*/) {}
+  // Draws into the geometry pass's G-buffer, the cutters bound.
+  virtual void drawGeometry(const std::vector<ActiveCutter>& /*cutters*/,
+                            const GeometryDraw& /*draw*/) const {}
+  // Its passes after the geometry pass (into the same G-buffer, or AOVs of its own).
+  virtual void addPassesAfterGeometry(Frame&) {}
+  // Into the bound shadow-map target, the light's frame uniforms bound (styles/shadows).
+  virtual void drawShadowCasters() const {}
+  // Into the bound seed targets (frame/frame_setup.hpp: RearHullRequest).
+  virtual void drawInterestRearHulls(const RearHullRequest&) const {}
+  virtual std::vector<Aov> extraAovs() const { return {}; }
+};
+
+}  // namespace cutaway

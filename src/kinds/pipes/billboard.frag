@@ -1,0 +1,89 @@
+#version 450 core
+// Konev18 §§5–6: a billboard quad shaded as a tube (eq. 11) in one of four stencil-selected
+// passes: outside (stencil 0: the outer wall; the upper halves inside a cut are discarded,
+// Fig. 11), inside (stencil 1: the inner wall with inverted normals and its own colour, and
+// the water surface, §6.4), over a cut surface (stencil 2), and outside over the back of an
+// end triangle (stencil 4, Fig. 10: the closed tube's end, so the upper half stays). A region
+// marked by another pipe's proxies is shaded as this pipe's outside (Konev18 §9's
+// interference): the proxies' nearest pipe id per pixel tells whose region it is.
+#include "frame/frame_uniforms.glsl"
+#include "styles/surface.glsl"
+#include "style.glsl"
+#include "styles/shadows/shadow_lookup.glsl"
+#include "frame/gbuffer.glsl"
+#include "pipes.glsl"
+in vec3 vWorld;
+in vec3 vAxis;
+in vec3 vNormal;
+in float vArc;
+flat in vec3 vFace;
+flat in vec3 vDirection;
+flat in int vPipe;
+layout(location = PIPE_CLASS_LOCATION) out float outPipeClass;
+layout(binding = UNIT_PIPE_OWNER) uniform isampler2D uProxyOwner;  // global pipe id + 1; 0: none
+// 0 outside, 1 inside, 2 over a cut, 3 outside over an end triangle seen from behind
+layout(location = 37) uniform int uPass;
+
+// `onTube`: the point of the tube (or water) the fragment shows, where the shadow map is
+// read; the quad itself lies through the axis, half of it behind the light's quad.
+SurfacePoint surface(vec3 position, vec3 normal, vec3 color, vec3 onTube) {
+  SurfacePoint s;
+  s.position = position;
+  s.normal = normal;
+  s.toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - position);
+  s.baseColor = color;
+  s.specular = 0.35;
+  s.shininess = 24.0;
+  s.keyLightVisibility = keyLightVisibility(onTube);
+  return s;
+}
+
+void write(SurfacePoint s, float pipeClass) {
+  // No feature lines from inside an opened pipe: the inside, the water and the rims alternate
+  // within a few pixels on a distant pipe, and their creases and depth steps would draw it as
+  // a dashed line. The outside keeps its silhouettes and the opening's outline.
+  float lines = pipeClass == kClassOutside ? 1.0 : 0.0;
+  writeGBuffer(s, shadeSurface(s), lines, uNetworkObjectId, false, false);
+  writeNoChannels();
+  outPipeClass = pipeClass;
+}
+
+void main() {
+  bool cut = inCutStretch(vPipe, vArc);
+  vec3 up = cutUp(vDirection);
+  bool upper = dot(vWorld - vAxis, up) > 0.0;
+  bool own = cut && texelFetch(uProxyOwner, ivec2(gl_FragCoord.xy), 0).r ==
+                        int(uPipes[vPipe].radii.w) + 1;
+  vec3 tube = normalize(vNormal + vFace);  // eq. 11
+  if (uPass == 2 && own) discard;          // this pipe's own cut surface stays
+  if (uPass != 1 || !own) {
+    if (uPass == 0 && cut && upper) discard;  // Fig. 11: the removed upper half
+    write(surface(vWorld, tube, uPipeColor, vAxis + outerRadius(vPipe) * tube), kClassOutside);
+    return;
+  }
+  // The inside, seen through the opening: the water surface where the view ray meets it
+  // within the bore (§6.4), else the inner wall (§6) with the vertex normals inverted before
+  // eq. 11's mean: N_f = (F_a − N)/|F_a − N|, so the far inner wall faces the viewer.
+  float innerR = innerRadius(vPipe);
+  float depth = uPipes[vPipe].radii.z * uRadiusScale;
+  if (depth > 0.0) {
+    vec3 origin = uCounts.y == 1 ? vWorld - uForward.xyz : uEye.xyz;
+    vec3 ray = uCounts.y == 1 ? uForward.xyz : normalize(vWorld - uEye.xyz);
+    // The surface's height over the axis; above the cut plane the water is cut with the
+    // pipe, so it shows at the plane across the whole bore.
+    float level = min(depth - innerR, 0.0);
+    float along = dot(ray, up);
+    if (along < 0.0) {
+      float t = (level - dot(origin - vAxis, up)) / along;
+      vec3 w = origin + t * ray;
+      vec3 side = normalize(cross(vDirection, up));
+      float halfChord = sqrt(max(innerR * innerR - level * level, 0.0));
+      if (abs(dot(w - vAxis, side)) < halfChord) {
+        write(surface(w, up, waterColor(depth, innerR), w), kClassWater);
+        return;
+      }
+    }
+  }
+  vec3 inward = normalize(vFace - vNormal);
+  write(surface(vWorld, inward, uInsideColor, vAxis - innerR * inward), kClassInside);
+}

@@ -1,0 +1,32 @@
+#include "styles/lines/line_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cutaway {
+
+LinePass::LinePass(bool outlines)
+    : program_(buildFullscreenProgram("styles/lines/lines.frag",
+                                      outlines ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
+                                               : std::map<std::string, std::string>{})) {}
+
+void LinePass::draw(const Frame& frame, Target normal, Target position, Target objectId,
+                    std::optional<Target> cutMask, const LineStyle& l, int samples,
+                    bool featureLines) const {
+  const GLuint program = program_.id();
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(program);
+  glBindTextureUnit(0, frame.texture(normal).id());
+  glBindTextureUnit(1, frame.texture(position).id());
+  glBindTextureUnit(2, frame.texture(objectId).id());
+  if (cutMask) glBindTextureUnit(3, frame.texture(*cutMask).id());
+  glProgramUniform1i(program, 0, samples);
+  glProgramUniform1i(program, 1, std::max(1, int(std::lround(l.width))));
+  glProgramUniform1f(program, 2, std::cos(glm::radians(l.creaseAngle)));
+  glProgramUniform1f(program, 3, l.depthThreshold);
+  glProgramUniform1i(program, 4, featureLines && l.silhouettes);
+  glProgramUniform1i(program, 5, featureLines && l.creases);
+  fullscreen_.draw();
+}
+
+}  // namespace cutaway

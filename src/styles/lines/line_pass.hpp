@@ -1,0 +1,32 @@
+// Image-space feature lines over a multisampled G-buffer (styles/lines/lines.frag):
+// silhouettes and creases per sample, averaged into a coverage; optionally the outline of the
+// cut surfaces (Burns08 §4.2) from the cut mask. The composer runs it over the scene G-buffer
+// ("lines") and over a cutter's ghost G-buffer ("ghostLines", Burns08 §4.3).
+#pragma once
+
+#include <optional>
+
+#include "cutaway/frame/frame.hpp"
+#include "cutaway/gl/objects.hpp"
+#include "cutaway/scene/scene.hpp"
+#include "frame/fullscreen.hpp"
+
+namespace cutaway {
+
+class LinePass {
+ public:
+  // `outlines`: also the cut outlines, into a second output.
+  explicit LinePass(bool outlines);
+  // Into the bound targets (the coverage, then the outlines' coverage): the lines of the
+  // G-buffer `normal`, `position`, `objectId` (and `cutMask` with outlines); `featureLines`
+  // false draws only the outlines.
+  void draw(const Frame& frame, Target normal, Target position, Target objectId,
+            std::optional<Target> cutMask, const LineStyle& style, int samples,
+            bool featureLines) const;
+
+ private:
+  gl::Program program_;
+  FullscreenTriangle fullscreen_;
+};
+
+}  // namespace cutaway
