@@ -70,8 +70,8 @@ TEST_P(GpuCpuCutaway, CutawayDepthsAgree) {
   Scene gpuScene =
       parseScene(randomBoxesScene(seed, directional, orthographic, 64), "boxes.json", kData);
   Scene cpuScene = gpuScene;
-  gpuScene.adaptive->compute = AdaptiveCutawayOptions::Compute::Gpu;
-  cpuScene.adaptive->compute = AdaptiveCutawayOptions::Compute::Cpu;
+  gpuScene.cutters.find<AdaptiveCutawayOptions>()->compute = AdaptiveCutawayOptions::Compute::Gpu;
+  cpuScene.cutters.find<AdaptiveCutawayOptions>()->compute = AdaptiveCutawayOptions::Compute::Cpu;
   const auto gpu = renderAovs(gpuScene);
   const auto cpu = renderAovs(cpuScene);
   const FloatImage& a = find(gpu, "cutawayDepth").image;

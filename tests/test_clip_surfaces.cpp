@@ -267,11 +267,11 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   writeTorus();
   const Scene clipped = parseScene(torusScene(kNoisySurface, false), "torus.json", kData);
   Scene plain = clipped;
-  plain.clipSurfaces.reset();
+  plain.cutters.disable<ClipSurfaceOptions>();
   const auto a = render(plain), b = render(clipped);
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position"), &mask = aov(b, "clipMask");
-  const ClipSurface& cs = clipped.clipSurfaces->surfaces[0];
+  const ClipSurface& cs = clipped.cutters.find<ClipSurfaceOptions>()->surfaces[0];
   int removed = 0, kept = 0, wrong = 0, visible = 0;
   for (int y = 0; y < plainId.height; ++y)
     for (int x = 0; x < plainId.width; ++x) {
@@ -334,7 +334,7 @@ TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {
   writeTorus();
   Scene scene = parseScene(torusScene(kNoisySurface, true), "torus.json", kData);
   const FloatImage a = aov(render(scene), "capMask");
-  scene.clipSurfaces->parity = ClipSurfaceOptions::Parity::PerFrame;
+  scene.cutters.find<ClipSurfaceOptions>()->parity = ClipSurfaceOptions::Parity::PerFrame;
   const FloatImage b = aov(render(scene), "capMask");
   int differ = 0, caps = 0;
   for (std::size_t i = 0; i < a.data.size(); ++i)

@@ -190,7 +190,7 @@ std::string cubeScene(const std::string& cutter) {
 CutoutWedge cubeWedge(const Scene& scene) {
   const std::vector<ExteriorUnit> units = exteriorUnits(scene);
   const Camera camera = scene.resolvedCamera();
-  return cutoutWedge(units.at(0).axes, *scene.cutout, camera.eye - units[0].axes.center);
+  return cutoutWedge(units.at(0).axes, *scene.cutters.find<CutoutOptions>(), camera.eye - units[0].axes.center);
 }
 
 }  // namespace
@@ -227,7 +227,7 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
   const auto cutAovs = renderAovs(cut);
   const auto plainAovs = renderAovs(plain);
   const CutoutWedge wedge = cubeWedge(cut);
-  const CutoutJitter& j = cut.cutout->jitter;
+  const CutoutJitter& j = cut.cutters.find<CutoutOptions>()->jitter;
   const FloatImage &plainId = aov(plainAovs, "objectId"), &plainPos = aov(plainAovs, "position"),
                    &plainNormal = aov(plainAovs, "normal"), &cutId = aov(cutAovs, "objectId"),
                    &cutPos = aov(cutAovs, "position"), &cutMask = aov(cutAovs, "cutMask"),
@@ -336,7 +336,7 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
   const auto aovs = renderAovs(scene);
   const auto plainAovs = renderAovs(plain);
   const FloatImage& clip = aov(aovs, "breakawayClipDepth");
-  const std::vector<BreakawayCluster> clusters = breakawayClusters(scene, *scene.breakaway);
+  const std::vector<BreakawayCluster> clusters = breakawayClusters(scene, *scene.cutters.find<BreakawayOptions>());
   ASSERT_EQ(clusters.size(), 1u);
   const Mesh& hull = clusters[0].outerHull;
   const Camera camera = scene.resolvedCamera();

@@ -7,6 +7,7 @@
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/geometry/pipe_network.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/scene/benchmark_city.hpp"
@@ -212,8 +213,8 @@ TEST(BenchmarkCity, HasTable1sSizesAndAGroundFacingUp) {
   EXPECT_EQ(downward, 0u);
   // The shafts reach from their pipe up to the ground; the opening follows every pipe.
   for (const Shaft& s : net.shafts) ASSERT_GT(s.top, s.bottom.y);
-  ASSERT_TRUE(city.terrainOpening);
-  EXPECT_EQ(city.terrainOpening->lines.size(), net.pipes.size());
+  ASSERT_TRUE(city.cutters.find<TerrainOpeningOptions>());
+  EXPECT_EQ(city.cutters.find<TerrainOpeningOptions>()->lines.size(), net.pipes.size());
 }
 
 namespace {

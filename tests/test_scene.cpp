@@ -15,6 +15,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cutaway/render/techniques.hpp"
+#include "cutaway/styles/blinn_phong.hpp"
+#include "cutaway/styles/gooch.hpp"
+#include "cutaway/styles/hatching.hpp"
+#include "cutaway/styles/toon.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/fields/cutaway_surface.hpp"
@@ -45,6 +50,14 @@ glm::vec3 apply(const glm::mat4& m, const glm::vec3& p) {
 
 // Tolerance for transformed unit-sized coordinates: a few float ulps of cos/sin(90°).
 constexpr float kEps = 1e-5f;
+
+// The scene's options of a cutter, or its defaults when it is off.
+template <class O>
+const O* optionsOr(const Scene& s) {
+  static const O kDefaults{};
+  const O* o = s.cutters.find<O>();
+  return o ? o : &kDefaults;
+}
 
 #define EXPECT_VEC3_NEAR(actual, expected, eps)      \
   do {                                               \
@@ -415,7 +428,7 @@ TEST(SceneLoad, MinimalSceneGetsTheDefaults) {
   EXPECT_EQ(s.camera.far, 0.0f);
   EXPECT_TRUE(s.camera.path.empty());
   // No cutter, no motion.
-  EXPECT_FALSE(s.adaptive.has_value());
+  EXPECT_FALSE((s.cutters.find<AdaptiveCutawayOptions>() != nullptr));
   EXPECT_EQ(s.duration(), 0.0f);
 
   ASSERT_EQ(s.objects.size(), 1u);
@@ -471,11 +484,11 @@ TEST(SceneLoad, EveryKeyIsRead) {
   EXPECT_FLOAT_EQ(s.style.lines->depthThreshold, 0.05f);
   EXPECT_FLOAT_EQ(s.style.lines->width, 2.0f);
   EXPECT_EQ(s.style.lines->color, glm::vec3(0.2f));
-  EXPECT_EQ(s.style.gooch.cool, glm::vec3(0, 0, 0.4f));
-  EXPECT_EQ(s.style.gooch.warm, glm::vec3(0.4f, 0.4f, 0));
-  EXPECT_FLOAT_EQ(s.style.gooch.alpha, 0.1f);
-  EXPECT_FLOAT_EQ(s.style.gooch.beta, 0.7f);
-  EXPECT_FLOAT_EQ(s.style.blinnPhong.ambient, 0.3f);
+  EXPECT_EQ(s.style.get<GoochStyle>().cool, glm::vec3(0, 0, 0.4f));
+  EXPECT_EQ(s.style.get<GoochStyle>().warm, glm::vec3(0.4f, 0.4f, 0));
+  EXPECT_FLOAT_EQ(s.style.get<GoochStyle>().alpha, 0.1f);
+  EXPECT_FLOAT_EQ(s.style.get<GoochStyle>().beta, 0.7f);
+  EXPECT_FLOAT_EQ(s.style.get<BlinnPhongStyle>().ambient, 0.3f);
 
   ASSERT_EQ(s.lights.size(), 2u);
   EXPECT_EQ(s.lights[0].type, Light::Type::Point);
@@ -729,24 +742,24 @@ void expectAdaptiveDefaults(const AdaptiveCutawayOptions& o, const std::string& 
   EXPECT_TRUE(o.outlines);
   EXPECT_EQ(o.outlineColor, glm::vec3(0.0f));
   EXPECT_FALSE(o.ghostLines);
-  EXPECT_EQ(o.ghostDistance, 0.0f);
-  EXPECT_FLOAT_EQ(o.ghostOpacity, 0.4f);
+  EXPECT_EQ(GhostLineOptions{}.distance, 0.0f);
+  EXPECT_FLOAT_EQ(GhostLineOptions{}.opacity, 0.4f);
 }
 
 TEST(SceneAdaptive, TrueAndAnEmptyObjectGiveTheDefaults) {
   const Scene on = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
                              "cutters": {"adaptive": true}})");
-  ASSERT_TRUE(on.adaptive.has_value());
-  expectAdaptiveDefaults(*on.adaptive, "adaptive: true");
+  ASSERT_TRUE((on.cutters.find<AdaptiveCutawayOptions>() != nullptr));
+  expectAdaptiveDefaults(*on.cutters.find<AdaptiveCutawayOptions>(), "adaptive: true");
   const Scene empty = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
                                 "cutters": {"adaptive": {}}})");
-  ASSERT_TRUE(empty.adaptive.has_value());
-  expectAdaptiveDefaults(*empty.adaptive, "adaptive: {}");
+  ASSERT_TRUE((empty.cutters.find<AdaptiveCutawayOptions>() != nullptr));
+  expectAdaptiveDefaults(*empty.cutters.find<AdaptiveCutawayOptions>(), "adaptive: {}");
   // The parser's defaults are the struct's.
   expectAdaptiveDefaults(AdaptiveCutawayOptions{}, "AdaptiveCutawayOptions{}");
   // "cutters": {} names no cutter: none runs.
   const Scene none = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {}})");
-  EXPECT_FALSE(none.adaptive.has_value());
+  EXPECT_FALSE((none.cutters.find<AdaptiveCutawayOptions>() != nullptr));
 }
 
 TEST(SceneAdaptive, EveryKeyIsRead) {
@@ -757,8 +770,8 @@ TEST(SceneAdaptive, EveryKeyIsRead) {
       "compute": "cpu", "cutSurfaces": "watertight", "cutSurfaceColor": [0.9, 0.1, 0.1],
       "outlines": false, "outlineColor": [0.2, 0.3, 0.4],
       "ghostLines": {"distance": 0.5, "opacity": 0.7}}}})");
-  ASSERT_TRUE(s.adaptive.has_value());
-  const AdaptiveCutawayOptions& o = *s.adaptive;
+  ASSERT_TRUE((s.cutters.find<AdaptiveCutawayOptions>() != nullptr));
+  const AdaptiveCutawayOptions& o = *s.cutters.find<AdaptiveCutawayOptions>();
   EXPECT_FLOAT_EQ(o.angle, 30.0f);
   EXPECT_EQ(o.bufferSize, 256);
   EXPECT_FALSE(o.perspectiveCompensation);
@@ -773,9 +786,9 @@ TEST(SceneAdaptive, EveryKeyIsRead) {
   EXPECT_EQ(*o.cutSurfaceColor, glm::vec3(0.9f, 0.1f, 0.1f));
   EXPECT_FALSE(o.outlines);
   EXPECT_EQ(o.outlineColor, glm::vec3(0.2f, 0.3f, 0.4f));
-  EXPECT_TRUE(o.ghostLines);
-  EXPECT_FLOAT_EQ(o.ghostDistance, 0.5f);
-  EXPECT_FLOAT_EQ(o.ghostOpacity, 0.7f);
+  ASSERT_TRUE(o.ghostLines);
+  EXPECT_FLOAT_EQ(o.ghostLines->distance, 0.5f);
+  EXPECT_FLOAT_EQ(o.ghostLines->opacity, 0.7f);
 }
 
 TEST(SceneAdaptive, ShortFormsAndInteractions) {
@@ -783,8 +796,8 @@ TEST(SceneAdaptive, ShortFormsAndInteractions) {
     const Scene s =
         parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": )" +
               body + "}}");
-    EXPECT_TRUE(s.adaptive.has_value()) << body;
-    return s.adaptive.value_or(AdaptiveCutawayOptions{});
+    EXPECT_TRUE((s.cutters.find<AdaptiveCutawayOptions>() != nullptr)) << body;
+    return (*optionsOr<AdaptiveCutawayOptions>(s));
   };
   // edgeCompression: false turns eq. 5.8 off and leaves r alone.
   const AdaptiveCutawayOptions noEdge = adaptive(R"({"edgeCompression": false})");
@@ -810,11 +823,11 @@ TEST(SceneAdaptive, ShortFormsAndInteractions) {
   // what it leaves out; false keeps them off.
   for (const char* body : {R"({"ghostLines": true})", R"({"ghostLines": {}})"}) {
     const AdaptiveCutawayOptions g = adaptive(body);
-    EXPECT_TRUE(g.ghostLines) << body;
-    EXPECT_EQ(g.ghostDistance, 0.0f) << body;  // 0: 5% of the scene radius, chosen by the renderer
-    EXPECT_FLOAT_EQ(g.ghostOpacity, 0.4f) << body;
+    ASSERT_TRUE(g.ghostLines) << body;
+    EXPECT_EQ(g.ghostLines->distance, 0.0f) << body;  // 0: 5% of the scene radius, chosen by the renderer
+    EXPECT_FLOAT_EQ(g.ghostLines->opacity, 0.4f) << body;
   }
-  EXPECT_FLOAT_EQ(adaptive(R"({"ghostLines": {"opacity": 1}})").ghostDistance, 0.0f);
+  EXPECT_FLOAT_EQ(adaptive(R"({"ghostLines": {"opacity": 1}})").ghostLines->distance, 0.0f);
   EXPECT_FALSE(adaptive(R"({"ghostLines": false})").ghostLines);
   // Range ends are allowed.
   EXPECT_FLOAT_EQ(adaptive(R"({"angle": 0})").angle, 0.0f);
@@ -829,7 +842,7 @@ TEST(SceneAdaptive, EnumeratedValues) {
     const Scene s =
         parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}], "cutters": {"adaptive": {")" +
               key + "\": \"" + value + "\"}}}");
-    return s.adaptive.value_or(AdaptiveCutawayOptions{});
+    return (*optionsOr<AdaptiveCutawayOptions>(s));
   };
   using V = fields::JumpFloodingVariant;
   const std::pair<const char*, V> variants[] = {
@@ -1122,15 +1135,15 @@ TEST(SceneCamera, DurationIsTheLastKeyOfAnyObjectOrTheCameraPath) {
 
 TEST(SceneStyle, ToonHatchingAndShadowDefaults) {
   const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}]})");
-  ASSERT_EQ(s.style.toon.ramp.size(), 3u);
-  EXPECT_VEC3_NEAR(s.style.toon.ramp[0], glm::vec3(0.45f), kEps);
-  EXPECT_VEC3_NEAR(s.style.toon.ramp[2], glm::vec3(1.0f), kEps);
-  EXPECT_TRUE(s.style.toon.highlight);
-  EXPECT_FLOAT_EQ(s.style.toon.highlightThreshold, 0.5f);
-  EXPECT_EQ(s.style.hatching.tones, 6);
-  EXPECT_FLOAT_EQ(s.style.hatching.tint, 0.35f);
-  EXPECT_FLOAT_EQ(s.style.hatching.scale, 0.4f);
-  EXPECT_EQ(s.style.hatching.lightness, HatchingStyle::Lightness::Lambert);
+  ASSERT_EQ(s.style.get<ToonStyle>().ramp.size(), 3u);
+  EXPECT_VEC3_NEAR(s.style.get<ToonStyle>().ramp[0], glm::vec3(0.45f), kEps);
+  EXPECT_VEC3_NEAR(s.style.get<ToonStyle>().ramp[2], glm::vec3(1.0f), kEps);
+  EXPECT_TRUE(s.style.get<ToonStyle>().highlight);
+  EXPECT_FLOAT_EQ(s.style.get<ToonStyle>().highlightThreshold, 0.5f);
+  EXPECT_EQ(s.style.get<HatchingStyle>().tones, 6);
+  EXPECT_FLOAT_EQ(s.style.get<HatchingStyle>().tint, 0.35f);
+  EXPECT_FLOAT_EQ(s.style.get<HatchingStyle>().scale, 0.4f);
+  EXPECT_EQ(s.style.get<HatchingStyle>().lightness, HatchingStyle::Lightness::Lambert);
   EXPECT_FALSE(s.style.shadows.enabled);
   EXPECT_EQ(s.style.shadows.size, 2048);
   EXPECT_EQ(s.style.shadows.pcfRadius, 1);
@@ -1146,7 +1159,7 @@ TEST(SceneStyle, EveryToonHatchingAndShadowKeyIsRead) {
       "shadows": {"size": 1024, "bias": 0.001, "slopeBias": 3, "pcfRadius": 2}},
       "objects": [{"name": "cube", "file": "cube.obj", "params": {"castsShadow": false}}]})");
   EXPECT_EQ(s.style.name, "toon");
-  const ToonStyle& t = s.style.toon;
+  const ToonStyle& t = s.style.get<ToonStyle>();
   ASSERT_EQ(t.ramp.size(), 4u);
   EXPECT_VEC3_NEAR(t.ramp[0], glm::vec3(0.1f), kEps);  // a number is a grey tone
   EXPECT_VEC3_NEAR(t.ramp[1], glm::vec3(0.2f, 0.3f, 0.4f), kEps);
@@ -1154,7 +1167,7 @@ TEST(SceneStyle, EveryToonHatchingAndShadowKeyIsRead) {
   EXPECT_FALSE(t.highlight);
   EXPECT_FLOAT_EQ(t.highlightThreshold, 0.8f);
   EXPECT_VEC3_NEAR(t.highlightColor, glm::vec3(1, 1, 0.5f), kEps);
-  const HatchingStyle& h = s.style.hatching;
+  const HatchingStyle& h = s.style.get<HatchingStyle>();
   EXPECT_EQ(h.tones, 8);
   EXPECT_VEC3_NEAR(h.paper, glm::vec3(1, 1, 0.9f), kEps);
   EXPECT_VEC3_NEAR(h.ink, glm::vec3(0, 0, 0.2f), kEps);

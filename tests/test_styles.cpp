@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "cutaway/styles/toon.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
 #include "styles/hatching/tonal_art_map.hpp"
@@ -129,7 +130,7 @@ TEST(ToonRender, PlaneShowsExactlyTheRampColours) {
   const auto aovs = renderer.readAovs();
   const FloatImage& position = findAov(aovs, "position").image;
   const FloatImage& objectId = findAov(aovs, "objectId").image;
-  const auto texels = toonRampTexels(scene.style.toon);
+  const auto texels = toonRampTexels(scene.style.get<ToonStyle>());
   const int n = int(texels.size());
   std::set<int> bands;
   int checked = 0;

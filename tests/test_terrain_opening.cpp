@@ -52,7 +52,7 @@ TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
   const Scene cut = parseScene(groundScene(GetParam(), true), "ground.json", kSource);
   const Scene plain = parseScene(groundScene(GetParam(), false), "ground.json", kSource);
   const auto a = render(plain), b = render(cut);
-  const TerrainOpeningOptions& o = *cut.terrainOpening;
+  const TerrainOpeningOptions& o = *cut.cutters.find<TerrainOpeningOptions>();
   Bounds terrain;
   terrain.extend(cut.objects[0].worldBounds());
   const TerrainField field = terrainField(o, terrain);

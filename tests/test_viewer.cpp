@@ -155,7 +155,7 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
                            "orbit 25 8\n"
                            "zoom 1.1\n"
                            "select pistons\n"
-                           "set adaptive.angle 30\n"
+                           "set cutters.adaptive.angle 30\n"
                            "angle 40\n"
                            "set style.lines.width 2\n"
                            "pick 320 240\n"

@@ -9,9 +9,14 @@
 
 #include "camera_controller.hpp"
 #include "colormap.hpp"
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/cutters/breakaway.hpp"
+#include "cutaway/cutters/clip_surfaces.hpp"
+#include "cutaway/cutters/cutout.hpp"
+#include "cutaway/render/techniques.hpp"
 #include "cutaway/core/error.hpp"
 #include "parameters.hpp"
-#include "scene_document.hpp"
+#include "cutaway/scene/scene_writer.hpp"
 #include "script.hpp"
 #include "viewer_state.hpp"
 
@@ -59,7 +64,7 @@ role interest
 importance 0.75
 angle 40
 angle off
-set adaptive.angle 30
+set cutters.adaptive.angle 30
 set style.name blinn-phong
 set style.lines.color 0.1,0.2,0.3
 aov cutawayDepth turbo
@@ -87,7 +92,7 @@ quit
   EXPECT_EQ(s.commands[8].text, "connecting rods");  // names may hold spaces
   EXPECT_EQ(s.commands[13].numbers, (std::vector<float>{40}));
   EXPECT_EQ(s.commands[14].text, "off");
-  EXPECT_EQ(s.commands[15].parameter, findParameter("adaptive.angle"));
+  EXPECT_EQ(s.commands[15].parameter, findParameter("cutters.adaptive.angle"));
   EXPECT_EQ(std::get<double>(s.commands[15].value), 30.0);
   EXPECT_EQ(std::get<std::string>(s.commands[16].value), "blinn-phong");
   EXPECT_EQ(std::get<glm::vec3>(s.commands[17].value), glm::vec3(0.1f, 0.2f, 0.3f));
@@ -128,19 +133,19 @@ INSTANTIATE_TEST_SUITE_P(
                 "exterior, interior)"},
         BadLine{"AngleRange", "angle 120\n",
                 "s.txt: line 1: cutaway angle must lie in [0, 90] degrees"},
-        BadLine{"SetValueRange", "set adaptive.angle 95\n",
-                "s.txt: line 1: adaptive.angle: value 95 is outside [0, 90]"},
-        BadLine{"SetIntegerParameter", "set adaptive.bufferSize 100.5\n",
-                "s.txt: line 1: adaptive.bufferSize: expected an integer, got 100.5"},
-        BadLine{"SetBool", "set adaptive.outlines maybe\n",
-                "s.txt: line 1: adaptive.outlines: expected true/false or on/off, got \"maybe\""},
-        BadLine{"SetChoice", "set adaptive.compute gpu2\n",
-                "s.txt: line 1: adaptive.compute: unknown value \"gpu2\" (expected one of: auto, "
+        BadLine{"SetValueRange", "set cutters.adaptive.angle 95\n",
+                "s.txt: line 1: cutters.adaptive.angle: value 95 is outside [0, 90]"},
+        BadLine{"SetIntegerParameter", "set cutters.adaptive.bufferSize 100.5\n",
+                "s.txt: line 1: cutters.adaptive.bufferSize: expected an integer, got 100.5"},
+        BadLine{"SetBool", "set cutters.adaptive.outlines maybe\n",
+                "s.txt: line 1: cutters.adaptive.outlines: expected true/false or on/off, got \"maybe\""},
+        BadLine{"SetChoice", "set cutters.adaptive.compute gpu2\n",
+                "s.txt: line 1: cutters.adaptive.compute: unknown value \"gpu2\" (expected one of: auto, "
                 "gpu, cpu)"},
         BadLine{"SetColour", "set style.lines.color 1,2,0\n",
                 "s.txt: line 1: style.lines.color: colour channels must lie in [0, 1], got "
                 "\"1,2,0\""},
-        BadLine{"SetMissingValue", "set adaptive.angle\n",
+        BadLine{"SetMissingValue", "set cutters.adaptive.angle\n",
                 "s.txt: line 1: \"set\" takes a parameter key and a value, got 1 argument"},
         BadLine{"Projection", "projection fisheye\n",
                 "s.txt: line 1: projection must be perspective or orthographic, got \"fisheye\""},
@@ -156,9 +161,9 @@ INSTANTIATE_TEST_SUITE_P(
     [](const testing::TestParamInfo<BadLine>& info) { return std::string(info.param.name); });
 
 TEST(ViewerScript, UnknownParameterListsTheKnownOnes) {
-  const std::string e = scriptError("set adaptive.anlge 30\n");
-  EXPECT_EQ(e.rfind("s.txt: line 1: unknown parameter \"adaptive.anlge\" (known: adaptive.enabled, "
-                    "adaptive.angle,",
+  const std::string e = scriptError("set cutters.adaptive.anlge 30\n");
+  EXPECT_EQ(e.rfind("s.txt: line 1: unknown parameter \"cutters.adaptive.anlge\" (known: cutters.adaptive, "
+                    "cutters.adaptive.angle,",
                     0),
             0u)
       << e;
@@ -176,52 +181,60 @@ TEST(ViewerScript, MissingFileIsAnError) {
 TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
   Scene scene;
   // Clip surfaces come from the scene file; the viewer edits those there are.
-  scene.clipSurfaces = ClipSurfaceOptions{.surfaces = std::vector<ClipSurface>(kMaxClipSurfaces)};
+  const ClipSurfaceOptions clip{.surfaces = std::vector<ClipSurface>(kMaxClipSurfaces)};
+  scene.cutters.enable<ClipSurfaceOptions>() = clip;
   scene.networks.resize(2);  // likewise the pipe networks
   for (const auto& group : parameterGroups())
-    for (const auto& p : *group.parameters) {
+    for (const auto& p : group.parameters) {
       SCOPED_TRACE(p.key);
       ASSERT_TRUE(p.get && p.set);
       // A slider spans part of the accepted range.
       if (p.sliderMax) EXPECT_TRUE(*p.sliderMax > p.min && *p.sliderMax <= p.max);
       ParameterValue v;
       switch (p.type) {
-        case Parameter::Type::Bool:
-          v = !std::get<bool>(p.get(scene));
+        case OptionSpec::Type::Bool:
+          v = !std::get<bool>(p.value(scene));
           break;
-        case Parameter::Type::Int:
-        case Parameter::Type::Float:
-          v = p.type == Parameter::Type::Int ? std::round((p.min + std::min(p.max, 4096.0)) / 2)
+        case OptionSpec::Type::Int:
+        case OptionSpec::Type::Float:
+          v = p.type == OptionSpec::Type::Int ? std::round((p.min + std::min(p.max, 4096.0)) / 2)
                                              : (p.min + std::min(p.max, 100.0)) / 2;
           break;
-        case Parameter::Type::Choice:
-          v = p.choices().back();
+        case OptionSpec::Type::Choice:
+          v = p.choices.back();
           break;
-        case Parameter::Type::Color:
+        case OptionSpec::Type::Color:
           v = glm::vec3(0.25f, 0.5f, 0.75f);
           break;
-        case Parameter::Type::Direction:
+        case OptionSpec::Type::Direction:
           v = glm::vec3(0.0f, 0.0f, 1.0f);
           break;
+        case OptionSpec::Type::Vec3:
+          v = glm::vec3(0.5f, -2.0f, 3.0f);
+          break;
+        case OptionSpec::Type::Text:
+          v = std::string("x.*");
+          break;
       }
-      // Turning a feature off drops its options (*.enabled, style.lines): re-enable.
-      for (const char* feature :
-           {"adaptive.enabled", "cutout.enabled", "breakaway.enabled", "style.lines"})
-        if (p.key != feature) findParameter(feature)->set(scene, true);
-      p.set(scene, v);
-      EXPECT_EQ(formatParameterValue(p.get(scene)), formatParameterValue(v));
+      // Turning a feature off drops its options (cutters.*, style.lines): re-enable.
+      for (const char* feature : {"cutters.adaptive", "cutters.cutout", "cutters.breakaway",
+                                  "cutters.terrainOpening", "style.lines"})
+        if (p.key != feature) findParameter(feature)->assign(scene, true);
+      if (!scene.cutters.find<ClipSurfaceOptions>()) scene.cutters.set("clipSurfaces", clip);
+      p.assign(scene, v);
+      EXPECT_EQ(formatOptionValue(p.value(scene)), formatOptionValue(v));
       EXPECT_EQ(findParameter(p.key), &p);
     }
 }
 
 TEST(ViewerParameters, SettingACutterOptionAddsTheCutter) {
   Scene scene;
-  ASSERT_FALSE(scene.adaptive);
-  findParameter("adaptive.angle")->set(scene, 20.0);
-  ASSERT_TRUE(scene.adaptive);
-  EXPECT_EQ(scene.adaptive->angle, 20.0f);
-  findParameter("adaptive.enabled")->set(scene, false);
-  EXPECT_FALSE(scene.adaptive);
+  ASSERT_FALSE(scene.cutters.find<AdaptiveCutawayOptions>());
+  findParameter("cutters.adaptive.angle")->assign(scene, 20.0);
+  ASSERT_TRUE(scene.cutters.find<AdaptiveCutawayOptions>());
+  EXPECT_EQ(scene.cutters.find<AdaptiveCutawayOptions>()->angle, 20.0f);
+  findParameter("cutters.adaptive")->assign(scene, false);
+  EXPECT_FALSE(scene.cutters.find<AdaptiveCutawayOptions>());
 }
 
 // Konev18's run-time options: every network at once, the shafts' object colours with them,
@@ -235,7 +248,7 @@ TEST(ViewerParameters, NetworkOptionsApplyToEveryNetworkLive) {
   EXPECT_TRUE(state.viewChanged);
   EXPECT_FALSE(state.sceneChanged);
   for (const PipeNetwork& n : state.scene.networks) EXPECT_EQ(n.radiusScale, 1.5f);
-  EXPECT_THROW(parseParameterValue(radius, "0"), std::invalid_argument);
+  EXPECT_THROW(parseOptionValue(radius, "0"), std::invalid_argument);
   const glm::vec3 outside(0.1f, 0.2f, 0.3f), cut(0.7f, 0.6f, 0.5f);
   setParameter(state, *findParameter("networks.color"), outside);
   setParameter(state, *findParameter("networks.cutColor"), cut);
@@ -249,14 +262,17 @@ TEST(ViewerParameters, NetworkOptionsApplyToEveryNetworkLive) {
     ++shafts;
   }
   EXPECT_EQ(shafts, 2);
-  // A cutter option still rebuilds.
+  // A uniform of a cutter is live too; what a cutter builds from (its texture) rebuilds.
   state.viewChanged = false;
-  setParameter(state, *findParameter("terrain.w"), 0.02);
+  setParameter(state, *findParameter("cutters.terrainOpening.w"), 0.02);
+  EXPECT_TRUE(state.viewChanged);
+  EXPECT_FALSE(state.sceneChanged);
+  setParameter(state, *findParameter("cutters.terrainOpening.resolution"), 512.0);
   EXPECT_TRUE(state.sceneChanged);
 }
 
 TEST(ViewerParameters, StyleChoicesAreTheLibrarysStyles) {
-  EXPECT_EQ(findParameter("style.name")->choices(), styleNames());
+  EXPECT_EQ(findParameter("style.name")->choices, styleNames());
 }
 
 namespace {
@@ -438,9 +454,9 @@ TEST(ViewerSave, PatchedSceneReloadsWithTheViewersChanges) {
   state.scene.objects[2].params.erase("cutawayAngle");  // the entry's own parameter goes
   state.scene.objects[2].importance = 0.3f;
   state.scene.objects[3].importance = 0.7f;  // the proxy
-  findParameter("adaptive.angle")->set(state.scene, 50.0);
-  findParameter("adaptive.ghostLines")->set(state.scene, true);
-  findParameter("style.lines.width")->set(state.scene, 2.0);
+  findParameter("cutters.adaptive.angle")->assign(state.scene, 50.0);
+  findParameter("cutters.adaptive.ghostLines")->assign(state.scene, true);
+  findParameter("style.lines.width")->assign(state.scene, 2.0);
   state.scene.camera.fit = false;
   state.scene.camera.eye = {1.5f, 2.25f, 7.1f};
   state.scene.camera.target = {0.1f, 0.2f, 0.3f};
@@ -463,8 +479,8 @@ TEST(ViewerSave, PatchedSceneReloadsWithTheViewersChanges) {
     EXPECT_EQ(saved.objects[i].material.color, original.objects[i].material.color);
     EXPECT_EQ(saved.objects[i].group, original.objects[i].group);
   }
-  EXPECT_EQ(saved.adaptive->angle, 50.0f);
-  EXPECT_TRUE(saved.adaptive->ghostLines);
+  EXPECT_EQ(saved.cutters.find<AdaptiveCutawayOptions>()->angle, 50.0f);
+  EXPECT_TRUE(saved.cutters.find<AdaptiveCutawayOptions>()->ghostLines);
   EXPECT_EQ(saved.style.lines->width, 2.0f);
   EXPECT_EQ(saved.camera.eye, state.scene.camera.eye);  // bit for bit
   EXPECT_EQ(saved.camera.target, state.scene.camera.target);
@@ -524,9 +540,9 @@ TEST(ViewerSave, NetworkOptionsReadBack) {
   Scene current = original;
   current.camera = original.resolvedCamera();
   current.camera.fit = false;
-  findParameter("networks.radiusScale")->set(current, 2.0);
-  findParameter("networks.shaftOpening")->set(current, -0.25);
-  findParameter("networks.waterHigh")->set(current, glm::vec3(0.0f, 0.1f, 0.4f));
+  findParameter("networks.radiusScale")->assign(current, 2.0);
+  findParameter("networks.shaftOpening")->assign(current, -0.25);
+  findParameter("networks.waterHigh")->assign(current, glm::vec3(0.0f, 0.1f, 0.4f));
   const fs::path target = scratch("pipes-street.json");
   SceneDocument::load(examples / "pipes-street.json").save(original, current, target);
   const Scene saved = loadScene(target);
@@ -556,34 +572,35 @@ TEST(ViewerSave, CutoutBreakawayAndClipSurfaceChangesReadBack) {
   Scene current = original;
   current.camera = original.resolvedCamera();
   current.camera.fit = false;
-  findParameter("cutout.angle")->set(current, 120.0);
-  findParameter("cutout.facingCamera")->set(current, false);
-  findParameter("cutout.rotation")->set(current, 30.0);
-  findParameter("cutout.jitter")->set(current, std::string("sawtooth"));
-  findParameter("cutout.jitterAmplitude")->set(current, 0.05);
-  findParameter("breakaway.enabled")->set(current, true);
-  findParameter("breakaway.offset")->set(current, 0.2);
-  findParameter("breakaway.wallColor")->set(current, glm::vec3(0.1f, 0.2f, 0.3f));
-  findParameter("clipSurfaces.0.position")->set(current, 0.25);
-  findParameter("clipSurfaces.combine")->set(current, std::string("intersection"));
-  findParameter("clipSurfaces.0.height")->set(current, 0.125);
+  findParameter("cutters.cutout.angle")->assign(current, 120.0);
+  findParameter("cutters.cutout.facingCamera")->assign(current, false);
+  findParameter("cutters.cutout.rotation")->assign(current, 30.0);
+  findParameter("cutters.cutout.jitter.pattern")->assign(current, std::string("sawtooth"));
+  findParameter("cutters.cutout.jitter.amplitude")->assign(current, 0.05);
+  findParameter("cutters.breakaway")->assign(current, true);
+  findParameter("cutters.breakaway.offset")->assign(current, 0.2);
+  findParameter("cutters.breakaway.wallColor")->assign(current, glm::vec3(0.1f, 0.2f, 0.3f));
+  findParameter("cutters.clipSurfaces.surfaces.0.position")->assign(current, 0.25);
+  findParameter("cutters.clipSurfaces.combine")->assign(current, std::string("intersection"));
+  findParameter("cutters.clipSurfaces.surfaces.0.height")->assign(current, 0.125);
   SceneDocument::load(dir / "scene.json").save(original, current, dir / "saved.json");
   const Scene saved = loadScene(dir / "saved.json");
-  ASSERT_TRUE(saved.cutout && saved.breakaway && saved.clipSurfaces);
-  EXPECT_EQ(saved.cutout->angle, 120.0f);
-  EXPECT_EQ(saved.cutout->rotation, 30.0f);
-  EXPECT_EQ(saved.cutout->jitter.pattern, CutoutJitter::Pattern::Sawtooth);
-  EXPECT_EQ(saved.cutout->jitter.amplitude, 0.05f);
-  EXPECT_EQ(saved.breakaway->offset, 0.2f);
-  EXPECT_EQ(*saved.breakaway->wallColor, glm::vec3(0.1f, 0.2f, 0.3f));
-  const ClipSurface& cs = saved.clipSurfaces->surfaces[0];
+  ASSERT_TRUE(saved.cutters.find<CutoutOptions>() && saved.cutters.find<BreakawayOptions>() &&
+              saved.cutters.find<ClipSurfaceOptions>());
+  EXPECT_EQ(saved.cutters.find<CutoutOptions>()->angle, 120.0f);
+  EXPECT_EQ(saved.cutters.find<CutoutOptions>()->rotation, 30.0f);
+  EXPECT_EQ(saved.cutters.find<CutoutOptions>()->jitter.pattern, CutoutJitter::Pattern::Sawtooth);
+  EXPECT_EQ(saved.cutters.find<CutoutOptions>()->jitter.amplitude, 0.05f);
+  EXPECT_EQ(saved.cutters.find<BreakawayOptions>()->offset, 0.2f);
+  EXPECT_EQ(*saved.cutters.find<BreakawayOptions>()->wallColor, glm::vec3(0.1f, 0.2f, 0.3f));
+  const ClipSurface& cs = saved.cutters.find<ClipSurfaceOptions>()->surfaces[0];
   EXPECT_NEAR(glm::dot(cs.origin, cs.normal()), 0.25f, 1e-6f);
   EXPECT_EQ(cs.scale.z, 0.125f);
-  EXPECT_EQ(saved.clipSurfaces->combine, ClipSurfaceOptions::Combine::Intersection);
+  EXPECT_EQ(saved.cutters.find<ClipSurfaceOptions>()->combine, ClipSurfaceOptions::Combine::Intersection);
   // The offset map is still the ridged recipe of the original file.
-  EXPECT_EQ(cs.offsetMap.data, original.clipSurfaces->surfaces[0].offsetMap.data);
+  EXPECT_EQ(cs.offsetMap.data, original.cutters.find<ClipSurfaceOptions>()->surfaces[0].offsetMap.data);
 
-  findParameter("cutout.enabled")->set(current, false);
+  findParameter("cutters.cutout")->assign(current, false);
   SceneDocument::load(dir / "scene.json").save(original, current, dir / "without.json");
   std::ifstream in(dir / "without.json");
   EXPECT_FALSE(nlohmann::json::parse(in)["cutters"].contains("cutout"));

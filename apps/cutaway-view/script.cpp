@@ -179,11 +179,11 @@ ScriptCommand parseLine(const std::string& line) {
       if (!c.parameter) {
         std::string known;
         for (const auto& group : parameterGroups())
-          for (const auto& p : *group.parameters) known += (known.empty() ? "" : ", ") + p.key;
+          for (const auto& p : group.parameters) known += (known.empty() ? "" : ", ") + p.key;
         throw std::invalid_argument("unknown parameter \"" + args[0] + "\" (known: " + known + ")");
       }
       try {
-        c.value = parseParameterValue(*c.parameter, args[1]);
+        c.value = parseOptionValue(*c.parameter, args[1]);
       } catch (const std::invalid_argument& e) {
         throw std::invalid_argument(args[0] + ": " + e.what());
       }

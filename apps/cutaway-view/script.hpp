@@ -4,7 +4,7 @@
 //
 //   orbit 30 10
 //   select pistons
-//   set adaptive.angle 30
+//   set cutters.adaptive.angle 30
 //   screenshot out/view.png
 //   quit
 //

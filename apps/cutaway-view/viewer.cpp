@@ -659,32 +659,24 @@ void Viewer::drawPanels() {
     ImGui::PushItemWidth(-130.0f);
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) filePanel(state_);
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) cameraPanel(state_);
-    // One entry per cutter: a future cutter adds its panel function here. A cutter the scene
-    // uses starts open, the others closed.
-    struct CutterPanel {
-      const char* title;
-      void (*draw)(ViewerState&);
-      bool (*active)(const Scene&);
+    // Every technique's panel, generated from the registries: the cutters (those the scene
+    // uses start open), the pipe networks, then the style with the current shading style's
+    // options.
+    const auto enabled = [&](const ParameterGroup& g) {
+      if (g.name == "networks") return !state_.scene.networks.empty();
+      const Parameter* on = findParameter(g.name);
+      return on && std::get<bool>(on->value(state_.scene));
     };
-    static const CutterPanel kCutterPanels[] = {
-        {"Adaptive cutaway (Burns08/11)", adaptivePanel,
-         [](const Scene& s) { return s.adaptive.has_value(); }},
-        {"Cutout (Diepstraten03)", cutoutPanel,
-         [](const Scene& s) { return s.cutout.has_value(); }},
-        {"Breakaway (Diepstraten03)", breakawayPanel,
-         [](const Scene& s) { return s.breakaway.has_value(); }},
-        {"Clip surfaces (Trapp13)", clipSurfacePanel,
-         [](const Scene& s) { return s.clipSurfaces.has_value(); }},
-        {"Terrain opening (Konev18)", terrainPanel,
-         [](const Scene& s) { return s.terrainOpening.has_value(); }},
-        {"Pipe networks (Konev18)", networkPanel,
-         [](const Scene& s) { return !s.networks.empty(); }},
-    };
-    for (const auto& panel : kCutterPanels)
-      if (ImGui::CollapsingHeader(panel.title,
-                                  panel.active(state_.scene) ? ImGuiTreeNodeFlags_DefaultOpen : 0))
-        panel.draw(state_);
-    if (ImGui::CollapsingHeader("Style")) stylePanel(state_);
+    for (const ParameterGroup& group : parameterGroups()) {
+      if (group.name == "style" || group.name.rfind("style.", 0) == 0) continue;
+      if (ImGui::CollapsingHeader(group.title.c_str(),
+                                  enabled(group) ? ImGuiTreeNodeFlags_DefaultOpen : 0))
+        techniquePanel(group, state_);
+    }
+    if (ImGui::CollapsingHeader("Style"))
+      for (const ParameterGroup& group : parameterGroups())
+        if (group.name == "style" || group.style == state_.scene.style.name)
+          techniquePanel(group, state_);
     ImGui::PopItemWidth();
   }
   ImGui::End();

@@ -1,7 +1,7 @@
 // The interactive viewer: a GLFW window showing the scene through the same Renderer as
 // `cutaway render`, with Dear ImGui panels (panels/), mouse and key camera control
 // (camera_controller.hpp), picking through the object-id AOV, the AOV inspector, timings,
-// screenshots and scene saving (scene_document.hpp), and scripted sessions (script.hpp).
+// screenshots and scene saving (cutaway/scene/scene_writer.hpp), and scripted sessions (script.hpp).
 //
 // The renderer renders at the window's framebuffer size; the live Scene is the viewer's
 // copy, and a change of a cutter, style or object option rebuilds the renderer (it builds
@@ -20,7 +20,7 @@
 #include "cutaway/gl/objects.hpp"
 #include "cutaway/gl/window_context.hpp"
 #include "cutaway/render/renderer.hpp"
-#include "scene_document.hpp"
+#include "cutaway/scene/scene_writer.hpp"
 #include "script.hpp"
 #include "viewer_state.hpp"
 

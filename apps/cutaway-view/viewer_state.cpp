@@ -52,7 +52,7 @@ void setLocalAngle(ViewerState& state, std::optional<float> degrees) {
 }
 
 void setParameter(ViewerState& state, const Parameter& p, const ParameterValue& value) {
-  p.set(state.scene, value);
+  p.assign(state.scene, value);
   (p.live ? state.viewChanged : state.sceneChanged) = true;
 }
 

@@ -16,12 +16,18 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/cutters/breakaway.hpp"
+#include "cutaway/cutters/clip_surfaces.hpp"
+#include "cutaway/cutters/cutout.hpp"
+#include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/fields/cutaway_surface.hpp"
 #include "cutaway/gl/context.hpp"
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/frame/aov.hpp"
 #include "cutaway/render/renderer.hpp"
+#include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/benchmark_city.hpp"
 #include "cutaway/scene/scene.hpp"
 
@@ -71,16 +77,18 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.samples) scene.samples = *o.samples;
   if (o.noCutaway && o.cutawayAngle)
     throw Error("--no-cutaway", "", "cannot be combined with --cutaway-angle");
-  if (o.noCutaway) {  // the plain model: no cutter at all
-    scene.adaptive.reset();
-    scene.cutout.reset();
-    scene.breakaway.reset();
-    scene.clipSurfaces.reset();
-    scene.terrainOpening.reset();
-  }
-  if (o.cutawayAngle) {
-    if (!scene.adaptive) scene.adaptive.emplace();
-    scene.adaptive->angle = *o.cutawayAngle;
+  if (o.noCutaway) scene.cutters.clear();  // the plain model: no cutter at all
+  if (o.cutawayAngle) scene.cutters.enable<AdaptiveCutawayOptions>().angle = *o.cutawayAngle;
+  // --set PATH=VALUE, in the order given: any technique's option by its scene-file path.
+  for (const std::string& assignment : o.set) {
+    const auto equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw Error("--set", assignment, "expected PATH=VALUE, e.g. cutters.adaptive.angle=30");
+    try {
+      setOption(scene, assignment.substr(0, equals), assignment.substr(equals + 1));
+    } catch (const Error& e) {
+      throw Error("--set", e.file(), e.reason());
+    }
   }
 }
 
@@ -126,7 +134,7 @@ std::string framePath(const std::string& output, int index) {
 // Diepstraten03 rule 5 needs solids: a cut through an open exterior shows its inside, not a
 // wall. Said once, so an illustrator knows why no wall appears and how to choose.
 void warnAboutOpenExteriors(const Scene& scene) {
-  if (!scene.cutout && !scene.breakaway) return;
+  if (!scene.cutters.find<CutoutOptions>() && !scene.cutters.find<BreakawayOptions>()) return;
   for (const auto& o : scene.objects)
     if (o.role == Role::Exterior && !o.proxy && !o.mesh->report.watertight &&
         !o.params.count("solid"))
@@ -138,7 +146,8 @@ void warnAboutOpenExteriors(const Scene& scene) {
 
 // Trapp13 §5: parity is undefined for open meshes, so their cuts get no caps; say which.
 void warnAboutUncappedObjects(const Scene& scene) {
-  if (!scene.clipSurfaces || !scene.clipSurfaces->caps) return;
+  const auto* clip = scene.cutters.find<ClipSurfaceOptions>();
+  if (!clip || !clip->caps) return;
   std::vector<std::string> open;
   for (const auto& o : scene.objects)
     if (!o.proxy && o.role != Role::Interest && !o.mesh->report.watertight) open.push_back(o.name);
@@ -342,14 +351,14 @@ int info(const std::string& path) {
        {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"near", c.near}, {"far", c.far}}},
       {"duration", scene.duration()},
       {"objects", objects}};
-  if (const auto& a = scene.adaptive)
+  if (const auto* a = scene.cutters.find<AdaptiveCutawayOptions>())
     out["cutters"]["adaptive"] = {{"angle", a->angle},
                                   {"bufferSize", a->bufferSize},
                                   {"perspectiveCompensation", a->perspectiveCompensation},
                                   {"edgeCompression", a->edgeCompression ? a->edgeRegion : 0.0f},
                                   {"directionalConstraint", a->directionalConstraint},
                                   {"jumpFlooding", fields::variantName(a->variant)},
-                                  {"ghostLines", a->ghostLines}};
+                                  {"ghostLines", a->ghostLines.has_value()}};
   // Diepstraten03 §4.2: each exterior unit's main axis (hull-surface covariance).
   for (const auto& unit : exteriorUnits(scene)) {
     const PrincipalAxes& a = unit.axes;
@@ -363,14 +372,14 @@ int info(const std::string& path) {
                                 {"eigenvalues", a.eigenvalues},
                                 {"extentAlongMainAxis", {a.extentMin, a.extentMax}}});
   }
-  if (const auto& c = scene.cutout)
+  if (const auto* c = scene.cutters.find<CutoutOptions>())
     out["cutters"]["cutout"] = {
         {"method", c->method == CutoutOptions::Method::Texture ? "texture" : "clipPlanes"},
         {"angle", c->angle},
         {"rotation",
          c->rotation ? nlohmann::json(*c->rotation) : nlohmann::json("facing the camera")},
         {"planes", c->axialRange ? 4 : 2}};
-  if (const auto& c = scene.clipSurfaces) {
+  if (const auto* c = scene.cutters.find<ClipSurfaceOptions>()) {
     nlohmann::json surfaces = nlohmann::json::array();
     for (const auto& cs : c->surfaces)
       surfaces.push_back({{"origin", vec(cs.origin)},
@@ -392,7 +401,7 @@ int info(const std::string& path) {
         {"capped", c->caps ? capped : nlohmann::json::array()},
         {"notCappedOpenMeshes", c->caps ? uncapped : nlohmann::json::array()}};
   }
-  if (const auto& t = scene.terrainOpening) {
+  if (const auto* t = scene.cutters.find<TerrainOpeningOptions>()) {
     std::size_t nodes = 0;
     for (const auto& line : t->lines) nodes += line.size();
     out["cutters"]["terrainOpening"] = {
@@ -430,7 +439,7 @@ int info(const std::string& path) {
          {"shafts", net.shafts.size()},
          {"bounds", boundsJson(net.bounds())}});
   }
-  if (const auto& b = scene.breakaway) {
+  if (const auto* b = scene.cutters.find<BreakawayOptions>()) {
     const BreakawayExtent extent = breakawayExtent(scene, *b);
     nlohmann::json clusters = nlohmann::json::array();
     for (const auto& c : breakawayClusters(scene, *b))
@@ -513,13 +522,14 @@ double timeMs(int runs, const std::function<void()>& f) {
 // The scene's seed image at an n×n cutaway buffer, rendered by the real seed pass.
 fields::SeedImage sceneSeedImage(const Scene& base, const gl::ContextInfo& info, int n) {
   Scene scene = base;
-  scene.adaptive->bufferSize = n;
-  scene.adaptive->compute = AdaptiveCutawayOptions::Compute::Cpu;
+  AdaptiveCutawayOptions& adaptive = *scene.cutters.find<AdaptiveCutawayOptions>();
+  adaptive.bufferSize = n;
+  adaptive.compute = AdaptiveCutawayOptions::Compute::Cpu;
   Renderer renderer(scene, info);
   const Camera camera = scene.resolvedCamera();
   renderer.render(camera);
   return makeSeedImage(renderer.frame().read("seedDepth", 1), renderer.frame().read("seedAngle", 1),
-                       n, *scene.adaptive,
+                       n, adaptive,
                        cutawayProjection(camera, float(scene.width) / float(scene.height)));
 }
 
@@ -556,7 +566,7 @@ void pipeTable(const Scene& scene, const gl::ContextInfo& info, int frames,
                                           NetworkPart::MeshedPipes, pipeMesh(net)));
     }
     if (!shafts && !pipes) s.networks.clear();
-    if (!terrain) s.terrainOpening.reset();
+    if (!terrain) s.cutters.disable<TerrainOpeningOptions>();
     // The camera stays the whole scene's.
     s.camera = scene.resolvedCamera();
     s.camera.fit = false;
@@ -587,7 +597,7 @@ int bench(const BenchOptions& options) {
   constexpr int kAccuracySize = 256;
   if (!scene.networks.empty()) {
     pipeTable(scene, info, options.frames, runs);
-  } else if (scene.cutout || scene.breakaway) {
+  } else if (scene.cutters.find<CutoutOptions>() || scene.cutters.find<BreakawayOptions>()) {
     // Diepstraten03 §6's table: plain, cutout and breakaway for every style, in one run; a
     // cutter the scene does not configure runs with its defaults where the roles allow it.
     const bool interior =
@@ -595,56 +605,60 @@ int bench(const BenchOptions& options) {
                     [](const SceneObject& o) { return o.role == Role::Interior; });
     for (const auto& style : styleNames()) {
       Scene plain = scene;
-      plain.cutout.reset();
-      plain.breakaway.reset();
+      plain.cutters.disable<CutoutOptions>();
+      plain.cutters.disable<BreakawayOptions>();
       plain.style.name = style;
       const std::size_t base = runs.size();
       runs.push_back(measure("plain " + style, plain, info, options.frames));
       Scene cutout = plain;
-      cutout.cutout = scene.cutout.value_or(CutoutOptions{});
+      cutout.cutters.enable<CutoutOptions>() =
+          scene.cutters.find<CutoutOptions>() ? *scene.cutters.find<CutoutOptions>() : CutoutOptions{};
       runs.push_back(measure("cutout " + style, cutout, info, options.frames));
       if (interior) {
         Scene breakaway = plain;
-        breakaway.breakaway = scene.breakaway.value_or(BreakawayOptions{});
+        breakaway.cutters.enable<BreakawayOptions>() = scene.cutters.find<BreakawayOptions>()
+                                                           ? *scene.cutters.find<BreakawayOptions>()
+                                                           : BreakawayOptions{};
         runs.push_back(measure("breakaway " + style, breakaway, info, options.frames));
       }
       for (std::size_t i = base; i < runs.size(); ++i) runs[i].plain = base;
     }
-  } else if (scene.clipSurfaces) {
+  } else if (scene.cutters.find<ClipSurfaceOptions>()) {
     // Trapp13 §6.2's comparison: the model alone, clipped, and clipped and capped.
     Scene plain = scene, clipped = scene;
-    plain.clipSurfaces.reset();
-    clipped.clipSurfaces->caps = false;
+    plain.cutters.disable<ClipSurfaceOptions>();
+    clipped.cutters.find<ClipSurfaceOptions>()->caps = false;
     runs.push_back(measure("plain", plain, info, options.frames));
     runs.push_back(measure("clipped", clipped, info, options.frames));
     Scene capped = scene;
-    capped.clipSurfaces->caps = true;
+    capped.cutters.find<ClipSurfaceOptions>()->caps = true;
     runs.push_back(measure("clipped + capped", capped, info, options.frames));
-  } else if (!scene.adaptive) {
+  } else if (!scene.cutters.find<AdaptiveCutawayOptions>()) {
     runs.push_back(measure("frame", scene, info, options.frames));
   } else {
     // Burns08 Table 1's shape: the model alone, then with the cutaway, in one run; at the
     // two buffer sizes the issue asks for, on both compute paths.
     Scene plain = scene;
-    plain.adaptive.reset();
+    plain.cutters.disable<AdaptiveCutawayOptions>();
     runs.push_back(measure("plain", plain, info, options.frames));
     for (int n : {512, 1024})
       for (auto compute :
            {AdaptiveCutawayOptions::Compute::Gpu, AdaptiveCutawayOptions::Compute::Cpu}) {
         Scene s = scene;
-        s.adaptive->bufferSize = n;
-        s.adaptive->compute = compute;
+        s.cutters.find<AdaptiveCutawayOptions>()->bufferSize = n;
+        s.cutters.find<AdaptiveCutawayOptions>()->compute = compute;
         const bool gpu = compute == AdaptiveCutawayOptions::Compute::Gpu;
         runs.push_back(measure("cutaway " + std::to_string(n) + (gpu ? " gpu" : " cpu"), s, info,
                                options.frames));
       }
+    const fields::JumpFloodingVariant variant = scene.cutters.find<AdaptiveCutawayOptions>()->variant;
     for (int n : {512, 1024}) {
       const fields::SeedImage seeds = sceneSeedImage(scene, info, n);
       const std::string size = std::to_string(n);
       references["jumpFlooding " + size + " (all threads)"] =
-          timeMs(5, [&] { (void)fields::jumpFlooding(seeds, -1.0f, scene.adaptive->variant); });
+          timeMs(5, [&] { (void)fields::jumpFlooding(seeds, -1.0f, variant); });
       references["jumpFlooding " + size + " (1 thread)"] =
-          timeMs(3, [&] { (void)fields::jumpFlooding(seeds, -1.0f, scene.adaptive->variant, 1); });
+          timeMs(3, [&] { (void)fields::jumpFlooding(seeds, -1.0f, variant, 1); });
       references["chamfer 3x3 " + size] =
           timeMs(3, [&] { (void)fields::chamfer(seeds, -1.0f, fields::ChamferKernel::k3x3); });
       references["chamfer 5x5 " + size] =
@@ -668,7 +682,8 @@ int bench(const BenchOptions& options) {
   }
   const double plainMs = runs.front().frame.median;
   const char* autoPath = nullptr;
-  if (scene.adaptive) autoPath = cutawayOnCpu(*scene.adaptive, info.software) ? "cpu" : "gpu";
+  if (const auto* a = scene.cutters.find<AdaptiveCutawayOptions>())
+    autoPath = cutawayOnCpu(*a, info.software) ? "cpu" : "gpu";
 
   if (options.json) {
     nlohmann::json out = {{"scene", options.scene},
@@ -732,7 +747,8 @@ int bench(const BenchOptions& options) {
       std::printf("%-12s %12.3f %12.3f\n",
                   runs[i].label.substr(0, runs[i].label.size() - 2).c_str(), runs[i].frame.median,
                   runs[i + half].frame.median);
-  } else if (scene.cutout || scene.breakaway || scene.clipSurfaces) {
+  } else if (scene.cutters.find<CutoutOptions>() || scene.cutters.find<BreakawayOptions>() ||
+             scene.cutters.find<ClipSurfaceOptions>()) {
     std::printf("\n%-24s %12s %12s\n", "summary", "frame ms", "× plain");
     for (const auto& m : runs)
       std::printf("%-24s %12.3f %12.3f\n", m.label.c_str(), m.frame.median,
@@ -752,6 +768,62 @@ int bench(const BenchOptions& options) {
     for (const auto& [name, fraction] : accuracy.items())
       std::printf("  %-8s %9.4f%%\n", name.c_str(), 100.0 * fraction.get<double>());
   }
+  return 0;
+}
+
+namespace {
+
+const char* typeName(OptionSpec::Type type) {
+  switch (type) {
+    case OptionSpec::Type::Bool: return "bool";
+    case OptionSpec::Type::Int: return "int";
+    case OptionSpec::Type::Float: return "float";
+    case OptionSpec::Type::Choice: return "choice";
+    case OptionSpec::Type::Color: return "colour";
+    case OptionSpec::Type::Direction: return "direction";
+    case OptionSpec::Type::Vec3: return "vec3";
+    case OptionSpec::Type::Text: return "text";
+  }
+  return "?";
+}
+
+std::string rangeText(const OptionSpec& s) {
+  using T = OptionSpec::Type;
+  if (s.type == T::Choice) {
+    std::string list;
+    for (const auto& c : s.choices) list += (list.empty() ? "" : "|") + c;
+    return list;
+  }
+  if (s.type != T::Int && s.type != T::Float && s.type != T::Vec3) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, "[%g, %g]", s.min, s.max);
+  return text;
+}
+
+}  // namespace
+
+int listOptions(bool json) {
+  const Scene defaults;  // every technique off: each option reads as its default
+  nlohmann::json list = nlohmann::json::array();
+  for (const SceneOption& o : sceneOptions()) {
+    const OptionSpec& s = o.spec;
+    list.push_back({{"path", o.path},
+                    {"type", typeName(s.type)},
+                    {"range", rangeText(s)},
+                    {"default", formatOptionValue(s.get(&defaults))},
+                    {"live", s.live},
+                    {"inFile", s.inFile},
+                    {"doc", s.doc}});
+  }
+  if (json) {
+    std::printf("%s\n", list.dump(2).c_str());
+    return 0;
+  }
+  std::printf("%-44s %-9s %-22s %-16s %s\n", "path", "type", "range", "default", "live");
+  for (const auto& o : list)
+    std::printf("%-44s %-9s %-22s %-16s %s\n", o["path"].get<std::string>().c_str(),
+                o["type"].get<std::string>().c_str(), o["range"].get<std::string>().c_str(),
+                o["default"].get<std::string>().c_str(), o["live"].get<bool>() ? "live" : "rebuild");
   return 0;
 }
 

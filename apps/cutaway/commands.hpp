@@ -21,6 +21,7 @@ struct SceneOverrides {
   std::optional<float> cutawayAngle;  // adaptive cutter θ, degrees
   bool noCutaway = false;
   bool shadows = false;  // turn on style.shadows
+  std::vector<std::string> set;  // "PATH=VALUE" (cutaway/render/techniques.hpp), in order
 };
 
 struct RenderOptions {
@@ -54,5 +55,9 @@ struct BenchOptions {
   SceneOverrides overrides;
 };
 int bench(const BenchOptions& options);
+
+// Every registered technique's options (cutaway/render/techniques.hpp) with type, range,
+// default, liveness and documentation, as a table or JSON.
+int listOptions(bool json);
 
 }  // namespace cutaway::cli

@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/scene.hpp"
 
 namespace {
@@ -60,6 +61,12 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
       ->check(CLI::Range(0.0f, 90.0f));
   command->add_flag("--no-cutaway", o.noCutaway,
                     "Render without any of the scene's cutters (the plain model)");
+  command->add_option("--set", o.set,
+                      "PATH=VALUE: set any technique's option by its scene-file path, e.g. "
+                      "cutters.adaptive.angle=30, style.lines.width=2, style.gooch.alpha=0.3, "
+                      "cutters.cutout=true (repeatable; `cutaway options` lists them)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
 constexpr const char* kCityHelp =
@@ -124,6 +131,13 @@ int main(int argc, char** argv) {
   dem->add_option("--seed", demOptions.seed, "Noise seed")->capture_default_str();
   dem->add_option("-o,--output", demOptions.output, "Output GeoTIFF")->required();
 
+  bool optionsJson = false;
+  auto* options = app.add_subcommand("options",
+                                     "List every technique's options: the paths --set and the "
+                                     "viewer's script take, their types, ranges, defaults and "
+                                     "whether a change is live");
+  options->add_flag("--json", optionsJson, "Print JSON instead of a table");
+
   cutaway::cli::BenchOptions benchOptions;
   auto* bench = app.add_subcommand("bench",
                                    "Render frames and report per-pass GPU times and "
@@ -154,6 +168,7 @@ int main(int argc, char** argv) {
     if (*info) return cutaway::cli::info(infoScene);
     if (*bench) return cutaway::cli::bench(benchOptions);
     if (*dem) return cutaway::cli::dem(demOptions);
+    if (*options) return cutaway::cli::listOptions(optionsJson);
   } catch (const cutaway::Error& e) {
     std::fprintf(stderr, "cutaway: error: %s\n", e.what());
     return 1;

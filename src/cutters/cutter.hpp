@@ -25,6 +25,7 @@
 #include <glm/glm.hpp>
 
 #include "cutaway/frame/aov.hpp"
+#include "core/json_reader.hpp"
 #include "cutaway/frame/frame.hpp"
 #include "frame/frame_setup.hpp"
 #include "frame/frame_uniforms.hpp"
@@ -101,9 +102,28 @@ struct CutterType {
   std::string title;  // for panels: "Adaptive cutaway (Burns08/11)"
   std::string glsl;   // its GLSL file, e.g. "cutters/adaptive/clip.glsl"
   std::string name;   // GLSL prefix: <name>Fragment, <name>Channel<k>
-  bool (*active)(const Scene&);
+  // Its options (the struct in scene.cutters under `key`); null: none of its own, and it is
+  // switched on by what the scene holds (`active`).
+  const OptionsSchema* schema = nullptr;
+  bool (*active)(const Scene&) = nullptr;
+  // After the scene file's objects and networks are read: the checks and completions across
+  // the scene (roles it needs, the network it opens above); errors name `pointer`.
+  void (*complete)(const json_reader::Context&, const std::string& pointer, Scene&) = nullptr;
   std::unique_ptr<Cutter> (*create)(FrameSetup&);
 };
+
+// A check for CutterType::complete: fails at `pointer` unless a visible object has `role`.
+inline void requireRole(const json_reader::Context& ctx, const std::string& pointer,
+                        const Scene& scene, Role role, const std::string& why) {
+  for (const SceneObject& o : scene.objects)
+    if (!o.proxy && o.role == role) return;
+  ctx.fail(pointer, "no object has role \"" + std::string(roleName(role)) + "\": " + why);
+}
+
+// Whether `type` is on in `scene`: its options are there, or `active` says so.
+inline bool cutterActive(const CutterType& type, const Scene& scene) {
+  return type.active ? type.active(scene) : scene.cutters.find(type.key) != nullptr;
+}
 
 // An active cutter of one renderer: its slot (the registry index: its bit in uCutBy and its
 // index in the per-cutter uniform arrays) and the instance.

@@ -53,6 +53,9 @@ struct FrameSetup {
   // Connected by the composer to every geometry kind.
   std::function<void(const RearHullRequest&)> drawInterestRearHulls;
   std::function<void()> drawShadowCasters;  // with the light's frame uniforms bound
+  // Binds what every geometry program's shading reads (the style's block and textures, the
+  // shadow map), for passes after the geometry pass that draw into the G-buffer.
+  std::function<void()> bindShading;
 };
 
 }  // namespace cutaway

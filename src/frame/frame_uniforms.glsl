@@ -14,14 +14,6 @@ layout(std140, binding = 0) uniform FrameUniforms {
   ivec4 uCounts;                  // x: lights, y: 1 if orthographic
   vec4 uBackgroundTop;
   vec4 uBackgroundBottom;
-  vec4 uGoochCool;                // rgb: k_blue, w: alpha (Gooch98)
-  vec4 uGoochWarm;                // rgb: k_yellow, w: beta
-  vec4 uStyleParams;              // x: Blinn-Phong ambient
   mat4 uShadowMatrix;             // world → [0,1]³ key-light shadow-map coordinates
   vec4 uShadowParams;             // x: 1 if on, y: bias (scene units), z: PCF radius, w: 1/size
-  vec4 uToonParams;               // x: ramp size, y: highlight threshold, z: 1 for highlights
-  vec4 uToonHighlight;            // rgb: highlight colour
-  vec4 uHatchPaper;               // rgb: paper colour, w: tint by the object colour
-  vec4 uHatchInk;                 // rgb: ink colour, w: number of tones
-  vec4 uHatchParams;              // x: 1 / tile size (world units), y: 1 for Gooch lightness
 };

@@ -17,12 +17,8 @@ struct FrameUniforms {
   glm::vec4 lightColor[8];
   glm::ivec4 counts;
   glm::vec4 backgroundTop, backgroundBottom;
-  glm::vec4 goochCool, goochWarm;
-  glm::vec4 styleParams;
   glm::mat4 shadowMatrix;
   glm::vec4 shadowParams;
-  glm::vec4 toonParams, toonHighlight;
-  glm::vec4 hatchPaper, hatchInk, hatchParams;
 };
 
 // One frame, as the renderer resolved it before running the passes.

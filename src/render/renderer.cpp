@@ -15,24 +15,11 @@
 #include "frame/scene_meshes.hpp"
 #include "kinds/meshes/mesh_kind.hpp"
 #include "kinds/pipes/pipe_kind.hpp"
-#include "styles/hatching/tonal_art_map.hpp"
 #include "styles/lines/line_pass.hpp"
+#include "styles/registry.hpp"
 #include "styles/shadows/shadow_map.hpp"
-#include "styles/toon/toon_ramp.hpp"
 
 namespace cutaway {
-
-namespace {
-
-const char* styleFile(const std::string& style) {
-  if (style == "gooch") return "styles/gooch/gooch.glsl";
-  if (style == "blinn-phong") return "styles/blinn_phong/blinn_phong.glsl";
-  if (style == "toon") return "styles/toon/toon.glsl";
-  if (style == "hatching") return "styles/hatching/hatching.glsl";
-  throw Error("style", "", "unknown style \"" + style + "\"");
-}
-
-}  // namespace
 
 struct Renderer::Impl {
   Impl(const Scene& scene, const gl::ContextInfo& info)
@@ -50,9 +37,8 @@ struct Renderer::Impl {
   gl::Buffer frameUniforms;
   std::vector<ActiveCutter> cutters;
   std::vector<std::unique_ptr<GeometryKind>> kinds;
+  std::unique_ptr<ShadingStyle> style;
   std::unique_ptr<ShadowMap> shadowMap;
-  gl::Texture toonRamp, tonalArtMap;  // the toon and hatching styles' textures
-  GLuint toonRampUnit = 0, tonalArtMapUnit = 0;
   std::unique_ptr<LinePass> lines, ghostLines;
   Target linesTarget, outlinesTarget, ghostLinesTarget;
 };
@@ -65,22 +51,16 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   // The techniques, in the order their bindings are allocated: the style, shadows, the
   // cutters (registry order), the kinds.
   const Style& style = scene.style;
+  const StyleType* shading = findStyle(style.name);
+  if (!shading) throw Error("style", "", "unknown style \"" + style.name + "\"");
+  g.style = shading->create(setup);
   // Every geometry program includes the shadow lookup (styles/shadows/shadow_lookup.glsl),
   // which reads nothing while shadows are off.
   g.bindings.textureUnit("SHADOW_MAP");
-  if (style.name == "toon") {
-    g.toonRampUnit = g.bindings.textureUnit("TOON_RAMP");
-    g.toonRamp = createToonRampTexture(style.toon);
-  }
-  if (style.name == "hatching") {
-    g.tonalArtMapUnit = g.bindings.textureUnit("TONAL_ART_MAP");
-    g.tonalArtMap = createTonalArtMapTexture(
-        generateTonalArtMap({.tones = style.hatching.tones, .seed = style.hatching.seed}));
-  }
   if (style.shadows.enabled) g.shadowMap = std::make_unique<ShadowMap>(setup);
   const auto& types = cutterTypes();
   for (std::size_t slot = 0; slot < types.size(); ++slot) {
-    if (!types[slot].active(scene)) continue;
+    if (!cutterActive(types[slot], scene)) continue;
     const std::size_t channels = g.gbuffer.channels().size();
     ActiveCutter c{int(slot), &types[slot], types[slot].create(setup), {}};
     for (std::size_t k = channels; k < g.gbuffer.channels().size(); ++k)
@@ -94,7 +74,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   const bool stencil = std::any_of(g.kinds.begin(), g.kinds.end(),
                                    [](const auto& k) { return k->needsStencil(); });
   g.gbuffer.declare(g.frame, scene.samples, stencil);
-  setup.shadingAliases = {{"style.glsl", styleFile(style.name)}};
+  setup.shadingAliases = {{"style.glsl", shading->glsl}};
   setup.shadingSources = {{"cutters/composition.glsl", cutterComposition(g.cutters)},
                           {"frame/gbuffer_channels.glsl", g.gbuffer.channelsGlsl()}};
   setup.drawShadowCasters = [&g] {
@@ -102,6 +82,10 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   };
   setup.drawInterestRearHulls = [&g](const RearHullRequest& request) {
     for (const auto& k : g.kinds) k->drawInterestRearHulls(request);
+  };
+  setup.bindShading = [&g] {
+    g.style->bindForGeometry();
+    if (g.shadowMap) g.shadowMap->bindForLookup();
   };
   for (ActiveCutter& c : g.cutters) c.cutter->prepareGeometryPrograms();
   for (const auto& k : g.kinds) k->prepare(g.cutters);
@@ -213,9 +197,7 @@ void Renderer::Impl::drawGeometry(GLuint framebuffer) const {
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   for (const ActiveCutter& c : cutters) c.cutter->bindForGeometry();
-  if (shadowMap) shadowMap->bindForLookup();
-  if (toonRamp) glBindTextureUnit(toonRampUnit, toonRamp.id());
-  if (tonalArtMap) glBindTextureUnit(tonalArtMapUnit, tonalArtMap.id());
+  setup.bindShading();
   const GeometryDraw draw{meshes.time()};
   for (const auto& k : kinds) k->drawGeometry(cutters, draw);
   // Trapp13 §5: the caps close the clipped solids.
@@ -264,20 +246,7 @@ void Renderer::render(const Camera& camera, float time) {
   u.counts = glm::ivec4(count, camera.projection == Projection::Orthographic ? 1 : 0, 0, 0);
   u.backgroundTop = glm::vec4(scene_.backgroundTop, 1.0f);
   u.backgroundBottom = glm::vec4(scene_.backgroundBottom, 1.0f);
-  u.goochCool = glm::vec4(scene_.style.gooch.cool, scene_.style.gooch.alpha);
-  u.goochWarm = glm::vec4(scene_.style.gooch.warm, scene_.style.gooch.beta);
-  u.styleParams = glm::vec4(scene_.style.blinnPhong.ambient, 0, 0, 0);
   const float sceneRadius = std::max(g.setup.sceneBounds.radius(), 1e-6f);
-  const ToonStyle& toon = scene_.style.toon;
-  u.toonParams = glm::vec4(float(toon.ramp.size()), toon.highlightThreshold,
-                           toon.highlight ? 1.0f : 0.0f, 0.0f);
-  u.toonHighlight = glm::vec4(toon.highlightColor, 1.0f);
-  const HatchingStyle& hatching = scene_.style.hatching;
-  u.hatchPaper = glm::vec4(hatching.paper, hatching.tint);
-  u.hatchInk = glm::vec4(hatching.ink, float(hatching.tones));
-  u.hatchParams =
-      glm::vec4(1.0f / (hatching.scale * sceneRadius),
-                hatching.lightness == HatchingStyle::Lightness::Gooch ? 1.0f : 0.0f, 0, 0);
   if (g.shadowMap) {
     // The light sees the scene's bounds over the whole animation, so the map does not
     // change resolution from frame to frame.
@@ -305,6 +274,7 @@ void Renderer::render(const Camera& camera, float time) {
   glNamedBufferSubData(g.frameUniforms.id(), 0, sizeof u, &u);
   glBindBufferBase(GL_UNIFORM_BUFFER, Bindings::kFrameUniformBlock, g.frameUniforms.id());
   const FrameState state{camera, aspect, time, u};
+  g.style->beginFrame(state);
   for (ActiveCutter& c : g.cutters) c.cutter->beginFrame(state);
   g.frame.execute();
 }

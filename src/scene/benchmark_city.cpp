@@ -1,5 +1,7 @@
 #include "cutaway/scene/benchmark_city.hpp"
 
+#include "cutaway/cutters/terrain_opening.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -142,7 +144,7 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
   }
   opening.cameraDistance = false;  // Fig. 15b: the whole network seen at once
   opening.w = 0.01f, opening.s = 1.0f;
-  scene.terrainOpening = opening;
+  scene.cutters.enable<TerrainOpeningOptions>() = opening;
 
   // The whole network in view (Konev18 §8.3), from the south-west and above.
   scene.camera.eye = {-0.25f * side, 0.7f * side, 0.35f * side};

@@ -11,7 +11,7 @@
 #include "cutaway/geometry/ground_height.hpp"
 #include "cutaway/io/gis_import.hpp"
 
-namespace cutaway::scene_json {
+namespace cutaway::json_reader {
 
 namespace {
 
@@ -174,7 +174,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
         return p;
       };
       if (file) {
-        GisImportOptions gis = gisOptions(ctx);
+        GisImportOptions gis = gisImportOptions(ctx.geo);
         gis.layer = layer;
         gis.attributes = a.fields();
         GisLines imported;
@@ -263,7 +263,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
         sd.ends = what == "nodes";
         addJunctionShafts(net, sd, groundAt);
       } else {
-        GisImportOptions gis = gisOptions(ctx);
+        GisImportOptions gis = gisImportOptions(ctx.geo);
         gis.layer = layer;
         for (const Attribute* at : {&radius, &wall, &water})
           if (!at->field.empty() && std::find(gis.attributes.begin(), gis.attributes.end(),
@@ -323,4 +323,4 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
   }
 }
 
-}  // namespace cutaway::scene_json
+}  // namespace cutaway::json_reader

@@ -2,12 +2,13 @@
 // node heights and shaft rims come from the terrain objects.
 #pragma once
 
-#include "scene/json_reader.hpp"
+#include "core/json_reader.hpp"
+#include "cutaway/scene/scene.hpp"
 
-namespace cutaway::scene_json {
+namespace cutaway::json_reader {
 
 // Appends the networks to `scene.networks`, and their meshes (shafts, joints, meshed pipes)
 // to `scene.objects`.
 void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Scene& scene);
 
-}  // namespace cutaway::scene_json
+}  // namespace cutaway::json_reader

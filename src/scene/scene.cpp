@@ -35,11 +35,6 @@ const std::vector<ObjectParamSpec>& objectParameterSpecs() {
   return specs;
 }
 
-const std::vector<std::string>& styleNames() {
-  static const std::vector<std::string> names{"gooch", "blinn-phong", "toon", "hatching"};
-  return names;
-}
-
 glm::mat4 Trs::matrix() const {
   return glm::translate(glm::mat4(1.0f), translate) * glm::mat4_cast(rotate) *
          glm::scale(glm::mat4(1.0f), scale);

@@ -1,6 +1,7 @@
 // The JSON scene format (docs/scene-format.md): strict parsing, every error names the file,
 // the JSON pointer and the reason; unknown keys are errors.
 #include <algorithm>
+#include <any>
 #include <cmath>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
@@ -21,14 +22,16 @@
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/scene/scene.hpp"
-#include "scene/json_reader.hpp"
+#include "core/json_reader.hpp"
+#include "cutters/registry.hpp"
 #include "scene/network_json.hpp"
+#include "styles/registry.hpp"
 
 namespace cutaway {
 
 namespace {
 
-using namespace scene_json;
+using namespace json_reader;
 using json = nlohmann::json;
 
 // The renderer's light array (kMaxLights in src/frame/frame_uniforms.glsl); more would be
@@ -263,7 +266,7 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
   const std::string text = string(ctx, r.require("file"), r.at("file"));
   std::filesystem::path file = text;
   if (file.is_relative()) file = ctx.baseDir / file;
-  GisImportOptions options = gisOptions(ctx);
+  GisImportOptions options = gisImportOptions(ctx.geo);
   if (const json* v = r.take("layer")) options.layer = string(ctx, *v, r.at("layer"));
   // "height": a number, or {"field": NAME, "default": NUMBER} (a footprint with a null or
   // non-positive value takes the default).
@@ -546,334 +549,6 @@ Light light(const Context& ctx, const json& j, const std::string& ptr) {
   return l;
 }
 
-AdaptiveCutawayOptions adaptiveCutaway(const Context& ctx, const json& j, const std::string& ptr) {
-  AdaptiveCutawayOptions o;
-  if (j.is_boolean()) {
-    if (!j.get<bool>()) ctx.fail(ptr, "use true or an object (leave the key out to disable)");
-    return o;
-  }
-  ObjectReader r(ctx, j, ptr);
-  if (const json* v = r.take("angle")) o.angle = float(number(ctx, *v, r.at("angle"), 0, 90));
-  if (const json* v = r.take("bufferSize"))
-    o.bufferSize = integer(ctx, *v, r.at("bufferSize"), 16, 8192);
-  if (const json* v = r.take("perspectiveCompensation"))
-    o.perspectiveCompensation = boolean(ctx, *v, r.at("perspectiveCompensation"));
-  if (const json* v = r.take("edgeCompression")) {
-    if (v->is_number()) {
-      o.edgeRegion = float(number(ctx, *v, r.at("edgeCompression"), 1e-3, 1));
-    } else {
-      o.edgeCompression = boolean(ctx, *v, r.at("edgeCompression"));
-    }
-  }
-  if (const json* v = r.take("floorNormal")) {
-    o.directionalConstraint = true;
-    o.floorNormal = direction(ctx, *v, r.at("floorNormal"));
-  }
-  if (const json* v = r.take("directionalConstraint"))
-    o.directionalConstraint = boolean(ctx, *v, r.at("directionalConstraint"));
-  if (const json* v = r.take("jumpFlooding")) {
-    const std::string name =
-        oneOf(ctx, *v, r.at("jumpFlooding"), {"jfa", "jfa+1", "1+jfa", "jfa+2"});
-    fields::parseVariant(name, o.variant);
-  }
-  if (const json* v = r.take("compute")) {
-    const std::string c = oneOf(ctx, *v, r.at("compute"), {"auto", "gpu", "cpu"});
-    o.compute = c == "gpu"   ? AdaptiveCutawayOptions::Compute::Gpu
-                : c == "cpu" ? AdaptiveCutawayOptions::Compute::Cpu
-                             : AdaptiveCutawayOptions::Compute::Auto;
-  }
-  if (const json* v = r.take("cutSurfaces")) {
-    const std::string c = oneOf(ctx, *v, r.at("cutSurfaces"), {"all", "watertight", "none"});
-    o.cutSurfaces = c == "all"          ? AdaptiveCutawayOptions::CutSurfaces::All
-                    : c == "watertight" ? AdaptiveCutawayOptions::CutSurfaces::Watertight
-                                        : AdaptiveCutawayOptions::CutSurfaces::None;
-  }
-  if (const json* v = r.take("cutSurfaceColor"))
-    o.cutSurfaceColor = color(ctx, *v, r.at("cutSurfaceColor"));
-  if (const json* v = r.take("outlines")) o.outlines = boolean(ctx, *v, r.at("outlines"));
-  if (const json* v = r.take("outlineColor")) o.outlineColor = color(ctx, *v, r.at("outlineColor"));
-  if (const json* v = r.take("ghostLines")) {
-    if (v->is_boolean()) {
-      o.ghostLines = v->get<bool>();
-    } else {
-      ObjectReader g(ctx, *v, r.at("ghostLines"));
-      o.ghostLines = true;
-      if (const json* x = g.take("distance"))
-        o.ghostDistance = float(number(ctx, *x, g.at("distance"), 0, 1e30));
-      if (const json* x = g.take("opacity"))
-        o.ghostOpacity = float(number(ctx, *x, g.at("opacity"), 0, 1));
-      g.finish();
-    }
-  }
-  r.finish();
-  return o;
-}
-
-// Cut-wall and inside colours shared by the Diepstraten03 cutters.
-template <class Options>
-void wallColors(const Context& ctx, ObjectReader& r, Options& o) {
-  if (const json* v = r.take("wallColor")) o.wallColor = color(ctx, *v, r.at("wallColor"));
-  if (const json* v = r.take("insideColor")) o.insideColor = color(ctx, *v, r.at("insideColor"));
-}
-
-CutoutOptions cutout(const Context& ctx, const json& j, const std::string& ptr) {
-  CutoutOptions o;
-  if (j.is_boolean()) {
-    if (!j.get<bool>()) ctx.fail(ptr, "use true or an object (leave the key out to disable)");
-    return o;
-  }
-  ObjectReader r(ctx, j, ptr);
-  if (const json* v = r.take("method"))
-    o.method = oneOf(ctx, *v, r.at("method"), {"texture", "clipPlanes"}) == "clipPlanes"
-                   ? CutoutOptions::Method::ClipPlanes
-                   : CutoutOptions::Method::Texture;
-  if (const json* v = r.take("angle")) o.angle = float(number(ctx, *v, r.at("angle"), 1, 180));
-  if (const json* v = r.take("rotation"))
-    o.rotation = float(number(ctx, *v, r.at("rotation"), -360, 360));
-  if (const json* v = r.take("axialRange")) {
-    if (!v->is_array() || v->size() != 2) ctx.fail(r.at("axialRange"), "expected [from, to]");
-    const float from = float(number(ctx, (*v)[0], r.at("axialRange") + "/0", 0, 1));
-    const float to = float(number(ctx, (*v)[1], r.at("axialRange") + "/1", 0, 1));
-    if (to <= from) ctx.fail(r.at("axialRange"), "the range must not be empty (from < to)");
-    o.axialRange = glm::vec2(from, to);
-  }
-  if (const json* v = r.take("jitter")) {
-    ObjectReader jr(ctx, *v, r.at("jitter"));
-    const std::string pattern =
-        oneOf(ctx, jr.require("pattern"), jr.at("pattern"), {"none", "sawtooth", "noise", "image"});
-    using P = CutoutJitter::Pattern;
-    o.jitter.pattern = pattern == "sawtooth" ? P::Sawtooth
-                       : pattern == "noise"  ? P::Noise
-                       : pattern == "image"  ? P::Image
-                                             : P::None;
-    if (const json* x = jr.take("amplitude"))
-      o.jitter.amplitude = float(number(ctx, *x, jr.at("amplitude"), 0, 1));
-    if (const json* x = jr.take("frequency"))
-      o.jitter.frequency = float(number(ctx, *x, jr.at("frequency"), 1e-3, 1e4));
-    if (const json* x = jr.take("octaves"))
-      o.jitter.octaves = integer(ctx, *x, jr.at("octaves"), 1, 8);
-    if (const json* x = jr.take("image")) {
-      if (!x->is_string()) ctx.fail(jr.at("image"), "expected a file name, got " + typeName(*x));
-      o.jitter.image = ctx.baseDir / x->get<std::string>();
-      if (!std::filesystem::is_regular_file(o.jitter.image))
-        ctx.fail(jr.at("image"), "no such image file: " + o.jitter.image.string());
-      try {
-        o.jitter.imageData = readPngGray(o.jitter.image);
-      } catch (const Error& e) {
-        ctx.fail(jr.at("image"), e.reason() + " (" + o.jitter.image.string() + ")");
-      }
-    }
-    if (o.jitter.pattern == P::Image && o.jitter.image.empty())
-      ctx.fail(r.at("jitter"), "pattern \"image\" needs an \"image\" file (a PNG)");
-    jr.finish();
-  }
-  if (o.method == CutoutOptions::Method::ClipPlanes &&
-      o.jitter.pattern != CutoutJitter::Pattern::None)
-    ctx.fail(r.at("jitter"),
-             "the clip-plane method cannot jitter (Diepstraten03 §4.3); use "
-             "\"method\": \"texture\"");
-  wallColors(ctx, r, o);
-  r.finish();
-  return o;
-}
-
-BreakawayOptions breakaway(const Context& ctx, const json& j, const std::string& ptr) {
-  BreakawayOptions o;
-  if (j.is_boolean()) {
-    if (!j.get<bool>()) ctx.fail(ptr, "use true or an object (leave the key out to disable)");
-    return o;
-  }
-  ObjectReader r(ctx, j, ptr);
-  if (const json* v = r.take("offset")) o.offset = float(number(ctx, *v, r.at("offset"), 0, 1e30));
-  if (const json* v = r.take("wallThickness"))
-    o.wallThickness = float(number(ctx, *v, r.at("wallThickness"), 0, 1e30));
-  if (o.offset && o.wallThickness && *o.wallThickness > *o.offset)
-    ctx.fail(r.at("wallThickness"),
-             "the wall thickness must not exceed the offset (the back-face "
-             "hull is the outer hull shrunk by it)");
-  wallColors(ctx, r, o);
-  r.finish();
-  return o;
-}
-
-// An offset map (Trapp13 §4.2): a PNG file, a procedural recipe, or a blend of two maps.
-FloatImage offsetMap(const Context& ctx, const json& j, const std::string& ptr) {
-  if (j.is_string()) {
-    const std::filesystem::path file = ctx.baseDir / j.get<std::string>();
-    if (!std::filesystem::is_regular_file(file))
-      ctx.fail(ptr, "no such offset map: " + file.string());
-    try {
-      FloatImage map = readPngGray(file);
-      map.flipVertically();  // the image's bottom row is t = 0
-      return map;
-    } catch (const Error& e) {
-      ctx.fail(ptr, e.reason() + " (" + file.string() + ")");
-    }
-  }
-  ObjectReader r(ctx, j, ptr);
-  if (const json* v = r.take("blend")) {
-    static const std::vector<std::string> ops{"add", "multiply", "max", "min", "mix", "screen"};
-    const std::string op = oneOf(ctx, *v, r.at("blend"), ops);
-    const json& layers = r.require("layers");
-    if (!layers.is_array() || layers.size() != 2)
-      ctx.fail(r.at("layers"), "expected two offset maps to blend");
-    float weight = 0.5f;
-    if (const json* w = r.take("weight")) weight = float(number(ctx, *w, r.at("weight"), 0, 1));
-    r.finish();
-    const auto index = std::size_t(std::find(ops.begin(), ops.end(), op) - ops.begin());
-    return blendOffsetMaps(offsetMap(ctx, layers[0], r.at("layers") + "/0"),
-                           offsetMap(ctx, layers[1], r.at("layers") + "/1"), OffsetBlend(index),
-                           weight);
-  }
-  OffsetMapRecipe recipe;
-  const std::string pattern =
-      oneOf(ctx, r.require("pattern"), r.at("pattern"), {"flat", "sawtooth", "noise", "ridged"});
-  recipe.pattern = pattern == "flat"       ? OffsetPattern::Flat
-                   : pattern == "sawtooth" ? OffsetPattern::Sawtooth
-                   : pattern == "noise"    ? OffsetPattern::Noise
-                                           : OffsetPattern::Ridged;
-  if (const json* v = r.take("size")) recipe.size = integer(ctx, *v, r.at("size"), 2, 4096);
-  if (const json* v = r.take("frequency"))
-    recipe.frequency = integer(ctx, *v, r.at("frequency"), 1, 1024);
-  if (const json* v = r.take("octaves")) recipe.octaves = integer(ctx, *v, r.at("octaves"), 1, 10);
-  if (const json* v = r.take("seed"))
-    recipe.seed = unsigned(integer(ctx, *v, r.at("seed"), 0, 1 << 30));
-  r.finish();
-  return makeOffsetMap(recipe);
-}
-
-ClipSurfaceOptions clipSurfaces(const Context& ctx, const json& j, const std::string& ptr) {
-  ClipSurfaceOptions o;
-  ObjectReader r(ctx, j, ptr);
-  const json& list = r.require("surfaces");
-  if (!list.is_array() || list.empty() || list.size() > std::size_t(kMaxClipSurfaces))
-    ctx.fail(r.at("surfaces"), "expected 1 to " + std::to_string(kMaxClipSurfaces) +
-                                   " clip surfaces, evaluated in one pass (Trapp13 §4.5)");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const std::string p = r.at("surfaces") + "/" + std::to_string(i);
-    ObjectReader sr(ctx, list[i], p);
-    ClipSurface cs;
-    cs.origin = vec3(ctx, sr.require("origin"), sr.at("origin"));
-    cs.u = vec3(ctx, sr.require("u"), sr.at("u"));
-    cs.v = vec3(ctx, sr.require("v"), sr.at("v"));
-    const float lu = glm::length(cs.u), lv = glm::length(cs.v);
-    if (lu <= 0.0f || lv <= 0.0f) ctx.fail(p, "u and v must not be zero vectors");
-    if (std::abs(glm::dot(cs.u, cs.v)) > 1e-4f * lu * lv)
-      ctx.fail(sr.at("v"), "u and v must be orthogonal (Trapp13 §4.1)");
-    if (const json* v = sr.take("scale")) {
-      cs.scale = vec3(ctx, *v, sr.at("scale"));
-      if (cs.scale.x <= 0.0f || cs.scale.y <= 0.0f || cs.scale.z < 0.0f)
-        ctx.fail(sr.at("scale"), "repeats (x, y) must be > 0 and the height (z) >= 0");
-    }
-    if (const json* v = sr.take("offsetMap")) cs.offsetMap = offsetMap(ctx, *v, sr.at("offsetMap"));
-    if (const json* v = sr.take("enabled")) cs.enabled = boolean(ctx, *v, sr.at("enabled"));
-    if (const json* v = sr.take("capColor")) cs.capColor = color(ctx, *v, sr.at("capColor"));
-    if (const json* v = sr.take("diffuseMap")) {
-      if (!v->is_string()) ctx.fail(sr.at("diffuseMap"), "expected a PNG file name");
-      const std::filesystem::path file = ctx.baseDir / v->get<std::string>();
-      if (!std::filesystem::is_regular_file(file))
-        ctx.fail(sr.at("diffuseMap"), "no such diffuse map: " + file.string());
-      try {
-        cs.diffuseMap = readPng(file);
-        cs.diffuseMap.flipVertically();  // the image's bottom row is t = 0
-      } catch (const Error& e) {
-        ctx.fail(sr.at("diffuseMap"), e.reason() + " (" + file.string() + ")");
-      }
-    }
-    sr.finish();
-    o.surfaces.push_back(std::move(cs));
-  }
-  if (const json* v = r.take("combine"))
-    o.combine = oneOf(ctx, *v, r.at("combine"), {"union", "intersection"}) == "intersection"
-                    ? ClipSurfaceOptions::Combine::Intersection
-                    : ClipSurfaceOptions::Combine::Union;
-  if (const json* v = r.take("caps")) o.caps = boolean(ctx, *v, r.at("caps"));
-  if (const json* v = r.take("parity"))
-    o.parity = oneOf(ctx, *v, r.at("parity"), {"static", "perFrame"}) == "perFrame"
-                   ? ClipSurfaceOptions::Parity::PerFrame
-                   : ClipSurfaceOptions::Parity::Static;
-  if (const json* v = r.take("depthSpriteResolution"))
-    o.depthSpriteResolution = integer(ctx, *v, r.at("depthSpriteResolution"), 16, 4096);
-  if (const json* v = r.take("capStyle")) {
-    ObjectReader cr(ctx, *v, r.at("capStyle"));
-    if (const json* x = cr.take("normalMap")) o.capNormalMap = boolean(ctx, *x, cr.at("normalMap"));
-    if (const json* x = cr.take("occlusion"))
-      o.capOcclusion = float(number(ctx, *x, cr.at("occlusion"), 0, 1));
-    if (const json* x = cr.take("solidTexture"))
-      o.capSolidTexture = boolean(ctx, *x, cr.at("solidTexture"));
-    if (const json* x = cr.take("solidTextureScale"))
-      o.solidTextureScale = float(number(ctx, *x, cr.at("solidTextureScale"), 1e-3, 1e4));
-    cr.finish();
-  }
-  r.finish();
-  return o;
-}
-
-TerrainOpeningOptions terrainOpening(const Context& ctx, const json& j, const std::string& ptr) {
-  TerrainOpeningOptions o;
-  ObjectReader r(ctx, j, ptr);
-  (void)regex(ctx, r.require("terrain"), r.at("terrain"));  // validated; the cutter matches it
-  o.terrain = r.require("terrain").get<std::string>();
-  if (const json* v = r.take("buildings")) {
-    (void)regex(ctx, *v, r.at("buildings"));
-    o.buildings = v->get<std::string>();
-  }
-  if (const json* v = r.take("cutBuildings"))
-    o.cutBuildings = boolean(ctx, *v, r.at("cutBuildings"));
-  if (const json* v = r.take("network")) {
-    if (!v->is_array()) ctx.fail(r.at("network"), "expected an array of layers");
-    for (std::size_t i = 0; i < v->size(); ++i) {
-      const std::string p = r.at("network") + "/" + std::to_string(i);
-      ObjectReader nr(ctx, (*v)[i], p);
-      const std::filesystem::path file =
-          ctx.baseDir / string(ctx, nr.require("file"), nr.at("file"));
-      GisImportOptions gis = gisOptions(ctx);
-      if (const json* x = nr.take("layer")) gis.layer = string(ctx, *x, nr.at("layer"));
-      nr.finish();
-      try {
-        for (const auto& line : importGisLines(file, gis).polylines) {
-          std::vector<glm::vec2> xz;
-          for (const auto& q : line.points) xz.emplace_back(q.x, -q.y);
-          o.lines.push_back(std::move(xz));
-        }
-      } catch (const Error& e) {
-        ctx.fail(p, e.what());
-      }
-    }
-  }
-  if (const json* v = r.take("lines")) {
-    if (!v->is_array()) ctx.fail(r.at("lines"), "expected an array of polylines");
-    for (std::size_t i = 0; i < v->size(); ++i) {
-      const std::string p = r.at("lines") + "/" + std::to_string(i);
-      const json& line = (*v)[i];
-      if (!line.is_array() || line.size() < 2)
-        ctx.fail(p, "a polyline needs at least two [x, z] nodes");
-      std::vector<glm::vec2> xz;
-      for (std::size_t k = 0; k < line.size(); ++k) {
-        const std::string q = p + "/" + std::to_string(k);
-        if (!line[k].is_array() || line[k].size() != 2) ctx.fail(q, "expected [x, z]");
-        xz.emplace_back(float(number(ctx, line[k][0], q + "/0", -1e9, 1e9)),
-                        float(number(ctx, line[k][1], q + "/1", -1e9, 1e9)));
-      }
-      o.lines.push_back(std::move(xz));
-    }
-  }
-  if (const json* v = r.take("resolution"))
-    o.resolution = integer(ctx, *v, r.at("resolution"), 16, 8192);
-  if (const json* v = r.take("metric"))
-    o.metric = oneOf(ctx, *v, r.at("metric"), {"l1", "euclidean"}) == "l1"
-                   ? TerrainOpeningOptions::Metric::L1
-                   : TerrainOpeningOptions::Metric::Euclidean;
-  if (const json* v = r.take("w")) o.w = float(number(ctx, *v, r.at("w"), 0, 1e6));
-  if (const json* v = r.take("s")) o.s = float(number(ctx, *v, r.at("s"), 1e-6, 1e6));
-  if (const json* v = r.take("cameraDistance"))
-    o.cameraDistance = boolean(ctx, *v, r.at("cameraDistance"));
-  if (const json* v = r.take("thicknessColor"))
-    o.thicknessColor = color(ctx, *v, r.at("thicknessColor"));
-  r.finish();
-  return o;
-}
-
 GeoFrame geoFrame(const Context& ctx, const json& j, const std::string& ptr) {
   GeoFrame g;
   ObjectReader r(ctx, j, ptr);
@@ -892,71 +567,36 @@ GeoFrame geoFrame(const Context& ctx, const json& j, const std::string& ptr) {
   return g;
 }
 
-ToonStyle toonStyle(const Context& ctx, const json& j, const std::string& ptr) {
-  ToonStyle t;
-  ObjectReader r(ctx, j, ptr);
-  if (const json* v = r.take("ramp")) {
-    // Tones dark to light, each a grey level or a colour multiplying the object colour.
-    if (!v->is_array() || v->size() < 2 || v->size() > 16)
-      ctx.fail(r.at("ramp"),
-               "expected an array of 2 to 16 tones (numbers or colours), got " +
-                   (v->is_array() ? std::to_string(v->size()) + " elements" : typeName(*v)));
-    t.ramp.clear();
-    for (std::size_t i = 0; i < v->size(); ++i) {
-      const std::string p = r.at("ramp") + "/" + std::to_string(i);
-      const json& tone = (*v)[i];
-      t.ramp.push_back(tone.is_array() ? color(ctx, tone, p)
-                                       : glm::vec3(float(number(ctx, tone, p, 0, 1))));
-    }
-  }
-  if (const json* v = r.take("highlight")) t.highlight = boolean(ctx, *v, r.at("highlight"));
-  if (const json* v = r.take("highlightThreshold"))
-    t.highlightThreshold = float(number(ctx, *v, r.at("highlightThreshold"), 0, 1));
-  if (const json* v = r.take("highlightColor"))
-    t.highlightColor = color(ctx, *v, r.at("highlightColor"));
-  r.finish();
-  return t;
-}
-
-HatchingStyle hatchingStyle(const Context& ctx, const json& j, const std::string& ptr) {
-  HatchingStyle h;
-  ObjectReader r(ctx, j, ptr);
-  if (const json* v = r.take("tones")) h.tones = integer(ctx, *v, r.at("tones"), 2, 12);
-  if (const json* v = r.take("paper")) h.paper = color(ctx, *v, r.at("paper"));
-  if (const json* v = r.take("ink")) h.ink = color(ctx, *v, r.at("ink"));
-  if (const json* v = r.take("tint")) h.tint = float(number(ctx, *v, r.at("tint"), 0, 1));
-  if (const json* v = r.take("scale")) h.scale = float(number(ctx, *v, r.at("scale"), 1e-3, 10));
-  if (const json* v = r.take("lightness"))
-    h.lightness = oneOf(ctx, *v, r.at("lightness"), {"lambert", "gooch"}) == "gooch"
-                      ? HatchingStyle::Lightness::Gooch
-                      : HatchingStyle::Lightness::Lambert;
-  if (const json* v = r.take("seed")) h.seed = unsigned(integer(ctx, *v, r.at("seed"), 0, 1 << 30));
-  r.finish();
-  return h;
-}
-
-ShadowStyle shadowStyle(const Context& ctx, const json& j, const std::string& ptr) {
-  ShadowStyle s;
-  if (j.is_boolean()) {
-    s.enabled = j.get<bool>();
-    return s;
+// One technique's options from `j` (true: its defaults; an object: its keys), by its schema.
+std::any techniqueOptions(const Context& ctx, const OptionsSchema& schema, const json& j,
+                          const std::string& ptr, bool trueMeansDefaults) {
+  std::any options = schema.makeDefault();
+  if (trueMeansDefaults && j.is_boolean()) {
+    if (!j.get<bool>()) ctx.fail(ptr, "use true or an object (leave the key out to disable)");
+    const json empty = json::object();
+    ObjectReader r(ctx, empty, ptr);  // the required keys still must be given
+    schema.read(ctx, r, schema.data(options));
+    return options;
   }
   ObjectReader r(ctx, j, ptr);
-  s.enabled = true;
-  if (const json* v = r.take("enabled")) s.enabled = boolean(ctx, *v, r.at("enabled"));
-  if (const json* v = r.take("size")) {
-    s.size = integer(ctx, *v, r.at("size"), 64, 8192);
-    if (s.size & (s.size - 1)) ctx.fail(r.at("size"), "size must be a power of two");
-  }
-  if (const json* v = r.take("bias"))
-    s.bias = float(number(ctx, *v, r.at("bias"), 0, 0.1));  // × the scene's radius
-  if (const json* v = r.take("slopeBias"))
-    s.slopeBias = float(number(ctx, *v, r.at("slopeBias"), 0, 100));
-  if (const json* v = r.take("pcfRadius")) s.pcfRadius = integer(ctx, *v, r.at("pcfRadius"), 0, 4);
+  schema.read(ctx, r, schema.data(options));
   r.finish();
-  return s;
+  return options;
 }
 
+// "cutters": each registered cutter's options under its key.
+void readCutters(const Context& ctx, const json& j, Scene& scene) {
+  ObjectReader r(ctx, j, "/cutters");
+  for (const CutterType& type : cutterTypes()) {
+    if (!type.schema) continue;
+    if (const json* v = r.take(type.key))
+      scene.cutters.set(type.key,
+                        techniqueOptions(ctx, *type.schema, *v, r.at(type.key), true));
+  }
+  r.finish();
+}
+
+// "style": a style's name, or its name, lines, shadows and each shading style's options.
 Style style(const Context& ctx, const json& j, const std::string& ptr) {
   Style s;
   if (j.is_string()) {
@@ -964,44 +604,10 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
     return s;
   }
   ObjectReader r(ctx, j, ptr);
-  if (const json* v = r.take("name")) s.name = oneOf(ctx, *v, r.at("name"), styleNames());
-  if (const json* v = r.take("lines")) {
-    if (v->is_boolean()) {
-      if (!v->get<bool>()) s.lines.reset();
-    } else {
-      ObjectReader lr(ctx, *v, r.at("lines"));
-      LineStyle& l = *s.lines;
-      if (const json* x = lr.take("silhouettes"))
-        l.silhouettes = boolean(ctx, *x, lr.at("silhouettes"));
-      if (const json* x = lr.take("creases")) l.creases = boolean(ctx, *x, lr.at("creases"));
-      if (const json* x = lr.take("creaseAngle"))
-        l.creaseAngle = float(number(ctx, *x, lr.at("creaseAngle"), 0, 180));
-      if (const json* x = lr.take("depthThreshold"))
-        l.depthThreshold = float(number(ctx, *x, lr.at("depthThreshold"), 0, 1));
-      if (const json* x = lr.take("width"))
-        l.width = float(number(ctx, *x, lr.at("width"), 0.5, 8));
-      if (const json* x = lr.take("color")) l.color = color(ctx, *x, lr.at("color"));
-      lr.finish();
-    }
-  }
-  if (const json* v = r.take("gooch")) {
-    ObjectReader gr(ctx, *v, r.at("gooch"));
-    if (const json* x = gr.take("cool")) s.gooch.cool = color(ctx, *x, gr.at("cool"));
-    if (const json* x = gr.take("warm")) s.gooch.warm = color(ctx, *x, gr.at("warm"));
-    if (const json* x = gr.take("alpha"))
-      s.gooch.alpha = float(number(ctx, *x, gr.at("alpha"), 0, 1));
-    if (const json* x = gr.take("beta")) s.gooch.beta = float(number(ctx, *x, gr.at("beta"), 0, 1));
-    gr.finish();
-  }
-  if (const json* v = r.take("blinnPhong")) {
-    ObjectReader br(ctx, *v, r.at("blinnPhong"));
-    if (const json* x = br.take("ambient"))
-      s.blinnPhong.ambient = float(number(ctx, *x, br.at("ambient"), 0, 1));
-    br.finish();
-  }
-  if (const json* v = r.take("toon")) s.toon = toonStyle(ctx, *v, r.at("toon"));
-  if (const json* v = r.take("hatching")) s.hatching = hatchingStyle(ctx, *v, r.at("hatching"));
-  if (const json* v = r.take("shadows")) s.shadows = shadowStyle(ctx, *v, r.at("shadows"));
+  for (const StyleType& type : styleTypes())
+    if (const json* v = r.take(type.key))
+      s.shading.set(type.key, techniqueOptions(ctx, *type.schema, *v, r.at(type.key), false));
+  styleSchema().read(ctx, r, &s);
   r.finish();
   return s;
 }
@@ -1070,19 +676,7 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     }
   }
   if (const json* v = r.take("style")) scene.style = style(ctx, *v, "/style");
-  if (const json* v = r.take("cutters")) {
-    ObjectReader cr(ctx, *v, "/cutters");
-    if (const json* a = cr.take("adaptive"))
-      scene.adaptive = adaptiveCutaway(ctx, *a, "/cutters/adaptive");
-    if (const json* a = cr.take("cutout")) scene.cutout = cutout(ctx, *a, "/cutters/cutout");
-    if (const json* a = cr.take("breakaway"))
-      scene.breakaway = breakaway(ctx, *a, "/cutters/breakaway");
-    if (const json* a = cr.take("clipSurfaces"))
-      scene.clipSurfaces = clipSurfaces(ctx, *a, "/cutters/clipSurfaces");
-    if (const json* a = cr.take("terrainOpening"))
-      scene.terrainOpening = terrainOpening(ctx, *a, "/cutters/terrainOpening");
-    cr.finish();
-  }
+  if (const json* v = r.take("cutters")) readCutters(ctx, *v, scene);
   if (const json* v = r.take("lights")) {
     if (!v->is_array()) ctx.fail("/lights", "expected an array, got " + typeName(*v));
     if (v->size() > kMaxLights)
@@ -1114,45 +708,10 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   for (const auto& o : scene.objects)
     if (!names.insert(o.name).second)
       ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
-  // Diepstraten03 rule 1: the cutters need the inside/outside classification.
-  const auto hasRole = [&](Role role) {
-    return std::any_of(scene.objects.begin(), scene.objects.end(),
-                       [&](const SceneObject& o) { return !o.proxy && o.role == role; });
-  };
-  for (const auto& [cutter, on] : {std::pair{"cutout", scene.cutout.has_value()},
-                                   std::pair{"breakaway", scene.breakaway.has_value()}})
-    if (on && !hasRole(Role::Exterior))
-      ctx.fail(std::string("/cutters/") + cutter,
-               "no object has role \"exterior\": nothing to cut (give the outside objects that "
-               "role, or match them by name with \"overrides\")");
-  if (scene.breakaway && !hasRole(Role::Interior))
-    ctx.fail("/cutters/breakaway",
-             "no object has role \"interior\": the breakaway hull is built around them");
-  if (scene.terrainOpening) {
-    // Without layers of its own, the terrain opens above the scene's pipe networks.
-    std::vector<std::vector<glm::vec2>>& lines = scene.terrainOpening->lines;
-    if (lines.empty())
-      for (const PipeNetwork& net : scene.networks)
-        for (const Pipe& p : net.pipes) {
-          std::vector<glm::vec2> xz;
-          for (const glm::vec3& q : p.nodes) xz.emplace_back(q.x, q.z);
-          lines.push_back(std::move(xz));
-        }
-    if (lines.empty())
-      ctx.fail("/cutters/terrainOpening",
-               "no network: give \"network\" layers, \"lines\" or scene \"networks\" (Konev18 "
-               "§4 opens the terrain above pipes)");
-    for (const auto& [key, pattern] : {std::pair{"terrain", scene.terrainOpening->terrain},
-                                       std::pair{"buildings", scene.terrainOpening->buildings}}) {
-      if (pattern.empty()) continue;
-      const std::regex re(pattern);
-      if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& o) {
-            return !o.proxy && std::regex_match(o.name, re);
-          }))
-        ctx.fail(std::string("/cutters/terrainOpening/") + key,
-                 "no object name matches \"" + pattern + "\"");
-    }
-  }
+  // The cutters' checks across the scene (the roles they need, the network to open above).
+  for (const CutterType& type : cutterTypes())
+    if (type.complete && scene.cutters.find(type.key))
+      type.complete(ctx, "/cutters/" + type.key, scene);
   // The camera may "fit" to the objects, so it is read after them.
   if (const json* v = r.take("camera"))
     scene.camera = camera(ctx, *v, "/camera");

@@ -1,4 +1,4 @@
-// Saving: the scene with the viewer's parameters (scene_document.hpp), and the rendered image
+// Saving: the scene with the viewer's parameters (cutaway/scene/scene_writer.hpp), and the rendered image
 // as `cutaway render` writes it.
 #include <imgui.h>
 #include <imgui_stdlib.h>

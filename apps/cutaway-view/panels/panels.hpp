@@ -1,7 +1,7 @@
 // The viewer's Dear ImGui panels, one function per panel and file, each drawing from and
-// writing to the ViewerState. A new cutter's panel is a file like adaptive_panel.cpp that
-// draws its parameter table (parameters/<cutter>.cpp) with parameterTable() and whatever
-// the cutter needs besides; the viewer calls it from its "Cutters" section.
+// writing to the ViewerState. Every technique's panel is its parameter group
+// (parameters.hpp, generated from the registries' schemas) drawn by techniquePanel, with
+// notes on what the scene gives it to work on where there are any (panels/technique_panels.cpp).
 #pragma once
 
 #include <optional>
@@ -19,17 +19,13 @@ std::optional<ParameterValue> parameterWidget(const Parameter& parameter, const 
 // setParameter.
 void parameterTable(const std::vector<Parameter>& table, ViewerState& state);
 
-void scenePanel(ViewerState& state);        // objects by group, selection, role, importance, angle
-void cameraPanel(ViewerState& state);       // projection, fly mode, framing, path, time
-void filePanel(ViewerState& state);         // save scene, screenshot
-void adaptivePanel(ViewerState& state);     // the adaptive cutter (Burns08/11)
-void cutoutPanel(ViewerState& state);       // Diepstraten03 cutout (panels/cutter_panels.cpp)
-void breakawayPanel(ViewerState& state);    // Diepstraten03 breakaway
-void clipSurfacePanel(ViewerState& state);  // Trapp13 clip surfaces
-void terrainPanel(ViewerState& state);      // Konev18 terrain opening
-void networkPanel(ViewerState& state);      // Konev18 pipe networks
-void stylePanel(ViewerState& state);        // shading and lines
-void aovPanel(ViewerState& state);          // AOV inspector: buffer, colour map, range, value
+void scenePanel(ViewerState& state);   // objects by group, selection, role, importance, angle
+void cameraPanel(ViewerState& state);  // projection, fly mode, framing, path, time
+void filePanel(ViewerState& state);    // save scene, screenshot
+// A technique's parameter group and its notes (counts of the objects it works on, where its
+// work runs).
+void techniquePanel(const ParameterGroup& group, ViewerState& state);
+void aovPanel(ViewerState& state);     // AOV inspector: buffer, colour map, range, value
 void timingsPanel(const ViewerState& state, float framesPerSecond);
 
 }  // namespace cutaway::view

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "cutaway/cutters/adaptive.hpp"
 #include "panels.hpp"
 
 namespace cutaway::view {
@@ -62,9 +63,10 @@ void selectionControls(ViewerState& state) {
 
   const auto it = first.params.find("cutawayAngle");
   bool local = it != first.params.end();
-  const float global = state.scene.adaptive ? state.scene.adaptive->angle : 45.0f;
+  const auto* adaptive = state.scene.cutters.find<AdaptiveCutawayOptions>();
+  const float global = adaptive ? adaptive->angle : AdaptiveCutawayOptions{}.angle;
   float angle = local ? float(std::get<double>(it->second)) : global;
-  ImGui::BeginDisabled(!state.scene.adaptive);
+  ImGui::BeginDisabled(!adaptive);
   if (ImGui::Checkbox("own cutaway angle", &local))
     setLocalAngle(state, local ? std::optional<float>(angle) : std::nullopt);
   if (ImGui::IsItemHovered())

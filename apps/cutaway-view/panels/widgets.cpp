@@ -8,8 +8,8 @@
 namespace cutaway::view {
 
 std::optional<ParameterValue> parameterWidget(const Parameter& p, const Scene& scene) {
-  using Type = Parameter::Type;
-  const ParameterValue value = p.get(scene);
+  using Type = OptionSpec::Type;
+  const ParameterValue value = p.value(scene);
   std::optional<ParameterValue> changed;
   ImGui::PushID(p.key.c_str());
   switch (p.type) {
@@ -44,7 +44,7 @@ std::optional<ParameterValue> parameterWidget(const Parameter& p, const Scene& s
     case Type::Choice: {
       const std::string current = std::get<std::string>(value);
       if (ImGui::BeginCombo(p.label.c_str(), current.c_str())) {
-        for (const auto& choice : p.choices())
+        for (const auto& choice : p.choices)
           if (ImGui::Selectable(choice.c_str(), choice == current) && choice != current)
             changed = choice;
         ImGui::EndCombo();
@@ -63,16 +63,26 @@ std::optional<ParameterValue> parameterWidget(const Parameter& p, const Scene& s
         changed = glm::normalize(v);
       break;
     }
+    case Type::Vec3: {
+      glm::vec3 v = std::get<glm::vec3>(value);
+      const float speed = std::max(glm::length(v), 1.0f) * 0.01f;
+      if (ImGui::DragFloat3(p.label.c_str(), &v[0], speed, float(p.min), float(p.max), "%.3g"))
+        changed = v;
+      break;
+    }
+    case Type::Text:  // patterns and names come from the scene file
+      ImGui::LabelText(p.label.c_str(), "%s", std::get<std::string>(value).c_str());
+      break;
   }
-  if (!p.help.empty() && ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s\n(%s)", p.help.c_str(), p.key.c_str());
+  if (!p.doc.empty() && ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s\n(%s)", p.doc.c_str(), p.key.c_str());
   ImGui::PopID();
   return changed;
 }
 
 void parameterTable(const std::vector<Parameter>& table, ViewerState& state) {
   for (const auto& p : table) {
-    const bool applies = !p.applies || p.applies(state.scene);
+    const bool applies = p.appliesTo(state.scene);
     ImGui::BeginDisabled(!applies);
     if (const auto value = parameterWidget(p, state.scene)) setParameter(state, p, *value);
     ImGui::EndDisabled();

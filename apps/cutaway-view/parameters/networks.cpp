@@ -22,16 +22,18 @@ Parameter networkMember(std::string key, std::string label, Parameter::Type type
   p.key = "networks." + key;
   p.label = std::move(label);
   p.type = type;
-  p.help = std::move(help);
+  p.doc = std::move(help);
   p.live = true;
-  p.get = [field](const Scene& s) -> ParameterValue {
+  p.get = [field](const void* scene) -> ParameterValue {
+    const Scene& s = *static_cast<const Scene*>(scene);
     const T& v = s.networks.empty() ? PipeNetwork{}.*field : s.networks.front().*field;
     if constexpr (std::is_same_v<T, glm::vec3>)
       return v;
     else
       return double(v);
   };
-  p.set = [field, also](Scene& s, const ParameterValue& value) {
+  p.set = [field, also](void* scene, const ParameterValue& value) {
+    Scene& s = *static_cast<Scene*>(scene);
     T v;
     if constexpr (std::is_same_v<T, glm::vec3>)
       v = std::get<glm::vec3>(value);
@@ -42,7 +44,7 @@ Parameter networkMember(std::string key, std::string label, Parameter::Type type
       if (also) also(s, int(i), v);
     }
   };
-  p.applies = hasNetworks;
+  p.applies = [](const void* s) { return hasNetworks(*static_cast<const Scene*>(s)); };
   return p;
 }
 
@@ -61,8 +63,10 @@ void colorShaftInsides(Scene& s, int network, const glm::vec3& color) {
     if (o.network == network && o.networkPart == NetworkPart::ShaftInner) o.material.color = color;
 }
 
-std::vector<Parameter> makeNetworkParameters() {
-  using Type = Parameter::Type;
+}  // namespace
+
+std::vector<Parameter> networkParameters() {
+  using Type = OptionSpec::Type;
   using N = PipeNetwork;
   std::vector<Parameter> out;
   Parameter radius = networkMember("radiusScale", "radius scale", Type::Float, &N::radiusScale,
@@ -86,13 +90,6 @@ std::vector<Parameter> makeNetworkParameters() {
   out.push_back(networkMember("waterHigh", "water, full", Type::Color, &N::waterHigh,
                               "§6.4: water colour of a full pipe or shaft."));
   return out;
-}
-
-}  // namespace
-
-const std::vector<Parameter>& networkParameters() {
-  static const std::vector<Parameter> parameters = makeNetworkParameters();
-  return parameters;
 }
 
 }  // namespace cutaway::view

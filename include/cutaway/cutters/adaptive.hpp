@@ -5,7 +5,7 @@
 // The per-seed cone ("anchor") math lives here in C++ so that the CPU path and the tests use
 // the same equations as src/cutters/adaptive/anchors.frag.
 //
-//   scene.adaptive = cutaway::AdaptiveCutawayOptions{.angle = 30.0f, .bufferSize = 512};
+//   scene.cutters.enable<cutaway::AdaptiveCutawayOptions>() = {.angle = 30.0f, .bufferSize = 512};
 //   cutaway::Renderer renderer(scene, context->info());   // adds the cutter's passes
 #pragma once
 
@@ -15,11 +15,20 @@
 
 #include <glm/glm.hpp>
 
+#include "cutaway/core/options.hpp"
 #include "cutaway/fields/cutaway_surface.hpp"
 
 namespace cutaway {
 
+// Burns08 §4.3: lines of the removed material, fading with the distance in front of the cut.
+struct GhostLineOptions {
+  float distance = 0.0f;  // world units in front of the cutaway surface; 0: 5% of the scene radius
+  float opacity = 0.4f;
+};
+
 struct AdaptiveCutawayOptions {
+  static constexpr const char* kKey = "adaptive";  // under "cutters" in the scene file
+
   float angle = 45.0f;   // θ in degrees, [0, 90] (per object: param "cutawayAngle")
   int bufferSize = 512;  // cutaway buffer is bufferSize² (Burns08 §6), independent of the screen
   bool perspectiveCompensation = true;      // Burns08 eq. 3 / Burns11 eq. 5.7
@@ -33,11 +42,10 @@ struct AdaptiveCutawayOptions {
   std::optional<glm::vec3> cutSurfaceColor;  // default: the object's colour, slightly darker
   bool outlines = true;                      // cut outlines (Burns08 §4.2)
   glm::vec3 outlineColor{0.0f};
-  bool ghostLines = false;  // Burns08 §4.3 (opt-in: a style choice)
-  float ghostDistance =
-      0.0f;  // world units in front of the cutaway surface; 0: 5% of the scene radius
-  float ghostOpacity = 0.4f;
+  std::optional<GhostLineOptions> ghostLines;  // Burns08 §4.3 (opt-in: a style choice)
 };
+// Its options' schema: the scene file's keys, the viewer's and the CLI's.
+const OptionsSchema& adaptiveCutawaySchema();
 
 // The camera quantities the cone math needs.
 struct CutawayProjection {

@@ -6,7 +6,7 @@
 // are clipped by a slightly smaller hull, so the cut exterior shows a wall of finite
 // thickness.
 //
-//   scene.breakaway = cutaway::BreakawayOptions{.offset = 5.0f};
+//   scene.cutters.enable<cutaway::BreakawayOptions>().offset = 5.0f;
 #pragma once
 
 #include <optional>
@@ -15,11 +15,13 @@
 
 #include <glm/glm.hpp>
 
+#include "cutaway/core/options.hpp"
 #include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
 
 struct BreakawayOptions {
+  static constexpr const char* kKey = "breakaway";
   std::optional<float> offset;         // world units the hulls grow by; default: 5% of the
                                        // interior objects' bounding radius
   std::optional<float> wallThickness;  // the back-face hull is smaller by this; default:
@@ -27,6 +29,8 @@ struct BreakawayOptions {
   std::optional<glm::vec3> wallColor;  // default: kDefaultWallColor (cutout.hpp)
   std::optional<glm::vec3> insideColor;
 };
+
+const OptionsSchema& breakawaySchema();
 
 // The convex hull of `points` grown by `offset`: the hull of the points moved by `offset`
 // along 42 directions (an icosahedron's vertices and edge midpoints), a convex polyhedron

@@ -8,7 +8,7 @@
 //
 //   cutaway::ClipSurface cs{.origin = {-1, 0, -1}, .u = {2, 0, 0}, .v = {0, 0, 2}};
 //   cs.offsetMap = cutaway::makeOffsetMap({.pattern = cutaway::OffsetPattern::Ridged});
-//   scene.clipSurfaces = cutaway::ClipSurfaceOptions{.surfaces = {cs}};
+//   scene.cutters.enable<cutaway::ClipSurfaceOptions>().surfaces = {cs};
 #pragma once
 
 #include <optional>
@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "cutaway/core/image.hpp"
+#include "cutaway/core/options.hpp"
 #include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
@@ -68,7 +69,18 @@ float clipSurfaceFunction(const ClipSurface& cs, const glm::vec3& p);
 // The texture coordinate T of eq. 2 for point p.
 glm::vec2 clipSurfaceTexCoord(const ClipSurface& cs, const glm::vec3& p);
 
+// Cap stylization (§6.1): the derived normal map shades the relief; the derived occlusion map
+// darkens its hollows; a procedural solid texture (Perlin-style marble veins, §6.1 Fig. 11)
+// varies the cap colour through the material.
+struct CapStyle {
+  bool normalMap = true;
+  float occlusion = 1.0f;  // strength of the occlusion map in [0, 1]
+  bool solidTexture = false;
+  float solidTextureScale = 4.0f;  // veins per scene-bounds radius
+};
+
 struct ClipSurfaceOptions {
+  static constexpr const char* kKey = "clipSurfaces";
   std::vector<ClipSurface> surfaces;  // at most kMaxClipSurfaces, evaluated in one pass (§4.5)
   // A point is clipped when any enabled surface clips it (union of the clipped half-spaces),
   // or, with Intersection, only when every enabled surface clips it.
@@ -79,15 +91,10 @@ struct ClipSurfaceOptions {
   // moving or deforming objects (Trapp13 §6.3, future work).
   enum class Parity { Static, PerFrame } parity = Parity::Static;
   int depthSpriteResolution = 512;  // texels per side of each layer
-  // Cap stylization (§6.1): the derived normal map shades the relief; the derived occlusion
-  // map darkens its hollows; a procedural solid texture (Perlin-style marble veins, §6.1 Fig. 11)
-  // varies the cap colour through the material.
-  bool capNormalMap = true;
-  float capOcclusion = 1.0f;  // strength of the occlusion map in [0, 1]
-  bool capSolidTexture = false;
-  float solidTextureScale = 4.0f;  // veins per scene-bounds radius
+  CapStyle capStyle;
 };
 inline constexpr int kMaxClipSurfaces = 4;
+const OptionsSchema& clipSurfacesSchema();
 
 // Whether `p` is clipped by the enabled surfaces under `options.combine`.
 bool clippedBySurfaces(const ClipSurfaceOptions& options, const glm::vec3& p);

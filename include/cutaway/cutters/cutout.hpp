@@ -8,7 +8,7 @@
 // The per-fragment decision lives here in C++ too (cutoutDistance), mirroring
 // src/cutters/cutout/cutout.glsl, so tests compare the two pixel by pixel.
 //
-//   scene.cutout = cutaway::CutoutOptions{.angle = 90.0f};
+//   scene.cutters.enable<cutaway::CutoutOptions>().angle = 90.0f;
 //   cutaway::Renderer renderer(scene, context->info());
 #pragma once
 
@@ -20,6 +20,7 @@
 #include <glm/glm.hpp>
 
 #include "cutaway/core/image.hpp"
+#include "cutaway/core/options.hpp"
 #include "cutaway/geometry/main_axis.hpp"
 
 namespace cutaway {
@@ -37,6 +38,7 @@ struct CutoutJitter {
 };
 
 struct CutoutOptions {
+  static constexpr const char* kKey = "cutout";
   // Texture: per-fragment signed distances (Diepstraten03 §4.5), with jitter and cut walls.
   // ClipPlanes: the classic method (§4.3): the exterior drawn once per plane with a hardware
   // clip plane; no jitter and no walls are possible.
@@ -51,6 +53,8 @@ struct CutoutOptions {
   std::optional<glm::vec3> wallColor;    // default: kDefaultWallColor
   std::optional<glm::vec3> insideColor;  // back faces of hollow exteriors; default: darker
 };
+
+const OptionsSchema& cutoutSchema();
 
 // Cut walls of Diepstraten03 are shown in a colour unlike any object's, so inside and
 // outside stay distinguishable (rule 1).

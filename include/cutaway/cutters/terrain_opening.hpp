@@ -5,7 +5,7 @@
 // the camera distance (eq. 1), and draws terrain, an artificial thickness, or nothing
 // (eqs. 2–3). Mirrored in src/cutters/terrain_opening/terrain_opening.glsl.
 //
-//   scene.terrainOpening = cutaway::TerrainOpeningOptions{.terrain = "ground", .lines = {...}};
+//   scene.cutters.enable<cutaway::TerrainOpeningOptions>() = {.terrain = "ground", .lines = {...}};
 #pragma once
 
 #include <optional>
@@ -14,11 +14,13 @@
 
 #include <glm/glm.hpp>
 
+#include "cutaway/core/options.hpp"
 #include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
 
 struct TerrainOpeningOptions {
+  static constexpr const char* kKey = "terrainOpening";
   std::string terrain;        // regular expression: the terrain objects' names (whole match)
   std::string buildings;      // regular expression: building objects ("" none)
   bool cutBuildings = false;  // buildings opened by the same rule, or left whole
@@ -33,6 +35,7 @@ struct TerrainOpeningOptions {
   std::optional<glm::vec3> thicknessColor;  // default kSoilColor
 };
 inline constexpr glm::vec3 kSoilColor{0.58f, 0.43f, 0.3f};
+const OptionsSchema& terrainOpeningSchema();
 
 // D_p over the terrain's extent: texel (i, j) covers x ∈ min.x + [i, i+1)·size.x/T and
 // z ∈ min.y + [j, j+1)·size.y/T; values min(distance in texels, 255) / 255, as the paper's

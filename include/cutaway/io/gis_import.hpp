@@ -31,6 +31,8 @@
 
 #include <glm/glm.hpp>
 
+#include "cutaway/core/geo_frame.hpp"
+
 namespace cutaway {
 
 struct GisCrs {
@@ -68,6 +70,10 @@ struct GisImportOptions {
                            // takes ("EPSG:25832", WKT, PROJ strings)
   glm::dvec3 offset{0.0};  // subtracted (after any reprojection) before converting to float
 };
+// Import options for a layer in the scene's frame: reprojected to its CRS, offset removed.
+inline GisImportOptions gisImportOptions(const GeoFrame& geo) {
+  return {.targetCrs = geo.crs, .offset = geo.offset};
+}
 
 struct GisImportReport {
   std::int64_t features = 0;  // features read

@@ -21,14 +21,13 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "cutaway/cutters/adaptive.hpp"
-#include "cutaway/cutters/breakaway.hpp"
-#include "cutaway/cutters/clip_surfaces.hpp"
-#include "cutaway/cutters/cutout.hpp"
-#include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/geometry/mesh.hpp"
+#include "cutaway/core/geo_frame.hpp"
 #include "cutaway/geometry/pipe_network.hpp"
 #include "cutaway/scene/camera.hpp"
+#include "cutaway/scene/settings.hpp"
+#include "cutaway/styles/lines.hpp"
+#include "cutaway/styles/shadows.hpp"
 
 namespace cutaway {
 
@@ -97,19 +96,6 @@ struct SceneObject {
   Bounds worldBounds() const;
 };
 
-// The scene's geographic frame (Konev18 §5 input): every GIS layer and raster is reprojected
-// to `crs` (when given), then a projected point (easting E, northing N, height H) becomes the
-// scene point x = E − E0, y = H − H0, z = −(N − N0): y up, north towards −z. The offset is
-// subtracted in double precision, so large projected coordinates (British National Grid, UTM)
-// keep their centimetres as floats.
-struct GeoFrame {
-  std::string crs;         // anything OGR's SetFromUserInput takes; empty: keep each layer's
-  glm::dvec3 offset{0.0};  // E0, N0, H0
-  // A layer's point as imported with `importOptions` (x = E − E0, y = N − N0, z = H − H0).
-  static glm::vec3 toScene(const glm::vec3& p) { return {p.x, p.z, -p.y}; }
-  static glm::vec3 fromScene(const glm::vec3& p) { return {p.x, -p.z, p.y}; }
-};
-
 struct Light {
   enum class Type { Directional, Point } type = Type::Directional;
   glm::vec3 direction{-0.4f, -0.6f, -1.0f};  // direction the light travels (directional)
@@ -119,65 +105,25 @@ struct Light {
   bool cameraSpace = true;  // direction/position given in eye space
 };
 
-struct LineStyle {
-  bool silhouettes = true;       // object and depth discontinuities
-  bool creases = true;           // normal discontinuities within an object
-  float creaseAngle = 45.0f;     // degrees
-  float depthThreshold = 0.01f;  // relative view-depth jump that counts as a silhouette
-  float width = 1.0f;            // pixels
-  glm::vec3 color{0.0f};
-};
-
-struct GoochStyle {  // Gooch et al. 1998
-  glm::vec3 cool{0.0f, 0.0f, 0.55f}, warm{0.3f, 0.3f, 0.0f};
-  float alpha = 0.25f, beta = 0.5f;  // how much of the object colour enters cool / warm
-};
-
-struct BlinnPhongStyle {
-  float ambient = 0.15f;
-};
-
-// Cel shading with a 1-D ramp texture (Lake, Marshall, Harris, Blackstein 2000): the key
-// light's max(n·l, 0) picks one of ramp.size() equal intervals, and that tone multiplies the
-// object colour; a hard-edged highlight where the Blinn term passes a threshold.
-struct ToonStyle {
-  std::vector<glm::vec3> ramp{glm::vec3(0.45f), glm::vec3(0.75f), glm::vec3(1.0f)};  // dark→light
-  bool highlight = true;
-  float highlightThreshold = 0.5f;  // Blinn term (n·h)^shininess above which it shows
-  glm::vec3 highlightColor{1.0f};   // added, weighted by the object's specular
-};
-
-// Tonal art maps (Praun, Hoppe, Webb, Finkelstein 2001), generated procedurally at start-up.
-struct HatchingStyle {
-  int tones = 6;                        // TAM tones, lightest to darkest (2–12)
-  glm::vec3 paper{1.0f, 0.98f, 0.93f};  // colour between strokes
-  glm::vec3 ink{0.08f, 0.08f, 0.12f};   // stroke colour
-  float tint = 0.35f;                   // how much the object colour tints the paper, in [0, 1]
-  float scale = 0.4f;  // hatch tile size as a fraction of the scene's bounding radius
-  unsigned seed = 1;   // stroke placement
-  // The surface's lightness from the key light: Lambert max(n·l, 0), or Gooch's (1 + n·l)/2.
-  enum class Lightness { Lambert, Gooch } lightness = Lightness::Lambert;
-};
-
-// A shadow map from the key light (the first light), usable with every style.
-struct ShadowStyle {
-  bool enabled = false;
-  int size = 2048;         // texels per side
-  float bias = 0.005f;     // constant bias towards the light, fraction of the scene's radius
-  float slopeBias = 2.0f;  // glPolygonOffset factor: bias × the caster's depth slope
-  int pcfRadius = 1;       // (2r + 1)² bilinear comparison taps
-};
-
+// The style: the shading style by name (one of styleNames(): cutaway/styles/<name>.hpp holds
+// its options), the feature lines and shadows drawn with every style, and each shading
+// style's options by its key (unset ones are their defaults).
 struct Style {
-  std::string name = "gooch";                    // one of styleNames()
+  std::string name = "gooch";
   std::optional<LineStyle> lines = LineStyle{};  // nullopt: no lines
-  GoochStyle gooch;
-  BlinnPhongStyle blinnPhong;
-  ToonStyle toon;
-  HatchingStyle hatching;
   ShadowStyle shadows;
+  TechniqueSettings shading;  // "style": {"gooch": {…}, "toon": {…}}
+  template <class O>
+  const O& get() const {
+    static const O kDefaults{};
+    const O* o = shading.find<O>();
+    return o ? *o : kDefaults;
+  }
+  template <class O>
+  O& edit() {
+    return shading.enable<O>();
+  }
 };
-const std::vector<std::string>& styleNames();
 
 struct Scene {
   std::filesystem::path file;  // where it was loaded from, for messages
@@ -189,11 +135,8 @@ struct Scene {
   int samples = 4;  // MSAA samples of the final image
   Style style;
   GeoFrame geo;                                         // "geo": {"crs": …, "offset": […]}
-  std::optional<AdaptiveCutawayOptions> adaptive;       // "cutters": {"adaptive": {…}}
-  std::optional<CutoutOptions> cutout;                  // "cutters": {"cutout": {…}}
-  std::optional<BreakawayOptions> breakaway;            // "cutters": {"breakaway": {…}}
-  std::optional<ClipSurfaceOptions> clipSurfaces;       // "cutters": {"clipSurfaces": {…}}
-  std::optional<TerrainOpeningOptions> terrainOpening;  // "cutters": {"terrainOpening": {…}}
+  // "cutters": {…}: each enabled cutter's options (cutaway/cutters/<name>.hpp) by its key.
+  TechniqueSettings cutters;
   // Konev18 pipe networks drawn as billboards ("networks": […]). Their object ids in the
   // renderer's id buffer follow the objects': objects.size() + network index.
   std::vector<PipeNetwork> networks;

@@ -11,7 +11,7 @@ CutterType adaptiveCutterType() {
           .title = "Adaptive cutaway (Burns08/11)",
           .glsl = "cutters/adaptive/clip.glsl",
           .name = "adaptive",
-          .active = [](const Scene& s) { return s.adaptive.has_value(); },
+          .schema = &adaptiveCutawaySchema(),
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<AdaptiveCutaway>(setup);
           }};
@@ -127,7 +127,7 @@ std::optional<glm::vec3> AdaptiveCutaway::cutOutlineColor() const {
 std::optional<GhostBuffers> AdaptiveCutaway::ghosts() const {
   if (!ghostNormal_.valid()) return std::nullopt;
   return GhostBuffers{ghostNormal_, ghostPosition_, ghostObjectId_,
-                      [this] { return options().ghostOpacity; }};
+                      [this] { return options().ghostLines ? options().ghostLines->opacity : 0.0f; }};
 }
 
 std::vector<std::pair<std::string, std::string>> AdaptiveCutaway::facts() const {
@@ -284,7 +284,8 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
   const GLuint program = programs_->ghost.id();
   const AdaptiveCutawayOptions& o = options();
   // Burns08 §4.3: the fade's distance; 0 means 5% of the scene's radius.
-  const float distance = o.ghostDistance > 0 ? o.ghostDistance : 0.05f * setup_.sceneBounds.radius();
+  const float distance = o.ghostLines && o.ghostLines->distance > 0 ? o.ghostLines->distance
+                                                                     : 0.05f * setup_.sceneBounds.radius();
   glProgramUniform1f(program, 17, distance);
   setup_.meshes.draw(
       program,

@@ -35,7 +35,9 @@ class AdaptiveCutaway : public Cutter {
   float angleOf(const SceneObject* object) const;
 
  private:
-  const AdaptiveCutawayOptions& options() const { return *setup_.scene.adaptive; }
+  const AdaptiveCutawayOptions& options() const {
+    return *setup_.scene.cutters.find<AdaptiveCutawayOptions>();
+  }
   void addGpuPasses(Frame& frame);
   void computeOnCpu();
   void drawGhostGeometry(GLuint framebuffer) const;

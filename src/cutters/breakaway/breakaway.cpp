@@ -4,7 +4,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/geometry/convex_hull.hpp"
-#include "cutaway/cutters/cutout.hpp"
+#include "cutaway/cutters/cutout.hpp"  // the wall colour both Diepstraten03 cutters default to
 #include "cutaway/gl/shader.hpp"
 
 namespace cutaway {
@@ -82,7 +82,14 @@ CutterType breakawayCutterType() {
           .title = "Breakaway (Diepstraten03)",
           .glsl = "cutters/breakaway/breakaway.glsl",
           .name = "breakaway",
-          .active = [](const Scene& s) { return s.breakaway.has_value(); },
+          .schema = &breakawaySchema(),
+          // Diepstraten03 rule 1: the cutters need the inside/outside classification.
+          .complete = [](const json_reader::Context& ctx, const std::string& pointer, Scene& s) {
+            requireRole(ctx, pointer, s, Role::Exterior,
+                        "nothing to cut (give the outside objects that role, or match them by "
+                        "name with \"overrides\")");
+            requireRole(ctx, pointer, s, Role::Interior, "the breakaway hull is built around them");
+          },
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<Breakaway>(setup);
           }};

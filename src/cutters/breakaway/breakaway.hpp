@@ -24,7 +24,9 @@ class Breakaway : public Cutter {
   std::optional<glm::vec3> cutOutlineColor() const override { return glm::vec3(0.0f); }
 
  private:
-  const BreakawayOptions& options() const { return *setup_.scene.breakaway; }
+  const BreakawayOptions& options() const {
+    return *setup_.scene.cutters.find<BreakawayOptions>();
+  }
   void drawClipDepth(GLuint framebuffer, const std::vector<GpuMesh>& hulls) const;
 
   FrameSetup& setup_;

@@ -139,7 +139,7 @@ CutterType clipSurfacesCutterType() {
           .title = "Clip surfaces (Trapp13)",
           .glsl = "cutters/clip_surfaces/clip_fragment.glsl",
           .name = "clipSurfaces",
-          .active = [](const Scene& s) { return s.clipSurfaces.has_value(); },
+          .schema = &clipSurfacesSchema(),
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<ClipSurfaceCutter>(setup);
           }};
@@ -153,13 +153,13 @@ struct ClipSurfaceCutter::Gpu {
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
   std::vector<CapGrid> grids;                // 2^k cells per side, k = 3 … 10
   std::vector<DepthSpriteGpu> sprites;       // one per capped object
-  std::vector<glm::vec3> capColors;          // one per capped object
   std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
 };
 
 ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
     : setup_(setup),
-      options_(*setup.scene.clipSurfaces),
+      options_(*setup.scene.cutters.find<ClipSurfaceOptions>()),
+      sceneRadius_(setup.scene.bounds().radius()),
       gpu_(std::make_unique<Gpu>()),
       blockBinding_(setup.bindings.uniformBlock("CLIP_SURFACES")),
       reliefUnit_(setup.bindings.textureUnit("CLIP_RELIEF", kMaxClipSurfaces)),
@@ -169,13 +169,8 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
       parityImage_(setup.bindings.imageUnit("CAP_PARITY")) {
   const ClipSurfaceOptions& options = options_;
   Gpu& g = *gpu_;
-  ClipSurfaceBlock block{};
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
     const ClipSurface& cs = options.surfaces[i];
-    block.origin[i] = glm::vec4(cs.origin, cs.enabled ? 1.0f : 0.0f);
-    block.u[i] = glm::vec4(cs.u, 0.0f);
-    block.v[i] = glm::vec4(cs.v, 0.0f);
-    block.scale[i] = glm::vec4(cs.scale, 0.0f);
     // §4.2: normal and occlusion maps derived from the offset map, once.
     const FloatImage relief = deriveReliefMaps(cs);
     gl::Texture t = gl::Texture::create(GL_TEXTURE_2D);
@@ -201,13 +196,8 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
     g.diffuse.push_back(std::move(d));
   }
   for (int cells = 8; cells <= 1024; cells *= 2) g.grids.push_back(makeCapGrid(cells));
-  block.count = glm::ivec4(int(options.surfaces.size()),
-                           options.combine == ClipSurfaceOptions::Combine::Intersection,
-                           options.capNormalMap, 0);
+  g.block = gl::Buffer::create(sizeof(ClipSurfaceBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
   const Scene& scene = setup.scene;
-  const float solidFrequency = options.solidTextureScale / std::max(scene.bounds().radius(), 1e-6f);
-  block.capStyle = glm::vec4(options.capOcclusion, options.capSolidTexture, solidFrequency, 0.0f);
-  g.block = gl::Buffer::create(sizeof block, &block);
 
   if (options.caps)
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -220,7 +210,6 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
       }
       capped_.push_back(i);
       g.capBounds.push_back(o.mesh->bounds());
-      g.capColors.push_back(options.surfaces.front().capColor.value_or(o.material.color * 0.7f));
       if (options.parity == ClipSurfaceOptions::Parity::Static)
         g.sprites.push_back(buildDepthSprite(
             g.peel.id(), setup.meshes.mesh(i),
@@ -245,6 +234,27 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
 }
 
 ClipSurfaceCutter::~ClipSurfaceCutter() = default;
+
+// The block of clip_surfaces.glsl from the options as they are now: the surfaces' placement,
+// switches and the cap style are live.
+void ClipSurfaceCutter::beginFrame(const FrameState&) {
+  const ClipSurfaceOptions& options = live();
+  ClipSurfaceBlock block{};
+  for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
+    const ClipSurface& cs = options.surfaces[i];
+    block.origin[i] = glm::vec4(cs.origin, cs.enabled ? 1.0f : 0.0f);
+    block.u[i] = glm::vec4(cs.u, 0.0f);
+    block.v[i] = glm::vec4(cs.v, 0.0f);
+    block.scale[i] = glm::vec4(cs.scale, 0.0f);
+  }
+  const CapStyle& style = options.capStyle;
+  block.count = glm::ivec4(int(options.surfaces.size()),
+                           options.combine == ClipSurfaceOptions::Combine::Intersection,
+                           style.normalMap, 0);
+  block.capStyle = glm::vec4(style.occlusion, style.solidTexture,
+                             style.solidTextureScale / std::max(sceneRadius_, 1e-6f), 0.0f);
+  glNamedBufferSubData(gpu_->block.id(), 0, sizeof block, &block);
+}
 
 void ClipSurfaceCutter::prepareGeometryPrograms() {
   gpu_->cap = gl::buildProgram(
@@ -312,6 +322,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   constexpr GLint kObjectId = 11, kCapSurface = 40, kCapToTexture = 41, kDepthComplexity = 45,
                   kCapColor = 46, kCapRect = 48, kHasDiffuse = 49;
   const Scene& scene = setup_.scene;
+  const ClipSurfaceOptions& options = live();
   const float time = draw.time;
   const GLuint program = gpu_->cap.id();
   glUseProgram(program);
@@ -323,13 +334,15 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     glProgramUniform1i(program, kObjectId, int(capped_[k]));
     glProgramUniformMatrix4fv(program, kCapToTexture, 1, GL_FALSE, &toTexture[0][0]);
     glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
-    glProgramUniform3fv(program, kCapColor, 1, &gpu_->capColors[k][0]);
+    const glm::vec3 capColor =
+        options.surfaces.front().capColor.value_or(scene.objects[capped_[k]].material.color * 0.7f);
+    glProgramUniform3fv(program, kCapColor, 1, &capColor[0]);
     glBindTextureUnit(layersUnit_, sprite.layers.id());
     const SceneObject& o = scene.objects[capped_[k]];
     const glm::mat4 model = o.transformAt(time);
     const Bounds& b = gpu_->capBounds[k];
-    for (std::size_t i = 0; i < options_.surfaces.size(); ++i) {
-      const ClipSurface& cs = options_.surfaces[i];
+    for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
+      const ClipSurface& cs = options.surfaces[i];
       if (!cs.enabled) continue;
       // Only the part of the surface the object's box spans, and only if the box straddles
       // the displaced surface (which lies within S_z behind the plane).

@@ -38,6 +38,7 @@ class ClipSurfaceCutter : public Cutter {
   void prepareGeometryPrograms() override;
   // The per-frame sprite pass, if asked for (Trapp13 §6.3).
   void addPreparationPasses(Frame& frame) override;
+  void beginFrame(const FrameState& state) override;
   // Clears the clip-mask and parity images; binds the block, relief textures and images.
   void bindForGeometry() const override;
   bool cuts(std::size_t index) const override;
@@ -53,9 +54,13 @@ class ClipSurfaceCutter : public Cutter {
 
  private:
   void buildPerFrameSprites(float time);
+  // The options now; `options_` keeps what a change rebuilds the renderer for (the offset
+  // maps, the caps and their sprites).
+  const ClipSurfaceOptions& live() const { return *setup_.scene.cutters.find<ClipSurfaceOptions>(); }
 
   FrameSetup& setup_;
   ClipSurfaceOptions options_;
+  float sceneRadius_;
   struct Gpu;
   std::unique_ptr<Gpu> gpu_;
   std::vector<std::size_t> capped_, uncappable_;

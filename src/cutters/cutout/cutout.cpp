@@ -43,7 +43,13 @@ CutterType cutoutCutterType() {
           .title = "Cutout (Diepstraten03)",
           .glsl = "cutters/cutout/cutout.glsl",
           .name = "cutout",
-          .active = [](const Scene& s) { return s.cutout.has_value(); },
+          .schema = &cutoutSchema(),
+          // Diepstraten03 rule 1: the cutters need the inside/outside classification.
+          .complete = [](const json_reader::Context& ctx, const std::string& pointer, Scene& s) {
+            requireRole(ctx, pointer, s, Role::Exterior,
+                        "nothing to cut (give the outside objects that role, or match them by "
+                        "name with \"overrides\")");
+          },
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<Cutout>(setup);
           }};

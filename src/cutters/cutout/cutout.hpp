@@ -27,7 +27,7 @@ class Cutout : public Cutter {
   std::optional<glm::vec3> cutOutlineColor() const override { return glm::vec3(0.0f); }
 
  private:
-  const CutoutOptions& options() const { return *setup_.scene.cutout; }
+  const CutoutOptions& options() const { return *setup_.scene.cutters.find<CutoutOptions>(); }
   // The wedge that cuts object `index`, or null when it is not exterior.
   const CutoutWedge* wedgeOf(std::size_t index) const;
 

@@ -6,12 +6,43 @@
 
 namespace cutaway {
 
+namespace {
+
+// Without layers of its own, the terrain opens above the scene's pipe networks; its patterns
+// must name objects.
+void completeTerrainOpening(const json_reader::Context& ctx, const std::string& pointer,
+                            Scene& scene) {
+  TerrainOpeningOptions& o = *scene.cutters.find<TerrainOpeningOptions>();
+  if (o.lines.empty())
+    for (const PipeNetwork& net : scene.networks)
+      for (const Pipe& p : net.pipes) {
+        std::vector<glm::vec2> xz;
+        for (const glm::vec3& q : p.nodes) xz.emplace_back(q.x, q.z);
+        o.lines.push_back(std::move(xz));
+      }
+  if (o.lines.empty())
+    ctx.fail(pointer,
+             "no network: give \"network\" layers, \"lines\" or scene \"networks\" (Konev18 §4 "
+             "opens the terrain above pipes)");
+  for (const auto& [key, pattern] : {std::pair{"terrain", o.terrain}, std::pair{"buildings", o.buildings}}) {
+    if (pattern.empty()) continue;
+    const std::regex re(pattern);
+    if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& s) {
+          return !s.proxy && std::regex_match(s.name, re);
+        }))
+      ctx.fail(pointer + "/" + key, "no object name matches \"" + pattern + "\"");
+  }
+}
+
+}  // namespace
+
 CutterType terrainOpeningCutterType() {
   return {.key = "terrainOpening",
           .title = "Terrain opening (Konev18)",
           .glsl = "cutters/terrain_opening/terrain_opening.glsl",
           .name = "terrain",
-          .active = [](const Scene& s) { return s.terrainOpening.has_value(); },
+          .schema = &terrainOpeningSchema(),
+          .complete = completeTerrainOpening,
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<TerrainOpening>(setup);
           }};

@@ -25,7 +25,9 @@ class TerrainOpening : public Cutter {
   std::vector<Aov> extraAovs() const override;
 
  private:
-  const TerrainOpeningOptions& options() const { return *setup_.scene.terrainOpening; }
+  const TerrainOpeningOptions& options() const {
+    return *setup_.scene.cutters.find<TerrainOpeningOptions>();
+  }
 
   FrameSetup& setup_;
   std::vector<bool> terrain_, cutBuildings_;

@@ -252,6 +252,7 @@ void PipeKind::addPassesAfterGeometry(Frame& frame) {
                    glClearNamedFramebufferiv(pass.framebuffer, GL_STENCIL, 0, &zero);
                    glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, GLint(gbufferTargets_),
                                              none);
+                   setup_.bindShading();
                    drawPipes();
                  }});
   frame.addPass({.name = "pipeAovs",

@@ -8,6 +8,10 @@
 // from it marks shininess, as in the paper's figures.
 // In the key light's shadow the lit part of l·n is taken away (a shadowed surface facing the
 // light looks like one edge-on to it: halfway between cool and warm), and so is the highlight.
+layout(std140, binding = BLOCK_STYLE) uniform GoochUniforms {
+  vec4 uGoochCool;  // rgb: k_blue, w: alpha
+  vec4 uGoochWarm;  // rgb: k_yellow, w: beta
+};
 vec3 shadeSurface(SurfacePoint s) {
   vec3 l = uCounts.x > 0 ? towardsLight(0, s.position) : s.toEye;
   float nDotL = dot(s.normal, l);

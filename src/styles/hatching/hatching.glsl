@@ -15,6 +15,11 @@
 //
 // In the key light's shadow the surface counts as unlit, so shadows are hatched darkest.
 layout(binding = UNIT_TONAL_ART_MAP) uniform sampler2DArray uTonalArtMap;
+layout(std140, binding = BLOCK_STYLE) uniform HatchingUniforms {
+  vec4 uHatchPaper;   // rgb: paper colour, w: tint by the object colour
+  vec4 uHatchInk;     // rgb: ink colour, w: number of tones
+  vec4 uHatchParams;  // x: 1 / tile size (world units), y: 1 for Gooch lightness
+};
 
 // Ink coverage of the TAM at `uv`, blended between the tones bracketing `darkness` ∈ [0, 1].
 // Tone position u = darkness · tones − 1: −1 is bare paper, tones − 1 the darkest tone, so

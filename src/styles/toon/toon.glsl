@@ -7,6 +7,10 @@
 // the Blinn term passes a threshold. Silhouettes come from the line pass (styles/lines).
 // The key light is the first light (a headlight without lights); its colour is not used.
 layout(binding = UNIT_TOON_RAMP) uniform sampler1D uToonRamp;
+layout(std140, binding = BLOCK_STYLE) uniform ToonUniforms {
+  vec4 uToonParams;     // x: ramp size, y: highlight threshold, z: 1 for highlights
+  vec4 uToonHighlight;  // rgb: highlight colour
+};
 vec3 shadeSurface(SurfacePoint s) {
   vec3 l = uCounts.x > 0 ? towardsLight(0, s.position) : s.toEye;
   float nDotL = max(dot(s.normal, l), 0.0) * step(0.5, s.keyLightVisibility);

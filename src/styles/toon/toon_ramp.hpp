@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "cutaway/gl/objects.hpp"
-#include "cutaway/scene/scene.hpp"
+#include "cutaway/styles/toon.hpp"
 
 namespace cutaway {
 

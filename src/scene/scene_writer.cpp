@@ -1,29 +1,25 @@
-#include "scene_document.hpp"
+#include "cutaway/scene/scene_writer.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <sstream>
 
+#include "core/json_reader.hpp"
 #include "cutaway/core/atomic_file.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutters/registry.hpp"
+#include "styles/registry.hpp"
 
-namespace cutaway::view {
+namespace cutaway {
 
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
 namespace {
 
-// The shortest decimal that reads back as the same float: 35 stays 35, not
-// 35.000000000000001, and the loader's float of it is bit-identical to the viewer's.
-double exact(float f) {
-  char buffer[32];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, f).ptr;
-  double d = 0;
-  std::from_chars(buffer, end, d);
-  return d;
-}
+using json_reader::exact;
 
 json vec(const glm::vec3& v) {
   return {exact(v.x), exact(v.y), exact(v.z)};
@@ -36,8 +32,10 @@ json paramJson(const ParamValue& v) {
 // The value that has the effect of leaving `key` unset, for overrides, which can set a
 // parameter but not remove one.
 ParamValue unsetValue(const std::string& key, const Scene& scene) {
-  if (key == "cutawayAngle")
-    return double(exact(scene.adaptive ? scene.adaptive->angle : AdaptiveCutawayOptions{}.angle));
+  if (key == "cutawayAngle") {
+    const auto* adaptive = scene.cutters.find<AdaptiveCutawayOptions>();
+    return double(exact(adaptive ? adaptive->angle : AdaptiveCutawayOptions{}.angle));
+  }
   return true;  // "lines": drawn unless turned off
 }
 
@@ -148,109 +146,22 @@ json cameraJson(const Camera& c) {
   return j;
 }
 
-json styleJson(const Style& s) {
-  json j = {{"name", s.name}};
-  if (s.lines) {
-    const LineStyle& l = *s.lines;
-    j["lines"] = {{"silhouettes", l.silhouettes},
-                  {"creases", l.creases},
-                  {"creaseAngle", exact(l.creaseAngle)},
-                  {"depthThreshold", exact(l.depthThreshold)},
-                  {"width", exact(l.width)},
-                  {"color", vec(l.color)}};
-  } else {
-    j["lines"] = false;
+json cuttersJson(const Scene& scene) {
+  json out = json::object();
+  for (const CutterType& type : cutterTypes())
+    if (const std::any* options = type.schema ? scene.cutters.find(type.key) : nullptr)
+      out[type.key] = type.schema->write(type.schema->data(*options));
+  return out;
+}
+
+json styleJson(const Style& style) {
+  json out = styleSchema().write(&style);
+  for (const StyleType& type : styleTypes()) {
+    const std::any* options = style.shading.find(type.key);
+    const std::any defaults = options ? std::any() : type.schema->makeDefault();
+    out[type.key] = type.schema->write(type.schema->data(options ? *options : defaults));
   }
-  j["gooch"] = {{"cool", vec(s.gooch.cool)},
-                {"warm", vec(s.gooch.warm)},
-                {"alpha", exact(s.gooch.alpha)},
-                {"beta", exact(s.gooch.beta)}};
-  j["blinnPhong"] = {{"ambient", exact(s.blinnPhong.ambient)}};
-  return j;
-}
-
-json adaptiveJson(const AdaptiveCutawayOptions& o) {
-  using O = AdaptiveCutawayOptions;
-  json j = {{"angle", exact(o.angle)},
-            {"bufferSize", o.bufferSize},
-            {"perspectiveCompensation", o.perspectiveCompensation},
-            {"edgeCompression", o.edgeCompression ? json(exact(o.edgeRegion)) : json(false)},
-            // The loader turns the constraint on for a floorNormal and then applies this key.
-            {"floorNormal", vec(o.floorNormal)},
-            {"directionalConstraint", o.directionalConstraint},
-            {"jumpFlooding", fields::variantName(o.variant)},
-            {"compute", o.compute == O::Compute::Gpu   ? "gpu"
-                        : o.compute == O::Compute::Cpu ? "cpu"
-                                                       : "auto"},
-            {"cutSurfaces", o.cutSurfaces == O::CutSurfaces::All          ? "all"
-                            : o.cutSurfaces == O::CutSurfaces::Watertight ? "watertight"
-                                                                          : "none"},
-            {"outlines", o.outlines},
-            {"outlineColor", vec(o.outlineColor)},
-            {"ghostLines", o.ghostLines ? json{{"distance", exact(o.ghostDistance)},
-                                               {"opacity", exact(o.ghostOpacity)}}
-                                        : json(false)}};
-  if (o.cutSurfaceColor) j["cutSurfaceColor"] = vec(*o.cutSurfaceColor);
-  return j;
-}
-
-json cutoutJson(const CutoutOptions& o) {
-  using P = CutoutJitter::Pattern;
-  json j = {{"method", o.method == CutoutOptions::Method::Texture ? "texture" : "clipPlanes"},
-            {"angle", exact(o.angle)}};
-  if (o.rotation) j["rotation"] = exact(*o.rotation);
-  if (o.axialRange) j["axialRange"] = {exact(o.axialRange->x), exact(o.axialRange->y)};
-  if (o.jitter.pattern != P::None) {
-    const CutoutJitter& t = o.jitter;
-    j["jitter"] = {{"pattern", t.pattern == P::Sawtooth ? "sawtooth"
-                               : t.pattern == P::Noise  ? "noise"
-                                                        : "image"},
-                   {"amplitude", exact(t.amplitude)},
-                   {"frequency", exact(t.frequency)},
-                   {"octaves", t.octaves}};
-    if (t.pattern == P::Image) j["jitter"]["image"] = fs::absolute(t.image).string();
-  }
-  if (o.wallColor) j["wallColor"] = vec(*o.wallColor);
-  if (o.insideColor) j["insideColor"] = vec(*o.insideColor);
-  return j;
-}
-
-json breakawayJson(const BreakawayOptions& o) {
-  json j = json::object();
-  if (o.offset) j["offset"] = exact(*o.offset);
-  if (o.wallThickness) j["wallThickness"] = exact(*o.wallThickness);
-  if (o.wallColor) j["wallColor"] = vec(*o.wallColor);
-  if (o.insideColor) j["insideColor"] = vec(*o.insideColor);
-  return j;
-}
-
-// The clip surfaces' keys the viewer edits; offset maps and the rest stay as written.
-json clipSurfacesJson(const ClipSurfaceOptions& o) {
-  json surfaces = json::array();
-  for (const auto& cs : o.surfaces)
-    surfaces.push_back(
-        {{"origin", vec(cs.origin)}, {"scale", vec(cs.scale)}, {"enabled", cs.enabled}});
-  return {{"combine", o.combine == ClipSurfaceOptions::Combine::Union ? "union" : "intersection"},
-          {"caps", o.caps},
-          {"parity", o.parity == ClipSurfaceOptions::Parity::Static ? "static" : "perFrame"},
-          {"capStyle",
-           {{"normalMap", o.capNormalMap},
-            {"occlusion", exact(o.capOcclusion)},
-            {"solidTexture", o.capSolidTexture},
-            {"solidTextureScale", exact(o.solidTextureScale)}}},
-          {"surfaces", surfaces}};
-}
-
-// The terrain opening's keys the viewer edits; the network and terrain stay as written.
-json terrainJson(const TerrainOpeningOptions& o) {
-  json j = {{"w", exact(o.w)},
-            {"s", exact(o.s)},
-            {"cameraDistance", o.cameraDistance},
-            {"metric", o.metric == TerrainOpeningOptions::Metric::L1 ? "l1" : "euclidean"},
-            {"resolution", o.resolution},
-            {"cutBuildings", o.cutBuildings}};
-  if (o.thicknessColor) j["thicknessColor"] = vec(*o.thicknessColor);
-  return j;
+  return out;
 }
 
 // A network's keys the viewer edits; its pipes, shafts and attributes stay as written.
@@ -263,18 +174,19 @@ json networkJson(const PipeNetwork& n) {
           {"waterColors", {vec(n.waterLow), vec(n.waterHigh)}}};
 }
 
-// Writes `current` as doc["cutters"][key] when it differs from `original` (or removes it).
-template <typename Options, typename ToJson>
-void patchCutter(json& doc, const char* key, const std::optional<Options>& original,
-                 const std::optional<Options>& current, ToJson toJson) {
-  const bool changed = original.has_value() != current.has_value() ||
-                       (current && toJson(*original) != toJson(*current));
-  if (!changed) return;
-  if (current) {
-    doc["cutters"][key] = toJson(*current);
-  } else if (doc.contains("cutters")) {
-    doc["cutters"].erase(key);
-    if (doc["cutters"].empty()) doc.erase("cutters");
+// `edited` merged into `into` key by key: objects recursively, arrays element by element,
+// anything else replaced; keys only `into` has stay.
+void merge(json& into, const json& edited) {
+  if (edited.is_object() && into.is_object()) {
+    for (const auto& [key, value] : edited.items())
+      if (into.contains(key))
+        merge(into[key], value);
+      else
+        into[key] = value;
+  } else if (edited.is_array() && into.is_array() && edited.size() == into.size()) {
+    for (std::size_t i = 0; i < edited.size(); ++i) merge(into[i], edited[i]);
+  } else {
+    into = edited;
   }
 }
 
@@ -330,35 +242,27 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
   if (k != n)
     throw Error(target.string(), "", "the viewer's objects no longer match the scene file");
 
-  patchCutter(doc, "adaptive", original.adaptive, current.adaptive, adaptiveJson);
-  patchCutter(doc, "cutout", original.cutout, current.cutout, cutoutJson);
-  patchCutter(doc, "breakaway", original.breakaway, current.breakaway, breakawayJson);
-  if (current.clipSurfaces &&
-      clipSurfacesJson(*original.clipSurfaces) != clipSurfacesJson(*current.clipSurfaces)) {
-    // Merged key by key: each surface keeps its offset map and directions as written.
-    json& c = doc["cutters"]["clipSurfaces"];
-    const json edited = clipSurfacesJson(*current.clipSurfaces);
-    for (auto& [key, value] : edited.items()) {
-      if (key != "surfaces") {
-        c[key] = value;
-        continue;
-      }
-      for (std::size_t i = 0; i < value.size(); ++i)
-        for (auto& [k, v] : value[i].items()) c["surfaces"][i][k] = v;
-    }
+  // The cutters: added, removed, or their changed keys merged in.
+  const json before = cuttersJson(original), after = cuttersJson(current);
+  for (const auto& [key, value] : after.items()) {
+    if (before.contains(key) && before[key] == value) continue;
+    if (doc.contains("cutters") && doc["cutters"].contains(key) && doc["cutters"][key].is_object())
+      merge(doc["cutters"][key], value);
+    else
+      doc["cutters"][key] = value;
   }
+  for (const auto& [key, value] : before.items())
+    if (!after.contains(key) && doc.contains("cutters")) {
+      doc["cutters"].erase(key);
+      if (doc["cutters"].empty()) doc.erase("cutters");
+    }
   const json style = styleJson(current.style);
   if (style != styleJson(original.style)) {
     json& s = doc["style"];
     if (s.is_string()) s = json{{"name", s}};
     if (!s.is_object()) s = json::object();
-    for (auto& [key, value] : style.items()) s[key] = value;
+    merge(s, style);
   }
-  if (current.terrainOpening &&
-      terrainJson(*original.terrainOpening) != terrainJson(*current.terrainOpening))
-    for (const json edited = terrainJson(*current.terrainOpening);
-         auto& [key, value] : edited.items())
-      doc["cutters"]["terrainOpening"][key] = value;
   for (std::size_t i = 0; i < current.networks.size() && i < original.networks.size(); ++i)
     if (const json edited = networkJson(current.networks[i]);
         edited != networkJson(original.networks[i]))
@@ -393,13 +297,10 @@ void SceneDocument::save(const Scene& original, const Scene& current,
         mismatch("parameters of \"" + b.name + "\"");
   }
   if (cameraJson(saved.camera) != cameraJson(current.camera)) mismatch("camera");
-  const auto differ = [](const auto& a, const auto& b, auto toJson) {
-    return a.has_value() != b.has_value() || (a && toJson(*a) != toJson(*b));
-  };
-  if (differ(saved.adaptive, current.adaptive, adaptiveJson)) mismatch("adaptive cutter");
-  if (differ(saved.cutout, current.cutout, cutoutJson)) mismatch("cutout");
-  if (differ(saved.breakaway, current.breakaway, breakawayJson)) mismatch("breakaway");
-  if (differ(saved.clipSurfaces, current.clipSurfaces, clipSurfacesJson)) mismatch("clip surfaces");
+  const json savedCutters = cuttersJson(saved), currentCutters = cuttersJson(current);
+  for (const CutterType& type : cutterTypes())
+    if (savedCutters.value(type.key, json()) != currentCutters.value(type.key, json()))
+      mismatch(type.title);
   if (styleJson(saved.style) != styleJson(current.style)) mismatch("style");
   if (saved.networks.size() != current.networks.size()) mismatch("pipe networks");
   for (std::size_t i = 0; i < saved.networks.size(); ++i)
@@ -409,4 +310,4 @@ void SceneDocument::save(const Scene& original, const Scene& current,
   writeFileAtomically(target, [&](std::ostream& os) { os << text; });
 }
 
-}  // namespace cutaway::view
+}  // namespace cutaway

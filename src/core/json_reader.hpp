@@ -1,8 +1,11 @@
 // Strict JSON reading for the scene format (docs/scene-format.md): every error names the
-// file, the JSON pointer and the reason; unknown keys are errors. Shared by the scene file's
-// parts (src/scene/scene_json.cpp, src/scene/network_json.cpp).
+// file, the JSON pointer and the reason; unknown keys are errors. Shared by every part of the
+// scene file: the scene reader (src/scene), the option schemas (core/options.hpp) and the
+// techniques' own keys.
 #pragma once
 
+#include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -13,10 +16,9 @@
 #include <glm/glm.hpp>
 
 #include "cutaway/core/error.hpp"
-#include "cutaway/io/gis_import.hpp"
-#include "cutaway/scene/scene.hpp"
+#include "cutaway/core/geo_frame.hpp"
 
-namespace cutaway::scene_json {
+namespace cutaway::json_reader {
 
 using json = nlohmann::json;
 
@@ -58,6 +60,7 @@ class ObjectReader {
     return *v;
   }
   bool has(const std::string& key) const { return j_.contains(key); }
+  bool taken(const std::string& key) const { return taken_.count(key) != 0; }
   std::string at(const std::string& key) const { return pointer_ + "/" + key; }
   const std::string& pointer() const { return pointer_; }
   void finish() const {
@@ -134,8 +137,20 @@ inline glm::vec3 direction(const Context& ctx, const json& j, const std::string&
   return glm::normalize(v);
 }
 
-inline std::regex regex(const Context& ctx, const json& j, const std::string& ptr) {
-  const std::string pattern = string(ctx, j, ptr);
+// A regular expression given as text: ECMAScript, as the format uses. std::regex compiles by
+// recursion, so a pattern nested thousands of groups deep would exhaust the stack; none
+// deeper than kMaxRegexNesting is accepted.
+constexpr int kMaxRegexNesting = 64;
+inline std::regex regex(const Context& ctx, const std::string& pattern, const std::string& ptr) {
+  int depth = 0, deepest = 0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] == '\\') ++i;  // an escaped character nests nothing
+    else if (pattern[i] == '(' || pattern[i] == '[') deepest = std::max(deepest, ++depth);
+    else if (pattern[i] == ')' || pattern[i] == ']') --depth;
+  }
+  if (deepest > kMaxRegexNesting)
+    ctx.fail(ptr, "regular expression nests deeper than " + std::to_string(kMaxRegexNesting) +
+                      " groups");
   try {
     return std::regex(pattern, std::regex::ECMAScript);
   } catch (const std::regex_error& e) {
@@ -143,12 +158,18 @@ inline std::regex regex(const Context& ctx, const json& j, const std::string& pt
   }
 }
 
-// Import options for a GIS layer in the scene's frame: reprojected to its CRS, offset removed.
-inline GisImportOptions gisOptions(const Context& ctx) {
-  GisImportOptions o;
-  o.targetCrs = ctx.geo.crs;
-  o.offset = ctx.geo.offset;
-  return o;
+inline std::regex regex(const Context& ctx, const json& j, const std::string& ptr) {
+  return regex(ctx, string(ctx, j, ptr), ptr);
 }
 
-}  // namespace cutaway::scene_json
+// The shortest decimal that reads back as the same float, for writing: 35 stays 35, not
+// 35.000000000000001, and a loader's float of it is bit-identical.
+inline double exact(float f) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, f).ptr;
+  double d = 0;
+  std::from_chars(buffer, end, d);
+  return d;
+}
+
+}  // namespace cutaway::json_reader

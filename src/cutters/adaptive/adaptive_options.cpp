@@ -1,0 +1,113 @@
+// The adaptive cutter's options as the scene file, the viewer and the CLI name them.
+#include <nlohmann/json.hpp>
+
+#include "core/json_reader.hpp"
+#include "cutaway/cutters/adaptive.hpp"
+
+namespace cutaway {
+
+namespace {
+
+using O = AdaptiveCutawayOptions;
+using Type = OptionSpec::Type;
+
+OptionsSchema ghostLinesSchema() {
+  return OptionsBuilder<GhostLineOptions>()
+      .number("distance", &GhostLineOptions::distance, 0, 1e30,
+              {.label = "ghost distance",
+               .doc = "World units in front of the cutaway surface over which ghost lines fade "
+                      "out; 0: 5% of the scene radius.",
+               .live = true})
+      .number("opacity", &GhostLineOptions::opacity, 0, 1,
+              {.label = "ghost opacity", .doc = "Opacity of the ghost lines over the image.",
+               .live = true})
+      .build();
+}
+
+}  // namespace
+
+const OptionsSchema& adaptiveCutawaySchema() {
+  static const OptionsSchema schema =
+      OptionsBuilder<O>()
+          // "edgeCompression": true, false, or the width r of its region (which turns it on).
+          .readHook([](const json_reader::Context& ctx, json_reader::ObjectReader& r, O& o) {
+            if (const auto* v = r.take("edgeCompression")) {
+              if (v->is_number())
+                o.edgeRegion = float(json_reader::number(ctx, *v, r.at("edgeCompression"), 1e-3, 1)),
+                o.edgeCompression = true;
+              else
+                o.edgeCompression = json_reader::boolean(ctx, *v, r.at("edgeCompression"));
+            }
+          })
+          .number("angle", &O::angle, 0, 90,
+                  {.label = "angle θ (°)",
+                   .doc = "Angle between the cut's walls and the viewing ray (Burns08 §3); "
+                          "objects may set their own (param cutawayAngle).",
+                   .live = true})
+          .number("bufferSize", &O::bufferSize, 16, 8192,
+                  {.label = "buffer resolution",
+                   .doc = "The cutaway buffer is n×n pixels whatever the view (Burns08 §6).",
+                   .sliderMax = 2048})
+          .value("perspectiveCompensation", &O::perspectiveCompensation,
+                 {.label = "perspective compensation",
+                  .doc = "Keep the walls at θ at any depth (Burns08 eq. 3, Burns11 eq. 5.7).",
+                  .live = true})
+          .value("edgeCompression", &O::edgeCompression,
+                 {.label = "edge compression",
+                  .doc = "Shrink θ to 0 near the view's border (Burns11 eq. 5.8); the file may "
+                         "give the region's width r instead of true.",
+                  .live = true})
+          .number("edgeRegion", &O::edgeRegion, 1e-3, 1,
+                  {.label = "edge region r",
+                   .doc = "Width r of the border region of eq. 5.8, in [−1, 1] units.",
+                   .live = true})
+          .applies([](const O& o) { return o.edgeCompression; })
+          .value("directionalConstraint", &O::directionalConstraint,
+                 {.label = "directional constraint",
+                  .doc = "Keep the cut off the floor (Burns08 §5.5, Burns11 eqs. 6.1–6.4); a "
+                         "floorNormal turns it on unless given.",
+                  .live = true})
+          .direction("floorNormal", &O::floorNormal,
+                     {.label = "floor normal",
+                      .doc = "World-space normal of the floor the constraint protects.",
+                      .live = true})
+          .applies([](const O& o) { return o.directionalConstraint; })
+          .choice("jumpFlooding", &O::variant,
+                  {{"jfa", fields::JumpFloodingVariant::jfa},
+                   {"jfa+1", fields::JumpFloodingVariant::jfaPlus1},
+                   {"1+jfa", fields::JumpFloodingVariant::onePlusJfa},
+                   {"jfa+2", fields::JumpFloodingVariant::jfaPlus2}},
+                  {.label = "jump flooding", .doc = "Step sequence of jump flooding (Burns08 §5.1)."})
+          .choice("compute", &O::compute,
+                  {{"auto", O::Compute::Auto}, {"gpu", O::Compute::Gpu}, {"cpu", O::Compute::Cpu}},
+                  {.doc = "Where jump flooding runs; auto: the CPU on llvmpipe."})
+          .choice("cutSurfaces", &O::cutSurfaces,
+                  {{"all", O::CutSurfaces::All},
+                   {"watertight", O::CutSurfaces::Watertight},
+                   {"none", O::CutSurfaces::None}},
+                  {.label = "cut surfaces",
+                   .doc = "Shade back faces behind the cut as solid cut surfaces (Burns08 §4.1): "
+                          "on every mesh, on watertight ones, or never.",
+                   .live = true})
+          .optional("cutSurfaceColor", &O::cutSurfaceColor, Type::Color, 0, 1, glm::vec3(0.6f),
+                    {.label = "cut-surface colour",
+                     .doc = "Colour of the cut surfaces; unset: the cut object's colour, darker.",
+                     .live = true})
+          .value("outlines", &O::outlines,
+                 {.label = "cut outlines", .doc = "Draw the boundary of the cut surfaces (Burns08 §4.2)."})
+          .color("outlineColor", &O::outlineColor,
+                 {.label = "outline colour", .doc = "Colour of the cut outlines.", .live = true})
+          .applies([](const O& o) { return o.outlines; })
+          .group("ghostLines", &O::ghostLines, ghostLinesSchema(),
+                 {.label = "ghost lines",
+                  .doc = "Faded lines of the removed material (Burns08 §4.3): true, false, or "
+                         "{distance, opacity}."})
+          // A floorNormal without a word about the constraint asks for it.
+          .check([](const json_reader::Context&, json_reader::ObjectReader& r, O& o) {
+            if (r.has("floorNormal") && !r.has("directionalConstraint")) o.directionalConstraint = true;
+          })
+          .build();
+  return schema;
+}
+
+}  // namespace cutaway
