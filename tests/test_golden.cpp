@@ -83,7 +83,11 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"ss64ne-terrain", "ss64ne-terrain.json", "", 320, 200},
         // Konev18 billboard pipes cut open, water, shafts; the SS64NE city.
         GoldenCase{"pipes-street", "pipes-street.json", "", 480, 300},
-        GoldenCase{"ss64ne-city", "ss64ne-city.json", "", 480, 300}),
+        GoldenCase{"ss64ne-city", "ss64ne-city.json", "", 480, 300},
+        // Several cutters in one frame: adaptive + cutout + clip surface on the engine; the
+        // city's buildings cut adaptively around its pipes while the terrain opens.
+        GoldenCase{"engine-combined", "engine-combined.json", "", 320, 240},
+        GoldenCase{"ss64ne-city-cutaway", "ss64ne-city-cutaway.json", "", 480, 300}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');
@@ -99,7 +103,10 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"engine-toon-shadows", "engine.json", "toon", 320, 240, false, true},
         GoldenCase{"engine-hatching", "engine.json", "hatching", 320, 240},
         GoldenCase{"engine-cutaway-toon-shadows", "engine-cutaway.json", "toon", 320, 240, false,
-                   true}),
+                   true},
+        // Hatching on clip-surface caps: once a crash of Mesa's shader compiler
+        // (clip_surfaces.glsl's clipRelief).
+        GoldenCase{"bunny-clip-hatching", "bunny-clip.json", "hatching", 240, 240}),
     [](const auto& info) {
       std::string n = info.param.name;
       std::replace(n.begin(), n.end(), '-', '_');

@@ -47,9 +47,12 @@ struct GhostBuffers {
   std::function<float()> opacity;     // read every frame
 };
 
+struct ActiveCutter;
+
 // What a geometry program needs at the moment it draws.
 struct GeometryDraw {
-  float time;  // the objects' animation time
+  float time;                                // the objects' animation time
+  const std::vector<ActiveCutter>* cutters;  // the frame's, for geometry others cut too
 };
 
 class Cutter {
@@ -71,7 +74,8 @@ class Cutter {
   // Uniforms of its GLSL in a geometry program, set before the program draws.
   virtual void setProgramUniforms(GLuint /*program*/) const {}
 
-  // Whether its GLSL decides the fragments of scene object `index` (a mesh object).
+  // Whether its GLSL decides the fragments of scene object `index` (a mesh object): by its
+  // own rule, and only if the object allows it (SceneObject::mayBeCutBy its key).
   virtual bool cuts(std::size_t index) const = 0;
   // Diepstraten03 §4.3's classic method: the object drawn this many times, each pass with one
   // hardware clip plane (kept where plane·x ≥ 0); 0: drawn once.
@@ -119,6 +123,28 @@ inline void requireRole(const json_reader::Context& ctx, const std::string& poin
     if (!o.proxy && o.role == role) return;
   ctx.fail(pointer, "no object has role \"" + std::string(roleName(role)) + "\": " + why);
 }
+
+// How the active cutters cut one mesh object: the uniforms of the geometry programs'
+// composition (kinds/meshes/mesh.frag; the caps read the bits alone).
+struct ObjectCut {
+  int cutBy = 0;        // bit per slot: its GLSL decides the object's fragments
+  int cutSurfaces = 0;  // bit per slot: its cuts show cut surfaces
+  int clipPasses = 0;   // Diepstraten03 §4.3: hardware clip passes (the most any cutter asks)
+  std::vector<std::pair<int, glm::vec3>> cutColors;  // per slot that cuts or clips it
+  std::optional<glm::vec3> backColor;                // the first cutter's that gives one
+};
+// `exceptSlot`: a cutter left out (the one whose own geometry is drawn: Trapp13's caps).
+ObjectCut objectCut(const std::vector<ActiveCutter>& cutters, std::size_t object,
+                    int exceptSlot = -1);
+// Sets the program's cut uniforms for `object`: the bits at `cutByLocation` (and, when the
+// look locations are given, the cut surfaces' bits and colours and the back colour), and
+// each cutter's own object uniforms.
+struct CutUniformLocations {
+  GLint cutBy, cutSurfaces = -1, backColor = -1, cutColors = -1;  // -1: the program has none
+};
+void setCutUniforms(GLuint program, const CutUniformLocations& at,
+                    const std::vector<ActiveCutter>& cutters, const ObjectCut& cut,
+                    std::size_t object, glm::vec3 objectColor);
 
 // Whether `type` is on in `scene`: its options are there, or `active` says so.
 inline bool cutterActive(const CutterType& type, const Scene& scene) {

@@ -1,5 +1,7 @@
 #include "cutters/registry.hpp"
 
+#include <algorithm>
+
 namespace cutaway {
 
 // Defined in each cutter's folder.
@@ -16,6 +18,40 @@ const std::vector<CutterType>& cutterTypes() {
       terrainOpeningCutterType(), shaftWedgeCutterType(), clipSurfacesCutterType(),
   };
   return types;
+}
+
+ObjectCut objectCut(const std::vector<ActiveCutter>& cutters, std::size_t object, int exceptSlot) {
+  ObjectCut cut;
+  for (const ActiveCutter& c : cutters) {
+    if (c.slot == exceptSlot) continue;
+    const bool cuts = c.cutter->cuts(object);
+    const int passes = c.cutter->clipPasses(object);
+    if (!cuts && passes == 0) continue;
+    const CutLook look = c.cutter->look(object);
+    if (cuts) cut.cutBy |= 1 << c.slot;
+    if (look.cutSurface) cut.cutSurfaces |= 1 << c.slot;
+    cut.clipPasses = std::max(cut.clipPasses, passes);
+    cut.cutColors.emplace_back(c.slot, look.cutColor);
+    if (!cut.backColor) cut.backColor = look.backColor;
+  }
+  return cut;
+}
+
+void setCutUniforms(GLuint program, const CutUniformLocations& at,
+                    const std::vector<ActiveCutter>& cutters, const ObjectCut& cut,
+                    std::size_t object, glm::vec3 objectColor) {
+  glProgramUniform1i(program, at.cutBy, cut.cutBy);
+  if (at.cutSurfaces >= 0) glProgramUniform1i(program, at.cutSurfaces, cut.cutSurfaces);
+  if (at.cutColors >= 0)
+    for (const auto& [slot, color] : cut.cutColors)
+      glProgramUniform3fv(program, at.cutColors + slot, 1, &color[0]);
+  if (at.backColor >= 0) {
+    const glm::vec3 back = cut.backColor.value_or(objectColor);
+    glProgramUniform3fv(program, at.backColor, 1, &back[0]);
+  }
+  for (const ActiveCutter& c : cutters)
+    if (cut.cutBy & (1 << c.slot) || c.cutter->clipPasses(object) > 0)
+      c.cutter->setObjectUniforms(program, object);
 }
 
 std::string cutterComposition(const std::vector<ActiveCutter>& active) {

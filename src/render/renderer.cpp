@@ -198,7 +198,7 @@ void Renderer::Impl::drawGeometry(GLuint framebuffer) const {
   glDepthMask(GL_TRUE);
   for (const ActiveCutter& c : cutters) c.cutter->bindForGeometry();
   setup.bindShading();
-  const GeometryDraw draw{meshes.time()};
+  const GeometryDraw draw{meshes.time(), &cutters};
   for (const auto& k : kinds) k->drawGeometry(cutters, draw);
   // Trapp13 §5: the caps close the clipped solids.
   for (const ActiveCutter& c : cutters) c.cutter->drawGeometry(draw);

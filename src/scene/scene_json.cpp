@@ -165,6 +165,15 @@ void appearance(const Context& ctx, ObjectReader& r, SceneObject& o, bool visibl
   if (const json* v = r.take("importance"))
     o.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
   if (const json* v = r.take("group")) o.group = string(ctx, *v, r.at("group"));
+  if (const json* v = r.take("cutBy")) {
+    // The registered cutters' keys (the shaft wedge's too, which the file never switches).
+    std::vector<std::string> keys;
+    for (const CutterType& t : cutterTypes()) keys.push_back(t.key);
+    if (!v->is_array()) ctx.fail(r.at("cutBy"), "expected an array of cutter names");
+    o.cutBy.emplace();
+    for (std::size_t i = 0; i < v->size(); ++i)
+      o.cutBy->push_back(oneOf(ctx, (*v)[i], r.at("cutBy") + "/" + std::to_string(i), keys));
+  }
   if (const json* v = r.take("params")) {
     for (auto& [k, value] : params(ctx, *v, r.at("params"))) o.params[k] = value;
   }

@@ -10,6 +10,7 @@
 //   for (const auto& object : scene.objects) std::puts(object.name.c_str());
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -83,6 +84,10 @@ struct SceneObject {
   bool proxy = false;       // invisible: seen only by cutters (Burns11 §4.2.2)
   Material material;
   ObjectParams params;
+  // The cutters (by their keys under "cutters") that may cut it, each by its own rule; unset:
+  // every cutter. E.g. only "terrainOpening" for a terrain that an adaptive cutaway around the
+  // pipes below must leave to Konev18's opening.
+  std::optional<std::vector<std::string>> cutBy;
   std::shared_ptr<const Mesh> mesh;  // in object space
   glm::mat4 transform{1.0f};         // object → world
   // Motion, applied on top of `transform`: world = K(t)·transform, with K interpolated
@@ -90,6 +95,9 @@ struct SceneObject {
   std::vector<Keyframe> animation;
 
   glm::mat4 transformAt(float time) const;
+  bool mayBeCutBy(const std::string& cutter) const {
+    return !cutBy || std::find(cutBy->begin(), cutBy->end(), cutter) != cutBy->end();
+  }
   // Whether a cut shows the inside as solid material: param "solid", else watertightness.
   bool solid() const;
   // Bounds in world space over the whole animation (at every keyframe).

@@ -107,7 +107,8 @@ float AdaptiveCutaway::angleOf(const SceneObject* object) const {
 }
 
 bool AdaptiveCutaway::cuts(std::size_t index) const {
-  return setup_.scene.objects[index].role != Role::Interest;
+  const SceneObject& o = setup_.scene.objects[index];
+  return o.role != Role::Interest && o.mayBeCutBy(AdaptiveCutawayOptions::kKey);
 }
 
 CutLook AdaptiveCutaway::look(std::size_t index) const {

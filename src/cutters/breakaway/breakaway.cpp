@@ -162,7 +162,8 @@ void Breakaway::bindForGeometry() const {
 }
 
 bool Breakaway::cuts(std::size_t index) const {
-  return setup_.scene.objects[index].role == Role::Exterior;
+  const SceneObject& o = setup_.scene.objects[index];
+  return o.role == Role::Exterior && o.mayBeCutBy(BreakawayOptions::kKey);
 }
 
 CutLook Breakaway::look(std::size_t index) const {

@@ -10,9 +10,11 @@
 #include "parity.glsl"
 #include "styles/shadows/shadow_lookup.glsl"
 #include "frame/gbuffer.glsl"
+#include "cutters/composition.glsl"
 in vec3 vWorldPosition;
 in vec2 vST;
 layout(location = 11) uniform int uObjectId;
+layout(location = 13) uniform int uCutBy;  // the other cutters that cut the capped object
 layout(location = 40) uniform int uCapSurface;
 layout(location = 41) uniform mat4 uCapToTexture;  // world → LDI space of the capped solid
 layout(location = 45) uniform int uDepthComplexity;
@@ -49,6 +51,12 @@ float marble(vec3 p) {
 }
 
 void main() {
+  // The other cutters cut the cap with its object (an adaptive cutaway removes it in front of
+  // its surface); the cap faces the viewer.
+  vec3 cutPosition, cutNormal;
+  int cutter;
+  CutFragment f = CutFragment(vWorldPosition, -clipSurfaceNormal(uCapSurface), true);
+  if (cutFragment(uCutBy, f, cutPosition, cutNormal, cutter) == kDiscard) discard;
   vec4 t = uCapToTexture * vec4(vWorldPosition, 1.0);
   bool inside = volumetricParityTest(t.xyz / t.w, uDepthComplexity);
   imageAtomicMax(uCapParity, ivec2(gl_FragCoord.xy), inside ? 2u : 1u);
@@ -61,7 +69,7 @@ void main() {
   }
   int i = uCapSurface;
   vec3 n = clipSurfaceNormal(i);
-  vec4 relief = texture(uClipRelief[i], vST * uClipScale[i].xy);
+  vec4 relief = clipRelief(i, vST * uClipScale[i].xy);
   vec3 normal = -n;  // the cap faces the clipped side
   if (uClipCount.z != 0) {
     // Tangents of X(s,t) = O + sU + tV − S_z h(s S_x, t S_y) N.

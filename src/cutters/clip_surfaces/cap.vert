@@ -13,7 +13,7 @@ void main() {
   int i = uCapSurface;
   vec2 st = mix(uCapRect.xy, uCapRect.zw, aST);
   vec3 plane = uClipOrigin[i].xyz + st.x * uClipU[i].xyz + st.y * uClipV[i].xyz;
-  float h = textureLod(uClipRelief[i], st * uClipScale[i].xy, 0.0).r;
+  float h = clipReliefLod(i, st * uClipScale[i].xy).r;
   vWorldPosition = plane - uClipScale[i].z * h * clipSurfaceNormal(i);
   vST = st;
   gl_Position = uViewProjection * vec4(vWorldPosition, 1.0);

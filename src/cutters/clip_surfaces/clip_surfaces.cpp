@@ -202,7 +202,7 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
   if (options.caps)
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
       const SceneObject& o = scene.objects[i];
-      if (o.proxy || o.role == Role::Interest) continue;
+      if (o.proxy || !cuts(i)) continue;
       // Parity is undefined for open meshes (§5): never a wrong cap, no cap at all.
       if (!o.mesh->report.watertight) {
         uncappable_.push_back(i);
@@ -270,7 +270,8 @@ void ClipSurfaceCutter::addPreparationPasses(Frame& frame) {
 }
 
 bool ClipSurfaceCutter::cuts(std::size_t index) const {
-  return setup_.scene.objects[index].role != Role::Interest;
+  const SceneObject& o = setup_.scene.objects[index];
+  return o.role != Role::Interest && o.mayBeCutBy(ClipSurfaceOptions::kKey);
 }
 
 CutLook ClipSurfaceCutter::look(std::size_t index) const {
@@ -319,14 +320,22 @@ void ClipSurfaceCutter::bindForGeometry() const {
 
 void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   // Locations of cap.vert / cap.frag.
-  constexpr GLint kObjectId = 11, kCapSurface = 40, kCapToTexture = 41, kDepthComplexity = 45,
-                  kCapColor = 46, kCapRect = 48, kHasDiffuse = 49;
+  constexpr GLint kObjectId = 11, kCutBy = 13, kCapSurface = 40, kCapToTexture = 41,
+                  kDepthComplexity = 45, kCapColor = 46, kCapRect = 48, kHasDiffuse = 49;
   const Scene& scene = setup_.scene;
   const ClipSurfaceOptions& options = live();
   const float time = draw.time;
   const GLuint program = gpu_->cap.id();
+  const std::vector<ActiveCutter>& cutters = *draw.cutters;
+  int ownSlot = -1;
+  for (const ActiveCutter& c : cutters) {
+    if (c.cutter.get() == this) ownSlot = c.slot;
+    c.cutter->setProgramUniforms(program);
+  }
   glUseProgram(program);
   for (std::size_t k = 0; k < capped_.size(); ++k) {
+    setCutUniforms(program, {kCutBy}, cutters, objectCut(cutters, capped_[k], ownSlot), capped_[k],
+                   glm::vec3(0.0f));
     const DepthSpriteGpu& sprite = gpu_->sprites[k];
     // Sprites map the object's own space to LDI space: world → object → LDI.
     const glm::mat4 toTexture =

@@ -1,6 +1,8 @@
 // Trapp13 §4: 2.5D clip surfaces, several evaluated in one pass (§4.5); mirrors
 // src/cutters/clip_surfaces/clip_surface_function.cpp. Shared by the fragment test
 // (clip_fragment.glsl) and the caps (cap.vert, cap.frag). Needs frame_uniforms.glsl.
+#ifndef CUTTERS_CLIP_SURFACES_GLSL
+#define CUTTERS_CLIP_SURFACES_GLSL
 #include "cutters/fate.glsl"
 const int kMaxClipSurfaces = 4;
 layout(std140, binding = BLOCK_CLIP_SURFACES) uniform ClipSurfaces {
@@ -13,6 +15,26 @@ layout(std140, binding = BLOCK_CLIP_SURFACES) uniform ClipSurfaces {
 };
 // Per surface: r = offset h, g = ∂h/∂s, b = ∂h/∂t, a = ambient occlusion (derived at load).
 layout(binding = UNIT_CLIP_RELIEF) uniform sampler2D uClipRelief[kMaxClipSurfaces];
+
+// Surface i's relief at st, each sampler named by a constant index: Mesa's llvmpipe (LLVM 15,
+// Debian 12) crashes compiling a sampler array indexed by a variable in a loop after a discard
+// (its EarlyCSE pass), as the caps' parity test and the clip test make it.
+vec4 clipRelief(int i, vec2 st) {
+  switch (i) {
+    case 0: return texture(uClipRelief[0], st);
+    case 1: return texture(uClipRelief[1], st);
+    case 2: return texture(uClipRelief[2], st);
+    default: return texture(uClipRelief[3], st);
+  }
+}
+vec4 clipReliefLod(int i, vec2 st) {
+  switch (i) {
+    case 0: return textureLod(uClipRelief[0], st, 0.0);
+    case 1: return textureLod(uClipRelief[1], st, 0.0);
+    case 2: return textureLod(uClipRelief[2], st, 0.0);
+    default: return textureLod(uClipRelief[3], st, 0.0);
+  }
+}
 
 vec3 clipSurfaceNormal(int i) {
   return normalize(cross(normalize(uClipU[i].xyz), normalize(uClipV[i].xyz)));
@@ -29,7 +51,7 @@ vec2 clipSurfaceTexCoord(int i, vec3 p) {
 // Trapp13 eq. 1: P·N − N·O + f(OM, T)·S_z; χ = 1 (clipped) where it is < 0.
 float clipSurfaceFunction(int i, vec3 p) {
   vec3 n = clipSurfaceNormal(i);
-  float h = texture(uClipRelief[i], clipSurfaceTexCoord(i, p)).r;
+  float h = clipRelief(i, clipSurfaceTexCoord(i, p)).r;
   return dot(p, n) - dot(n, uClipOrigin[i].xyz) + h * uClipScale[i].z;
 }
 
@@ -47,3 +69,4 @@ bool clippedBySurfaces(vec3 p, int except) {
   if (!enabled) return except >= 0 && uClipCount.y == 1;  // alone in an intersection: kept
   return uClipCount.y == 1 ? all : any;
 }
+#endif

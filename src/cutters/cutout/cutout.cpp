@@ -112,11 +112,13 @@ const CutoutWedge* Cutout::wedgeOf(std::size_t index) const {
 }
 
 bool Cutout::cuts(std::size_t index) const {
-  return method_ == CutoutOptions::Method::Texture && unitOfObject_[index] >= 0;
+  return method_ == CutoutOptions::Method::Texture && unitOfObject_[index] >= 0 &&
+         setup_.scene.objects[index].mayBeCutBy(CutoutOptions::kKey);
 }
 
 int Cutout::clipPasses(std::size_t index) const {
-  return method_ == CutoutOptions::Method::ClipPlanes && unitOfObject_[index] >= 0
+  return method_ == CutoutOptions::Method::ClipPlanes && unitOfObject_[index] >= 0 &&
+                 setup_.scene.objects[index].mayBeCutBy(CutoutOptions::kKey)
              ? kMaxCutoutPlanes
              : 0;
 }

@@ -28,7 +28,8 @@ ShaftWedge::ShaftWedge(FrameSetup& setup)
       innerLocation_(setup.bindings.uniformLocation("SHAFT_INNER")) {}
 
 bool ShaftWedge::cuts(std::size_t index) const {
-  return isShaft(setup_.scene.objects[index]);
+  const SceneObject& o = setup_.scene.objects[index];
+  return isShaft(o) && o.mayBeCutBy("shaftWedge");
 }
 
 CutLook ShaftWedge::look(std::size_t index) const {

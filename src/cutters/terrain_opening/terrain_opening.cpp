@@ -91,6 +91,11 @@ TerrainOpening::TerrainOpening(FrameSetup& setup)
                                            "fragment discarded (the largest seen)"});
 }
 
+bool TerrainOpening::cuts(std::size_t index) const {
+  return (terrain_[index] || cutBuildings_[index]) &&
+         setup_.scene.objects[index].mayBeCutBy(TerrainOpeningOptions::kKey);
+}
+
 void TerrainOpening::bindForGeometry() const {
   const float zero[4] = {0, 0, 0, 0};
   const GLuint none = 0;

@@ -19,7 +19,7 @@ class TerrainOpening : public Cutter {
   void bindForGeometry() const override;
   void setProgramUniforms(GLuint program) const override;
   // Terrain objects, and buildings when the scene asks for them to be opened too.
-  bool cuts(std::size_t index) const override { return terrain_[index] || cutBuildings_[index]; }
+  bool cuts(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   // The distance texture.
   std::vector<Aov> extraAovs() const override;

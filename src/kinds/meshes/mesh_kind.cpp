@@ -18,7 +18,14 @@ void MeshKind::prepare(const std::vector<ActiveCutter>&) {
 void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const GeometryDraw&) const {
   const GLuint program = program_.id();
   for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
+  const Scene& scene = setup_.scene;
+  std::vector<ObjectCut> cuts;
   int clipPasses = 0;  // the most any object needs
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    cuts.push_back(objectCut(cutters, i));
+    clipPasses = std::max(clipPasses, cuts.back().clipPasses);
+  }
+  const CutUniformLocations at{kCutBy, kCutSurfaces, kBackColor, kCutColor};
   auto setUniforms = [&](const SceneObject& o, std::size_t i) {
     glProgramUniform3fv(program, kColor, 1, &o.material.color[0]);
     glProgramUniform1f(program, kSpecular, o.material.specular);
@@ -27,39 +34,13 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const Geom
     const auto lines = o.params.find("lines");
     const bool objectLines = lines == o.params.end() || std::get<bool>(lines->second);
     glProgramUniform1f(program, kLines, objectLines ? 1.0f : 0.0f);
-    int cutBy = 0, cutSurfaces = 0;
-    std::optional<glm::vec3> backColor;
-    for (const ActiveCutter& c : cutters) {
-      const bool cuts = c.cutter->cuts(i);
-      if (!cuts && c.cutter->clipPasses(i) == 0) continue;
-      const CutLook look = c.cutter->look(i);
-      if (cuts) cutBy |= 1 << c.slot;
-      if (look.cutSurface) cutSurfaces |= 1 << c.slot;
-      glProgramUniform3fv(program, kCutColor + c.slot, 1, &look.cutColor[0]);
-      if (!backColor) backColor = look.backColor;
-      c.cutter->setObjectUniforms(program, i);
-    }
-    glProgramUniform1i(program, kCutBy, cutBy);
-    glProgramUniform1i(program, kCutSurfaces, cutSurfaces);
-    const glm::vec3 back = backColor.value_or(o.material.color);
-    glProgramUniform3fv(program, kBackColor, 1, &back[0]);
+    setCutUniforms(program, at, cutters, cuts[i], i, o.material.color);
   };
-  const auto clippedByPlanes = [&](std::size_t i) {
-    int passes = 0;
-    for (const ActiveCutter& c : cutters) passes = std::max(passes, c.cutter->clipPasses(i));
-    return passes;
-  };
-  const Scene& scene = setup_.scene;
-  std::vector<int> passesOf(scene.objects.size(), 0);
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    passesOf[i] = clippedByPlanes(i);
-    clipPasses = std::max(clipPasses, passesOf[i]);
-  }
   // Secondary objects first, cut; then the objects of interest, whole (Burns08 §4.1).
   setup_.meshes.draw(
       program,
       [&](const SceneObject& o, std::size_t i) {
-        return !o.proxy && o.role != Role::Interest && passesOf[i] == 0;
+        return !o.proxy && o.role != Role::Interest && cuts[i].clipPasses == 0;
       },
       setUniforms);
   if (clipPasses > 0) {
@@ -69,7 +50,7 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const Geom
     for (int k = 0; k < clipPasses; ++k)
       setup_.meshes.draw(
           program,
-          [&](const SceneObject& o, std::size_t i) { return !o.proxy && passesOf[i] > k; },
+          [&](const SceneObject& o, std::size_t i) { return !o.proxy && cuts[i].clipPasses > k; },
           [&](const SceneObject& o, std::size_t i) {
             setUniforms(o, i);
             glm::vec4 keep(0, 0, 0, -1);
@@ -82,7 +63,7 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const Geom
   setup_.meshes.draw(
       program,
       [&](const SceneObject& o, std::size_t i) {
-        return !o.proxy && o.role == Role::Interest && passesOf[i] == 0;
+        return !o.proxy && o.role == Role::Interest && cuts[i].clipPasses == 0;
       },
       setUniforms);
 }

@@ -201,6 +201,10 @@ void PipeKind::prepare(const std::vector<ActiveCutter>&) {
         {.stages = {{GL_VERTEX_SHADER, "kinds/pipes/billboard.vert"},
                     {GL_GEOMETRY_SHADER, "kinds/pipes/billboard.geom"},
                     {GL_FRAGMENT_SHADER, "kinds/pipes/billboard_shadow.frag"}}});
+  rearHullProgram_ = setup_.bindings.build(
+      {.stages = {{GL_VERTEX_SHADER, "kinds/pipes/billboard.vert"},
+                  {GL_GEOMETRY_SHADER, "kinds/pipes/billboard.geom"},
+                  {GL_FRAGMENT_SHADER, "kinds/pipes/billboard_rear_hull.frag"}}});
   proxyProgram_ = build(
       {{GL_VERTEX_SHADER, "kinds/pipes/proxy.vert"}, {GL_FRAGMENT_SHADER, "kinds/pipes/proxy.frag"}});
   ownerProgram_ = build(
@@ -273,19 +277,27 @@ void PipeKind::setNetworkUniforms(GLuint program, const NetworkGpu& n) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pipesBlock_, n.pipes.id());
 }
 
-void PipeKind::drawShadowCasters() const {
-  const GLuint program = shadowProgram_.id();
+void PipeKind::drawTubes(GLuint program) const {
   glUseProgram(program);
   glEnable(GL_PRIMITIVE_RESTART);
   glPrimitiveRestartIndex(kPrimitiveRestart);
   for (const NetworkGpu& n : networks_) {
-    // Only the radii: the shadow program has no colours.
+    // Only the radii: these programs have no colours.
     glProgramUniform1f(program, 30, scene_.networks[n.network].radiusScale);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, pipesBlock_, n.pipes.id());
     glBindVertexArray(n.nodeArray.id());
     glDrawElements(GL_LINE_STRIP_ADJACENCY, n.nodeIndexCount, GL_UNSIGNED_INT, nullptr);
   }
   glDisable(GL_PRIMITIVE_RESTART);
+}
+
+void PipeKind::drawShadowCasters() const {
+  drawTubes(shadowProgram_.id());
+}
+
+void PipeKind::drawInterestRearHulls(const RearHullRequest& request) const {
+  glProgramUniform1f(rearHullProgram_.id(), 16, request.theta(nullptr));
+  drawTubes(rearHullProgram_.id());
 }
 
 void PipeKind::drawOwners() {

@@ -31,6 +31,9 @@ class PipeKind : public GeometryKind {
   // (src/styles/shadows): each quad faces the light. Only with the scene's shadows on (the
   // program is built for them).
   void drawShadowCasters() const override;
+  // Every network is of interest, as the shafts it contributes are: the tubes' rear hulls
+  // seed a cutaway surface around them (billboard_rear_hull.frag).
+  void drawInterestRearHulls(const RearHullRequest& request) const override;
 
  private:
   struct NetworkGpu {
@@ -42,6 +45,8 @@ class PipeKind : public GeometryKind {
     GLsizei nodeIndexCount = 0, proxyVertexCount = 0, waterCount = 0;
   };
   void setNetworkUniforms(GLuint program, const NetworkGpu& n) const;
+  // Every network's billboards with `program`, only the radii set (shadow casters, rear hulls).
+  void drawTubes(GLuint program) const;
   void drawOwners();
   void drawPipes();
   void drawAovs();
@@ -49,8 +54,8 @@ class PipeKind : public GeometryKind {
   FrameSetup& setup_;
   const Scene& scene_;
   std::vector<NetworkGpu> networks_;
-  gl::Program billboardProgram_, shadowProgram_, proxyProgram_, ownerProgram_, waterProgram_,
-      aovProgram_;
+  gl::Program billboardProgram_, shadowProgram_, rearHullProgram_, proxyProgram_, ownerProgram_,
+      waterProgram_, aovProgram_;
   gl::Texture stencilView_;
   FullscreenTriangle fullscreen_;
   GLuint gbufferTargets_ = 0;
