@@ -1,14 +1,38 @@
 // cutaway/render/renderer.hpp — renders a Scene headless (or into a window's context).
 //
-// The frame: with the adaptive cutter, its preparation passes first (seed, jump flooding,
-// dilation: src/cutters/adaptive/README.md); "geometry" draws the visible objects with the
-// scene's style and the cutter's clipping into multisampled targets (colour, normal, world
-// position + view depth, object id, cut mask, depth); "ghostGeometry" / "ghostLines" draw
-// removed material as faded lines; "lines" finds silhouettes, creases and cut outlines per
-// sample (styles/lines); "composite" resolves the samples into the final colour and copies
-// sample 0 of every intermediate buffer into single-sample AOVs. With style.shadows, a
-// "shadowMap" pass before "geometry" draws the shadow casters from the key light
-// (src/styles/shadows/README.md).
+// The Renderer composes the scene's techniques into one frame (src/render/renderer.cpp,
+// buildFrame): the shading style, the cutters in registry order (src/cutters/registry.cpp),
+// the geometry kinds (meshes, pipe networks). Its pass graph, in execution order; a bracketed
+// group runs where the scene asks for it (tests/test_pass_graph.cpp matches the frame of
+// every example against these lines):
+//
+//   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth) cutawayDilate]
+//   [breakawayClip breakawayInnerClip]
+//   [clipSurfaceSprites]
+//   [shadowMap]
+//   geometry
+//   [pipeOwners pipes pipeAovs]
+//   [ghostGeometry]
+//   [capMask]
+//   [lines]
+//   [ghostLines]
+//   composite
+//
+// - cutawaySeed … cutawayDilate: the adaptive cutter (Burns08 §5): the region of interest's
+//   rear hulls, the cutaway surface by jump flooding on the CPU or in fragment passes (one per
+//   step size N), dilated (src/cutters/adaptive/README.md).
+// - breakawayClip, breakawayInnerClip: Diepstraten03 §5's hull clip depths (outer, inner).
+// - clipSurfaceSprites: Trapp13 §6.3's depth sprites, rebuilt per frame for animated parity.
+// - shadowMap: style.shadows, the key light's depth (src/styles/shadows/README.md).
+// - geometry: the background, every kind's objects with the style and the cutters' clipping
+//   composed, Trapp13's caps, into the multisampled G-buffer (colour, normal, world position
+//   + view depth, object id, cut mask, depth, and the cutters' channels).
+// - pipeOwners, pipes, pipeAovs: Konev18 §6's billboard pipes into the same G-buffer.
+// - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines.
+// - capMask: Trapp13's cap coverage AOV.
+// - lines: silhouettes, creases and cut outlines per sample (styles/lines).
+// - composite: the samples resolved, the line overlays blended, sample 0 of every
+//   intermediate buffer copied into single-sample AOVs.
 //
 //   auto context = cutaway::gl::HeadlessContext::create();
 //   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");
