@@ -199,6 +199,23 @@ std::vector<OptionSpec> OptionsSchema::flatten() const {
   return out;
 }
 
+void OptionsSchema::checkRanges(const void* options, const std::string& where) const {
+  using Type = OptionSpec::Type;
+  for (const OptionSpec& o : flatten()) {
+    if (o.applies && !o.applies(options)) continue;
+    std::vector<double> values;
+    if (o.type == Type::Int || o.type == Type::Float) values = {std::get<double>(o.get(options))};
+    if (o.type == Type::Vec3) {
+      const glm::vec3 v = std::get<glm::vec3>(o.get(options));
+      values = {v.x, v.y, v.z};
+    }
+    for (const double v : values)
+      if (!(v >= o.min && v <= o.max))
+        throw Error(where, o.key, formatOptionValue(o.get(options)) + " is outside [" +
+                                      formatOptionValue(o.min) + ", " + formatOptionValue(o.max) + "]");
+  }
+}
+
 void OptionsSchema::read(const json_reader::Context& ctx, json_reader::ObjectReader& r,
                          void* options) const {
   for (const ReadHook& hook : readHooks_) hook(ctx, r, options);

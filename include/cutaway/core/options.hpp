@@ -103,6 +103,9 @@ class OptionsSchema {
   void read(const json_reader::Context& ctx, json_reader::ObjectReader& r, void* options) const;
   // Writes every value (unset optional ones left out) and the hooks' keys.
   nlohmann::ordered_json write(const void* options) const;
+  // For options set in code, not read from a file: throws cutaway::Error(where, key, reason)
+  // for the first number (or vector component) outside its range.
+  void checkRanges(const void* options, const std::string& where) const;
 
   const std::vector<std::shared_ptr<const Node>>& nodes() const { return nodes_; }
 

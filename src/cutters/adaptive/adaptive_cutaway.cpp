@@ -2,7 +2,6 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "frame/fullscreen.hpp"
 
 namespace cutaway {
 
@@ -18,62 +17,21 @@ CutterType adaptiveCutterType() {
 }
 
 struct AdaptiveCutaway::Programs {
-  gl::Program seed, anchors, jfaInit, jumpFlooding, cutawayDepth, dilate, ghost;
-  FullscreenTriangle fullscreen;
+  gl::Program seed, ghost;
 };
 
 AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
     : setup_(setup),
-      bufferSize_(options().bufferSize),
-      variant_(options().variant),
-      cpu_(cutawayOnCpu(options(), setup.context.software)),
+      surface_(setup.frame, options().bufferSize, options().variant,
+               cutawayOnCpu(options(), setup.context.software),
+               [this]() -> const AdaptiveCutawayOptions& { return options(); }),
       depthUnit_(setup.bindings.textureUnit("CUTAWAY_DEPTH")),
       dilatedUnit_(setup.bindings.textureUnit("CUTAWAY_DILATED")),
       programs_(std::make_unique<Programs>()) {
   Frame& frame = setup.frame;
-  const int n = bufferSize_;
-  const std::string size = " (" + std::to_string(n) + "x" + std::to_string(n) + " cutaway buffer)";
-  seedDepth_ = frame.declare("seedDepth",
-                             {.format = GL_R32F,
-                              .width = n,
-                              .height = n,
-                              .meaning = "window depth in [0,1] of the region of interest's rear "
-                                         "hull (greater-than depth test); 0 = near plane, no "
-                                         "seed" +
-                                         size});
-  seedAngle_ = frame.declare(
-      "seedAngle", {.format = GL_R32F,
-                    .width = n,
-                    .height = n,
-                    .meaning = "local cutaway angle θ of the seeding object, radians" + size});
+  const int n = surface_.bufferSize();
   seedDepthTest_ =
       frame.declare("seedDepthTest", {.format = GL_DEPTH_COMPONENT32F, .width = n, .height = n});
-  cutawayDepth_ = frame.declare("cutawayDepth",
-                                {.format = GL_R32F,
-                                 .width = n,
-                                 .height = n,
-                                 .meaning = "cutaway surface C(p) as window depth in [0,1] (0 = "
-                                            "near plane: nothing cut); fragments nearer than it "
-                                            "are removed" +
-                                            size});
-  cutawayDilated_ = frame.declare("cutawayDilated",
-                                  {.format = GL_R32F,
-                                   .width = n,
-                                   .height = n,
-                                   .meaning = "1-pixel minimum of cutawayDepth, window depth, "
-                                              "used for back faces" +
-                                              size});
-  for (const Target t : {cutawayDepth_, cutawayDilated_}) {
-    const GLuint id = frame.texture(t).id();
-    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // Burns08 §6: interpolated
-    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  }
-  if (!cpu_) {
-    anchorCone_ = frame.declare("anchorCone", {.format = GL_RGBA32F, .width = n, .height = n});
-    anchorFloor_ = frame.declare("anchorFloor", {.format = GL_RG32F, .width = n, .height = n});
-    anchorsA_ = frame.declare("anchorsA", {.format = GL_R32I, .width = n, .height = n});
-    anchorsB_ = frame.declare("anchorsB", {.format = GL_R32I, .width = n, .height = n});
-  }
   if (options().ghostLines) {
     const int samples = setup.scene.samples;
     ghostNormal_ = frame.declare("ghostNormal", {.format = GL_RGBA16F, .samples = samples});
@@ -84,16 +42,9 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
   Programs& p = *programs_;
   p.seed = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                         {GL_FRAGMENT_SHADER, "cutters/adaptive/seed.frag"}}});
-  p.dilate = buildFullscreenProgram("cutters/adaptive/dilate.frag");
   if (options().ghostLines)
     p.ghost = setup.bindings.build({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                                {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
-  if (!cpu_) {
-    p.anchors = buildFullscreenProgram("cutters/adaptive/anchors.frag");
-    p.jfaInit = buildFullscreenProgram("cutters/adaptive/jfa_init.frag");
-    p.jumpFlooding = buildFullscreenProgram("cutters/adaptive/jump_flooding.frag");
-    p.cutawayDepth = buildFullscreenProgram("cutters/adaptive/cutaway_depth.frag");
-  }
 }
 
 AdaptiveCutaway::~AdaptiveCutaway() = default;
@@ -132,21 +83,21 @@ std::optional<GhostBuffers> AdaptiveCutaway::ghosts() const {
 }
 
 std::vector<std::pair<std::string, std::string>> AdaptiveCutaway::facts() const {
-  return {{"computePath", cpu_ ? "cpu" : "gpu"}};
+  return {{"computePath", surface_.onCpu() ? "cpu" : "gpu"}};
 }
 
 void AdaptiveCutaway::beginFrame(const FrameState& state) {
-  camera_ = cutawayProjection(state.camera, state.aspect);
+  surface_.setCamera(cutawayProjection(state.camera, state.aspect));
 }
 
 void AdaptiveCutaway::bindForGeometry() const {
-  glBindTextureUnit(depthUnit_, setup_.frame.texture(cutawayDepth_).id());
-  glBindTextureUnit(dilatedUnit_, setup_.frame.texture(cutawayDilated_).id());
+  glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
+  glBindTextureUnit(dilatedUnit_, setup_.frame.texture(surface_.cutawayDilated()).id());
 }
 
 void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
   frame.addPass({.name = "cutawaySeed",
-                 .writes = {seedDepth_, seedAngle_, seedDepthTest_},
+                 .writes = {surface_.seedDepth(), surface_.seedAngle(), seedDepthTest_},
                  .run = [this](const PassContext& pass) {
                    const float zero[4] = {0, 0, 0, 0};
                    glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, 0, zero);
@@ -168,105 +119,13 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
                      setup_.drawInterestRearHulls({[this](const SceneObject* o) { return angleOf(o); }});
                    glDepthFunc(GL_LESS);
                  }});
-  if (cpu_)
-    frame.addPass({.name = "cutawayCpu",
-                   .reads = {seedDepth_, seedAngle_},
-                   .writes = {cutawayDepth_},
-                   .run = [this](const PassContext&) { computeOnCpu(); }});
-  else
-    addGpuPasses(frame);
-  frame.addPass({.name = "cutawayDilate",
-                 .reads = {cutawayDepth_},
-                 .writes = {cutawayDilated_},
-                 .run = [this](const PassContext&) {
-                   glDisable(GL_DEPTH_TEST);
-                   glUseProgram(programs_->dilate.id());
-                   glBindTextureUnit(0, setup_.frame.texture(cutawayDepth_).id());
-                   programs_->fullscreen.draw();
-                 }});
-}
-
-void AdaptiveCutaway::addGpuPasses(Frame& frame) {
-  auto bindCone = [this](GLuint program) {
-    glUseProgram(program);
-    glBindTextureUnit(0, setup_.frame.texture(anchorCone_).id());
-    glBindTextureUnit(1, setup_.frame.texture(anchorFloor_).id());
-    // View-plane units per buffer pixel: Δndc / P00 horizontally, Δndc / P11 vertically.
-    const float n = float(bufferSize_);
-    glProgramUniform2f(program, 0, 2.0f / n / camera_.projection[0][0],
-                       2.0f / n / camera_.projection[1][1]);
-    glDisable(GL_DEPTH_TEST);
-  };
-  frame.addPass({.name = "cutawayAnchors",
-                 .reads = {seedDepth_, seedAngle_},
-                 .writes = {anchorCone_, anchorFloor_},
-                 .run = [this](const PassContext&) {
-                   const AdaptiveCutawayOptions& o = options();
-                   const GLuint program = programs_->anchors.id();
-                   glUseProgram(program);
-                   glBindTextureUnit(0, setup_.frame.texture(seedDepth_).id());
-                   glBindTextureUnit(1, setup_.frame.texture(seedAngle_).id());
-                   const glm::vec3 floor = glm::normalize(camera_.viewRotation * o.floorNormal);
-                   glProgramUniform1i(program, 0, o.edgeCompression);
-                   glProgramUniform1f(program, 1, o.edgeRegion);
-                   glProgramUniform1i(program, 2, o.directionalConstraint);
-                   glProgramUniform3fv(program, 3, 1, &floor[0]);
-                   glProgramUniform1i(program, 4, o.perspectiveCompensation);
-                   glProgramUniform1i(program, 5, camera_.orthographic);
-                   glDisable(GL_DEPTH_TEST);
-                   programs_->fullscreen.draw();
-                 }});
-  frame.addPass({.name = "jumpFloodingInit",
-                 .reads = {anchorCone_},
-                 .writes = {anchorsA_},
-                 .run = [this](const PassContext&) {
-                   glUseProgram(programs_->jfaInit.id());
-                   glBindTextureUnit(0, setup_.frame.texture(anchorCone_).id());
-                   glDisable(GL_DEPTH_TEST);
-                   programs_->fullscreen.draw();
-                 }});
-  // One pass per step, ping-ponging the anchor buffers.
-  Target current = anchorsA_, next = anchorsB_;
-  for (int step : fields::stepSizes(bufferSize_, bufferSize_, variant_)) {
-    frame.addPass({.name = "jumpFlooding/" + std::to_string(step),
-                   .reads = {anchorCone_, anchorFloor_, current},
-                   .writes = {next},
-                   .run = [this, bindCone, step, current](const PassContext&) {
-                     const GLuint program = programs_->jumpFlooding.id();
-                     bindCone(program);
-                     glBindTextureUnit(2, setup_.frame.texture(current).id());
-                     glProgramUniform1i(program, 1, step);
-                     programs_->fullscreen.draw();
-                   }});
-    std::swap(current, next);
-  }
-  frame.addPass({.name = "cutawayDepth",
-                 .reads = {anchorCone_, anchorFloor_, current},
-                 .writes = {cutawayDepth_},
-                 .run = [this, bindCone, current](const PassContext&) {
-                   bindCone(programs_->cutawayDepth.id());
-                   glBindTextureUnit(2, setup_.frame.texture(current).id());
-                   programs_->fullscreen.draw();
-                 }});
-}
-
-// The same computation as the GPU passes: the seed read back, cones from anchorCone()
-// (cutaway_function.cpp mirrors anchors.frag), fields::jumpFlooding, and the result uploaded.
-void AdaptiveCutaway::computeOnCpu() {
-  const int n = bufferSize_;
-  const Frame& frame = setup_.frame;
-  fields::CutawayField field = fields::jumpFlooding(
-      makeSeedImage(frame.read(seedDepth_, 1), frame.read(seedAngle_, 1), n, options(), camera_),
-      -1.0f, variant_);
-  for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
-  glTextureSubImage2D(frame.texture(cutawayDepth_).id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
-                      field.depth.data());
+  surface_.addPasses(frame);
 }
 
 void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {
   if (!ghostNormal_.valid()) return;
   frame.addPass({.name = "ghostGeometry",
-                 .reads = {cutawayDepth_, cutawayDilated_},
+                 .reads = {surface_.cutawayDepth(), surface_.cutawayDilated()},
                  .writes = {ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_},
                  .run = [this](const PassContext& pass) { drawGhostGeometry(pass.framebuffer); }});
 }

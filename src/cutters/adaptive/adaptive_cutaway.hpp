@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cutaway/cutters/adaptive.hpp"
+#include "cutters/adaptive/surface_passes.hpp"
 #include "cutters/cutter.hpp"
 
 namespace cutaway {
@@ -20,7 +21,9 @@ class AdaptiveCutaway : public Cutter {
 
   void beginFrame(const FrameState& state) override;
   void addPreparationPasses(Frame& frame) override;
-  std::vector<Target> geometryInputs() const override { return {cutawayDepth_, cutawayDilated_}; }
+  std::vector<Target> geometryInputs() const override {
+    return {surface_.cutawayDepth(), surface_.cutawayDilated()};
+  }
   void bindForGeometry() const override;
   // Every visible object but the objects of interest (Burns08 §4.1).
   bool cuts(std::size_t index) const override;
@@ -38,19 +41,13 @@ class AdaptiveCutaway : public Cutter {
   const AdaptiveCutawayOptions& options() const {
     return *setup_.scene.cutters.find<AdaptiveCutawayOptions>();
   }
-  void addGpuPasses(Frame& frame);
-  void computeOnCpu();
   void drawGhostGeometry(GLuint framebuffer) const;
 
   FrameSetup& setup_;
-  // What a change rebuilds the renderer for: the buffer, the path and the variant.
-  const int bufferSize_;
-  const fields::JumpFloodingVariant variant_;
-  const bool cpu_;
-  CutawayProjection camera_{};
+  // Its buffer size, compute path and variant are what a change rebuilds the renderer for.
+  CutawaySurfacePasses surface_;
   GLuint depthUnit_, dilatedUnit_;
-  Target seedDepth_, seedAngle_, seedDepthTest_, cutawayDepth_, cutawayDilated_;
-  Target anchorCone_, anchorFloor_, anchorsA_, anchorsB_;
+  Target seedDepthTest_;
   Target ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_;
   struct Programs;
   std::unique_ptr<Programs> programs_;

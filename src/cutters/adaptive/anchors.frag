@@ -1,6 +1,5 @@
 #version 450 core
 // Per seed pixel: its cone (src/cutters/adaptive/cutaway_function.cpp, the same equations).
-#include "frame/frame_uniforms.glsl"
 layout(binding = 0) uniform sampler2D uSeedDepth;
 layout(binding = 1) uniform sampler2D uSeedAngle;
 layout(location = 0) uniform int uEdgeCompression;
@@ -9,6 +8,10 @@ layout(location = 2) uniform int uDirectional;
 layout(location = 3) uniform vec3 uFloorNormal;  // view space, unit
 layout(location = 4) uniform int uCompensation;
 layout(location = 5) uniform int uOrthographic;
+// The camera's projection and its inverse, not the frame block's: the surface is also
+// computed outside the renderer's frames (cutaway/cutters/adaptive_surface.hpp).
+layout(location = 6) uniform mat4 uProjection;
+layout(location = 7) uniform mat4 uInverseProjection;
 layout(location = 0) out vec4 outCone;   // z (NDC), mE, mF, seeded
 layout(location = 1) out vec2 outFloor;
 

@@ -1,0 +1,171 @@
+#include "cutters/adaptive/surface_passes.hpp"
+
+#include <string>
+
+#include "frame/fullscreen.hpp"
+
+namespace cutaway {
+
+struct CutawaySurfacePasses::Programs {
+  gl::Program anchors, jfaInit, jumpFlooding, cutawayDepth, dilate;
+  FullscreenTriangle fullscreen;
+};
+
+CutawaySurfacePasses::CutawaySurfacePasses(Frame& frame, int bufferSize,
+                                           fields::JumpFloodingVariant variant, bool cpu,
+                                           Options options)
+    : frame_(frame),
+      bufferSize_(bufferSize),
+      variant_(variant),
+      cpu_(cpu),
+      options_(std::move(options)),
+      programs_(std::make_unique<Programs>()) {
+  const int n = bufferSize_;
+  const std::string size = " (" + std::to_string(n) + "x" + std::to_string(n) + " cutaway buffer)";
+  seedDepth_ = frame.declare("seedDepth",
+                             {.format = GL_R32F,
+                              .width = n,
+                              .height = n,
+                              .meaning = "window depth in [0,1] of the region of interest's rear "
+                                         "hull (greater-than depth test); 0 = near plane, no "
+                                         "seed" +
+                                         size});
+  seedAngle_ = frame.declare(
+      "seedAngle", {.format = GL_R32F,
+                    .width = n,
+                    .height = n,
+                    .meaning = "local cutaway angle θ of the seeding object, radians" + size});
+  cutawayDepth_ = frame.declare("cutawayDepth",
+                                {.format = GL_R32F,
+                                 .width = n,
+                                 .height = n,
+                                 .meaning = "cutaway surface C(p) as window depth in [0,1] (0 = "
+                                            "near plane: nothing cut); fragments nearer than it "
+                                            "are removed" +
+                                            size});
+  cutawayDilated_ = frame.declare("cutawayDilated",
+                                  {.format = GL_R32F,
+                                   .width = n,
+                                   .height = n,
+                                   .meaning = "1-pixel minimum of cutawayDepth, window depth, "
+                                              "used for back faces" +
+                                              size});
+  for (const Target t : {cutawayDepth_, cutawayDilated_}) {
+    const GLuint id = frame.texture(t).id();
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // Burns08 §6: interpolated
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  }
+  Programs& p = *programs_;
+  p.dilate = buildFullscreenProgram("cutters/adaptive/dilate.frag");
+  if (cpu_) return;
+  anchorCone_ = frame.declare("anchorCone", {.format = GL_RGBA32F, .width = n, .height = n});
+  anchorFloor_ = frame.declare("anchorFloor", {.format = GL_RG32F, .width = n, .height = n});
+  anchorsA_ = frame.declare("anchorsA", {.format = GL_R32I, .width = n, .height = n});
+  anchorsB_ = frame.declare("anchorsB", {.format = GL_R32I, .width = n, .height = n});
+  p.anchors = buildFullscreenProgram("cutters/adaptive/anchors.frag");
+  p.jfaInit = buildFullscreenProgram("cutters/adaptive/jfa_init.frag");
+  p.jumpFlooding = buildFullscreenProgram("cutters/adaptive/jump_flooding.frag");
+  p.cutawayDepth = buildFullscreenProgram("cutters/adaptive/cutaway_depth.frag");
+}
+
+CutawaySurfacePasses::~CutawaySurfacePasses() = default;
+
+void CutawaySurfacePasses::addPasses(Frame& frame) {
+  if (cpu_)
+    frame.addPass({.name = "cutawayCpu",
+                   .reads = {seedDepth_, seedAngle_},
+                   .writes = {cutawayDepth_},
+                   .run = [this](const PassContext&) { computeOnCpu(); }});
+  else
+    addGpuPasses(frame);
+  frame.addPass({.name = "cutawayDilate",
+                 .reads = {cutawayDepth_},
+                 .writes = {cutawayDilated_},
+                 .run = [this](const PassContext&) {
+                   glDisable(GL_DEPTH_TEST);
+                   glUseProgram(programs_->dilate.id());
+                   glBindTextureUnit(0, frame_.texture(cutawayDepth_).id());
+                   programs_->fullscreen.draw();
+                 }});
+}
+
+void CutawaySurfacePasses::addGpuPasses(Frame& frame) {
+  auto bindCone = [this](GLuint program) {
+    glUseProgram(program);
+    glBindTextureUnit(0, frame_.texture(anchorCone_).id());
+    glBindTextureUnit(1, frame_.texture(anchorFloor_).id());
+    // View-plane units per buffer pixel: Δndc / P00 horizontally, Δndc / P11 vertically.
+    const float n = float(bufferSize_);
+    glProgramUniform2f(program, 0, 2.0f / n / camera_.projection[0][0],
+                       2.0f / n / camera_.projection[1][1]);
+    glDisable(GL_DEPTH_TEST);
+  };
+  frame.addPass({.name = "cutawayAnchors",
+                 .reads = {seedDepth_, seedAngle_},
+                 .writes = {anchorCone_, anchorFloor_},
+                 .run = [this](const PassContext&) {
+                   const AdaptiveCutawayOptions& o = options_();
+                   const GLuint program = programs_->anchors.id();
+                   glUseProgram(program);
+                   glBindTextureUnit(0, frame_.texture(seedDepth_).id());
+                   glBindTextureUnit(1, frame_.texture(seedAngle_).id());
+                   const glm::vec3 floor = glm::normalize(camera_.viewRotation * o.floorNormal);
+                   glProgramUniform1i(program, 0, o.edgeCompression);
+                   glProgramUniform1f(program, 1, o.edgeRegion);
+                   glProgramUniform1i(program, 2, o.directionalConstraint);
+                   glProgramUniform3fv(program, 3, 1, &floor[0]);
+                   glProgramUniform1i(program, 4, o.perspectiveCompensation);
+                   glProgramUniform1i(program, 5, camera_.orthographic);
+                   const glm::mat4 inverse = glm::inverse(camera_.projection);
+                   glProgramUniformMatrix4fv(program, 6, 1, GL_FALSE, &camera_.projection[0][0]);
+                   glProgramUniformMatrix4fv(program, 7, 1, GL_FALSE, &inverse[0][0]);
+                   glDisable(GL_DEPTH_TEST);
+                   programs_->fullscreen.draw();
+                 }});
+  frame.addPass({.name = "jumpFloodingInit",
+                 .reads = {anchorCone_},
+                 .writes = {anchorsA_},
+                 .run = [this](const PassContext&) {
+                   glUseProgram(programs_->jfaInit.id());
+                   glBindTextureUnit(0, frame_.texture(anchorCone_).id());
+                   glDisable(GL_DEPTH_TEST);
+                   programs_->fullscreen.draw();
+                 }});
+  // One pass per step, ping-ponging the anchor buffers.
+  Target current = anchorsA_, next = anchorsB_;
+  for (int step : fields::stepSizes(bufferSize_, bufferSize_, variant_)) {
+    frame.addPass({.name = "jumpFlooding/" + std::to_string(step),
+                   .reads = {anchorCone_, anchorFloor_, current},
+                   .writes = {next},
+                   .run = [this, bindCone, step, current](const PassContext&) {
+                     const GLuint program = programs_->jumpFlooding.id();
+                     bindCone(program);
+                     glBindTextureUnit(2, frame_.texture(current).id());
+                     glProgramUniform1i(program, 1, step);
+                     programs_->fullscreen.draw();
+                   }});
+    std::swap(current, next);
+  }
+  frame.addPass({.name = "cutawayDepth",
+                 .reads = {anchorCone_, anchorFloor_, current},
+                 .writes = {cutawayDepth_},
+                 .run = [this, bindCone, current](const PassContext&) {
+                   bindCone(programs_->cutawayDepth.id());
+                   glBindTextureUnit(2, frame_.texture(current).id());
+                   programs_->fullscreen.draw();
+                 }});
+}
+
+// The same computation as the GPU passes: the seed read back, cones from anchorCone()
+// (cutaway_function.cpp mirrors anchors.frag), fields::jumpFlooding, and the result uploaded.
+void CutawaySurfacePasses::computeOnCpu() {
+  const int n = bufferSize_;
+  fields::CutawayField field = fields::jumpFlooding(
+      makeSeedImage(frame_.read(seedDepth_, 1), frame_.read(seedAngle_, 1), n, options_(), camera_),
+      -1.0f, variant_);
+  for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
+  glTextureSubImage2D(frame_.texture(cutawayDepth_).id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
+                      field.depth.data());
+}
+
+}  // namespace cutaway

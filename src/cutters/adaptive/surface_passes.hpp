@@ -1,0 +1,57 @@
+// The cutaway surface from a seed (Burns08 §5, Burns11 §5.1): the region of interest's rear
+// hull as window depth and local angles in two n×n targets, turned into C(p) (eq. 4.2) by
+// jump flooding, in fragment passes or on the CPU, then dilated by one pixel for back faces
+// (Burns08 §4.2). The adaptive cutter seeds it from the scene's objects of interest; the
+// public AdaptiveCutawaySurface (cutaway/cutters/adaptive_surface.hpp) from another
+// application's depth texture.
+#pragma once
+
+#include <functional>
+#include <memory>
+
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/frame/frame.hpp"
+
+namespace cutaway {
+
+class CutawaySurfacePasses {
+ public:
+  using Options = std::function<const AdaptiveCutawayOptions&()>;
+  // Declares the seed, the surface and, on the GPU path, the anchor targets in `frame`;
+  // `options` is read every frame (angle-independent options: edge compression, floor…).
+  CutawaySurfacePasses(Frame& frame, int bufferSize, fields::JumpFloodingVariant variant,
+                       bool cpu, Options options);
+  ~CutawaySurfacePasses();
+
+  // Written by the seeding pass: window depth of the rear hull (0 = no seed), θ in radians.
+  Target seedDepth() const { return seedDepth_; }
+  Target seedAngle() const { return seedAngle_; }
+  // C(p) and its 1-pixel minimum, window depth, linearly filtered (Burns08 §6).
+  Target cutawayDepth() const { return cutawayDepth_; }
+  Target cutawayDilated() const { return cutawayDilated_; }
+  int bufferSize() const { return bufferSize_; }
+  bool onCpu() const { return cpu_; }
+
+  // The camera of the next frame.
+  void setCamera(const CutawayProjection& camera) { camera_ = camera; }
+  // The passes after the seed's: cutawayCpu, or cutawayAnchors, jumpFloodingInit,
+  // jumpFlooding/k…, cutawayDepth; then cutawayDilate.
+  void addPasses(Frame& frame);
+
+ private:
+  void addGpuPasses(Frame& frame);
+  void computeOnCpu();
+
+  const Frame& frame_;
+  const int bufferSize_;
+  const fields::JumpFloodingVariant variant_;
+  const bool cpu_;
+  Options options_;
+  CutawayProjection camera_{};
+  Target seedDepth_, seedAngle_, cutawayDepth_, cutawayDilated_;
+  Target anchorCone_, anchorFloor_, anchorsA_, anchorsB_;
+  struct Programs;
+  std::unique_ptr<Programs> programs_;
+};
+
+}  // namespace cutaway
