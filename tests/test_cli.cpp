@@ -226,6 +226,55 @@ TEST(Cli, CutawayOptionsOverrideTheScene) {
   EXPECT_NE(both.err.find("--no-cutaway"), std::string::npos) << both.err;
 }
 
+// --set takes any option by its scene-file path; bad paths and values are one-line errors
+// naming them, and nothing is written.
+TEST(Cli, SetOverridesAnyOptionByItsPath) {
+  const std::string scene = kSource + "/examples/bunny.json";
+  const fs::path plain = scratch("set-plain.png"), cut = scratch("set-box.png");
+  ASSERT_EQ(run("render " + scene + " --size 96x96 -o " + plain.string()).exitCode, 0);
+  // A box cut switched on and placed from the command line takes a corner of the bunny.
+  const Result r = run("render " + scene + " --size 96x96 -o " + cut.string() +
+                       " --set cutters.boxCut.center=0.5,0.5,0.5 --set cutters.boxCut.size=1,1,1"
+                       " --set style.lines.width=2");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(readPng(plain).pixels, readPng(cut).pixels);
+  for (const auto& [set, says] : std::vector<std::pair<std::string, std::string>>{
+           {"nosuch.key=1", "nosuch.key: no such option"},
+           {"cutters.boxCut.size=1,0,1", "cutters.boxCut.size: component 1 of \"1,0,1\" is outside"},
+           {"cutters.adaptive.angle=200", "cutters.adaptive.angle"},
+           {"cutters.boxCut.size", "expected PATH=VALUE"}}) {
+    const fs::path out = scratch("set-bad.png");
+    const Result bad = run("render " + scene + " -o " + out.string() + " --set " + set);
+    EXPECT_EQ(bad.exitCode, 1) << set;
+    EXPECT_NE(bad.err.find(says), std::string::npos) << set << ": " << bad.err;
+    EXPECT_EQ(lines(bad.err), 1) << bad.err;
+    EXPECT_FALSE(fs::exists(out)) << set;
+  }
+}
+
+// `cutaway options` lists every option with its schema's facts, as a table and as JSON.
+TEST(Cli, OptionsListsEverySchema) {
+  const Result table = run("options");
+  ASSERT_EQ(table.exitCode, 0) << table.err;
+  EXPECT_NE(table.out.find("cutters.boxCut.size"), std::string::npos);
+  EXPECT_NE(table.out.find("style.gooch.alpha"), std::string::npos);
+  const Result json = run("options --json");
+  ASSERT_EQ(json.exitCode, 0) << json.err;
+  const auto options = nlohmann::json::parse(json.out);
+  ASSERT_TRUE(options.is_array());
+  bool found = false;
+  for (const auto& o : options)
+    if (o["path"] == "cutters.adaptive.angle") {
+      found = true;
+      EXPECT_EQ(o["type"], "float");
+      EXPECT_EQ(o["range"], "[0, 90]");
+      EXPECT_EQ(o["default"], "45");
+      EXPECT_EQ(o["live"], true);
+    }
+  EXPECT_TRUE(found);
+  EXPECT_EQ(lines(table.out), int(options.size()) + 1);  // a header line, then one per option
+}
+
 TEST(Cli, CutoutAndBreakawayRenderWithTheirAovs) {
   for (const std::string scene : {"bunny-box-cutout", "bunny-box-breakaway"}) {
     const fs::path out = scratch(scene + ".png"), aovs = scratch(scene + "-aovs");

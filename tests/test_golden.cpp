@@ -78,6 +78,8 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"engine-clip", "engine-clip.json", "", 320, 240},
         GoldenCase{"house-clip", "house-clip.json", "", 320, 240},
         GoldenCase{"bunny-clip", "bunny-clip.json", "", 240, 240},
+        // The box cut (Li07's convention, Konev18 §7).
+        GoldenCase{"house-box-cut", "house-box-cut.json", "", 320, 240},
         GoldenCase{"bunny-clip-toon", "bunny-clip.json", "toon", 240, 240},
         // Konev18 terrain opening over real Ordnance Survey roads.
         GoldenCase{"ss64ne-terrain", "ss64ne-terrain.json", "", 320, 200},

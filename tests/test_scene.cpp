@@ -196,8 +196,8 @@ const BadScene kBadScenes[] = {
     {"light_too_many.json", "/lights", "at most 8 lights, got 9"},
     // Cutters: the adaptive cutaway.
     {"cutters_unknown_cutter.json", "/cutters/diepstraten",
-     "unknown key \"diepstraten\" (expected one of: adaptive, breakaway, clipSurfaces, cutout, "
-     "terrainOpening)"},
+     "unknown key \"diepstraten\" (expected one of: adaptive, boxCut, breakaway, clipSurfaces, "
+     "cutout, terrainOpening)"},
     // Cutters: Diepstraten03 cutout and breakaway.
     {"cutout_angle_0.json", "/cutters/cutout/angle", "value 0 is outside [1, 180]"},
     {"cutout_jitter_unknown_pattern.json", "/cutters/cutout/jitter/pattern",

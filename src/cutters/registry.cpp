@@ -11,11 +11,13 @@ CutterType breakawayCutterType();
 CutterType terrainOpeningCutterType();
 CutterType shaftWedgeCutterType();
 CutterType clipSurfacesCutterType();
+CutterType boxCutCutterType();
 
 const std::vector<CutterType>& cutterTypes() {
   static const std::vector<CutterType> types{
       adaptiveCutterType(),       cutoutCutterType(),     breakawayCutterType(),
       terrainOpeningCutterType(), shaftWedgeCutterType(), clipSurfacesCutterType(),
+      boxCutCutterType(),
   };
   return types;
 }

@@ -151,6 +151,7 @@ struct ClipSurfaceCutter::Gpu {
   FullscreenTriangle fullscreen;
   gl::Buffer block;
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
+  std::vector<glm::vec3> reliefScale;        // the S each relief map was derived with
   std::vector<CapGrid> grids;                // 2^k cells per side, k = 3 … 10
   std::vector<DepthSpriteGpu> sprites;       // one per capped object
   std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
@@ -171,12 +172,11 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
   Gpu& g = *gpu_;
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
     const ClipSurface& cs = options.surfaces[i];
-    // §4.2: normal and occlusion maps derived from the offset map, once.
-    const FloatImage relief = deriveReliefMaps(cs);
+    // §4.2: normal and occlusion maps derived from the offset map (again when S changes).
     gl::Texture t = gl::Texture::create(GL_TEXTURE_2D);
-    glTextureStorage2D(t.id(), 1, GL_RGBA32F, relief.width, relief.height);
-    glTextureSubImage2D(t.id(), 0, 0, 0, relief.width, relief.height, GL_RGBA, GL_FLOAT,
-                        relief.data.data());
+    glTextureStorage2D(t.id(), 1, GL_RGBA32F, cs.offsetMap.width, cs.offsetMap.height);
+    uploadRelief(t.id(), cs);
+    g.reliefScale.push_back(cs.scale);
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -237,11 +237,22 @@ ClipSurfaceCutter::~ClipSurfaceCutter() = default;
 
 // The block of clip_surfaces.glsl from the options as they are now: the surfaces' placement,
 // switches and the cap style are live.
+void ClipSurfaceCutter::uploadRelief(GLuint texture, const ClipSurface& cs) {
+  const FloatImage relief = deriveReliefMaps(cs);
+  glTextureSubImage2D(texture, 0, 0, 0, relief.width, relief.height, GL_RGBA, GL_FLOAT,
+                      relief.data.data());
+}
+
 void ClipSurfaceCutter::beginFrame(const FrameState&) {
   const ClipSurfaceOptions& options = live();
   ClipSurfaceBlock block{};
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
     const ClipSurface& cs = options.surfaces[i];
+    // The height S_z is live: the relief's normals and occlusion follow it.
+    if (cs.scale != gpu_->reliefScale[i]) {
+      uploadRelief(gpu_->relief[i].id(), cs);
+      gpu_->reliefScale[i] = cs.scale;
+    }
     block.origin[i] = glm::vec4(cs.origin, cs.enabled ? 1.0f : 0.0f);
     block.u[i] = glm::vec4(cs.u, 0.0f);
     block.v[i] = glm::vec4(cs.v, 0.0f);
@@ -343,9 +354,6 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     glProgramUniform1i(program, kObjectId, int(capped_[k]));
     glProgramUniformMatrix4fv(program, kCapToTexture, 1, GL_FALSE, &toTexture[0][0]);
     glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
-    const glm::vec3 capColor =
-        options.surfaces.front().capColor.value_or(scene.objects[capped_[k]].material.color * 0.7f);
-    glProgramUniform3fv(program, kCapColor, 1, &capColor[0]);
     glBindTextureUnit(layersUnit_, sprite.layers.id());
     const SceneObject& o = scene.objects[capped_[k]];
     const glm::mat4 model = o.transformAt(time);
@@ -375,6 +383,8 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
       std::size_t grid = 0;
       while (grid + 1 < gpu_->grids.size() && float(8 << grid) < texels) ++grid;
       glProgramUniform1i(program, kCapSurface, GLint(i));
+      const glm::vec3 capColor = cs.capColor.value_or(o.material.color * 0.7f);
+      glProgramUniform3fv(program, kCapColor, 1, &capColor[0]);
       glProgramUniform4f(program, kCapRect, lo.x, lo.y, hi.x, hi.y);
       const GLuint diffuse = gpu_->diffuse[i].id();
       glProgramUniform1i(program, kHasDiffuse, diffuse != 0);

@@ -54,6 +54,8 @@ class ClipSurfaceCutter : public Cutter {
 
  private:
   void buildPerFrameSprites(float time);
+  // Trapp13 §4.2's normal and occlusion maps of `cs`'s offset map into `texture`.
+  static void uploadRelief(GLuint texture, const ClipSurface& cs);
   // The options now; `options_` keeps what a change rebuilds the renderer for (the offset
   // maps, the caps and their sprites).
   const ClipSurfaceOptions& live() const { return *setup_.scene.cutters.find<ClipSurfaceOptions>(); }

@@ -86,8 +86,8 @@ OptionsSchema surfaceSchema() {
               .live = true})
       .optional("capColor", &S::capColor, Type::Color, 0, 1, glm::vec3(0.5f),
                 {.label = "cap colour",
-                 .doc = "Colour of the caps (of the first surface's); unset: each capped object's "
-                        "colour, darker.",
+                 .doc = "Colour of this surface's caps; unset: each capped object's colour, "
+                        "darker.",
                  .live = true})
       .derived(
           "position", Type::Float, -1e30, 1e30,
