@@ -7,18 +7,15 @@
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 
 namespace {
 
 const std::string kData = CUTAWAY_TEST_DATA;
-
-const Aov& find(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a;
-  throw std::runtime_error("no AOV " + name);
-}
 
 // A scene of random interest boxes (invisible proxies) in front of a wall, so the seed image
 // holds many overlapping rear hulls at different depths and angles.
@@ -53,12 +50,6 @@ std::string randomBoxesScene(unsigned seed, bool directional, bool orthographic,
          proxies + "]}";
 }
 
-std::vector<Aov> renderAovs(const Scene& scene) {
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  return renderer.readAovs();
-}
-
 }  // namespace
 
 // The anchor pass (anchors.frag) against cutaway_function.cpp, and GPU jump flooding against
@@ -74,11 +65,11 @@ TEST_P(GpuCpuCutaway, CutawayDepthsAgree) {
   cpuScene.cutters.find<AdaptiveCutawayOptions>()->compute = AdaptiveCutawayOptions::Compute::Cpu;
   const auto gpu = renderAovs(gpuScene);
   const auto cpu = renderAovs(cpuScene);
-  const FloatImage& a = find(gpu, "cutawayDepth").image;
-  const FloatImage& b = find(cpu, "cutawayDepth").image;
+  const FloatImage& a = aov(gpu, "cutawayDepth");
+  const FloatImage& b = aov(cpu, "cutawayDepth");
   ASSERT_EQ(a.data.size(), b.data.size());
   int seeded = 0, cut = 0, mismatched = 0;
-  for (float s : find(gpu, "seedDepth").image.data) seeded += s > 0.0f;
+  for (float s : aov(gpu, "seedDepth").data) seeded += s > 0.0f;
   for (std::size_t i = 0; i < a.data.size(); ++i) {
     cut += a.data[i] > 0.0f;
     // Float rounding only: the shader and the kernel evaluate the same cone in a different
@@ -119,7 +110,7 @@ double wallAngle(float distance, bool compensation, float theta) {
       distance, distance * 0.25f, distance * 2.0f, theta, compensation ? "true" : "false");
   const Scene scene = parseScene(json, "angle.json", kData);
   const auto aovs = renderAovs(scene);
-  const FloatImage& c = find(aovs, "cutawayDepth").image;  // rows top to bottom
+  const FloatImage& c = aov(aovs, "cutawayDepth");  // rows top to bottom
   const Camera camera = scene.resolvedCamera();
   const glm::mat4 inverse = glm::inverse(camera.projectionMatrix(1.0f));
   auto viewPoint = [&](int x) {
@@ -171,7 +162,7 @@ TEST(AdaptiveCutaway, ExposesTheObjectOfInterest) {
          "transform": {"translate": [-0.5, -0.5, -0.5]}}]})",
       "expose.json", kData);
   const auto aovs = renderAovs(scene);
-  const FloatImage& id = find(aovs, "objectId").image;
+  const FloatImage& id = aov(aovs, "objectId");
   EXPECT_EQ(id.at(40, 30)[0], 1.0f);  // the cube, through the hole in the wall
   EXPECT_EQ(id.at(2, 2)[0], 0.0f);    // the wall, far from the cube
   EXPECT_EQ(id.at(77, 57)[0], 0.0f);
@@ -190,9 +181,9 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
          "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
       "shell.json", kData);
   const auto aovs = renderAovs(scene);
-  const FloatImage& mask = find(aovs, "cutMask").image;
-  const FloatImage& id = find(aovs, "objectId").image;
-  const FloatImage& outlines = find(aovs, "cutOutlines").image;
+  const FloatImage& mask = aov(aovs, "cutMask");
+  const FloatImage& id = aov(aovs, "objectId");
+  const FloatImage& outlines = aov(aovs, "cutOutlines");
   int cutPixels = 0, outlinePixels = 0;
   for (float m : mask.data) cutPixels += m > 0.5f;
   for (float o : outlines.data) outlinePixels += o > 0.5f;
@@ -221,8 +212,8 @@ TEST(AdaptiveCutaway, GhostLinesShowRemovedMaterialOnly) {
         distance);
     const auto aovs = renderAovs(parseScene(json, "ghost.json", kData));
     double sum = 0;
-    for (float g : find(aovs, "ghostLines").image.data) sum += g;
-    EXPECT_EQ(find(aovs, "objectId").image.at(40, 30)[0], 1.0f);  // the small plate is removed
+    for (float g : aov(aovs, "ghostLines").data) sum += g;
+    EXPECT_EQ(aov(aovs, "objectId").at(40, 30)[0], 1.0f);  // the small plate is removed
     return sum;
   };
   // The plate's front face lies ~2.5 units in front of the cutaway surface.

@@ -13,18 +13,15 @@
 #include "cutaway/cutters/adaptive_surface.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 
 namespace {
 
 const std::string kData = CUTAWAY_TEST_DATA;
-
-const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a.image;
-  throw std::runtime_error("no AOV " + name);
-}
 
 // An R32F (or depth) texture of `texels`, rows bottom to top.
 gl::Texture texture(int width, int height, const std::vector<float>& texels,

@@ -10,8 +10,11 @@
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/render/techniques.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 using Fate = BoxCutFate::Fate;
 
 namespace {
@@ -86,18 +89,6 @@ Scene blockScene(bool orthographic) {
   return parseScene(json, "block.json", kData);
 }
 
-std::vector<Aov> render(const Scene& scene) {
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  return renderer.readAovs();
-}
-
-const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a.image;
-  throw std::runtime_error("no AOV " + name);
-}
-
 glm::vec3 at(const FloatImage& image, int x, int y) {
   const float* v = image.at(x, y);
   return {v[0], v[1], v[2]};
@@ -132,7 +123,7 @@ TEST_P(BoxCutGpu, CutsWhereTheCppFunctionSays) {
   const BoxCutOptions& box = *scene.cutters.find<BoxCutOptions>();
   Scene plain = scene;
   plain.cutters.clear();
-  const auto cut = render(scene), whole = render(plain);
+  const auto cut = renderAovs(scene), whole = renderAovs(plain);
   const FloatImage &ids = aov(cut, "objectId"), &pos = aov(cut, "position"),
                    &cutMask = aov(cut, "cutMask"), &normal = aov(cut, "normal");
   const FloatImage &plainIds = aov(whole, "objectId"), &plainPos = aov(whole, "position");

@@ -16,19 +16,16 @@
 #include "cutaway/render/renderer.hpp"
 #include "cutters/clip_surfaces/clip_surfaces.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 
 namespace {
 
 const std::string kData = CUTAWAY_TEST_DATA;
 const std::string kSource = CUTAWAY_SOURCE_DIR;
-
-const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a.image;
-  throw std::runtime_error("no AOV " + name);
-}
 
 // A torus around z (major radius 1, minor 0.35), closed and consistently oriented.
 Mesh torus(int major = 64, int minor = 32) {
@@ -246,12 +243,6 @@ void writeTorus() {
   std::fclose(f);
 }
 
-std::vector<Aov> render(const Scene& scene) {
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  return renderer.readAovs();
-}
-
 // A surface through z ≈ 0.05 clipping the upper half (N = −ẑ: clipped where z > o + h·S_z).
 const std::string kNoisySurface =
     R"({"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0], "scale": [2, 2, 0.1],
@@ -268,7 +259,7 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   const Scene clipped = parseScene(torusScene(kNoisySurface, false), "torus.json", kData);
   Scene plain = clipped;
   plain.cutters.disable<ClipSurfaceOptions>();
-  const auto a = render(plain), b = render(clipped);
+  const auto a = renderAovs(plain), b = renderAovs(clipped);
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position"), &mask = aov(b, "clipMask");
   const ClipSurface& cs = clipped.cutters.find<ClipSurfaceOptions>()->surfaces[0];
@@ -298,7 +289,7 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
 TEST(ClipSurfaceGpu, CapsCoverExactlyTheCut) {
   writeTorus();
   const Scene scene = parseScene(torusScene(kFlatSurface, true), "torus.json", kData);
-  const auto aovs = render(scene);
+  const auto aovs = renderAovs(scene);
   const FloatImage &cap = aov(aovs, "capMask"), &pos = aov(aovs, "position"),
                    &parity = aov(aovs, "capParity");
   const Mesh mesh = torus();
@@ -333,9 +324,9 @@ TEST(ClipSurfaceGpu, CapsCoverExactlyTheCut) {
 TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {
   writeTorus();
   Scene scene = parseScene(torusScene(kNoisySurface, true), "torus.json", kData);
-  const FloatImage a = aov(render(scene), "capMask");
+  const FloatImage a = aov(renderAovs(scene), "capMask");
   scene.cutters.find<ClipSurfaceOptions>()->parity = ClipSurfaceOptions::Parity::PerFrame;
-  const FloatImage b = aov(render(scene), "capMask");
+  const FloatImage b = aov(renderAovs(scene), "capMask");
   int differ = 0, caps = 0;
   for (std::size_t i = 0; i < a.data.size(); ++i)
     differ += a.data[i] != b.data[i], caps += a.data[i] == 1.0f;

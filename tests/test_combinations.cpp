@@ -17,30 +17,21 @@
 #include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 
 namespace {
 
 const std::string kExamples = std::string(CUTAWAY_SOURCE_DIR) + "/examples/";
-
-const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a.image;
-  throw std::runtime_error("no AOV " + name);
-}
 
 // One sample per pixel: every fragment lies at its pixel's centre, where the AOVs hold it.
 Scene small(const std::string& file, int width, int height) {
   Scene scene = loadScene(kExamples + file);
   scene.width = width, scene.height = height, scene.samples = 1;
   return scene;
-}
-
-std::vector<Aov> render(const Scene& scene) {
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  return renderer.readAovs();
 }
 
 int id(const FloatImage& ids, int x, int y) {
@@ -90,8 +81,8 @@ TEST(Combinations, EngineAdaptiveCutoutAndClipSurfaceEachCutWhereTheySay) {
   const Scene scene = small("engine-combined.json", 240, 180);
   Scene plain = scene;
   plain.cutters.clear();
-  const auto cut = render(scene);
-  const auto whole = render(plain);
+  const auto cut = renderAovs(scene);
+  const auto whole = renderAovs(plain);
   const FloatImage &ids = aov(cut, "objectId"), &pos = aov(cut, "position"),
                    &cutMask = aov(cut, "cutMask"),
                    &capMask = aov(cut, "capMask"), &distance = aov(cut, "cutoutDistance"),
@@ -183,8 +174,8 @@ TEST(Combinations, CityBuildingsCutAroundThePipesWhileTheTerrainOpens) {
   const Scene scene = small("ss64ne-city-cutaway.json", 320, 200);
   Scene terrainOnly = scene;
   terrainOnly.cutters.disable<AdaptiveCutawayOptions>();
-  const auto cut = render(scene);
-  const auto opened = render(terrainOnly);
+  const auto cut = renderAovs(scene);
+  const auto opened = renderAovs(terrainOnly);
   const FloatImage &ids = aov(cut, "objectId"), &pos = aov(cut, "position"),
                    &cutMask = aov(cut, "cutMask"),
                    &cutaway = aov(cut, "cutawayDepth"), &dilated = aov(cut, "cutawayDilated"),

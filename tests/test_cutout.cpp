@@ -14,24 +14,15 @@
 #include "cutaway/geometry/main_axis.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 
 namespace {
 
 const std::string kData = CUTAWAY_TEST_DATA;
-
-const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a.image;
-  throw std::runtime_error("no AOV " + name);
-}
-
-std::vector<Aov> renderAovs(const Scene& scene) {
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  return renderer.readAovs();
-}
 
 // The corners of a box with half-extents h, rotated by r.
 std::vector<glm::vec3> boxCorners(glm::vec3 h, const glm::mat3& r, glm::vec3 centre) {

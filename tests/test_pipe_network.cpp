@@ -13,8 +13,11 @@
 #include "cutaway/scene/benchmark_city.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 
 namespace {
 
@@ -216,22 +219,6 @@ TEST(BenchmarkCity, HasTable1sSizesAndAGroundFacingUp) {
   ASSERT_TRUE(city.cutters.find<TerrainOpeningOptions>());
   EXPECT_EQ(city.cutters.find<TerrainOpeningOptions>()->lines.size(), net.pipes.size());
 }
-
-namespace {
-
-std::vector<Aov> renderAovs(const Scene& scene) {
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  return renderer.readAovs();
-}
-
-const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a.image;
-  throw std::runtime_error("no AOV " + name);
-}
-
-}  // namespace
 
 TEST(PipeRendering, StreetShowsEveryPipeClass) {
   const Scene scene = loadScene(kSource + "/examples/pipes-street.json");

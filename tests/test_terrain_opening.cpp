@@ -7,24 +7,15 @@
 #include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 
 using namespace cutaway;
+using test::aov;
+using test::renderAovs;
 
 namespace {
 
 const std::string kSource = CUTAWAY_SOURCE_DIR;
-
-const FloatImage& aov(const std::vector<Aov>& aovs, const std::string& name) {
-  for (const auto& a : aovs)
-    if (a.name == name) return a.image;
-  throw std::runtime_error("no AOV " + name);
-}
-
-std::vector<Aov> render(const Scene& scene) {
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  return renderer.readAovs();
-}
 
 // A 100 × 100 ground over a floor 2 units below, two crossing "pipes" and a bend.
 std::string groundScene(const std::string& metric, bool cut) {
@@ -51,7 +42,7 @@ class TerrainOpeningGpuCpu : public ::testing::TestWithParam<std::string> {};
 TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
   const Scene cut = parseScene(groundScene(GetParam(), true), "ground.json", kSource);
   const Scene plain = parseScene(groundScene(GetParam(), false), "ground.json", kSource);
-  const auto a = render(plain), b = render(cut);
+  const auto a = renderAovs(plain), b = renderAovs(cut);
   const TerrainOpeningOptions& o = *cut.cutters.find<TerrainOpeningOptions>();
   Bounds terrain;
   terrain.extend(cut.objects[0].worldBounds());
