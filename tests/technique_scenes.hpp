@@ -80,6 +80,7 @@ inline OptionValue changed(const OptionSpec& spec, const OptionValue& now) {
         const double x = 0.5 * (v + to);
         return spec.type == Type::Int ? std::round(x) : x;
       };
+      if (spec.powerOfTwo) return v * 2 <= spec.max ? v * 2 : v / 2;
       const double up = step(hi);
       return up != v && up <= spec.max ? up : step(spec.min);
     }

@@ -234,14 +234,14 @@ TEST(Cli, SetOverridesAnyOptionByItsPath) {
   ASSERT_EQ(run("render " + scene + " --size 96x96 -o " + plain.string()).exitCode, 0);
   // A box cut switched on and placed from the command line takes a corner of the bunny.
   const Result r = run("render " + scene + " --size 96x96 -o " + cut.string() +
-                       " --set cutters.boxCut.center=0.5,0.5,0.5 --set cutters.boxCut.size=1,1,1"
-                       " --set style.lines.width=2");
+                       " --set cutters.boxCut.center=0.5,0.5,0.5 --set cutters.boxCut.size=1,1,1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(readPng(plain).pixels, readPng(cut).pixels);
   for (const auto& [set, says] : std::vector<std::pair<std::string, std::string>>{
            {"nosuch.key=1", "nosuch.key: no such option"},
            {"cutters.boxCut.size=1,0,1", "cutters.boxCut.size: component 1 of \"1,0,1\" is outside"},
            {"cutters.adaptive.angle=200", "cutters.adaptive.angle"},
+           {"style.shadows.size=1000", "style.shadows.size: value 1000 is not a power of two"},
            {"cutters.boxCut.size", "expected PATH=VALUE"}}) {
     const fs::path out = scratch("set-bad.png");
     const Result bad = run("render " + scene + " -o " + out.string() + " --set " + set);

@@ -29,7 +29,7 @@ class LiveOptions : public ::testing::TestWithParam<Case> {};
 
 TEST_P(LiveOptions, AChangeBetweenFramesIsTheFreshRenderersImage) {
   const Case& c = GetParam();
-  ASSERT_FALSE(c.examples.empty()) << c.technique << " has no example in test_live_options.cpp";
+  ASSERT_FALSE(c.examples.empty()) << c.technique << " has no scene in technique_scenes.hpp";
   std::map<std::string, bool> shows;  // live option → its change showed in some example
   for (const std::string& example : c.examples) {
     SCOPED_TRACE(example);

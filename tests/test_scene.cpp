@@ -182,7 +182,7 @@ const BadScene kBadScenes[] = {
      "unknown value \"phong\" (expected one of: lambert, gooch)"},
     {"style_hatching_unknown_key.json", "/style/hatching/angle", "unknown key \"angle\""},
     {"style_shadows_size_not_power_of_two.json", "/style/shadows/size",
-     "size must be a power of two"},
+     "must be a power of two"},
     {"style_shadows_unknown_key.json", "/style/shadows/softness",
      "unknown key \"softness\" (expected one of: bias, enabled, pcfRadius, size, slopeBias)"},
     {"style_shadows_pcf_radius_9.json", "/style/shadows/pcfRadius", "value 9 is outside [0, 4]"},

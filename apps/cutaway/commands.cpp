@@ -796,7 +796,7 @@ std::string rangeText(const OptionSpec& s) {
   }
   if (s.type != T::Int && s.type != T::Float && s.type != T::Vec3) return "";
   char text[64];
-  std::snprintf(text, sizeof text, "[%g, %g]", s.min, s.max);
+  std::snprintf(text, sizeof text, "[%g, %g]%s", s.min, s.max, s.powerOfTwo ? " 2^n" : "");
   return text;
 }
 

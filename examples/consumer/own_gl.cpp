@@ -69,6 +69,13 @@ GLuint program() {
   glAttachShader(p, compile(GL_VERTEX_SHADER, kVertex));
   glAttachShader(p, compile(GL_FRAGMENT_SHADER, kFragment));
   glLinkProgram(p);
+  GLint ok = 0;
+  glGetProgramiv(p, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048];
+    glGetProgramInfoLog(p, sizeof log, nullptr, log);
+    throw cutaway::Error(std::string("own-gl program: ") + log);
+  }
   return p;
 }
 

@@ -22,6 +22,11 @@ bool parseNumber(const std::string& text, double& out) {
   return ec == std::errc() && ptr == end && std::isfinite(out);
 }
 
+bool isPowerOfTwo(double v) {
+  const auto n = std::int64_t(v);
+  return n > 0 && (n & (n - 1)) == 0;
+}
+
 std::string rangeText(double lo, double hi) {
   std::ostringstream s;
   s << "[" << lo << ", " << hi << "]";
@@ -50,8 +55,11 @@ OptionValue readValue(const json_reader::Context& ctx, const OptionSpec& spec, c
   switch (spec.type) {
     case T::Bool:
       return json_reader::boolean(ctx, j, ptr);
-    case T::Int:
-      return double(json_reader::integer(ctx, j, ptr, int(spec.min), int(spec.max)));
+    case T::Int: {
+      const double v = json_reader::integer(ctx, j, ptr, int(spec.min), int(spec.max));
+      if (spec.powerOfTwo && !isPowerOfTwo(v)) ctx.fail(ptr, "must be a power of two");
+      return v;
+    }
     case T::Float:
       return json_reader::number(ctx, j, ptr, spec.min, spec.max);
     case T::Choice:
@@ -115,6 +123,8 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
         throw std::invalid_argument("expected an integer, got " + text);
       if (!(v >= p.min && v <= p.max))
         throw std::invalid_argument("value " + text + " is outside " + rangeText(p.min, p.max));
+      if (p.powerOfTwo && !isPowerOfTwo(v))
+        throw std::invalid_argument("value " + text + " is not a power of two");
       return v;
     }
     case Type::Choice: {
@@ -213,6 +223,10 @@ void OptionsSchema::checkRanges(const void* options, const std::string& where) c
       if (!(v >= o.min && v <= o.max))
         throw Error(where, o.key, formatOptionValue(o.get(options)) + " is outside [" +
                                       formatOptionValue(o.min) + ", " + formatOptionValue(o.max) + "]");
+    if (o.powerOfTwo && !isPowerOfTwo(values.front()))
+      throw Error(where, o.key, formatOptionValue(o.get(options)) + " is not a power of two");
+    if (o.type == Type::Direction && glm::length(std::get<glm::vec3>(o.get(options))) == 0.0f)
+      throw Error(where, o.key, "a direction must not be the zero vector");
   }
 }
 

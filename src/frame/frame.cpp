@@ -143,13 +143,14 @@ void Frame::execute() {
     prepared_ = true;
   }
   cpuMs_.clear();
+  timer_.restart();
   for (auto& pass : passes_) {
     const auto start = std::chrono::steady_clock::now();
-    timer_.begin(pass.desc.name);
+    if (timed_) timer_.begin(pass.desc.name);
     glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.id());
     glViewport(0, 0, pass.width, pass.height);
     pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
-    timer_.end();
+    if (timed_) timer_.end();
     cpuMs_.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());

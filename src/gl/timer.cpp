@@ -31,4 +31,9 @@ std::vector<std::pair<std::string, double>> PassTimer::collect() {
   return result;
 }
 
+void PassTimer::restart() {
+  assert(!active_);
+  names_.clear();
+}
+
 }  // namespace cutaway::gl

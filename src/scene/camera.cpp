@@ -22,6 +22,12 @@ float Camera::viewHeightAtTarget() const {
   return 2.0f * glm::length(target - eye) * std::tan(glm::radians(fovY) * 0.5f);
 }
 
+glm::vec3 Camera::rayOrigin(const glm::vec3& x) const {
+  if (projection != Projection::Orthographic) return eye;
+  const glm::vec3 forward = glm::normalize(target - eye);
+  return x - forward * glm::dot(x - eye, forward);
+}
+
 void Camera::setProjection(Projection to) {
   if (projection == to) return;
   const float distance = glm::length(target - eye);

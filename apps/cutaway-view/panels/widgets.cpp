@@ -21,7 +21,13 @@ std::optional<ParameterValue> parameterWidget(const Parameter& p, const Scene& s
     case Type::Int: {
       int v = int(std::get<double>(value));
       const int hi = int(p.sliderMax.value_or(p.max));
-      if (ImGui::SliderInt(p.label.c_str(), &v, int(p.min), hi, "%d", ImGuiSliderFlags_AlwaysClamp))
+      if (p.powerOfTwo) {  // the slider moves the exponent: every stop is a valid size
+        int e = int(std::log2(v));
+        const std::string shown = std::to_string(1 << e);
+        if (ImGui::SliderInt(p.label.c_str(), &e, int(std::ceil(std::log2(p.min))),
+                             int(std::floor(std::log2(hi))), shown.c_str(), ImGuiSliderFlags_AlwaysClamp))
+          changed = double(1 << e);
+      } else if (ImGui::SliderInt(p.label.c_str(), &v, int(p.min), hi, "%d", ImGuiSliderFlags_AlwaysClamp))
         changed = double(v);
       break;
     }

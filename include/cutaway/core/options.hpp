@@ -51,6 +51,7 @@ struct OptionInfo {
   bool live = false;  // only a uniform: a change redraws without a new renderer
   bool required = false;          // must be given in the scene file (in its object)
   std::optional<double> sliderMax;  // sliders end here; larger values come from the script
+  bool powerOfTwo = false;          // an integer that must be a power of two (a texture size)
   // Only in the scene file, whose reader checks it against other keys (a clip surface's
   // orthogonal sides): the viewer and the CLI edit it through derived values, if at all.
   bool fileOnly = false;
@@ -67,6 +68,7 @@ struct OptionSpec {
   Type type = Type::Float;
   double min = 0, max = 0;  // Int and Float, and each Vec3 component: the accepted range
   std::optional<double> sliderMax;
+  bool powerOfTwo = false;  // Int: only powers of two are accepted
   std::vector<std::string> choices;
   std::string doc;
   bool live = false;
@@ -104,7 +106,8 @@ class OptionsSchema {
   // Writes every value (unset optional ones left out) and the hooks' keys.
   nlohmann::ordered_json write(const void* options) const;
   // For options set in code, not read from a file: throws cutaway::Error(where, key, reason)
-  // for the first number (or vector component) outside its range.
+  // for the first number (or vector component) outside its range, a size that is not a
+  // power of two, or a zero direction.
   void checkRanges(const void* options, const std::string& where) const;
 
   const std::vector<std::shared_ptr<const Node>>& nodes() const { return nodes_; }
@@ -371,6 +374,7 @@ class OptionsBuilder {
     n.spec.type = type;
     n.spec.min = min, n.spec.max = max;
     n.spec.sliderMax = info.sliderMax;
+    n.spec.powerOfTwo = info.powerOfTwo;
     n.spec.doc = std::move(info.doc);
     n.spec.live = info.live;
     n.spec.required = info.required;

@@ -17,12 +17,14 @@
 //   // with uCut = cut and uCutDilated = surface.dilatedTexture().
 //
 // Depths are window depths in [0, 1] under the application's own projection (perspective or
-// orthographic). The result is linearly filtered (Burns08 §6), 0 where nothing is cut.
-// compute() runs the passes the renderer's adaptive cutter runs (cutawayAnchors, jump
-// flooding, cutawayDepth, cutawayDilate; or the same math on the CPU on software rasterisers)
-// after one seed pass that takes, for each cutaway-buffer texel, the farthest depth in its
-// footprint. It keeps the application's framebuffer binding, viewport, program, vertex array
-// and depth-test state; it rebinds texture units 0–2.
+// orthographic), with OpenGL's default depth range and clip control (NDC z = 2·depth − 1). The
+// result is linearly filtered (Burns08 §6), 0 where nothing is cut. compute() runs the passes
+// the renderer's adaptive cutter runs (cutawayAnchors, jump flooding, cutawayDepth,
+// cutawayDilate; or the same math on the CPU on software rasterisers) after one seed pass that
+// takes, for each cutaway-buffer texel, the farthest depth in its footprint. It puts back the
+// application's framebuffers, program, vertex array, viewport, colour mask, depth test, blend,
+// scissor, stencil, culling, rasteriser discard and pixel-transfer state (none of which
+// changes the result); it rebinds texture units 0–2, and runs no timer queries.
 #pragma once
 
 #include <memory>

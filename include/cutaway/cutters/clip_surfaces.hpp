@@ -99,10 +99,11 @@ const OptionsSchema& clipSurfacesSchema();
 // Whether `p` is clipped by the enabled surfaces under `options.combine`.
 bool clippedBySurfaces(const ClipSurfaceOptions& options, const glm::vec3& p);
 
-// A surface's derived maps (§4.2, computed once at load time), one RGBA texel per offset-map
-// texel: r = height h, g = ∂h/∂s and b = ∂h/∂t (per unit of texture coordinate, so the shader
-// turns them into the displaced surface's normal for any S, U, V), a = ambient occlusion of the
-// relief in [0, 1] (horizon-based, in scene units of this surface).
+// A surface's derived maps (§4.2; the renderer derives them again when S changes), one RGBA
+// texel per offset-map texel: r = height h, g = ∂h/∂s and b = ∂h/∂t (per unit of texture
+// coordinate, so the shader turns them into the displaced surface's normal for any S, U, V),
+// a = ambient occlusion of the relief in [0, 1] (horizon-based, in scene units of this
+// surface).
 FloatImage deriveReliefMaps(const ClipSurface& cs);
 
 // A volumetric depth sprite (§5.2): the layers of a watertight mesh's depth complexity seen

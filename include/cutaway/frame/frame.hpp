@@ -76,8 +76,11 @@ class Frame {
   // Runs every pass once; throws cutaway::Error for an ill-formed frame (a read before its
   // write, a handle of another frame, an incomplete framebuffer).
   void execute();
-  // GPU time of each pass in the last `execute` (waits for the queries).
+  // GPU time of each pass in the last `execute` (waits for the queries); empty untimed.
   std::vector<PassTiming> timings();
+  // Whether `execute` times its passes with GL_TIME_ELAPSED queries (on by default); off, a
+  // frame can run inside another application's own timer query.
+  void setTimed(bool timed) { timed_ = timed; }
   // The passes' names in execution order.
   std::vector<std::string> passNames() const;
 
@@ -122,6 +125,7 @@ class Frame {
   std::vector<Pass> passes_;
   std::vector<double> cpuMs_;
   bool prepared_ = false;
+  bool timed_ = true;
 };
 
 // Whether `format` is a depth format (attached as GL_DEPTH_ATTACHMENT).

@@ -22,8 +22,12 @@ class PassTimer {
   explicit PassTimer(bool flushAfterBegin) : flushAfterBegin_(flushAfterBegin) {}
   void begin(const std::string& pass);
   void end();
-  // Waits for all queries begun since the last collect and returns (pass, milliseconds).
+  // Waits for all queries begun since the last collect or restart and returns (pass,
+  // milliseconds).
   std::vector<std::pair<std::string, double>> collect();
+  // Forgets the passes not collected: their queries are begun again by the next passes, so
+  // frames that nobody collects keep one query per pass.
+  void restart();
 
  private:
   bool flushAfterBegin_;

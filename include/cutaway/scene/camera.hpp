@@ -31,6 +31,9 @@ struct Camera {
   glm::mat4 projectionMatrix(float aspect) const;
   // World units of the view's height at the target (orthographic: `height`).
   float viewHeightAtTarget() const;
+  // Where the view ray through world point `x` starts: the eye, or for orthographic views
+  // x's foot on the view plane through the eye (as the cutters' GLSL has it).
+  glm::vec3 rayOrigin(const glm::vec3& x) const;
   // Switches the projection keeping the view's height at the target: the orthographic height
   // of the perspective frustum there, or a perspective eye backed off along its line of sight
   // until it sees the orthographic height.

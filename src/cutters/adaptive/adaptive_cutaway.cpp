@@ -1,8 +1,5 @@
 #include "cutters/adaptive/adaptive_cutaway.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
-
-
 namespace cutaway {
 
 CutterType adaptiveCutterType() {
@@ -119,7 +116,7 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
                      setup_.drawInterestRearHulls({[this](const SceneObject* o) { return angleOf(o); }});
                    glDepthFunc(GL_LESS);
                  }});
-  surface_.addPasses(frame);
+  surface_.addPasses();
 }
 
 void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {

@@ -70,15 +70,15 @@ CutawaySurfacePasses::CutawaySurfacePasses(Frame& frame, int bufferSize,
 
 CutawaySurfacePasses::~CutawaySurfacePasses() = default;
 
-void CutawaySurfacePasses::addPasses(Frame& frame) {
+void CutawaySurfacePasses::addPasses() {
   if (cpu_)
-    frame.addPass({.name = "cutawayCpu",
+    frame_.addPass({.name = "cutawayCpu",
                    .reads = {seedDepth_, seedAngle_},
                    .writes = {cutawayDepth_},
                    .run = [this](const PassContext&) { computeOnCpu(); }});
   else
-    addGpuPasses(frame);
-  frame.addPass({.name = "cutawayDilate",
+    addGpuPasses();
+  frame_.addPass({.name = "cutawayDilate",
                  .reads = {cutawayDepth_},
                  .writes = {cutawayDilated_},
                  .run = [this](const PassContext&) {
@@ -89,7 +89,7 @@ void CutawaySurfacePasses::addPasses(Frame& frame) {
                  }});
 }
 
-void CutawaySurfacePasses::addGpuPasses(Frame& frame) {
+void CutawaySurfacePasses::addGpuPasses() {
   auto bindCone = [this](GLuint program) {
     glUseProgram(program);
     glBindTextureUnit(0, frame_.texture(anchorCone_).id());
@@ -100,7 +100,7 @@ void CutawaySurfacePasses::addGpuPasses(Frame& frame) {
                        2.0f / n / camera_.projection[1][1]);
     glDisable(GL_DEPTH_TEST);
   };
-  frame.addPass({.name = "cutawayAnchors",
+  frame_.addPass({.name = "cutawayAnchors",
                  .reads = {seedDepth_, seedAngle_},
                  .writes = {anchorCone_, anchorFloor_},
                  .run = [this](const PassContext&) {
@@ -122,7 +122,7 @@ void CutawaySurfacePasses::addGpuPasses(Frame& frame) {
                    glDisable(GL_DEPTH_TEST);
                    programs_->fullscreen.draw();
                  }});
-  frame.addPass({.name = "jumpFloodingInit",
+  frame_.addPass({.name = "jumpFloodingInit",
                  .reads = {anchorCone_},
                  .writes = {anchorsA_},
                  .run = [this](const PassContext&) {
@@ -134,7 +134,7 @@ void CutawaySurfacePasses::addGpuPasses(Frame& frame) {
   // One pass per step, ping-ponging the anchor buffers.
   Target current = anchorsA_, next = anchorsB_;
   for (int step : fields::stepSizes(bufferSize_, bufferSize_, variant_)) {
-    frame.addPass({.name = "jumpFlooding/" + std::to_string(step),
+    frame_.addPass({.name = "jumpFlooding/" + std::to_string(step),
                    .reads = {anchorCone_, anchorFloor_, current},
                    .writes = {next},
                    .run = [this, bindCone, step, current](const PassContext&) {
@@ -146,7 +146,7 @@ void CutawaySurfacePasses::addGpuPasses(Frame& frame) {
                    }});
     std::swap(current, next);
   }
-  frame.addPass({.name = "cutawayDepth",
+  frame_.addPass({.name = "cutawayDepth",
                  .reads = {anchorCone_, anchorFloor_, current},
                  .writes = {cutawayDepth_},
                  .run = [this, bindCone, current](const PassContext&) {

@@ -34,15 +34,15 @@ class CutawaySurfacePasses {
 
   // The camera of the next frame.
   void setCamera(const CutawayProjection& camera) { camera_ = camera; }
-  // The passes after the seed's: cutawayCpu, or cutawayAnchors, jumpFloodingInit,
-  // jumpFlooding/k…, cutawayDepth; then cutawayDilate.
-  void addPasses(Frame& frame);
+  // The passes after the seed's, into the frame: cutawayCpu, or cutawayAnchors,
+  // jumpFloodingInit, jumpFlooding/k…, cutawayDepth; then cutawayDilate.
+  void addPasses();
 
  private:
-  void addGpuPasses(Frame& frame);
+  void addGpuPasses();
   void computeOnCpu();
 
-  const Frame& frame_;
+  Frame& frame_;
   const int bufferSize_;
   const fields::JumpFloodingVariant variant_;
   const bool cpu_;

@@ -235,14 +235,15 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
 
 ClipSurfaceCutter::~ClipSurfaceCutter() = default;
 
-// The block of clip_surfaces.glsl from the options as they are now: the surfaces' placement,
-// switches and the cap style are live.
+// A surface's relief maps (Trapp13 §4.2: height, its slopes, occlusion) into `texture`.
 void ClipSurfaceCutter::uploadRelief(GLuint texture, const ClipSurface& cs) {
   const FloatImage relief = deriveReliefMaps(cs);
   glTextureSubImage2D(texture, 0, 0, 0, relief.width, relief.height, GL_RGBA, GL_FLOAT,
                       relief.data.data());
 }
 
+// The block of clip_surfaces.glsl from the options as they are now: the surfaces' placement,
+// switches and the cap style are live.
 void ClipSurfaceCutter::beginFrame(const FrameState&) {
   const ClipSurfaceOptions& options = live();
   ClipSurfaceBlock block{};

@@ -1,5 +1,4 @@
 // The shadows' options as the scene file, the viewer and the CLI name them.
-#include "core/json_reader.hpp"
 #include "cutaway/styles/shadows.hpp"
 
 namespace cutaway {
@@ -9,7 +8,8 @@ const OptionsSchema& shadowStyleSchema() {
   static const OptionsSchema schema =
       OptionsBuilder<O>()
           .number("size", &O::size, 64, 8192,
-                  {.doc = "Texels per side of the shadow map (a power of two).", .sliderMax = 4096})
+                  {.doc = "Texels per side of the shadow map (a power of two).", .sliderMax = 4096,
+                   .powerOfTwo = true})
           .number("bias", &O::bias, 0, 0.1,
                   {.doc = "Constant bias towards the light, as a fraction of the scene's radius.",
                    .live = true})
@@ -18,9 +18,6 @@ const OptionsSchema& shadowStyleSchema() {
                    .live = true})
           .number("pcfRadius", &O::pcfRadius, 0, 4,
                   {.label = "PCF radius", .doc = "(2r + 1)² filtered comparisons per lookup.", .live = true})
-          .check([](const json_reader::Context& ctx, json_reader::ObjectReader& r, O& s) {
-            if (s.size & (s.size - 1)) ctx.fail(r.at("size"), "size must be a power of two");
-          })
           .build();
   return schema;
 }
