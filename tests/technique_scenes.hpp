@@ -35,7 +35,8 @@ inline std::vector<Case> cases() {
   for (const TechniqueInfo& t : techniques()) {
     Case c{t.path, {}, {}, 96, 72};
     if (t.path == "cutters.adaptive")
-      c.examples = {"examples/engine-cutaway.json", "examples/ss64ne-city-cutaway.json"},
+      c.examples = {"examples/engine-cutaway.json", "examples/ss64ne-city-cutaway.json",
+                    "examples/engine-contextual.json"},
       c.setup = {{"cutters.adaptive.ghostLines", "true"}};
     else if (t.path == "cutters.cutout")
       c.examples = {"examples/bunny-box-cutout.json", "examples/engine-cutout.json"},

@@ -252,6 +252,31 @@ TEST(Cli, SetOverridesAnyOptionByItsPath) {
   }
 }
 
+// --importance PATTERN=V grades objects by name or group (Burns11 §3.2) and changes the
+// contextual cutaway; bad assignments are refused before anything is written.
+TEST(Cli, ImportanceByNameOrGroupChangesTheContextualCutaway) {
+  const std::string scene = kSource + "/examples/engine-contextual.json";
+  const fs::path base = scratch("importance-base.png"), graded = scratch("importance-graded.png");
+  ASSERT_EQ(run("render " + scene + " --size 96x72 -o " + base.string()).exitCode, 0);
+  // The cylinders made as important as can be are trimmed nowhere: they hide the pistons.
+  const Result r = run("render " + scene + " --size 96x72 -o " + graded.string() +
+                       " --importance cylinders=1 --importance engine/nodes.72.=0");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(readPng(base).pixels, readPng(graded).pixels);
+  for (const auto& [set, says] : std::vector<std::pair<std::string, std::string>>{
+           {"nosuch=0.5", "--importance: nosuch: matches no object's name or group"},
+           {"pistons=1.5", "importance must lie in [0, 1]"},
+           {"pistons", "expected PATTERN=V"},
+           {"pistons=high", "expected PATTERN=V"},
+           {"'(=0.5'", "not a regular expression"}}) {
+    const fs::path out = scratch("importance-bad.png");
+    const Result bad = run("render " + scene + " -o " + out.string() + " --importance " + set);
+    EXPECT_EQ(bad.exitCode, 1) << set;
+    EXPECT_NE(bad.err.find(says), std::string::npos) << set << ": " << bad.err;
+    EXPECT_FALSE(fs::exists(out)) << set;
+  }
+}
+
 // `cutaway options` lists every option with its schema's facts, as a table and as JSON.
 TEST(Cli, OptionsListsEverySchema) {
   const Result table = run("options");

@@ -274,6 +274,12 @@ const BadScene kBadScenes[] = {
      "unknown key \"width\" (expected one of: distance, opacity)"},
     {"adaptive_ghost_opacity_above_one.json", "/cutters/adaptive/ghostLines/opacity",
      "value 1.5 is outside [0, 1]"},
+    {"adaptive_contextual_transition_below_angle.json", "/cutters/adaptive/contextual",
+     "the transition angle θ₂ (30) must not be below the angle θ₁ (40)"},
+    {"adaptive_contextual_negative_overlay.json", "/cutters/adaptive/contextual/overlay",
+     "value -1 is outside [0, 1e+30]"},
+    {"adaptive_contextual_bad_reduction.json", "/cutters/adaptive/contextual/reduction",
+     "unknown value \"translucent\" (expected one of: auto, importance, occlusion)"},
     {"object_cutaway_angle_120.json", "/objects/0/params/cutawayAngle",
      "value 120 is outside [0, 90]"},
     // Animation.

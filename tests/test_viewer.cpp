@@ -247,6 +247,27 @@ TEST(Viewer, ScriptedSessionMatchesCutawayRenderOfTheSavedScene) {
   EXPECT_LT(panel / (3.0 * 40 * 40), 90.0);
 }
 
+// The importance slider's script command changes the contextual cutaway (Burns11 eqs.
+// 7.1–7.3): the cylinders at importance 1 are trimmed nowhere, and the saved scene renders as
+// the viewer shows it.
+TEST(Viewer, ImportanceChangesTheContextualCutaway) {
+  if (!hasXvfbRun()) GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb)";
+  const fs::path before = scratch("importance-before.png"), after = scratch("importance-after.png"),
+                 saved = scratch("importance.json"), script = scratch("importance.txt");
+  std::ofstream(script) << "wait 1\nscreenshot " << before.string()
+                        << "\nselect cylinders\nimportance 1\nscreenshot " << after.string()
+                        << "\nsave " << saved.string() << "\nquit\n";
+  const Result r = runUnderXvfb(kSource + "/examples/engine-contextual.json --size 320x240 --script " +
+                                script.string());
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  const Rgba8Image shot = readPng(after);
+  EXPECT_NE(readPng(before).pixels, shot.pixels);
+  const fs::path reference = scratch("importance-reference.png");
+  const Result rendered = run(cliLike(r) + " render " + saved.string() + " -o " + reference.string());
+  ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+  expectSameImage(shot, readPng(reference));
+}
+
 // Konev18 §5's radius and §6's colours changed in a running viewer: the renderer is kept and
 // draws them the next frame, which must be the image a fresh `cutaway render` of the saved
 // scene makes.

@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <charconv>
 #include <unistd.h>
 
 #include <algorithm>
@@ -79,6 +80,20 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     throw Error("--no-cutaway", "", "cannot be combined with --cutaway-angle");
   if (o.noCutaway) scene.cutters.clear();  // the plain model: no cutter at all
   if (o.cutawayAngle) scene.cutters.enable<AdaptiveCutawayOptions>().angle = *o.cutawayAngle;
+  // --importance PATTERN=V, in the order given (Burns11 §3.2).
+  for (const std::string& assignment : o.importance) {
+    const auto equals = assignment.rfind('=');
+    double v = 0;
+    const std::string value = equals == std::string::npos ? "" : assignment.substr(equals + 1);
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
+    if (equals == std::string::npos || equals == 0 || ec != std::errc() || end != value.data() + value.size())
+      throw Error("--importance", assignment, "expected PATTERN=V with V a number, e.g. 'pistons=0.9'");
+    try {
+      scene.setImportance(assignment.substr(0, equals), float(v));
+    } catch (const Error& e) {
+      throw Error("--importance", e.file(), e.reason());
+    }
+  }
   // --set PATH=VALUE, in the order given: any technique's option by its scene-file path.
   for (const std::string& assignment : o.set) {
     const auto equals = assignment.find('=');

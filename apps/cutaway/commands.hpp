@@ -22,6 +22,7 @@ struct SceneOverrides {
   bool noCutaway = false;
   bool shadows = false;  // turn on style.shadows
   std::vector<std::string> set;  // "PATH=VALUE" (cutaway/render/techniques.hpp), in order
+  std::vector<std::string> importance;  // "PATTERN=V" (Scene::setImportance), in order
 };
 
 struct RenderOptions {

@@ -67,6 +67,11 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
                       "cutters.cutout=true (repeatable; `cutaway options` lists them)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  command->add_option("--importance", o.importance,
+                      "PATTERN=V: importance V in [0, 1] for the objects whose name or group the "
+                      "regular expression matches whole (Burns11 §3; repeatable, in order)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
 constexpr const char* kCityHelp =

@@ -2,7 +2,7 @@
 // Resolves the multisampled G-buffer (frame/gbuffer.cpp): the final colour is the average of
 // the samples with the overlays (ghost lines, feature lines, cut outlines) blended over it in
 // order; the AOVs copy sample 0 (averaging ids, normals or depths across an edge would invent
-// values that exist nowhere in the scene), the techniques' channels included.
+// values that exist nowhere in the scene); the techniques' channels are copied by channels.frag.
 layout(binding = 0) uniform sampler2DMS uColor;
 layout(binding = 1) uniform sampler2DMS uNormal;
 layout(binding = 2) uniform sampler2DMS uPosition;
@@ -17,7 +17,7 @@ layout(location = 3) out float outViewDepth;
 layout(location = 4) out float outObjectId;
 layout(location = 5) out float outDepth;
 layout(location = 6) out float outCutMask;
-// Generated: the overlays' samplers and blendOverlays(), the channels and copyChannels().
+// Generated: the overlays' samplers and blendOverlays().
 #include "frame/composite_parts.glsl"
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -34,5 +34,4 @@ void main() {
   outObjectId = float(id);
   outDepth = texelFetch(uDepth, p, 0).r;
   outCutMask = texelFetch(uCutMask, p, 0).r >= 0.25 ? 1.0 : 0.0;  // cut surfaces, walls, caps
-  copyChannels(p);
 }

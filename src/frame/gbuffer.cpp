@@ -7,12 +7,9 @@ namespace cutaway {
 
 namespace {
 
-// The composite's inputs: units 0–5 are the fixed buffers, then the overlays, then the
-// channels (composite.frag).
+// The composite's inputs: units 0–5 are the fixed buffers, then the overlays (composite.frag).
 constexpr int kFirstOverlayUnit = 6;
 constexpr int kFirstOverlayLocation = 8;
-// Outputs 0–6 are the fixed AOVs (composite.frag).
-constexpr int kFirstChannelOutput = 7;
 
 std::string upperFirst(std::string name) {
   if (!name.empty()) name[0] = char(std::toupper(static_cast<unsigned char>(name[0])));
@@ -23,6 +20,12 @@ std::string upperFirst(std::string name) {
 
 int GBuffer::addChannel(Channel channel) {
   if (color_.valid()) throw Error("gbuffer", channel.name, "a channel added after declare");
+  GLint drawBuffers = 0;
+  glGetIntegerv(GL_MAX_DRAW_BUFFERS, &drawBuffers);
+  if (5 + int(channels_.size()) + 1 > drawBuffers)  // the geometry pass's five fixed outputs
+    throw Error("gbuffer", channel.name,
+                "more G-buffer channels than this OpenGL's " + std::to_string(drawBuffers) +
+                    " draw buffers hold (the active cutters ask for too many)");
   channels_.push_back(std::move(channel));
   return int(channels_.size() - 1);
 }
@@ -104,21 +107,10 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
              ".a * texelFetch(uOverlay" + n + ", p, 0).r);\n";
   }
   blend += "  return c;\n}\n";
-  std::string copy = "void copyChannels(ivec2 p) {\n";
-  const int firstChannelUnit = kFirstOverlayUnit + int(overlays_.size());
-  for (std::size_t i = 0; i < channels_.size(); ++i) {
-    const std::string n = std::to_string(i);
-    parts += "layout(binding = " + std::to_string(firstChannelUnit + int(i)) +
-             ") uniform sampler2DMS uChannel" + n + ";\n";
-    parts += "layout(location = " + std::to_string(kFirstChannelOutput + int(i)) +
-             ") out float outChannel" + n + ";  // " + channels_[i].name + "\n";
-    copy += "  outChannel" + n + " = texelFetch(uChannel" + n + ", p, 0).r;\n";
-  }
-  copy += "}\n";
   compositeProgram_ = gl::buildProgram(
       {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                   {GL_FRAGMENT_SHADER, "frame/composite.frag"}},
-       .sources = {{"frame/composite_parts.glsl", parts + blend + copy}}});
+       .sources = {{"frame/composite_parts.glsl", parts + blend}}});
 
   const Target color = f.declare("color", {.format = GL_RGBA8});
   finalColor_ = color;
@@ -153,9 +145,7 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
                                        "rule 5), else 0; sample 0"});
   std::vector<Target> reads{color_, normal_, position_, objectId_, depth_, cutMask_};
   for (const Overlay& o : overlays_) reads.push_back(o.coverage);
-  reads.insert(reads.end(), channelTargets_.begin(), channelTargets_.end());
-  std::vector<Target> writes{color, normal, position, viewDepth, objectId, depth, cutMask};
-  writes.insert(writes.end(), channelAovs_.begin(), channelAovs_.end());
+  const std::vector<Target> writes{color, normal, position, viewDepth, objectId, depth, cutMask};
   f.addPass({.name = "composite",
              .reads = reads,
              .writes = writes,
@@ -170,6 +160,35 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
                  const glm::vec4 c = overlays_[i].colorOpacity();
                  glProgramUniform4fv(program, kFirstOverlayLocation + GLint(i), 1, &c[0]);
                }
+               fullscreen_.draw();
+             }});
+  addChannelsPass(f);
+}
+
+// The channels' AOVs in a pass of their own: with the composite's seven outputs they would
+// exceed the eight draw buffers an implementation may stop at (llvmpipe does).
+void GBuffer::addChannelsPass(Frame& f) {
+  if (channels_.empty()) return;
+  std::string parts, copy = "void copyChannels(ivec2 p) {\n";
+  for (std::size_t i = 0; i < channels_.size(); ++i) {
+    const std::string n = std::to_string(i);
+    parts += "layout(binding = " + n + ") uniform sampler2DMS uChannel" + n + ";\n";
+    parts += "layout(location = " + n + ") out float outChannel" + n + ";  // " + channels_[i].name + "\n";
+    copy += "  outChannel" + n + " = texelFetch(uChannel" + n + ", p, 0).r;\n";
+  }
+  copy += "}\n";
+  channelsProgram_ = gl::buildProgram(
+      {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                  {GL_FRAGMENT_SHADER, "frame/channels.frag"}},
+       .sources = {{"frame/channel_parts.glsl", parts + copy}}});
+  f.addPass({.name = "channels",
+             .reads = channelTargets_,
+             .writes = channelAovs_,
+             .run = [this, &f](const PassContext&) {
+               glDisable(GL_DEPTH_TEST);
+               glUseProgram(channelsProgram_.id());
+               for (std::size_t unit = 0; unit < channelTargets_.size(); ++unit)
+                 glBindTextureUnit(GLuint(unit), f.texture(channelTargets_[unit]).id());
                fullscreen_.draw();
              }});
 }

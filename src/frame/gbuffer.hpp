@@ -60,19 +60,22 @@ class GBuffer {
   std::string channelsGlsl() const;
   const std::vector<Channel>& channels() const { return channels_; }
 
-  // The composite pass: `overlays` in order, reading everything the G-buffer holds.
+  // The composite pass: `overlays` in order, reading everything the G-buffer holds; then the
+  // channels' pass, which resolves them into their AOVs.
   void addCompositePass(Frame& frame, std::vector<Overlay> overlays);
   // The final colour (RGBA8, single sample).
   Target finalColor() const { return finalColor_; }
 
  private:
+  void addChannelsPass(Frame& frame);
+
   std::vector<Channel> channels_;
   std::vector<Target> channelTargets_, channelAovs_;
   std::vector<Overlay> overlays_;
   int samples_ = 1;
   Target color_, normal_, position_, objectId_, cutMask_, depth_;
   Target finalColor_;
-  gl::Program backgroundProgram_, compositeProgram_;
+  gl::Program backgroundProgram_, compositeProgram_, channelsProgram_;
   FullscreenTriangle fullscreen_;
 };
 

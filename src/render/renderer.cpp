@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
@@ -293,6 +294,23 @@ Rgba8Image Renderer::readColor() const {
 
 std::vector<Aov> Renderer::readAovs() const {
   std::vector<Aov> aovs = readFrameAovs(impl_->frame);
+  // Burns11 §3.2: the importance of the object each pixel shows, from the objectId AOV.
+  const auto id = std::find_if(aovs.begin(), aovs.end(), [](const Aov& a) { return a.name == "objectId"; });
+  if (id != aovs.end()) {
+    Aov importance{"importance",
+                   "importance I in [0, 1] of the visible object (Burns11 §3.1; objects of "
+                   "interest are also of binary high importance, their role); NaN on "
+                   "background; sample 0",
+                   FloatImage(id->image.width, id->image.height, 1)};
+    const auto& objects = impl_->setup.scene.objects;
+    for (std::size_t i = 0; i < id->image.data.size(); ++i) {
+      const float k = id->image.data[i];
+      importance.image.data[i] = k >= 0 && std::size_t(k) < objects.size()
+                                     ? objects[std::size_t(k)].importance
+                                     : std::numeric_limits<float>::quiet_NaN();
+    }
+    aovs.push_back(std::move(importance));
+  }
   for (auto& aov : extraAovs()) aovs.push_back(std::move(aov));
   return aovs;
 }

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
+#include <regex>
+
+#include "cutaway/core/error.hpp"
 
 namespace cutaway {
 
@@ -102,6 +105,23 @@ Bounds Scene::bounds() const {
     if (!o.proxy) b.extend(o.worldBounds());
   for (const auto& n : networks) b.extend(n.bounds());
   return b;
+}
+
+std::size_t Scene::setImportance(const std::string& pattern, float importance) {
+  if (!(importance >= 0.0f && importance <= 1.0f))
+    throw Error(pattern, "", "importance must lie in [0, 1]");
+  std::regex re;
+  try {
+    re = std::regex(pattern, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    throw Error(pattern, "", std::string("not a regular expression: ") + e.what());
+  }
+  std::size_t n = 0;
+  for (SceneObject& o : objects)
+    if (std::regex_match(o.name, re) || (!o.group.empty() && std::regex_match(o.group, re)))
+      o.importance = importance, ++n;
+  if (n == 0) throw Error(pattern, "", "matches no object's name or group");
+  return n;
 }
 
 const SceneObject* Scene::find(const std::string& name) const {

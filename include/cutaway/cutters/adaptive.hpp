@@ -26,6 +26,22 @@ struct GhostLineOptions {
   float opacity = 0.4f;
 };
 
+// Burns11 §4.1.3, §5.2.3: the contextual cutaway structure. Besides C₁ (the adaptive cutter's
+// surface at θ₁ = angle, the transition–overlay boundary) a second surface C₂ at θ₂ bounds the
+// transition region towards the base, and the overlay region reaches d in front of C₁. Each
+// fragment gets the occlusion Ω (eq. 5.6) and, from its object's importance, the occlusion
+// reduction R (eqs. 7.1–7.3); on polygons R is applied fully or not at all (§5.2.4): a
+// fragment is removed where R ≥ ½, so each object is trimmed at a cutaway surface between C₂
+// and C₁ − d that its importance chooses.
+struct ContextualCutawayOptions {
+  float transitionAngle = 60.0f;  // θ₂ in degrees, ≥ θ₁; = θ₁: no transition region
+  std::optional<float> overlay;   // d, world units along the view ray; 0: none; unset: 5% of the scene radius
+  // How R follows from Ω: eqs. 7.1–7.3 with each object's importance, R = Ω (§7.2: a scene
+  // that does not rank its objects), or auto: the former when the cut objects' importances
+  // differ, else the latter.
+  enum class Reduction { Auto, Importance, Occlusion } reduction = Reduction::Auto;
+};
+
 struct AdaptiveCutawayOptions {
   static constexpr const char* kKey = "adaptive";  // under "cutters" in the scene file
 
@@ -43,9 +59,36 @@ struct AdaptiveCutawayOptions {
   bool outlines = true;                      // cut outlines (Burns08 §4.2)
   glm::vec3 outlineColor{0.0f};
   std::optional<GhostLineOptions> ghostLines;  // Burns08 §4.3 (opt-in: a style choice)
+  std::optional<ContextualCutawayOptions> contextual;  // Burns11 §4.1.3 (off: the simple structure)
 };
 // Its options' schema: the scene file's keys, the viewer's and the CLI's.
 const OptionsSchema& adaptiveCutawaySchema();
+
+// The ramp of Burns11 eq. 5.5; where a = b it is the step x > a (so that eq. 7.3 gives R = 0
+// for I = 1 and R = 1 wherever Ω > 0 for I = 0, as §7.1.2 says).
+float ramp(float a, float b, float x);
+
+// Ω at the transition–overlay boundary (§4.1.3.3): ½ with both regions, 0 without a
+// transition region (θ₂ = θ₁), 1 without an overlay (d = 0); with neither, 0 (the simple
+// structure: Ω is eq. 5.3's step at C₁).
+float transitionOverlayOcclusion(bool transition, bool overlay);
+
+// The contextual structure along one view ray, as distances in front of the eye (view-space
+// −z): z₁ = C₁, z₂ = C₂ (z₂ ≥ z₁), overlay thickness d ≥ 0, and t as above.
+struct ContextualRay {
+  float z1, z2, d, t;
+};
+// Ω of a fragment at distance z (§4.1.3.3; eq. 5.6 when t = ½): 0 behind C₂, t at C₁, 1 at
+// C₁ − d and nearer. Eq. 5.6 measures p_z towards the viewer; here z grows away from it, so
+// ramp_[C₂..C₁] p_z is ramp_[−z₂..−z₁](−z).
+float contextualOcclusion(const ContextualRay& ray, float z);
+// The distance where Ω reaches `omega` in (0, 1]: the cutaway surface an object with that
+// threshold is trimmed at.
+float occlusionDistance(const ContextualRay& ray, float omega);
+// Burns11 eqs. 7.1–7.3: R = ramp_[τ₀..τ₁] Ω with τ₀ = max(2I − 1, 0), τ₁ = I.
+float occlusionReduction(float omega, float importance);
+// The Ω at which eq. 7.3 reaches R = ½ (the trimming of §5.2.4); above 1: never trimmed.
+float trimOcclusion(float importance);
 
 // The camera quantities the cone math needs.
 struct CutawayProjection {

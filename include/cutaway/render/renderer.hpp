@@ -7,6 +7,7 @@
 // every example against these lines):
 //
 //   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth) cutawayDilate]
+//   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2) cutawayDilateC2]
 //   [breakawayClip breakawayInnerClip]
 //   [clipSurfaceSprites]
 //   [shadowMap]
@@ -17,10 +18,13 @@
 //   [lines]
 //   [ghostLines]
 //   composite
+//   [channels]
 //
 // - cutawaySeed … cutawayDilate: the adaptive cutter (Burns08 §5): the region of interest's
 //   rear hulls, the cutaway surface by jump flooding on the CPU or in fragment passes (one per
 //   step size N), dilated (src/cutters/adaptive/README.md).
+// - cutawayCpuC2 … cutawayDilateC2: the contextual structure's second surface C₂ from the same
+//   seed, every seed's angle raised to θ₂ (Burns11 §4.1.3, §5.2.3).
 // - breakawayClip, breakawayInnerClip: Diepstraten03 §5's hull clip depths (outer, inner).
 // - clipSurfaceSprites: Trapp13 §6.3's depth sprites, rebuilt per frame for animated parity.
 // - shadowMap: style.shadows, the key light's depth (src/styles/shadows/README.md).
@@ -33,6 +37,8 @@
 // - lines: silhouettes, creases and cut outlines per sample (styles/lines).
 // - composite: the samples resolved, the line overlays blended, sample 0 of every
 //   intermediate buffer copied into single-sample AOVs.
+// - channels: the same for the cutters' G-buffer channels (the cutout's signed distance, the
+//   contextual structure's Ω and R).
 //
 //   auto context = cutaway::gl::HeadlessContext::create();
 //   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");

@@ -158,6 +158,10 @@ struct Scene {
   // Length of the animation: the last keyframe or camera key (0 for a still scene).
   float duration() const;
   const SceneObject* find(const std::string& name) const;
+  // Burns11 §3.2: gives `importance` (in [0, 1]) to every object whose name or group the
+  // regular expression `pattern` matches whole; returns how many. Throws cutaway::Error for a
+  // bad pattern, a value outside [0, 1], or a pattern that matches nothing.
+  std::size_t setImportance(const std::string& pattern, float importance);
 };
 
 // The object a network contributes for `part` ("NAME/shafts", "NAME/shaft-insides",

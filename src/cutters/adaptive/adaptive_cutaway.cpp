@@ -26,6 +26,26 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
       dilatedUnit_(setup.bindings.textureUnit("CUTAWAY_DILATED")),
       programs_(std::make_unique<Programs>()) {
   Frame& frame = setup.frame;
+  if (options().contextual) {
+    transition_ = std::make_unique<CutawaySurfacePasses>(surface_, "C2", [this] {
+      return glm::radians(options().contextual ? options().contextual->transitionAngle : 0.0f);
+    });
+    transitionDepthUnit_ = setup.bindings.textureUnit("CUTAWAY_DEPTH_C2");
+    transitionDilatedUnit_ = setup.bindings.textureUnit("CUTAWAY_DILATED_C2");
+    contextualLocation_ = setup.bindings.uniformLocation("ADAPTIVE_CONTEXTUAL");
+    importanceLocation_ = setup.bindings.uniformLocation("ADAPTIVE_IMPORTANCE");
+    // Per pixel of the visible surface of a cut object (channels 0 and 1 of clip.glsl).
+    setup.gbuffer.addChannel({.name = "occlusion",
+                              .meaning = "Burns11 eq. 5.6's occlusion Ω of the visible surface "
+                                         "in the contextual cutaway structure, in [0, 1] (0 "
+                                         "base region, 1 clear); NaN where no object the "
+                                         "adaptive cutter cuts is visible; sample 0"});
+    setup.gbuffer.addChannel({.name = "reduction",
+                              .meaning = "occlusion reduction R of the visible surface (Burns11 "
+                                         "eqs. 7.1–7.3 from its importance, or R = Ω), in [0, 1]; "
+                                         "visible surfaces have R < 0.5 (R ≥ 0.5 is removed); "
+                                         "NaN as for occlusion; sample 0"});
+  }
   const int n = surface_.bufferSize();
   seedDepthTest_ =
       frame.declare("seedDepthTest", {.format = GL_DEPTH_COMPONENT32F, .width = n, .height = n});
@@ -85,11 +105,50 @@ std::vector<std::pair<std::string, std::string>> AdaptiveCutaway::facts() const 
 
 void AdaptiveCutaway::beginFrame(const FrameState& state) {
   surface_.setCamera(cutawayProjection(state.camera, state.aspect));
+  if (transition_) transition_->setCamera(cutawayProjection(state.camera, state.aspect));
+}
+
+std::vector<Target> AdaptiveCutaway::geometryInputs() const {
+  std::vector<Target> inputs{surface_.cutawayDepth(), surface_.cutawayDilated()};
+  if (transition_) inputs.insert(inputs.end(), {transition_->cutawayDepth(), transition_->cutawayDilated()});
+  return inputs;
 }
 
 void AdaptiveCutaway::bindForGeometry() const {
   glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
   glBindTextureUnit(dilatedUnit_, setup_.frame.texture(surface_.cutawayDilated()).id());
+  if (!transition_) return;
+  glBindTextureUnit(transitionDepthUnit_, setup_.frame.texture(transition_->cutawayDepth()).id());
+  glBindTextureUnit(transitionDilatedUnit_, setup_.frame.texture(transition_->cutawayDilated()).id());
+}
+
+bool AdaptiveCutaway::reductionIsOcclusion() const {
+  using Reduction = ContextualCutawayOptions::Reduction;
+  const Reduction r = options().contextual->reduction;
+  if (r != Reduction::Auto) return r == Reduction::Occlusion;
+  std::optional<float> first;
+  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i) {
+    if (setup_.scene.objects[i].proxy || !cuts(i)) continue;
+    const float importance = setup_.scene.objects[i].importance;
+    if (first && *first != importance) return false;
+    first = importance;
+  }
+  return true;
+}
+
+void AdaptiveCutaway::setProgramUniforms(GLuint program) const {
+  if (!transition_ || !options().contextual) return;
+  const ContextualCutawayOptions& c = *options().contextual;
+  // d unset: 5% of the scene's radius, as the ghost lines' distance.
+  const float d = c.overlay.value_or(0.05f * setup_.sceneBounds.radius());
+  // θ₂ below θ₁ (possible only when set live) is taken as θ₁: no transition region.
+  const bool transition = c.transitionAngle > options().angle;
+  glProgramUniform3f(program, contextualLocation_, d, transitionOverlayOcclusion(transition, d > 0.0f),
+                     reductionIsOcclusion() ? 1.0f : 0.0f);
+}
+
+void AdaptiveCutaway::setObjectUniforms(GLuint program, std::size_t index) const {
+  if (transition_) glProgramUniform1f(program, importanceLocation_, setup_.scene.objects[index].importance);
 }
 
 void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
@@ -117,6 +176,7 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
                    glDepthFunc(GL_LESS);
                  }});
   surface_.addPasses();
+  if (transition_) transition_->addPasses();
 }
 
 void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {
@@ -144,10 +204,14 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
   const float distance = o.ghostLines && o.ghostLines->distance > 0 ? o.ghostLines->distance
                                                                      : 0.05f * setup_.sceneBounds.radius();
   glProgramUniform1f(program, 17, distance);
+  setProgramUniforms(program);
   setup_.meshes.draw(
       program,
       [](const SceneObject& o, std::size_t) { return !o.proxy && o.role != Role::Interest; },
-      [&](const SceneObject&, std::size_t i) { glProgramUniform1i(program, 11, int(i)); });
+      [&](const SceneObject&, std::size_t i) {
+        glProgramUniform1i(program, 11, int(i));
+        setObjectUniforms(program, i);
+      });
 }
 
 }  // namespace cutaway

@@ -21,10 +21,10 @@ class AdaptiveCutaway : public Cutter {
 
   void beginFrame(const FrameState& state) override;
   void addPreparationPasses(Frame& frame) override;
-  std::vector<Target> geometryInputs() const override {
-    return {surface_.cutawayDepth(), surface_.cutawayDilated()};
-  }
+  std::vector<Target> geometryInputs() const override;
   void bindForGeometry() const override;
+  void setProgramUniforms(GLuint program) const override;
+  void setObjectUniforms(GLuint program, std::size_t index) const override;
   // Every visible object but the objects of interest (Burns08 §4.1).
   bool cuts(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
@@ -42,11 +42,17 @@ class AdaptiveCutaway : public Cutter {
     return *setup_.scene.cutters.find<AdaptiveCutawayOptions>();
   }
   void drawGhostGeometry(GLuint framebuffer) const;
+  // Burns11 §7.2: whether R = Ω (the objects it cuts are not ranked by importance).
+  bool reductionIsOcclusion() const;
 
   FrameSetup& setup_;
   // Its buffer size, compute path and variant are what a change rebuilds the renderer for.
   CutawaySurfacePasses surface_;
+  // The contextual structure's C₂ (Burns11 §4.1.3), when it is on.
+  std::unique_ptr<CutawaySurfacePasses> transition_;
   GLuint depthUnit_, dilatedUnit_;
+  GLuint transitionDepthUnit_ = 0, transitionDilatedUnit_ = 0;
+  GLint contextualLocation_ = -1, importanceLocation_ = -1;
   Target seedDepthTest_;
   Target ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_;
   struct Programs;

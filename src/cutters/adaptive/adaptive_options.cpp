@@ -24,6 +24,28 @@ OptionsSchema ghostLinesSchema() {
       .build();
 }
 
+OptionsSchema contextualSchema() {
+  using C = ContextualCutawayOptions;
+  return OptionsBuilder<C>()
+      .number("transitionAngle", &C::transitionAngle, 0, 90,
+              {.label = "transition angle θ₂ (°)",
+               .doc = "Angle of C₂, the base–transition boundary (Burns11 §4.1.3.1); at least "
+                      "the angle θ₁; equal: no transition region.",
+               .live = true})
+      .optional("overlay", &C::overlay, Type::Float, 0, 1e30, 0.0f,
+                {.label = "overlay d",
+                 .doc = "Thickness d of the overlay region in front of C₁, world units "
+                        "(§4.1.3.2); 0: none; unset: 5% of the scene radius.",
+                 .live = true})
+      .choice("reduction", &C::reduction,
+              {{"auto", C::Reduction::Auto},
+               {"importance", C::Reduction::Importance},
+               {"occlusion", C::Reduction::Occlusion}},
+              {.doc = "R from Ω: by importance (Burns11 eqs. 7.1–7.3), R = Ω (§7.2), or auto: "
+                      "by importance when the cut objects' importances differ."})
+      .build();
+}
+
 }  // namespace
 
 const OptionsSchema& adaptiveCutawaySchema() {
@@ -102,9 +124,18 @@ const OptionsSchema& adaptiveCutawaySchema() {
                  {.label = "ghost lines",
                   .doc = "Faded lines of the removed material (Burns08 §4.3): true, false, or "
                          "{distance, opacity}."})
-          // A floorNormal without a word about the constraint asks for it.
-          .check([](const json_reader::Context&, json_reader::ObjectReader& r, O& o) {
+          .group("contextual", &O::contextual, contextualSchema(),
+                 {.label = "contextual cutaway",
+                  .doc = "The contextual cutaway structure (Burns11 §4.1.3): true, false, or "
+                         "{transitionAngle, overlay, reduction}."})
+          .check([](const json_reader::Context& ctx, json_reader::ObjectReader& r, O& o) {
+            // A floorNormal without a word about the constraint asks for it.
             if (r.has("floorNormal") && !r.has("directionalConstraint")) o.directionalConstraint = true;
+            if (o.contextual && o.contextual->transitionAngle < o.angle)
+              ctx.fail(r.at("contextual"), "the transition angle θ₂ (" +
+                                               formatOptionValue(double(o.contextual->transitionAngle)) +
+                                               ") must not be below the angle θ₁ (" +
+                                               formatOptionValue(double(o.angle)) + ")");
           })
           .build();
   return schema;

@@ -12,6 +12,7 @@ layout(location = 5) uniform int uOrthographic;
 // computed outside the renderer's frames (cutaway/cutters/adaptive_surface.hpp).
 layout(location = 6) uniform mat4 uProjection;
 layout(location = 7) uniform mat4 uInverseProjection;
+layout(location = 8) uniform float uMinAngle;  // radians: C₂ widens every seed to θ₂ (Burns11 §4.1.3.1)
 layout(location = 0) out vec4 outCone;   // z (NDC), mE, mF, seeded
 layout(location = 1) out vec2 outFloor;
 
@@ -36,7 +37,7 @@ void main() {
   }
   vec2 size = vec2(textureSize(uSeedDepth, 0));
   vec3 ndc = vec3((vec2(p) + 0.5) / size * 2.0 - 1.0, window * 2.0 - 1.0);
-  float thetaE = texelFetch(uSeedAngle, p, 0).r;
+  float thetaE = max(texelFetch(uSeedAngle, p, 0).r, uMinAngle);
   if (uEdgeCompression != 0)  // Burns11 eq. 5.8
     thetaE *= clamp((1.0 - abs(ndc.x)) / uEdgeRegion, 0.0, 1.0) *
               clamp((1.0 - abs(ndc.y)) / uEdgeRegion, 0.0, 1.0);

@@ -10,10 +10,116 @@ vec3 cutawayViewPoint(vec2 uv) {
   return h.xyz / h.w;
 }
 
+// The cut surface through `center` (view space) with neighbours dx, dy apart along the
+// screen's axes, in world space, its normal facing the viewer (Burns11 §5.2.4.1).
+void cutSurfaceAt(vec3 center, vec3 dx, vec3 dy, out vec3 cutPosition, out vec3 cutNormal) {
+  vec3 n = cross(dx, dy);
+  n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
+  vec3 toEye = uCounts.y == 1 ? vec3(0.0, 0.0, 1.0) : -center;
+  if (dot(n, toEye) < 0.0) n = -n;
+  cutNormal = normalize(mat3(uInverseView) * n);
+  cutPosition = (uInverseView * vec4(center, 1.0)).xyz;
+}
+
+#ifdef UNIT_CUTAWAY_DEPTH_C2
+// The contextual cutaway structure (Burns11 §4.1.3, §5.2.3); mirrors contextual_function.cpp.
+layout(binding = UNIT_CUTAWAY_DEPTH_C2) uniform sampler2D uCutawayDepthC2;  // C₂, window depth
+layout(binding = UNIT_CUTAWAY_DILATED_C2) uniform sampler2D uCutawayDilatedC2;
+// x: overlay thickness d (world units), y: t (§4.1.3.3), z: 1 for R = Ω (§7.2), 0 for eq. 7.3.
+layout(location = LOC_ADAPTIVE_CONTEXTUAL) uniform vec3 uContextual;
+layout(location = LOC_ADAPTIVE_IMPORTANCE) uniform float uImportance;  // I of the object drawn
+
+// Eq. 5.5; where a = b the step x > a (eq. 7.3's degenerate ends, §7.1.2).
+float contextualRamp(float a, float b, float x) {
+  if (!(a < b)) return x > a ? 1.0 : 0.0;
+  return clamp((x - a) / (b - a), 0.0, 1.0);
+}
+
+// View-space point on the view ray through uv at window depth `depth`.
+vec3 viewPointAtDepth(vec2 uv, float depth) {
+  vec4 h = uInverseProjection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+  return h.xyz / h.w;
+}
+
+// (z₁, z₂, d, t): C₁ and C₂ as distances in front of the eye along the ray through uv.
+vec4 contextualRay(vec2 uv, bool frontFacing) {
+  float c1 = frontFacing ? texture(uCutawayDepth, uv).r : texture(uCutawayDilated, uv).r;
+  float c2 = frontFacing ? texture(uCutawayDepthC2, uv).r : texture(uCutawayDilatedC2, uv).r;
+  float z1 = -viewPointAtDepth(uv, c1).z;
+  float z2 = max(-viewPointAtDepth(uv, c2).z, z1);  // θ₂ ≥ θ₁: C₂ lies behind C₁
+  return vec4(z1, z2, uContextual.x, uContextual.y);
+}
+
+// Ω at distance z (§4.1.3.3; eq. 5.6 when t = ½), z growing away from the eye.
+float contextualOcclusion(vec4 r, float z) {
+  return r.w * contextualRamp(-r.y, -r.x, -z) + (1.0 - r.w) * contextualRamp(-r.x, -r.x + r.z, -z);
+}
+
+// The distance where Ω reaches omega.
+float occlusionDistance(vec4 r, float omega) {
+  if (r.w > 0.0 && omega <= r.w) return r.y - omega / r.w * (r.y - r.x);
+  return r.x - r.z * (omega - r.w) / (1.0 - r.w);
+}
+
+// Eqs. 7.1–7.3, or R = Ω.
+float occlusionReduction(float omega) {
+  if (uContextual.z > 0.5) return omega;
+  return contextualRamp(max(2.0 * uImportance - 1.0, 0.0), uImportance, omega);
+}
+
+// The Ω where R reaches ½: the object's trimming surface (§5.2.4); above 1: never trimmed.
+float trimOcclusion() {
+  if (uContextual.z > 0.5) return 0.5;
+  if (uImportance >= 1.0) return 2.0;
+  return 0.5 * (max(2.0 * uImportance - 1.0, 0.0) + uImportance);
+}
+
+float fragmentDistance(vec3 worldPosition) {
+  return -(uView * vec4(worldPosition, 1.0)).z;
+}
+
+// View-space point of the trimming surface at Ω = omega on the ray through uv.
+vec3 trimViewPoint(vec2 uv, float omega, bool frontFacing) {
+  float z = occlusionDistance(contextualRay(uv, frontFacing), omega);
+  vec3 q = viewPointAtDepth(uv, 0.5);
+  return uCounts.y == 1 ? vec3(q.xy, -z) : q * (z / -q.z);
+}
+
+// R ≥ ½ removes the fragment (§5.2.4: polygons take R fully or not at all); a back face
+// behind its object's trimming surface is that surface's cut.
+int contextualFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+  vec2 uv = gl_FragCoord.xy * uViewport.zw;
+  vec4 r = contextualRay(uv, f.frontFacing);
+  if (occlusionReduction(contextualOcclusion(r, fragmentDistance(f.position))) >= 0.5) return kDiscard;
+  float omega = max(trimOcclusion(), 1e-6);  // I = 0: trimmed wherever Ω > 0, i.e. at C₂
+  if (f.frontFacing || omega > 1.0) return kKeep;
+  // No cut along this ray where the trimming surface lies at or before the near plane.
+  if (occlusionDistance(r, omega) <= -viewPointAtDepth(uv, 0.0).z) return kKeep;
+  vec2 texel = 1.0 / vec2(textureSize(uCutawayDepth, 0));
+  vec3 center = trimViewPoint(uv, omega, false);
+  vec3 dx = trimViewPoint(uv + vec2(texel.x, 0.0), omega, false) - trimViewPoint(uv - vec2(texel.x, 0.0), omega, false);
+  vec3 dy = trimViewPoint(uv + vec2(0.0, texel.y), omega, false) - trimViewPoint(uv - vec2(0.0, texel.y), omega, false);
+  cutSurfaceAt(center, dx, dy, cutPosition, cutNormal);
+  return kCutSurface;
+}
+
+// The G-buffer channels occlusion (Ω) and reduction (R) at a fragment of a cut object.
+float adaptiveChannel0(CutFragment f) {
+  vec2 uv = gl_FragCoord.xy * uViewport.zw;
+  return contextualOcclusion(contextualRay(uv, f.frontFacing), fragmentDistance(f.position));
+}
+float adaptiveChannel1(CutFragment f) {
+  return occlusionReduction(adaptiveChannel0(f));
+}
+#endif
+
 // kDiscard in the clear region, kKeep in the base region, kCutSurface for a back face seen
 // through the cut: there it stands for the solid's cut surface, with the cutaway surface's
 // position and normal (from neighbouring depths, Burns11 §5.2.4.1).
 int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+#ifdef UNIT_CUTAWAY_DEPTH_C2
+  return contextualFragment(f, cutPosition, cutNormal);
+#else
   bool frontFacing = f.frontFacing;
   vec2 uv = gl_FragCoord.xy * uViewport.zw;
   // Burns11 eq. 5.4: Ω = 1 − step(C(p), p_z); back faces use the dilated surface.
@@ -26,13 +132,9 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   vec3 center = cutawayViewPoint(uv);
   vec3 dx = cutawayViewPoint(uv + vec2(texel.x, 0.0)) - cutawayViewPoint(uv - vec2(texel.x, 0.0));
   vec3 dy = cutawayViewPoint(uv + vec2(0.0, texel.y)) - cutawayViewPoint(uv - vec2(0.0, texel.y));
-  vec3 n = cross(dx, dy);
-  n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0);
-  vec3 toEye = uCounts.y == 1 ? vec3(0.0, 0.0, 1.0) : -center;
-  if (dot(n, toEye) < 0.0) n = -n;
-  cutNormal = normalize(mat3(uInverseView) * n);
-  cutPosition = (uInverseView * vec4(center, 1.0)).xyz;
+  cutSurfaceAt(center, dx, dy, cutPosition, cutNormal);
   return kCutSurface;
+#endif
 }
 
 // Burns08 §4.3: how strongly a removed fragment shows as a ghost line: 1 at the cutaway

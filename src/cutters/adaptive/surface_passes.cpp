@@ -1,5 +1,6 @@
 #include "cutters/adaptive/surface_passes.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "frame/fullscreen.hpp"
@@ -15,6 +16,7 @@ CutawaySurfacePasses::CutawaySurfacePasses(Frame& frame, int bufferSize,
                                            fields::JumpFloodingVariant variant, bool cpu,
                                            Options options)
     : frame_(frame),
+      minAngle_([] { return 0.0f; }),
       bufferSize_(bufferSize),
       variant_(variant),
       cpu_(cpu),
@@ -35,21 +37,43 @@ CutawaySurfacePasses::CutawaySurfacePasses(Frame& frame, int bufferSize,
                     .width = n,
                     .height = n,
                     .meaning = "local cutaway angle θ of the seeding object, radians" + size});
-  cutawayDepth_ = frame.declare("cutawayDepth",
+  declareSurface();
+}
+
+CutawaySurfacePasses::CutawaySurfacePasses(const CutawaySurfacePasses& seed, std::string suffix,
+                                           std::function<float()> minAngle)
+    : frame_(seed.frame_),
+      suffix_(std::move(suffix)),
+      minAngle_(std::move(minAngle)),
+      bufferSize_(seed.bufferSize_),
+      variant_(seed.variant_),
+      cpu_(seed.cpu_),
+      options_(seed.options_),
+      seedDepth_(seed.seedDepth_),
+      seedAngle_(seed.seedAngle_),
+      programs_(std::make_unique<Programs>()) {
+  declareSurface();
+}
+
+void CutawaySurfacePasses::declareSurface() {
+  Frame& frame = frame_;
+  const int n = bufferSize_;
+  const std::string size = " (" + std::to_string(n) + "x" + std::to_string(n) + " cutaway buffer)";
+  const std::string of = suffix_.empty() ? "" : ", every seed's angle at least θ₂ (" + suffix_ + ")";
+  cutawayDepth_ = frame.declare("cutawayDepth" + suffix_,
                                 {.format = GL_R32F,
                                  .width = n,
                                  .height = n,
                                  .meaning = "cutaway surface C(p) as window depth in [0,1] (0 = "
                                             "near plane: nothing cut); fragments nearer than it "
                                             "are removed" +
-                                            size});
-  cutawayDilated_ = frame.declare("cutawayDilated",
+                                            of + size});
+  cutawayDilated_ = frame.declare("cutawayDilated" + suffix_,
                                   {.format = GL_R32F,
                                    .width = n,
                                    .height = n,
-                                   .meaning = "1-pixel minimum of cutawayDepth, window depth, "
-                                              "used for back faces" +
-                                              size});
+                                   .meaning = "1-pixel minimum of cutawayDepth" + suffix_ +
+                                              ", window depth, used for back faces" + size});
   for (const Target t : {cutawayDepth_, cutawayDilated_}) {
     const GLuint id = frame.texture(t).id();
     glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // Burns08 §6: interpolated
@@ -58,10 +82,10 @@ CutawaySurfacePasses::CutawaySurfacePasses(Frame& frame, int bufferSize,
   Programs& p = *programs_;
   p.dilate = buildFullscreenProgram("cutters/adaptive/dilate.frag");
   if (cpu_) return;
-  anchorCone_ = frame.declare("anchorCone", {.format = GL_RGBA32F, .width = n, .height = n});
-  anchorFloor_ = frame.declare("anchorFloor", {.format = GL_RG32F, .width = n, .height = n});
-  anchorsA_ = frame.declare("anchorsA", {.format = GL_R32I, .width = n, .height = n});
-  anchorsB_ = frame.declare("anchorsB", {.format = GL_R32I, .width = n, .height = n});
+  anchorCone_ = frame.declare("anchorCone" + suffix_, {.format = GL_RGBA32F, .width = n, .height = n});
+  anchorFloor_ = frame.declare("anchorFloor" + suffix_, {.format = GL_RG32F, .width = n, .height = n});
+  anchorsA_ = frame.declare("anchorsA" + suffix_, {.format = GL_R32I, .width = n, .height = n});
+  anchorsB_ = frame.declare("anchorsB" + suffix_, {.format = GL_R32I, .width = n, .height = n});
   p.anchors = buildFullscreenProgram("cutters/adaptive/anchors.frag");
   p.jfaInit = buildFullscreenProgram("cutters/adaptive/jfa_init.frag");
   p.jumpFlooding = buildFullscreenProgram("cutters/adaptive/jump_flooding.frag");
@@ -72,13 +96,13 @@ CutawaySurfacePasses::~CutawaySurfacePasses() = default;
 
 void CutawaySurfacePasses::addPasses() {
   if (cpu_)
-    frame_.addPass({.name = "cutawayCpu",
+    frame_.addPass({.name = "cutawayCpu" + suffix_,
                    .reads = {seedDepth_, seedAngle_},
                    .writes = {cutawayDepth_},
                    .run = [this](const PassContext&) { computeOnCpu(); }});
   else
     addGpuPasses();
-  frame_.addPass({.name = "cutawayDilate",
+  frame_.addPass({.name = "cutawayDilate" + suffix_,
                  .reads = {cutawayDepth_},
                  .writes = {cutawayDilated_},
                  .run = [this](const PassContext&) {
@@ -100,7 +124,7 @@ void CutawaySurfacePasses::addGpuPasses() {
                        2.0f / n / camera_.projection[1][1]);
     glDisable(GL_DEPTH_TEST);
   };
-  frame_.addPass({.name = "cutawayAnchors",
+  frame_.addPass({.name = "cutawayAnchors" + suffix_,
                  .reads = {seedDepth_, seedAngle_},
                  .writes = {anchorCone_, anchorFloor_},
                  .run = [this](const PassContext&) {
@@ -119,10 +143,11 @@ void CutawaySurfacePasses::addGpuPasses() {
                    const glm::mat4 inverse = glm::inverse(camera_.projection);
                    glProgramUniformMatrix4fv(program, 6, 1, GL_FALSE, &camera_.projection[0][0]);
                    glProgramUniformMatrix4fv(program, 7, 1, GL_FALSE, &inverse[0][0]);
+                   glProgramUniform1f(program, 8, minAngle_());
                    glDisable(GL_DEPTH_TEST);
                    programs_->fullscreen.draw();
                  }});
-  frame_.addPass({.name = "jumpFloodingInit",
+  frame_.addPass({.name = "jumpFloodingInit" + suffix_,
                  .reads = {anchorCone_},
                  .writes = {anchorsA_},
                  .run = [this](const PassContext&) {
@@ -134,7 +159,7 @@ void CutawaySurfacePasses::addGpuPasses() {
   // One pass per step, ping-ponging the anchor buffers.
   Target current = anchorsA_, next = anchorsB_;
   for (int step : fields::stepSizes(bufferSize_, bufferSize_, variant_)) {
-    frame_.addPass({.name = "jumpFlooding/" + std::to_string(step),
+    frame_.addPass({.name = "jumpFlooding" + suffix_ + "/" + std::to_string(step),
                    .reads = {anchorCone_, anchorFloor_, current},
                    .writes = {next},
                    .run = [this, bindCone, step, current](const PassContext&) {
@@ -146,7 +171,7 @@ void CutawaySurfacePasses::addGpuPasses() {
                    }});
     std::swap(current, next);
   }
-  frame_.addPass({.name = "cutawayDepth",
+  frame_.addPass({.name = "cutawayDepth" + suffix_,
                  .reads = {anchorCone_, anchorFloor_, current},
                  .writes = {cutawayDepth_},
                  .run = [this, bindCone, current](const PassContext&) {
@@ -160,8 +185,10 @@ void CutawaySurfacePasses::addGpuPasses() {
 // (cutaway_function.cpp mirrors anchors.frag), fields::jumpFlooding, and the result uploaded.
 void CutawaySurfacePasses::computeOnCpu() {
   const int n = bufferSize_;
+  std::vector<float> angle = frame_.read(seedAngle_, 1);
+  for (float& a : angle) a = std::max(a, minAngle_());
   fields::CutawayField field = fields::jumpFlooding(
-      makeSeedImage(frame_.read(seedDepth_, 1), frame_.read(seedAngle_, 1), n, options_(), camera_),
+      makeSeedImage(frame_.read(seedDepth_, 1), angle, n, options_(), camera_),
       -1.0f, variant_);
   for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
   glTextureSubImage2D(frame_.texture(cutawayDepth_).id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,

@@ -21,6 +21,11 @@ class CutawaySurfacePasses {
   // `options` is read every frame (angle-independent options: edge compression, floor…).
   CutawaySurfacePasses(Frame& frame, int bufferSize, fields::JumpFloodingVariant variant,
                        bool cpu, Options options);
+  // A second surface from `seed`'s seed, every seed's angle raised to at least minAngle()
+  // (radians, read every frame): the contextual structure's C₂ (Burns11 §4.1.3.1). Its
+  // targets and passes are named with `suffix` ("cutawayDepthC2").
+  CutawaySurfacePasses(const CutawaySurfacePasses& seed, std::string suffix,
+                       std::function<float()> minAngle);
   ~CutawaySurfacePasses();
 
   // Written by the seeding pass: window depth of the rear hull (0 = no seed), θ in radians.
@@ -42,7 +47,11 @@ class CutawaySurfacePasses {
   void addGpuPasses();
   void computeOnCpu();
 
+  void declareSurface();
+
   Frame& frame_;
+  const std::string suffix_;
+  const std::function<float()> minAngle_;
   const int bufferSize_;
   const fields::JumpFloodingVariant variant_;
   const bool cpu_;

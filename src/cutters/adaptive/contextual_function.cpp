@@ -1,0 +1,41 @@
+// Burns11's contextual cutaway structure (§4.1.3.3, eqs. 5.5–5.6) and occlusion reduction by
+// importance (eqs. 7.1–7.3); mirrored line by line in clip.glsl.
+#include <algorithm>
+
+#include "cutaway/cutters/adaptive.hpp"
+
+namespace cutaway {
+
+float ramp(float a, float b, float x) {
+  if (!(a < b)) return x > a ? 1.0f : 0.0f;
+  return std::clamp((x - a) / (b - a), 0.0f, 1.0f);
+}
+
+float transitionOverlayOcclusion(bool transition, bool overlay) {
+  if (transition && overlay) return 0.5f;
+  return transition ? 1.0f : 0.0f;
+}
+
+float contextualOcclusion(const ContextualRay& r, float z) {
+  // Towards the viewer: base (behind C₂), transition (C₂..C₁), overlay (C₁..C₁ − d), clear.
+  return r.t * ramp(-r.z2, -r.z1, -z) + (1.0f - r.t) * ramp(-r.z1, -r.z1 + r.d, -z);
+}
+
+float occlusionDistance(const ContextualRay& r, float omega) {
+  if (r.t > 0.0f && omega <= r.t) return r.z2 - omega / r.t * (r.z2 - r.z1);
+  return r.z1 - r.d * (omega - r.t) / (1.0f - r.t);
+}
+
+float occlusionReduction(float omega, float importance) {
+  const float tau0 = std::max(2.0f * importance - 1.0f, 0.0f);  // eq. 7.1
+  const float tau1 = importance;                                 // eq. 7.2
+  return ramp(tau0, tau1, omega);                                // eq. 7.3
+}
+
+float trimOcclusion(float importance) {
+  if (importance >= 1.0f) return 2.0f;
+  const float tau0 = std::max(2.0f * importance - 1.0f, 0.0f), tau1 = importance;
+  return 0.5f * (tau0 + tau1);
+}
+
+}  // namespace cutaway
