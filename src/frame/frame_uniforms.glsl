@@ -17,3 +17,9 @@ layout(std140, binding = 0) uniform FrameUniforms {
   mat4 uShadowMatrix;             // world → [0,1]³ key-light shadow-map coordinates
   vec4 uShadowParams;             // x: 1 if on, y: bias (scene units), z: PCF radius, w: 1/size
 };
+
+// Where the view ray through world point x starts: the eye, or for orthographic views x's
+// foot on the view plane through the eye (Camera::rayOrigin in C++).
+vec3 viewRayOrigin(vec3 x) {
+  return uCounts.y == 1 ? x - uForward.xyz * dot(x - uEye.xyz, uForward.xyz) : uEye.xyz;
+}

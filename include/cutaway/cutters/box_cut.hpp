@@ -35,8 +35,9 @@ const OptionsSchema& boxCutSchema();
 glm::mat3 boxCutAxes(const BoxCutOptions& options);
 
 // What the box cut decides about a fragment at world point `x` of an object it cuts, seen
-// along the ray from `rayOrigin` (Camera::rayOrigin(x)): removed inside the box; on a back face behind the box, the cut wall where
-// the view ray left the box (its point and the face's normal, towards the viewer).
+// along the ray from `rayOrigin` (Camera::rayOrigin(x)): removed inside the box; on a back
+// face behind the box, the cut wall where the view ray left the box (its point and the
+// face's normal, towards the viewer).
 struct BoxCutFate {
   enum class Fate { Keep, Discard, CutSurface } fate = Fate::Keep;
   glm::vec3 position{0.0f}, normal{0.0f};

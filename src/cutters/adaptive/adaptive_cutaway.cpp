@@ -104,8 +104,9 @@ std::vector<std::pair<std::string, std::string>> AdaptiveCutaway::facts() const 
 }
 
 void AdaptiveCutaway::beginFrame(const FrameState& state) {
-  surface_.setCamera(cutawayProjection(state.camera, state.aspect));
-  if (transition_) transition_->setCamera(cutawayProjection(state.camera, state.aspect));
+  const CutawayProjection camera = cutawayProjection(state.camera, state.aspect);
+  surface_.setCamera(camera);
+  if (transition_) transition_->setCamera(camera);
 }
 
 std::vector<Target> AdaptiveCutaway::geometryInputs() const {

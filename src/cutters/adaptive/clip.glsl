@@ -4,10 +4,15 @@
 layout(binding = UNIT_CUTAWAY_DEPTH) uniform sampler2D uCutawayDepth;  // C(p), window depth, linear filter
 layout(binding = UNIT_CUTAWAY_DILATED) uniform sampler2D uCutawayDilated;  // 1-pixel minimum of C (Burns08 §4.2)
 
+// View-space point on the view ray through uv at window depth `depth`.
+vec3 viewPointAtDepth(vec2 uv, float depth) {
+  vec4 h = uInverseProjection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+  return h.xyz / h.w;
+}
+
 // The cutaway surface at screen position uv, in view space.
 vec3 cutawayViewPoint(vec2 uv) {
-  vec4 h = uInverseProjection * vec4(uv * 2.0 - 1.0, texture(uCutawayDepth, uv).r * 2.0 - 1.0, 1.0);
-  return h.xyz / h.w;
+  return viewPointAtDepth(uv, texture(uCutawayDepth, uv).r);
 }
 
 // The cut surface through `center` (view space) with neighbours dx, dy apart along the
@@ -33,12 +38,6 @@ layout(location = LOC_ADAPTIVE_IMPORTANCE) uniform float uImportance;  // I of t
 float contextualRamp(float a, float b, float x) {
   if (!(a < b)) return x > a ? 1.0 : 0.0;
   return clamp((x - a) / (b - a), 0.0, 1.0);
-}
-
-// View-space point on the view ray through uv at window depth `depth`.
-vec3 viewPointAtDepth(vec2 uv, float depth) {
-  vec4 h = uInverseProjection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-  return h.xyz / h.w;
 }
 
 // (z₁, z₂, d, t): C₁ and C₂ as distances in front of the eye along the ray through uv.

@@ -20,8 +20,7 @@ int boxCutFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   if (f.frontFacing) return kKeep;
   // The view ray from → x against the box's slabs: [tIn, tOut] inside it, and the faces.
   vec3 x = f.position;
-  vec3 origin = uCounts.y == 1 ? x - uForward.xyz * dot(x - uEye.xyz, uForward.xyz) : uEye.xyz;
-  vec3 from = boxCutLocal(origin), v = local - from;
+  vec3 from = boxCutLocal(viewRayOrigin(x)), v = local - from;
   float tIn = -1e30, tOut = 1e30;
   int outAxis = -1;
   for (int i = 0; i < 3; ++i) {

@@ -74,7 +74,7 @@ int cutoutFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   if (uCutoutPlaneCount == 0) return kKeep;
   if (cutoutDistance(x) > 0.0) return kDiscard;
   if (frontFacing) return kKeep;
-  vec3 from = uCounts.y == 1 ? x - uForward.xyz * dot(x - uEye.xyz, uForward.xyz) : uEye.xyz;
+  vec3 from = viewRayOrigin(x);
   vec3 v = x - from;
   // Clip the segment from → x against every half-space: [tIn, tOut] inside the wedge.
   float tIn = 0.0, tOut = 1.0;
