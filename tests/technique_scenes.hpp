@@ -27,16 +27,18 @@ inline void PrintTo(const Case& c, std::ostream* os) {
 
 // Scenes (examples/, or tests/data/ where an example would be slow) where the technique is
 // on and, between them, each of its live options shows: the engine's pistons lie far from the
-// image's edges, so the city's pipes show the adaptive cutter's edge compression; the
-// engine's casing is hollow (its inside colour) and the bunny's box solid (its walls, which
-// the breakaway leaves a few pixels wide at 240²).
+// image's edges, so the city's pipes show the adaptive cutter's edge compression; three
+// squares stacked in front of a box show the edge highlights' exponent and the layer budget;
+// the contextual engine's graded importance shows every emphasis; the engine's casing is
+// hollow (its inside colour) and the bunny's box solid (its walls, which the breakaway leaves
+// a few pixels wide at 240²).
 inline std::vector<Case> cases() {
   std::vector<Case> out;
   for (const TechniqueInfo& t : techniques()) {
     Case c{t.path, {}, {}, 96, 72};
     if (t.path == "cutters.adaptive")
       c.examples = {"examples/engine-cutaway.json", "examples/ss64ne-city-cutaway.json",
-                    "examples/engine-contextual.json"},
+                    "examples/engine-contextual.json", "tests/data/render/edge-highlights-stack.json"},
       c.setup = {{"cutters.adaptive.ghostLines", "true"}};
     else if (t.path == "cutters.cutout")
       c.examples = {"examples/bunny-box-cutout.json", "examples/engine-cutout.json"},
@@ -51,7 +53,8 @@ inline std::vector<Case> cases() {
       c.examples = {"examples/pipes-street.json", "examples/ss64ne-terrain.json"};
     else if (t.path == "cutters.boxCut") c.examples = {"examples/house-box-cut.json"};
     else if (t.path == "style")
-      c.examples = {"examples/engine.json"}, c.setup = {{"style.shadows", "true"}};
+      c.examples = {"examples/engine.json", "examples/engine-contextual.json"},
+      c.setup = {{"style.shadows", "true"}, {"style.emphasis.linesOnlyBelow", "0.2"}};
     else if (!t.name.empty())
       c.examples = {"examples/bunny.json"}, c.setup = {{"style.name", t.name}};
     out.push_back(c);

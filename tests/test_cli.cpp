@@ -192,8 +192,8 @@ TEST(Cli, FramesAndTimeRenderTheAnimation) {
 }
 
 // With a cutter, bench measures the plain frame and the cutaway on both compute paths, at
-// 512² and 1024², the simple and the contextual structure (Burns11 Table 7.1's shape), with
-// the CPU references and the jump-flooding accuracy.
+// 512² and 1024², the simple and the contextual structure with R applied each way (Burns11
+// Table 7.1's shape), with the CPU references and the jump-flooding accuracy.
 TEST(Cli, BenchComparesPlainAndCutaway) {
   const Result r = run("bench " + kData + "/render/moving-box.json --frames 1 --json");
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -202,12 +202,21 @@ TEST(Cli, BenchComparesPlainAndCutaway) {
   for (const auto& run : result["runs"]) labels.push_back(run["label"]);
   EXPECT_EQ(labels, (std::vector<std::string>{"plain", "cutaway 512 gpu", "cutaway 512 cpu",
                                               "cutaway 1024 gpu", "cutaway 1024 cpu",
-                                              "simple cutaway", "contextual cutaway"}));
+                                              "simple cutaway", "contextual cutaway",
+                                              "contextual translucency",
+                                              "contextual edge highlights"}));
   // The contextual structure runs the second surface's passes.
   const auto& passes = result["runs"][6]["passes"];
   EXPECT_TRUE(std::any_of(passes.begin(), passes.end(),
                           [](const auto& p) { return p["pass"] == "cutawayDilateC2"; }));
   EXPECT_GT(result["runs"][6]["frameRatioToPlain"].get<double>(), 0.0);
+  // Translucency and edge highlights peel their layers.
+  for (int run : {7, 8}) {
+    const auto& layered = result["runs"][run]["passes"];
+    EXPECT_TRUE(std::any_of(layered.begin(), layered.end(),
+                            [](const auto& p) { return p["pass"] == "translucentLayers"; }))
+        << result["runs"][run]["label"];
+  }
   EXPECT_EQ(result["runs"][2]["computePath"], "cpu");
   EXPECT_GT(result["runs"][2]["cutawaySurfaceMs"].get<double>(), 0.0);
   for (const char* variant : {"jfa", "jfa+1", "1+jfa", "jfa+2"})

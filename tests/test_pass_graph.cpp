@@ -114,7 +114,7 @@ TEST(PassGraph, IsDocumentedInRendererHpp) {
   const auto graph = documentedGraph();
   ASSERT_GE(graph.size(), 5u) << "renderer.hpp's pass graph not found";
   EXPECT_EQ(graph.front().substr(0, 12), "[cutawaySeed");
-  EXPECT_EQ(graph.back(), "[channels]");
+  EXPECT_EQ(graph.back(), "[translucentComposite]");
 }
 
 // Every variant matches the whole graph; every line runs in at least one.

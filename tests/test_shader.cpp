@@ -24,6 +24,7 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                                           "styles/surface.glsl",
                                           "styles/gooch/gooch.glsl",
                                           "styles/shadows/shadow_lookup.glsl",
+                                          "styles/emphasis/emphasis.glsl",
                                           "frame/gbuffer.glsl",
                                           "frame/gbuffer_channels.glsl",
                                           "cutters/composition.glsl",

@@ -666,15 +666,23 @@ int bench(const BenchOptions& options) {
         runs.push_back(measure("cutaway " + std::to_string(n) + (gpu ? " gpu" : " cpu"), s, info,
                                options.frames));
       }
-    // Burns11 Table 7.1's shape: the simple and the contextual structure (its trimming by R),
-    // at the scene's own buffer size and compute path; the scene's contextual options if any.
-    Scene simple = scene, contextual = scene;
+    // Burns11 Table 7.1's shape: the simple and the contextual structure, R applied each way
+    // (its trimming, translucency, edge highlights), at the scene's own buffer size and
+    // compute path; the scene's contextual options if any.
+    Scene simple = scene;
     simple.cutters.find<AdaptiveCutawayOptions>()->contextual.reset();
-    AdaptiveCutawayOptions& a = *contextual.cutters.find<AdaptiveCutawayOptions>();
-    if (!a.contextual) a.contextual = ContextualCutawayOptions{};
-    a.contextual->transitionAngle = std::max(a.contextual->transitionAngle, a.angle);
     runs.push_back(measure("simple cutaway", simple, info, options.frames));
-    runs.push_back(measure("contextual cutaway", contextual, info, options.frames));
+    using Application = ContextualCutawayOptions::Application;
+    for (const auto& [name, apply] : {std::pair{"contextual cutaway", Application::Cut},
+                                      std::pair{"contextual translucency", Application::Translucency},
+                                      std::pair{"contextual edge highlights", Application::EdgeHighlights}}) {
+      Scene contextual = scene;
+      AdaptiveCutawayOptions& a = *contextual.cutters.find<AdaptiveCutawayOptions>();
+      if (!a.contextual) a.contextual = ContextualCutawayOptions{};
+      a.contextual->transitionAngle = std::max(a.contextual->transitionAngle, a.angle);
+      a.contextual->apply = apply;
+      runs.push_back(measure(name, contextual, info, options.frames));
+    }
     const fields::JumpFloodingVariant variant = scene.cutters.find<AdaptiveCutawayOptions>()->variant;
     for (int n : {512, 1024}) {
       const fields::SeedImage seeds = sceneSeedImage(scene, info, n);

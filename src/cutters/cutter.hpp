@@ -84,6 +84,14 @@ class Cutter {
   // The look of its cuts of object `index` (called for the objects it cuts or clips).
   virtual CutLook look(std::size_t index) const = 0;
   virtual void setObjectUniforms(GLuint /*program*/, std::size_t /*index*/) const {}
+  // 0 when its GLSL decides every fragment (for the renderer's life); else it leaves fragments
+  // partly reduced (Burns11 ch. 2's translucency and edge highlights), and this is the most
+  // translucent layers to peel per pixel (read every frame). Such a cutter's GLSL defines
+  //   float <name>Opacity(CutFragment f, vec3 normal, vec3 toEye);
+  // the composition's cutOpacity() is the least over the grading cutters of an object, the
+  // geometry pass keeps the fragments of opacity 1, and the frame's translucent layers
+  // (frame/translucent_layers.hpp) draw those between 0 and 1.
+  virtual int translucentLayers() const { return 0; }
 
   // Geometry of its own, drawn into the G-buffer after the kinds' objects (Trapp13's caps).
   virtual void drawGeometry(const GeometryDraw&) const {}

@@ -14,8 +14,10 @@
 #include "frame/frame_uniforms.hpp"
 #include "frame/gbuffer.hpp"
 #include "frame/scene_meshes.hpp"
+#include "frame/translucent_layers.hpp"
 #include "kinds/meshes/mesh_kind.hpp"
 #include "kinds/pipes/pipe_kind.hpp"
+#include "styles/emphasis/emphasis.hpp"
 #include "styles/lines/line_pass.hpp"
 #include "styles/registry.hpp"
 #include "styles/shadows/shadow_map.hpp"
@@ -40,6 +42,8 @@ struct Renderer::Impl {
   std::vector<std::unique_ptr<GeometryKind>> kinds;
   std::unique_ptr<ShadingStyle> style;
   std::unique_ptr<ShadowMap> shadowMap;
+  std::unique_ptr<Emphasis> emphasis;
+  std::unique_ptr<TranslucentLayers> layers;  // when a cutter leaves translucent fragments
   std::unique_ptr<LinePass> lines, ghostLines;
   Target linesTarget, outlinesTarget, ghostLinesTarget;
 };
@@ -59,6 +63,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   // which reads nothing while shadows are off.
   g.bindings.textureUnit("SHADOW_MAP");
   if (style.shadows.enabled) g.shadowMap = std::make_unique<ShadowMap>(setup);
+  g.emphasis = std::make_unique<Emphasis>(setup);
   const auto& types = cutterTypes();
   for (std::size_t slot = 0; slot < types.size(); ++slot) {
     if (!cutterActive(types[slot], scene)) continue;
@@ -75,6 +80,16 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   const bool stencil = std::any_of(g.kinds.begin(), g.kinds.end(),
                                    [](const auto& k) { return k->needsStencil(); });
   g.gbuffer.declare(g.frame, scene.samples, stencil);
+  // Burns11 ch. 2: material a cutter reduces only partly is peeled into translucent layers.
+  setup.translucentLayers = std::any_of(g.cutters.begin(), g.cutters.end(), [](const ActiveCutter& c) {
+    return c.cutter->translucentLayers() > 0;
+  });
+  if (setup.translucentLayers)
+    g.layers = std::make_unique<TranslucentLayers>(g.frame, g.bindings, g.gbuffer, [&g] {
+      int most = 0;
+      for (const ActiveCutter& c : g.cutters) most = std::max(most, c.cutter->translucentLayers());
+      return most;
+    });
   setup.shadingAliases = {{"style.glsl", shading->glsl}};
   setup.shadingSources = {{"cutters/composition.glsl", cutterComposition(g.cutters)},
                           {"frame/gbuffer_channels.glsl", g.gbuffer.channelsGlsl()}};
@@ -86,6 +101,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   };
   setup.bindShading = [&g] {
     g.style->bindForGeometry();
+    g.emphasis->bindForGeometry();
     if (g.shadowMap) g.shadowMap->bindForLookup();
   };
   for (ActiveCutter& c : g.cutters) c.cutter->prepareGeometryPrograms();
@@ -115,6 +131,14 @@ void Renderer::Impl::buildFrame() {
   //    the cutters' (Trapp13's cap mask, Burns08 §4.3's ghost geometry).
   for (const auto& k : kinds) k->addPassesAfterGeometry(frame);
   for (ActiveCutter& c : cutters) c.cutter->addPassesAfterGeometry(frame);
+  // Burns11 ch. 2: the partly reduced material, peeled front to back.
+  if (layers)
+    layers->addLayersPass(frame, [this](bool first) {
+      for (const ActiveCutter& c : cutters) c.cutter->bindForGeometry();
+      setup.bindShading();
+      const GeometryDraw draw{meshes.time(), &cutters};
+      for (const auto& k : kinds) k->drawTranslucentLayer(cutters, draw, first);
+    });
   // 5. Feature lines and cut outlines over the G-buffer; ghost lines over a cutter's ghosts.
   std::vector<GBuffer::Overlay> overlays;
   std::optional<glm::vec3> outlineColor;
@@ -190,6 +214,8 @@ void Renderer::Impl::buildFrame() {
   }
   // 6. The composite: the samples resolved, the overlays blended, the AOVs copied.
   gbuffer.addCompositePass(frame, std::move(overlays));
+  // 7. The translucent layers over the final colour, lines of what lies behind them included.
+  if (layers) layers->addCompositePass(frame, gbuffer.finalColor());
 }
 
 void Renderer::Impl::drawGeometry(GLuint framebuffer) const {
@@ -276,6 +302,7 @@ void Renderer::render(const Camera& camera, float time) {
   glBindBufferBase(GL_UNIFORM_BUFFER, Bindings::kFrameUniformBlock, g.frameUniforms.id());
   const FrameState state{camera, aspect, time, u};
   g.style->beginFrame(state);
+  g.emphasis->beginFrame();
   for (ActiveCutter& c : g.cutters) c.cutter->beginFrame(state);
   g.frame.execute();
 }

@@ -35,6 +35,9 @@ const OptionsSchema& styleSchema() {
                          "their options."})
           .group("shadows", &Style::shadows, &ShadowStyle::enabled, shadowStyleSchema(),
                  {.doc = "Shadows from the key light for every style (styles/shadows)."})
+          .group("emphasis", &Style::emphasis, emphasisStyleSchema(),
+                 {.doc = "Emphasis by importance for every style (Burns11 §3.3.1, "
+                         "styles/emphasis): desaturation, shading suppression, line drawing."})
           .build();
   return schema;
 }

@@ -15,10 +15,12 @@
 //   [pipeOwners pipes pipeAovs]
 //   [ghostGeometry]
 //   [capMask]
+//   [translucentLayers]
 //   [lines]
 //   [ghostLines]
 //   composite
 //   [channels]
+//   [translucentComposite]
 //
 // - cutawaySeed … cutawayDilate: the adaptive cutter (Burns08 §5): the region of interest's
 //   rear hulls, the cutaway surface by jump flooding on the CPU or in fragment passes (one per
@@ -34,6 +36,9 @@
 // - pipeOwners, pipes, pipeAovs: Konev18 §6's billboard pipes into the same G-buffer.
 // - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines.
 // - capMask: Trapp13's cap coverage AOV.
+// - translucentLayers, translucentComposite: Burns11 ch. 2's occlusion reduction by
+//   translucency or edge highlights: the material a cutter reduces only partly, peeled front
+//   to back into layers (frame/translucent_layers.hpp), blended over the final colour.
 // - lines: silhouettes, creases and cut outlines per sample (styles/lines).
 // - composite: the samples resolved, the line overlays blended, sample 0 of every
 //   intermediate buffer copied into single-sample AOVs.

@@ -27,6 +27,7 @@
 #include "cutaway/geometry/pipe_network.hpp"
 #include "cutaway/scene/camera.hpp"
 #include "cutaway/scene/settings.hpp"
+#include "cutaway/styles/emphasis.hpp"
 #include "cutaway/styles/lines.hpp"
 #include "cutaway/styles/shadows.hpp"
 
@@ -114,12 +115,13 @@ struct Light {
 };
 
 // The style: the shading style by name (one of styleNames(): cutaway/styles/<name>.hpp holds
-// its options), the feature lines and shadows drawn with every style, and each shading
-// style's options by its key (unset ones are their defaults).
+// its options), the feature lines, shadows and emphasis by importance applied with every
+// style, and each shading style's options by its key (unset ones are their defaults).
 struct Style {
   std::string name = "gooch";
   std::optional<LineStyle> lines = LineStyle{};  // nullopt: no lines
   ShadowStyle shadows;
+  EmphasisStyle emphasis;
   TechniqueSettings shading;  // "style": {"gooch": {…}, "toon": {…}}
   template <class O>
   const O& get() const {

@@ -34,6 +34,8 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
     transitionDilatedUnit_ = setup.bindings.textureUnit("CUTAWAY_DILATED_C2");
     contextualLocation_ = setup.bindings.uniformLocation("ADAPTIVE_CONTEXTUAL");
     importanceLocation_ = setup.bindings.uniformLocation("ADAPTIVE_IMPORTANCE");
+    graded_ = options().contextual->apply != ContextualCutawayOptions::Application::Cut;
+    if (graded_) applyLocation_ = setup.bindings.uniformLocation("ADAPTIVE_APPLY");
     // Per pixel of the visible surface of a cut object (channels 0 and 1 of clip.glsl).
     setup.gbuffer.addChannel({.name = "occlusion",
                               .meaning = "Burns11 eq. 5.6's occlusion Ω of the visible surface "
@@ -123,6 +125,11 @@ void AdaptiveCutaway::bindForGeometry() const {
   glBindTextureUnit(transitionDilatedUnit_, setup_.frame.texture(transition_->cutawayDilated()).id());
 }
 
+int AdaptiveCutaway::translucentLayers() const {
+  if (!graded_) return 0;
+  return options().contextual ? options().contextual->layers : 1;
+}
+
 bool AdaptiveCutaway::reductionIsOcclusion() const {
   using Reduction = ContextualCutawayOptions::Reduction;
   const Reduction r = options().contextual->reduction;
@@ -146,6 +153,10 @@ void AdaptiveCutaway::setProgramUniforms(GLuint program) const {
   const bool transition = c.transitionAngle > options().angle;
   glProgramUniform3f(program, contextualLocation_, d, transitionOverlayOcclusion(transition, d > 0.0f),
                      reductionIsOcclusion() ? 1.0f : 0.0f);
+  if (graded_)
+    glProgramUniform2f(program, applyLocation_,
+                       c.apply == ContextualCutawayOptions::Application::EdgeHighlights ? 1.0f : 0.0f,
+                       c.edgeExponent);
 }
 
 void AdaptiveCutaway::setObjectUniforms(GLuint program, std::size_t index) const {

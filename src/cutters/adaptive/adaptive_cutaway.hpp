@@ -25,6 +25,8 @@ class AdaptiveCutaway : public Cutter {
   void bindForGeometry() const override;
   void setProgramUniforms(GLuint program) const override;
   void setObjectUniforms(GLuint program, std::size_t index) const override;
+  // The contextual structure's R applied as translucency or edge highlights (Burns11 ch. 2).
+  int translucentLayers() const override;
   // Every visible object but the objects of interest (Burns08 §4.1).
   bool cuts(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
@@ -52,7 +54,8 @@ class AdaptiveCutaway : public Cutter {
   std::unique_ptr<CutawaySurfacePasses> transition_;
   GLuint depthUnit_, dilatedUnit_;
   GLuint transitionDepthUnit_ = 0, transitionDilatedUnit_ = 0;
-  GLint contextualLocation_ = -1, importanceLocation_ = -1;
+  GLint contextualLocation_ = -1, importanceLocation_ = -1, applyLocation_ = -1;
+  bool graded_ = false;
   Target seedDepthTest_;
   Target ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_;
   struct Programs;

@@ -43,6 +43,22 @@ OptionsSchema contextualSchema() {
                {"occlusion", C::Reduction::Occlusion}},
               {.doc = "R from Ω: by importance (Burns11 eqs. 7.1–7.3), R = Ω (§7.2), or auto: "
                       "by importance when the cut objects' importances differ."})
+      .choice("apply", &C::apply,
+              {{"cut", C::Application::Cut},
+               {"translucency", C::Application::Translucency},
+               {"edgeHighlights", C::Application::EdgeHighlights}},
+              {.doc = "How R is applied: cut (fully or not at all, with cut surfaces: §5.2.4), "
+                      "translucency (opacity 1 − R, eq. 2.1) or edge highlights (eq. 2.2), the "
+                      "last two as translucent layers peeled in depth order."})
+      .number("edgeExponent", &C::edgeExponent, 0.25, 16,
+              {.label = "edge exponent k",
+               .doc = "k of eq. 2.2: how fast opacity falls away from the edges (1–4 in the "
+                      "paper).",
+               .live = true})
+      .number("layers", &C::layers, 1, 64,
+              {.doc = "The most translucent layers peeled per pixel; peeling stops earlier at "
+                      "the first empty layer, which makes the result exact.",
+               .live = true})
       .build();
 }
 

@@ -85,8 +85,12 @@ vec3 trimViewPoint(vec2 uv, float omega, bool frontFacing) {
 }
 
 // R ≥ ½ removes the fragment (§5.2.4: polygons take R fully or not at all); a back face
-// behind its object's trimming surface is that surface's cut.
+// behind its object's trimming surface is that surface's cut. Applied as translucency or edge
+// highlights (ADAPTIVE_GRADED), R is the fragment's opacity instead (adaptiveOpacity).
 int contextualFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
+#ifdef ADAPTIVE_GRADED
+  return kKeep;
+#endif
   vec2 uv = gl_FragCoord.xy * uViewport.zw;
   vec4 r = contextualRay(uv, f.frontFacing);
   if (occlusionReduction(contextualOcclusion(r, fragmentDistance(f.position))) >= 0.5) return kDiscard;
@@ -110,6 +114,18 @@ float adaptiveChannel0(CutFragment f) {
 float adaptiveChannel1(CutFragment f) {
   return occlusionReduction(adaptiveChannel0(f));
 }
+
+#ifdef ADAPTIVE_GRADED
+// x: 0 translucency, 1 edge highlights; y: k of eq. 2.2.
+layout(location = LOC_ADAPTIVE_APPLY) uniform vec2 uApply;
+// Ch. 2: the opacity R leaves (α_m = 1); mirrors reducedOpacity() in contextual_function.cpp.
+float adaptiveOpacity(CutFragment f, vec3 normal, vec3 toEye) {
+  float r = adaptiveChannel1(f);
+  if (uApply.x == 0.0) return 1.0 - r;  // eq. 2.1
+  float facing = clamp(dot(normal, toEye), 0.0, 1.0);
+  return 1.0 - r * (1.0 - pow(1.0 - facing, uApply.y));  // eq. 2.2
+}
+#endif
 #endif
 
 // kDiscard in the clear region, kKeep in the base region, kCutSurface for a back face seen

@@ -1,6 +1,8 @@
-// Burns11's contextual cutaway structure (§4.1.3.3, eqs. 5.5–5.6) and occlusion reduction by
-// importance (eqs. 7.1–7.3); mirrored line by line in clip.glsl.
+// Burns11's contextual cutaway structure (§4.1.3.3, eqs. 5.5–5.6), occlusion reduction by
+// importance (eqs. 7.1–7.3) and its application (eqs. 2.1–2.2); mirrored line by line in
+// clip.glsl.
 #include <algorithm>
+#include <cmath>
 
 #include "cutaway/cutters/adaptive.hpp"
 
@@ -36,6 +38,15 @@ float trimOcclusion(float importance) {
   if (importance >= 1.0f) return 2.0f;
   const float tau0 = std::max(2.0f * importance - 1.0f, 0.0f), tau1 = importance;
   return 0.5f * (tau0 + tau1);
+}
+
+float reducedOpacity(ContextualCutawayOptions::Application apply, float reduction, float nDotV,
+                     float k) {
+  using Application = ContextualCutawayOptions::Application;
+  if (apply == Application::Cut) return reduction >= 0.5f ? 0.0f : 1.0f;  // §5.2.4
+  if (apply == Application::Translucency) return 1.0f - reduction;        // eq. 2.1, α_m = 1
+  const float facing = std::clamp(nDotV, 0.0f, 1.0f);
+  return 1.0f - reduction * (1.0f - std::pow(1.0f - facing, k));         // eq. 2.2
 }
 
 }  // namespace cutaway

@@ -9,12 +9,14 @@
 #include "clip_surfaces.glsl"
 #include "parity.glsl"
 #include "styles/shadows/shadow_lookup.glsl"
+#include "styles/emphasis/emphasis.glsl"
 #include "frame/gbuffer.glsl"
 #include "cutters/composition.glsl"
 in vec3 vWorldPosition;
 in vec2 vST;
 layout(location = 11) uniform int uObjectId;
 layout(location = 13) uniform int uCutBy;  // the other cutters that cut the capped object
+layout(location = 16) uniform float uEmphasisImportance;  // the capped object's emphasisImportance()
 layout(location = 40) uniform int uCapSurface;
 layout(location = 41) uniform mat4 uCapToTexture;  // world → LDI space of the capped solid
 layout(location = 45) uniform int uDepthComplexity;
@@ -92,6 +94,6 @@ void main() {
   s.shininess = 16.0;
   s.keyLightVisibility = keyLightVisibility(s.position);
   float occlusion = mix(1.0, relief.a, uCapStyle.x);
-  writeGBuffer(s, shadeSurface(s) * occlusion, 1.0, uObjectId, false, true);
+  writeGBuffer(s, emphasize(base, shadeSurface(s), uEmphasisImportance) * occlusion, 1.0, uObjectId, false, true);
   writeNoChannels();
 }

@@ -332,8 +332,9 @@ void ClipSurfaceCutter::bindForGeometry() const {
 
 void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   // Locations of cap.vert / cap.frag.
-  constexpr GLint kObjectId = 11, kCutBy = 13, kCapSurface = 40, kCapToTexture = 41,
-                  kDepthComplexity = 45, kCapColor = 46, kCapRect = 48, kHasDiffuse = 49;
+  constexpr GLint kObjectId = 11, kCutBy = 13, kImportance = 16, kCapSurface = 40,
+                  kCapToTexture = 41, kDepthComplexity = 45, kCapColor = 46, kCapRect = 48,
+                  kHasDiffuse = 49;
   const Scene& scene = setup_.scene;
   const ClipSurfaceOptions& options = live();
   const float time = draw.time;
@@ -357,6 +358,8 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
     glBindTextureUnit(layersUnit_, sprite.layers.id());
     const SceneObject& o = scene.objects[capped_[k]];
+    glProgramUniform1f(program, kImportance,
+                       emphasisImportance(o.role == Role::Interest, o.importance));
     const glm::mat4 model = o.transformAt(time);
     const Bounds& b = gpu_->capBounds[k];
     for (std::size_t i = 0; i < options.surfaces.size(); ++i) {

@@ -6,6 +6,7 @@
 #include "styles/surface.glsl"
 #include "style.glsl"
 #include "styles/shadows/shadow_lookup.glsl"
+#include "styles/emphasis/emphasis.glsl"
 #include "frame/gbuffer.glsl"
 #include "cutters/composition.glsl"
 in vec3 vWorldPosition;
@@ -18,7 +19,16 @@ layout(location = 12) uniform float uLines;       // 1: this object takes featur
 layout(location = 13) uniform int uCutBy;         // bit k: the cutter of slot k cuts this object
 layout(location = 14) uniform int uCutSurfaces;   // bit k: its cuts of this object show cut surfaces
 layout(location = 15) uniform vec3 uBackColor;    // back faces that are no cut surface (an open or hollow inside)
+layout(location = 16) uniform float uEmphasisImportance;  // emphasisImportance(): 1 for objects of interest
 layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cut surfaces' colour
+#ifdef TRANSLUCENT_LAYER
+// One layer of frame/translucent_layers.hpp: the nearest fragment of opacity > 0 behind the
+// previous layer and in front of the opaque surfaces (the depth test). It is shaded per sample
+// (reading gl_SampleID), so that each sample peels at its own depth, the depth its depth test
+// stored (its cut too is decided at the sample's position).
+layout(binding = UNIT_PEEL_DEPTH) uniform sampler2DMS uPeelDepth;
+layout(location = 17) uniform int uFirstLayer;
+#endif
 void main() {
   CutFragment f = CutFragment(vWorldPosition, vWorldNormal, gl_FrontFacing);
   vec3 cutPosition, cutNormal;
@@ -38,6 +48,22 @@ void main() {
   s.specular = uSpecular;
   s.shininess = uShininess;
   s.keyLightVisibility = keyLightVisibility(s.position);
-  writeGBuffer(s, shadeSurface(s), uLines, uObjectId, cut, false);
+  vec3 color = emphasize(s.baseColor, shadeSurface(s), uEmphasisImportance);
+  // Burns11 ch. 2: occlusion partly reduced by a grading cutter (1 without one).
+  float opacity = cutOpacity(uCutBy, f, s.normal, s.toEye);
+#ifdef TRANSLUCENT_LAYER
+  // Opacity ≥ 1 too: a fragment the opaque pass kept lies at the opaque depth and fails the
+  // depth test, and one it dropped by a rounding apart is drawn here, so none is lost. Below
+  // 1/512 a fragment changes no 8-bit colour: it takes no layer.
+  if (!(opacity > 1.0 / 512.0)) discard;
+  if (uFirstLayer == 0 &&
+      gl_FragCoord.z <= texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), gl_SampleID).r)
+    discard;
+  opacity = min(opacity, 1.0);
+  outColor = vec4(clamp(color, 0.0, 1.0) * opacity, opacity);  // premultiplied
+#else
+  if (opacity < 1.0) discard;  // drawn in the translucent layers, or not at all
+  writeGBuffer(s, color, uLines, uObjectId, cut, false);
   writeCutterChannels(uCutBy, f);
+#endif
 }

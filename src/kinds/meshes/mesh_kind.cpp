@@ -7,34 +7,47 @@ namespace cutaway {
 namespace {
 // Uniform locations of kinds/meshes/mesh.frag and frame/mesh.vert.
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
-                kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kClipPlane = 18, kCutColor = 24;
+                kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kImportance = 16,
+                kFirstLayer = 17, kClipPlane = 18, kCutColor = 24;
 }  // namespace
 
 void MeshKind::prepare(const std::vector<ActiveCutter>&) {
-  program_ = gl::buildProgram(setup_.geometryProgram(
-      {{GL_VERTEX_SHADER, "frame/mesh.vert"}, {GL_FRAGMENT_SHADER, "kinds/meshes/mesh.frag"}}));
+  const std::vector<std::pair<GLenum, std::string>> stages{
+      {GL_VERTEX_SHADER, "frame/mesh.vert"}, {GL_FRAGMENT_SHADER, "kinds/meshes/mesh.frag"}};
+  program_ = gl::buildProgram(setup_.geometryProgram(stages));
+  if (setup_.translucentLayers)
+    layerProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"TRANSLUCENT_LAYER", "1"}}));
+}
+
+std::vector<ObjectCut> MeshKind::objectCuts(const std::vector<ActiveCutter>& cutters) const {
+  std::vector<ObjectCut> cuts;
+  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i) cuts.push_back(objectCut(cutters, i));
+  return cuts;
+}
+
+void MeshKind::setObjectUniforms(GLuint program, const std::vector<ActiveCutter>& cutters,
+                                 const ObjectCut& cut, const SceneObject& o, std::size_t i) const {
+  glProgramUniform3fv(program, kColor, 1, &o.material.color[0]);
+  glProgramUniform1f(program, kSpecular, o.material.specular);
+  glProgramUniform1f(program, kShininess, o.material.shininess);
+  glProgramUniform1i(program, kObjectId, int(i));
+  glProgramUniform1f(program, kImportance,
+                     emphasisImportance(o.role == Role::Interest, o.importance));
+  const auto lines = o.params.find("lines");
+  const bool objectLines = lines == o.params.end() || std::get<bool>(lines->second);
+  glProgramUniform1f(program, kLines, objectLines ? 1.0f : 0.0f);
+  setCutUniforms(program, {kCutBy, kCutSurfaces, kBackColor, kCutColor}, cutters, cut, i,
+                 o.material.color);
 }
 
 void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const GeometryDraw&) const {
   const GLuint program = program_.id();
   for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
-  const Scene& scene = setup_.scene;
-  std::vector<ObjectCut> cuts;
+  const std::vector<ObjectCut> cuts = objectCuts(cutters);
   int clipPasses = 0;  // the most any object needs
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    cuts.push_back(objectCut(cutters, i));
-    clipPasses = std::max(clipPasses, cuts.back().clipPasses);
-  }
-  const CutUniformLocations at{kCutBy, kCutSurfaces, kBackColor, kCutColor};
+  for (const ObjectCut& cut : cuts) clipPasses = std::max(clipPasses, cut.clipPasses);
   auto setUniforms = [&](const SceneObject& o, std::size_t i) {
-    glProgramUniform3fv(program, kColor, 1, &o.material.color[0]);
-    glProgramUniform1f(program, kSpecular, o.material.specular);
-    glProgramUniform1f(program, kShininess, o.material.shininess);
-    glProgramUniform1i(program, kObjectId, int(i));
-    const auto lines = o.params.find("lines");
-    const bool objectLines = lines == o.params.end() || std::get<bool>(lines->second);
-    glProgramUniform1f(program, kLines, objectLines ? 1.0f : 0.0f);
-    setCutUniforms(program, at, cutters, cuts[i], i, o.material.color);
+    setObjectUniforms(program, cutters, cuts[i], o, i);
   };
   // Secondary objects first, cut; then the objects of interest, whole (Burns08 §4.1).
   setup_.meshes.draw(
@@ -66,6 +79,23 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const Geom
         return !o.proxy && o.role == Role::Interest && cuts[i].clipPasses == 0;
       },
       setUniforms);
+}
+
+void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters,
+                                    const GeometryDraw&, bool first) const {
+  const GLuint program = layerProgram_.id();
+  for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
+  glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
+  int grading = 0;  // the slots of the cutters that leave translucent fragments
+  for (const ActiveCutter& c : cutters)
+    if (c.cutter->translucentLayers() > 0) grading |= 1 << c.slot;
+  const std::vector<ObjectCut> cuts = objectCuts(cutters);
+  setup_.meshes.draw(
+      program,
+      [&](const SceneObject& o, std::size_t i) {
+        return !o.proxy && (cuts[i].cutBy & grading) != 0 && cuts[i].clipPasses == 0;
+      },
+      [&](const SceneObject& o, std::size_t i) { setObjectUniforms(program, cutters, cuts[i], o, i); });
 }
 
 }  // namespace cutaway

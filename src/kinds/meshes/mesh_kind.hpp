@@ -1,7 +1,9 @@
 // Triangle meshes as a geometry kind: every visible scene object drawn into the G-buffer with
 // the style and the active cutters composed into kinds/meshes/mesh.frag. Burns08 §4.1's
 // order: the secondary objects first, cut; the objects of interest after, whole. An object a
-// cutter clips with hardware clip planes (Diepstraten03 §4.3) is drawn once per plane.
+// cutter clips with hardware clip planes (Diepstraten03 §4.3) is drawn once per plane. The
+// objects a grading cutter cuts are drawn again, for each translucent layer, by the layer
+// variant of the program (frame/translucent_layers.hpp).
 #pragma once
 
 #include "kinds/kind.hpp"
@@ -14,10 +16,16 @@ class MeshKind : public GeometryKind {
   void prepare(const std::vector<ActiveCutter>& cutters) override;
   void drawGeometry(const std::vector<ActiveCutter>& cutters,
                     const GeometryDraw& draw) const override;
+  void drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw& draw,
+                            bool first) const override;
 
  private:
+  std::vector<ObjectCut> objectCuts(const std::vector<ActiveCutter>& cutters) const;
+  void setObjectUniforms(GLuint program, const std::vector<ActiveCutter>& cutters,
+                         const ObjectCut& cut, const SceneObject& o, std::size_t i) const;
+
   FrameSetup& setup_;
-  gl::Program program_;
+  gl::Program program_, layerProgram_;
 };
 
 }  // namespace cutaway
