@@ -61,6 +61,7 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"engine-cutaway", "engine-cutaway.json", "", 320, 240},
         GoldenCase{"engine-contextual", "engine-contextual.json", "", 320, 240},
         GoldenCase{"engine-translucent", "engine-translucent.json", "", 320, 240},
+        GoldenCase{"house-contextual-lines", "house-contextual-lines.json", "", 320, 240},
         GoldenCase{"house-cutaway", "house-cutaway.json", "", 320, 240},
         GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240},
         // Diepstraten03 cutout and breakaway, each in two styles.

@@ -139,7 +139,7 @@ std::vector<Expected> closedForm(ContextualCutawayOptions::Application apply,
     const float z1 = viewDistance(inverse, bilinear(c1, w));
     const ContextualRay ray{z1, std::max(viewDistance(inverse, bilinear(c2, w)), z1), d, 0.5f};
     const float r = occlusionReduction(contextualOcclusion(ray, 10.0f - wz), s.importance);
-    return reducedOpacity(apply, r, std::cos(t), 2.0f);
+    return reducedOpacity(apply, r, std::cos(t), 2.0f).x;
   };
   std::vector<Expected> out;
   for (int y = 0; y < kSize; ++y)
@@ -307,17 +307,75 @@ INSTANTIATE_TEST_SUITE_P(Applications, TranslucentStack,
                                       : std::string("EdgeHighlights");
                          });
 
-// Burns11 eqs. 2.1–2.2 and §5.2.4 as the mirror states them.
+// Burns11 eqs. 2.1–2.2, §2.3 and §5.2.4 as the mirror states them.
 TEST(ReducedOpacity, Equations21And22) {
   using A = ContextualCutawayOptions::Application;
-  EXPECT_FLOAT_EQ(reducedOpacity(A::Translucency, 0.3f, 0.7f, 2.0f), 0.7f);
-  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 1.0f, 2.0f), 0.4f);  // facing: as eq. 2.1
-  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 0.0f, 2.0f), 1.0f);  // edge-on: opaque
-  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 0.5f, 3.0f), 1.0f - 0.6f * (1.0f - 0.125f));
-  // Never below plain translucency's opacity for the same R (§2.2's remark).
-  for (float nDotV : {0.0f, 0.3f, 0.9f, 1.0f})
-    EXPECT_GE(reducedOpacity(A::EdgeHighlights, 0.8f, nDotV, 4.0f),
-              reducedOpacity(A::Translucency, 0.8f, nDotV, 4.0f));
-  EXPECT_EQ(reducedOpacity(A::Cut, 0.49f, 0.5f, 2.0f), 1.0f);
-  EXPECT_EQ(reducedOpacity(A::Cut, 0.5f, 0.5f, 2.0f), 0.0f);
+  EXPECT_FLOAT_EQ(reducedOpacity(A::Translucency, 0.3f, 0.7f, 2.0f).x, 0.7f);
+  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 1.0f, 2.0f).x, 0.4f);  // facing: as eq. 2.1
+  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 0.0f, 2.0f).x, 1.0f);  // edge-on: opaque
+  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 0.5f, 3.0f).x, 1.0f - 0.6f * (1.0f - 0.125f));
+  // Never below plain translucency's opacity for the same R (§2.2's remark); lines as their surface.
+  for (float nDotV : {0.0f, 0.3f, 0.9f, 1.0f}) {
+    const glm::vec2 edge = reducedOpacity(A::EdgeHighlights, 0.8f, nDotV, 4.0f);
+    EXPECT_GE(edge.x, reducedOpacity(A::Translucency, 0.8f, nDotV, 4.0f).x);
+    EXPECT_EQ(edge.y, edge.x);
+  }
+  EXPECT_EQ(reducedOpacity(A::Cut, 0.49f, 0.5f, 2.0f), glm::vec2(1.0f));
+  EXPECT_EQ(reducedOpacity(A::Cut, 0.5f, 0.5f, 2.0f), glm::vec2(0.0f));
+  // §2.3: surfaces suppressed wherever R > 0, their lines fading with R.
+  EXPECT_EQ(reducedOpacity(A::Lines, 0.0f, 0.5f, 2.0f), glm::vec2(1.0f, 1.0f));
+  EXPECT_EQ(reducedOpacity(A::Lines, 0.3f, 0.5f, 2.0f), glm::vec2(0.0f, 0.7f));
+  EXPECT_EQ(reducedOpacity(A::Lines, 1.0f, 0.5f, 2.0f), glm::vec2(0.0f, 0.0f));
+}
+
+namespace {
+
+// A 3 × 3 square facing an orthographic camera 10 units away, in front of an invisible box that
+// fills the view 16 units away, cut by a contextual structure without a transition region
+// whose overlay reaches 10 units in front of C₁: Ω = (16 − 10) / 10 = 0.6 on the whole square,
+// and R = Ω.
+Scene squareScene() {
+  return parseScene(R"({
+      "resolution": [96, 96], "samples": 4,
+      "style": {"name": "blinn-phong", "lines": {"width": 2}},
+      "camera": {"projection": "orthographic", "eye": [0, 0, 10], "target": [0, 0, 0],
+                 "height": 6, "near": 1, "far": 30},
+      "objects": [{"name": "square", "file": "plane.obj", "color": [0.5, 0.5, 0.5],
+                   "transform": {"scale": 0.15}}],
+      "proxies": [{"name": "roi", "box": {"min": [-20, -20, -6], "max": [20, 20, -4]},
+                   "role": "interest"}],
+      "cutters": {"adaptive": {"angle": 30, "outlines": false,
+          "contextual": {"transitionAngle": 30, "overlay": 10, "reduction": "occlusion",
+                         "apply": "lines"}}}})",
+                    "line-square.json", kData + "/render");
+}
+
+}  // namespace
+
+// Burns11 §2.3 as §7.2 applies it: in the overlay the square's surface is gone and its
+// silhouette stays, faded to 1 − R: every pixel is the white background under the uncut
+// square's line coverage times 0.4 (within 8-bit rounding), so the lines are the same lines.
+TEST(TranslucentLines, SurfacesGoAndTheirLinesFadeByR) {
+  Scene plain = squareScene();
+  plain.cutters.clear();
+  Renderer uncut(plain, test::glContext().info());
+  uncut.render();
+  const auto aovs = uncut.readAovs();
+  const FloatImage& coverage = test::aov(aovs, "lines");
+  const Scene scene = squareScene();
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Rgba8Image image = renderer.readColor();
+  int linePixels = 0;
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      const float line = 0.4f * *coverage.at(x, y);
+      linePixels += line > 0.2f;
+      const float expected = 255.0f * (1.0f - line);  // black lines over white
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(float(image.at(x, y)[c]), expected, 1.5f)
+            << "pixel " << x << "," << y << " channel " << c << ", uncut coverage "
+            << *coverage.at(x, y);
+    }
+  EXPECT_GT(linePixels, 4 * 40);  // the square's outline, 2 pixels wide
 }

@@ -87,10 +87,10 @@ class Cutter {
   // 0 when its GLSL decides every fragment (for the renderer's life); else it leaves fragments
   // partly reduced (Burns11 ch. 2's translucency and edge highlights), and this is the most
   // translucent layers to peel per pixel (read every frame). Such a cutter's GLSL defines
-  //   float <name>Opacity(CutFragment f, vec3 normal, vec3 toEye);
+  //   vec2 <name>Opacity(CutFragment f, vec3 normal, vec3 toEye);  // surface's, lines'
   // the composition's cutOpacity() is the least over the grading cutters of an object, the
-  // geometry pass keeps the fragments of opacity 1, and the frame's translucent layers
-  // (frame/translucent_layers.hpp) draw those between 0 and 1.
+  // geometry pass keeps the fragments whose surface is opaque, and the frame's translucent
+  // layers (frame/translucent_layers.hpp) draw the others with their lines.
   virtual int translucentLayers() const { return 0; }
 
   // Geometry of its own, drawn into the G-buffer after the kinds' objects (Trapp13's caps).

@@ -90,9 +90,10 @@ std::string cutterComposition(const std::vector<ActiveCutter>& active) {
             "cutter = " +
             slot + ";\n  }\n";
   }
-  // Ch. 2's occlusion reduction by opacity: the least the grading cutters leave.
-  glsl += "  return fate;\n}\nfloat cutOpacity(int cutBy, CutFragment f, vec3 normal, vec3 toEye) {\n"
-          "  float opacity = 1.0;\n";
+  // Ch. 2's occlusion reduction by opacity: the least the grading cutters leave the surface
+  // (x) and its lines (y).
+  glsl += "  return fate;\n}\nvec2 cutOpacity(int cutBy, CutFragment f, vec3 normal, vec3 toEye) {\n"
+          "  vec2 opacity = vec2(1.0);\n";
   for (const ActiveCutter& c : active)
     if (c.cutter->translucentLayers() > 0)
       glsl += "  if ((cutBy & (1 << " + std::to_string(c.slot) + ")) != 0) opacity = min(opacity, " +

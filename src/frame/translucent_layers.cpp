@@ -10,46 +10,65 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
       peelDepthUnit_(bindings.textureUnit("PEEL_DEPTH")),
       layerFramebuffer_(gl::Framebuffer::create()),
       accumulationFramebuffer_(gl::Framebuffer::create()),
+      linesFramebuffer_(gl::Framebuffer::create()),
       underProgram_(buildFullscreenProgram("frame/layer_under.frag")),
       overProgram_(buildFullscreenProgram("frame/layer_over.frag")),
       anySamples_(gl::Query::create(GL_ANY_SAMPLES_PASSED)) {
   const int samples = gbuffer.samples();
   // Premultiplied colour and coverage; half floats keep 8-bit colours exact through the
-  // blending.
+  // blending. The layer's other buffers as the G-buffer's (frame/gbuffer.glsl).
   accumulation_ = frame.declare("translucentAccumulation", {.format = GL_RGBA16F, .samples = samples});
-  layerColor_ = frame.declare("translucentLayer", {.format = GL_RGBA16F, .samples = samples});
+  layer_.color = frame.declare("translucentLayer", {.format = GL_RGBA16F, .samples = samples});
+  layer_.normal = frame.declare("translucentLayerNormal", {.format = GL_RGBA16F, .samples = samples});
+  layer_.position = frame.declare("translucentLayerPosition", {.format = GL_RGBA32F, .samples = samples});
+  layer_.objectId = frame.declare("translucentLayerObjectId", {.format = GL_R32I, .samples = samples});
+  lineCoverage_ = frame.declare("translucentLayerLines", {.format = GL_R16F});
   const GLenum depthFormat = frame.desc(gbuffer.depth()).format;  // copied from the opaque depth
   layerDepth_ = frame.declare("translucentLayerDepth", {.format = depthFormat, .samples = samples});
   previousDepth_ = frame.declare("translucentPreviousDepth", {.format = depthFormat, .samples = samples});
 }
 
-void TranslucentLayers::addLayersPass(Frame& frame, std::function<void(bool)> drawLayer) {
+void TranslucentLayers::addLayersPass(Frame& frame, std::function<void(bool)> drawLayer, Lines lines) {
   frame.addPass({.name = "translucentLayers",
                  .reads = {gbuffer_.depth()},
-                 .writes = {accumulation_, layerColor_, layerDepth_},
-                 .run = [this, drawLayer = std::move(drawLayer)](const PassContext&) {
-                   peel(drawLayer);
-                 }});
+                 .writes = {accumulation_, layer_.color, layer_.normal, layer_.position,
+                            layer_.objectId, layerDepth_},
+                 .run = [this, drawLayer = std::move(drawLayer), lines = std::move(lines)](
+                            const PassContext&) { peel(drawLayer, lines); }});
 }
 
-void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer) {
+void TranslucentLayers::attach() {
   const auto id = [this](Target t) { return frame_.texture(t).id(); };
-  if (glCheckNamedFramebufferStatus(layerFramebuffer_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    glNamedFramebufferTexture(layerFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(layerColor_), 0);
-    const GLenum depthFormat = frame_.desc(layerDepth_).format;
-    const bool stencil = depthFormat == GL_DEPTH32F_STENCIL8 || depthFormat == GL_DEPTH24_STENCIL8;
-    glNamedFramebufferTexture(layerFramebuffer_.id(),
-                              stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
-                              id(layerDepth_), 0);
-    glNamedFramebufferTexture(accumulationFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(accumulation_), 0);
+  const GLuint layer = layerFramebuffer_.id();
+  const Target colors[4] = {layer_.color, layer_.normal, layer_.position, layer_.objectId};
+  GLenum buffers[4];
+  for (int i = 0; i < 4; ++i) {
+    buffers[i] = GL_COLOR_ATTACHMENT0 + GLenum(i);
+    glNamedFramebufferTexture(layer, buffers[i], id(colors[i]), 0);
   }
+  glNamedFramebufferDrawBuffers(layer, 4, buffers);
+  const GLenum depthFormat = frame_.desc(layerDepth_).format;
+  const bool stencil = depthFormat == GL_DEPTH32F_STENCIL8 || depthFormat == GL_DEPTH24_STENCIL8;
+  glNamedFramebufferTexture(layer, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
+                            id(layerDepth_), 0);
+  glNamedFramebufferTexture(accumulationFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(accumulation_), 0);
+  glNamedFramebufferTexture(linesFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(lineCoverage_), 0);
+  attached_ = true;
+}
+
+void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const Lines& lines) {
+  if (!attached_) attach();
+  const auto id = [this](Target t) { return frame_.texture(t).id(); };
   const int w = frame_.width(), h = frame_.height();
   const auto copyDepth = [&](Target from, Target to) {
     glCopyImageSubData(id(from), GL_TEXTURE_2D_MULTISAMPLE, 0, 0, 0, 0, id(to),
                        GL_TEXTURE_2D_MULTISAMPLE, 0, 0, 0, 0, w, h, 1);
   };
   const float zero[4] = {0, 0, 0, 0};
+  const GLint noObject[4] = {-1, 0, 0, 0};
   glClearNamedFramebufferfv(accumulationFramebuffer_.id(), GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(linesFramebuffer_.id(), GL_COLOR, 0, zero);
+  const std::optional<glm::vec3> lineColor = lines.color();
   peeled_ = 0;
   const int budget = maxLayers_();
   for (int k = 0; k < budget; ++k) {
@@ -57,8 +76,10 @@ void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer) {
     // against the opaque depth, the fragment shader's against the previous layer's.
     if (k > 0) copyDepth(layerDepth_, previousDepth_);
     copyDepth(gbuffer_.depth(), layerDepth_);
-    glClearNamedFramebufferfv(layerFramebuffer_.id(), GL_COLOR, 0, zero);
-    glBindFramebuffer(GL_FRAMEBUFFER, layerFramebuffer_.id());
+    const GLuint layer = layerFramebuffer_.id();
+    for (GLint i : {0, 1, 2}) glClearNamedFramebufferfv(layer, GL_COLOR, i, zero);
+    glClearNamedFramebufferiv(layer, GL_COLOR, 3, noObject);
+    glBindFramebuffer(GL_FRAMEBUFFER, layer);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
@@ -71,14 +92,22 @@ void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer) {
     glGetQueryObjectuiv(anySamples_.id(), GL_QUERY_RESULT, &any);
     ++peeled_;
     if (!any) break;
-    // Front to back: the layer goes under what is accumulated (Porter–Duff "under" on
-    // premultiplied colour: C += (1 − A) c, A += (1 − A) a).
-    glBindFramebuffer(GL_FRAMEBUFFER, accumulationFramebuffer_.id());
     glDisable(GL_DEPTH_TEST);
+    if (lineColor) {
+      glBindFramebuffer(GL_FRAMEBUFFER, linesFramebuffer_.id());
+      lines.draw(layer_);
+    }
+    // Front to back: the layer (its lines over its surfaces) goes under what is accumulated
+    // (Porter–Duff "under" on premultiplied colour: C += (1 − A) c, A += (1 − A) a).
+    glBindFramebuffer(GL_FRAMEBUFFER, accumulationFramebuffer_.id());
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ONE);
-    glUseProgram(underProgram_.id());
-    glBindTextureUnit(0, id(layerColor_));
+    const GLuint under = underProgram_.id();
+    glUseProgram(under);
+    glBindTextureUnit(0, id(layer_.color));
+    glBindTextureUnit(1, id(lineCoverage_));
+    const glm::vec3 color = lineColor.value_or(glm::vec3(0.0f));
+    glProgramUniform4f(under, 0, color.r, color.g, color.b, lineColor ? 1.0f : 0.0f);
     fullscreen_.draw();
     glDisable(GL_BLEND);
   }

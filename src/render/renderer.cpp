@@ -44,7 +44,7 @@ struct Renderer::Impl {
   std::unique_ptr<ShadowMap> shadowMap;
   std::unique_ptr<Emphasis> emphasis;
   std::unique_ptr<TranslucentLayers> layers;  // when a cutter leaves translucent fragments
-  std::unique_ptr<LinePass> lines, ghostLines;
+  std::unique_ptr<LinePass> lines, ghostLines, layerLines;
   Target linesTarget, outlinesTarget, ghostLinesTarget;
 };
 
@@ -131,14 +131,29 @@ void Renderer::Impl::buildFrame() {
   //    the cutters' (Trapp13's cap mask, Burns08 §4.3's ghost geometry).
   for (const auto& k : kinds) k->addPassesAfterGeometry(frame);
   for (ActiveCutter& c : cutters) c.cutter->addPassesAfterGeometry(frame);
-  // Burns11 ch. 2: the partly reduced material, peeled front to back.
-  if (layers)
-    layers->addLayersPass(frame, [this](bool first) {
-      for (const ActiveCutter& c : cutters) c.cutter->bindForGeometry();
-      setup.bindShading();
-      const GeometryDraw draw{meshes.time(), &cutters};
-      for (const auto& k : kinds) k->drawTranslucentLayer(cutters, draw, first);
-    });
+  // Burns11 ch. 2: the partly reduced material, peeled front to back, each layer with its
+  // feature lines (faded by their opacity, the normal's w).
+  if (layers) {
+    layerLines = std::make_unique<LinePass>(false);
+    TranslucentLayers::Lines layersLines{
+        .color = [this]() -> std::optional<glm::vec3> {
+          if (!setup.scene.style.lines) return std::nullopt;
+          return setup.scene.style.lines->color;
+        },
+        .draw = [this](const TranslucentLayers::Layer& layer) {
+          layerLines->draw(frame, layer.normal, layer.position, layer.objectId, std::nullopt,
+                           *setup.scene.style.lines, setup.scene.samples, true);
+        }};
+    layers->addLayersPass(
+        frame,
+        [this](bool first) {
+          for (const ActiveCutter& c : cutters) c.cutter->bindForGeometry();
+          setup.bindShading();
+          const GeometryDraw draw{meshes.time(), &cutters};
+          for (const auto& k : kinds) k->drawTranslucentLayer(cutters, draw, first);
+        },
+        std::move(layersLines));
+  }
   // 5. Feature lines and cut outlines over the G-buffer; ghost lines over a cutter's ghosts.
   std::vector<GBuffer::Overlay> overlays;
   std::optional<glm::vec3> outlineColor;

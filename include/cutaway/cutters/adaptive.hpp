@@ -42,9 +42,10 @@ struct ContextualCutawayOptions {
   enum class Reduction { Auto, Importance, Occlusion } reduction = Reduction::Auto;
   // How R is applied (ch. 2, §5.2.4): cut, fully or not at all (R ≥ ½ removed, with cut
   // surfaces; Burns08's binary cutaway is R ∈ {0, 1}); translucency, opacity α = 1 − R
-  // (eq. 2.1); edge highlights, α = 1 − R (1 − (1 − n̂·v̂)^k) (eq. 2.2). The last two draw the
-  // partly reduced material as translucent layers peeled in depth order.
-  enum class Application { Cut, Translucency, EdgeHighlights } apply = Application::Cut;
+  // (eq. 2.1); edge highlights, α = 1 − R (1 − (1 − n̂·v̂)^k) (eq. 2.2); lines, the surface
+  // suppressed where R > 0 and its feature lines of opacity 1 − R (§2.3, §7.2). The last three
+  // draw the partly reduced material as translucent layers peeled in depth order.
+  enum class Application { Cut, Translucency, EdgeHighlights, Lines } apply = Application::Cut;
   float edgeExponent = 2.0f;  // k of eq. 2.2
   int layers = 8;             // the most translucent layers peeled per pixel
 };
@@ -96,11 +97,12 @@ float occlusionDistance(const ContextualRay& ray, float omega);
 float occlusionReduction(float omega, float importance);
 // The Ω at which eq. 7.3 reaches R = ½ (the trimming of §5.2.4); above 1: never trimmed.
 float trimOcclusion(float importance);
-// The opacity of material of opacity 1 reduced by R (eq. 2.1, or eq. 2.2 with exponent k at a
-// surface point whose unit normal and view vector make n̂·v̂ = nDotV); 1 for Application::Cut
-// below R = ½ and 0 from it.
-float reducedOpacity(ContextualCutawayOptions::Application apply, float reduction, float nDotV,
-                     float k);
+// The opacities of material of opacity 1 reduced by R: its surface's (x) and its feature
+// lines' (y). Translucency and edge highlights (eq. 2.1, or eq. 2.2 with exponent k at a
+// surface point whose unit normal and view vector make n̂·v̂ = nDotV) give both the same; lines
+// 0 and 1 − R where R > 0 (§2.3); Application::Cut 1 below R = ½ and 0 from it.
+glm::vec2 reducedOpacity(ContextualCutawayOptions::Application apply, float reduction,
+                         float nDotV, float k);
 
 // The camera quantities the cone math needs.
 struct CutawayProjection {

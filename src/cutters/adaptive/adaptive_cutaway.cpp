@@ -153,9 +153,11 @@ void AdaptiveCutaway::setProgramUniforms(GLuint program) const {
   const bool transition = c.transitionAngle > options().angle;
   glProgramUniform3f(program, contextualLocation_, d, transitionOverlayOcclusion(transition, d > 0.0f),
                      reductionIsOcclusion() ? 1.0f : 0.0f);
+  // clip.glsl's uApply.x: 0 translucency, 1 edge highlights, 2 lines.
+  using Application = ContextualCutawayOptions::Application;
   if (graded_)
     glProgramUniform2f(program, applyLocation_,
-                       c.apply == ContextualCutawayOptions::Application::EdgeHighlights ? 1.0f : 0.0f,
+                       c.apply == Application::EdgeHighlights ? 1.0f : c.apply == Application::Lines ? 2.0f : 0.0f,
                        c.edgeExponent);
 }
 

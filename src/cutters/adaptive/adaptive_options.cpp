@@ -46,10 +46,12 @@ OptionsSchema contextualSchema() {
       .choice("apply", &C::apply,
               {{"cut", C::Application::Cut},
                {"translucency", C::Application::Translucency},
-               {"edgeHighlights", C::Application::EdgeHighlights}},
+               {"edgeHighlights", C::Application::EdgeHighlights},
+               {"lines", C::Application::Lines}},
               {.doc = "How R is applied: cut (fully or not at all, with cut surfaces: §5.2.4), "
-                      "translucency (opacity 1 − R, eq. 2.1) or edge highlights (eq. 2.2), the "
-                      "last two as translucent layers peeled in depth order."})
+                      "translucency (opacity 1 − R, eq. 2.1), edge highlights (eq. 2.2) or lines "
+                      "(surfaces suppressed, feature lines of opacity 1 − R: §2.3), the last "
+                      "three as translucent layers peeled in depth order."})
       .number("edgeExponent", &C::edgeExponent, 0.25, 16,
               {.label = "edge exponent k",
                .doc = "k of eq. 2.2: how fast opacity falls away from the edges (1–4 in the "

@@ -116,14 +116,16 @@ float adaptiveChannel1(CutFragment f) {
 }
 
 #ifdef ADAPTIVE_GRADED
-// x: 0 translucency, 1 edge highlights; y: k of eq. 2.2.
+// x: 0 translucency, 1 edge highlights, 2 lines; y: k of eq. 2.2.
 layout(location = LOC_ADAPTIVE_APPLY) uniform vec2 uApply;
-// Ch. 2: the opacity R leaves (α_m = 1); mirrors reducedOpacity() in contextual_function.cpp.
-float adaptiveOpacity(CutFragment f, vec3 normal, vec3 toEye) {
+// Ch. 2: the opacities R leaves its surface and its lines (α_m = 1); mirrors reducedOpacity()
+// in contextual_function.cpp.
+vec2 adaptiveOpacity(CutFragment f, vec3 normal, vec3 toEye) {
   float r = adaptiveChannel1(f);
-  if (uApply.x == 0.0) return 1.0 - r;  // eq. 2.1
+  if (uApply.x == 2.0) return vec2(r > 0.0 ? 0.0 : 1.0, 1.0 - r);  // §2.3: surface gone, lines fade
+  if (uApply.x == 0.0) return vec2(1.0 - r);                        // eq. 2.1
   float facing = clamp(dot(normal, toEye), 0.0, 1.0);
-  return 1.0 - r * (1.0 - pow(1.0 - facing, uApply.y));  // eq. 2.2
+  return vec2(1.0 - r * (1.0 - pow(1.0 - facing, uApply.y)));      // eq. 2.2
 }
 #endif
 #endif

@@ -40,13 +40,22 @@ float trimOcclusion(float importance) {
   return 0.5f * (tau0 + tau1);
 }
 
-float reducedOpacity(ContextualCutawayOptions::Application apply, float reduction, float nDotV,
-                     float k) {
+glm::vec2 reducedOpacity(ContextualCutawayOptions::Application apply, float reduction,
+                         float nDotV, float k) {
   using Application = ContextualCutawayOptions::Application;
-  if (apply == Application::Cut) return reduction >= 0.5f ? 0.0f : 1.0f;  // §5.2.4
-  if (apply == Application::Translucency) return 1.0f - reduction;        // eq. 2.1, α_m = 1
-  const float facing = std::clamp(nDotV, 0.0f, 1.0f);
-  return 1.0f - reduction * (1.0f - std::pow(1.0f - facing, k));         // eq. 2.2
+  switch (apply) {
+    case Application::Cut:
+      return glm::vec2(reduction >= 0.5f ? 0.0f : 1.0f);  // §5.2.4
+    case Application::Translucency:
+      return glm::vec2(1.0f - reduction);  // eq. 2.1, α_m = 1
+    case Application::EdgeHighlights: {
+      const float facing = std::clamp(nDotV, 0.0f, 1.0f);
+      return glm::vec2(1.0f - reduction * (1.0f - std::pow(1.0f - facing, k)));  // eq. 2.2
+    }
+    case Application::Lines:
+      return {reduction > 0.0f ? 0.0f : 1.0f, 1.0f - reduction};  // §2.3
+  }
+  return glm::vec2(1.0f);
 }
 
 }  // namespace cutaway

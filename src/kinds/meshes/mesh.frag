@@ -49,20 +49,22 @@ void main() {
   s.shininess = uShininess;
   s.keyLightVisibility = keyLightVisibility(s.position);
   vec3 color = emphasize(s.baseColor, shadeSurface(s), uEmphasisImportance);
-  // Burns11 ch. 2: occlusion partly reduced by a grading cutter (1 without one).
-  float opacity = cutOpacity(uCutBy, f, s.normal, s.toEye);
+  // Burns11 ch. 2: occlusion partly reduced by a grading cutter: the opacity of the surface
+  // (x) and of its lines (y); 1 without one.
+  vec2 opacity = cutOpacity(uCutBy, f, s.normal, s.toEye);
 #ifdef TRANSLUCENT_LAYER
   // Opacity ≥ 1 too: a fragment the opaque pass kept lies at the opaque depth and fails the
   // depth test, and one it dropped by a rounding apart is drawn here, so none is lost. Below
   // 1/512 a fragment changes no 8-bit colour: it takes no layer.
-  if (!(opacity > 1.0 / 512.0)) discard;
+  opacity = min(opacity, vec2(1.0, uLines));
+  if (!(max(opacity.x, opacity.y) > 1.0 / 512.0)) discard;
   if (uFirstLayer == 0 &&
       gl_FragCoord.z <= texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), gl_SampleID).r)
     discard;
-  opacity = min(opacity, 1.0);
-  outColor = vec4(clamp(color, 0.0, 1.0) * opacity, opacity);  // premultiplied
+  writeGBuffer(s, color, opacity.y, uObjectId, cut, false);  // the lines' weight: their opacity
+  outColor = vec4(clamp(color, 0.0, 1.0) * opacity.x, opacity.x);  // premultiplied
 #else
-  if (opacity < 1.0) discard;  // drawn in the translucent layers, or not at all
+  if (opacity.x < 1.0) discard;  // drawn in the translucent layers, or not at all
   writeGBuffer(s, color, uLines, uObjectId, cut, false);
   writeCutterChannels(uCutBy, f);
 #endif
