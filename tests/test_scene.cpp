@@ -280,6 +280,11 @@ const BadScene kBadScenes[] = {
      "value -1 is outside [0, 1e+30]"},
     {"adaptive_contextual_bad_reduction.json", "/cutters/adaptive/contextual/reduction",
      "unknown value \"translucent\" (expected one of: auto, importance, occlusion)"},
+    {"adaptive_contextual_bad_apply.json", "/cutters/adaptive/contextual/apply",
+     "unknown value \"transparent\" (expected one of: cut, translucency, edgeHighlights, lines)"},
+    {"adaptive_contextual_zero_layers.json", "/cutters/adaptive/contextual/layers",
+     "value 0 is outside [1, 64]"},
+    {"emphasis_color_above_one.json", "/style/emphasis/color", "value 1.5 is outside [0, 1]"},
     {"object_cutaway_angle_120.json", "/objects/0/params/cutawayAngle",
      "value 120 is outside [0, 90]"},
     // Animation.

@@ -379,3 +379,20 @@ TEST(TranslucentLines, SurfacesGoAndTheirLinesFadeByR) {
     }
   EXPECT_GT(linePixels, 4 * 40);  // the square's outline, 2 pixels wide
 }
+
+// The documented fallback: a contextual structure without a region of interest has no
+// cutaway surface in front of anything (Ω = 0 everywhere), so nothing is reduced and the
+// image is the uncut one.
+TEST(TranslucentLines, WithoutARegionOfInterestNothingIsReduced) {
+  Scene scene = squareScene();
+  scene.objects.erase(std::remove_if(scene.objects.begin(), scene.objects.end(),
+                                     [](const SceneObject& o) { return o.role == Role::Interest; }),
+                      scene.objects.end());
+  ASSERT_EQ(scene.objects.size(), 1u);
+  Scene plain = scene;
+  plain.cutters.clear();
+  Renderer uncut(plain, test::glContext().info()), cut(scene, test::glContext().info());
+  uncut.render();
+  cut.render();
+  EXPECT_EQ(cut.readColor().pixels, uncut.readColor().pixels);
+}
