@@ -63,6 +63,7 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"engine-translucent", "engine-translucent.json", "", 320, 240},
         GoldenCase{"house-contextual-lines", "house-contextual-lines.json", "", 320, 240},
         GoldenCase{"pipes-street-translucent", "pipes-street-translucent.json", "", 480, 300},
+        GoldenCase{"ss64ne-city-translucent", "ss64ne-city-translucent.json", "", 480, 300},
         GoldenCase{"house-cutaway", "house-cutaway.json", "", 320, 240},
         GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240},
         // Diepstraten03 cutout and breakaway, each in two styles.

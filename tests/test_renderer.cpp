@@ -133,6 +133,23 @@ TEST(Renderer, BackgroundAovsAreMarked) {
   EXPECT_EQ(find(aovs, "objectId").image.at(32, 24)[0], 0.0f);
 }
 
+// Underground views: a camera below a terrain-like plane (it faces +z, tilted; the camera looks
+// at its underside) sees it, drawn two-sided with its normal turned to the viewer, not culled.
+TEST(Renderer, ACameraBelowTheGroundSeesItsUnderside) {
+  const Scene scene = planeScene(4, R"({"eye": [0, 0, -5], "target": [0, 0, 0], "fov": 60})");
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const FloatImage& id = find(aovs, "objectId").image;
+  const FloatImage& normal = find(aovs, "normal").image;
+  for (int y = 0; y < id.height; ++y)
+    for (int x = 0; x < id.width; ++x) {
+      ASSERT_EQ(id.at(x, y)[0], 0.0f) << x << "," << y;
+      ASSERT_NEAR(normal.at(x, y)[2], -std::cos(glm::radians(35.0f)), 1e-3f)  // towards the camera
+          << x << "," << y;
+    }
+}
+
 TEST(Frame, RejectsReadBeforeWrite) {
   test::glContext();
   Frame frame(8, 8, false);

@@ -1,9 +1,10 @@
-// Occlusion reduction applied as translucency and edge highlights (Burns11 ch. 2, eqs.
-// 2.1–2.2) through the contextual structure's R, composited by depth peeling
+// Occlusion reduction applied as translucency, edge highlights and lines (Burns11 ch. 2, eqs.
+// 2.1–2.2, §2.3) through the contextual structure's R, composited by depth peeling
 // (frame/translucent_layers.hpp): every pixel of a stack of three tilted squares against the
 // closed form, front-to-back "over" of each square's own colour with its opacity computed on
 // the CPU from the dumped cutaway surfaces (eqs. 5.6, 7.1–7.3, 2.1–2.2); a layer budget below
-// the depth complexity against the same closed form cut short.
+// the depth complexity against the same closed form cut short; a square in the overlay drawn
+// as its uncut outline faded by R.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -32,7 +33,8 @@ struct Square {
   float importance;
   glm::vec3 color;
 };
-// Nearest first; seen from +z by an orthographic camera at z = 10.
+// Nearest first at the centre (tilted, they cross); seen from +z by an orthographic camera at
+// z = 10.
 const Square kSquares[3] = {{"near", 1.0f, 25.0f, 0.2f, {0.9f, 0.3f, 0.2f}},
                             {"middle", 0.0f, -15.0f, 0.5f, {0.2f, 0.7f, 0.3f}},
                             {"far", -1.0f, 35.0f, 0.8f, {0.2f, 0.3f, 0.9f}}};
@@ -47,7 +49,7 @@ std::string squareJson(const Square& s) {
 }
 
 // The squares, cut around an invisible box far behind them by a contextual cutaway applied as
-// `apply`; or one square alone (`only`), uncut. Blinn-Phong under a light along the view:
+// `apply`; or one square alone (`only`). Blinn-Phong under a light along the view:
 // each square's colour is uniform (orthographic view, flat square).
 Scene stackScene(const std::string& apply, int layers, int only = -1) {
   std::string objects;
@@ -254,44 +256,53 @@ glm::vec3 squareColor(int k) {
 
 }  // namespace
 
-class TranslucentStack : public ::testing::TestWithParam<ContextualCutawayOptions::Application> {};
+class TranslucentStack : public ::testing::TestWithParam<ContextualCutawayOptions::Application> {
+ protected:
+  // The stack rendered with `layers` peeled at most; the closed form for `assumed` layers.
+  struct Run {
+    Rgba8Image image;
+    std::vector<Aov> aovs;
+    Scene scene;
+  };
+  Run render(int layers) const {
+    const bool translucency = GetParam() == ContextualCutawayOptions::Application::Translucency;
+    Run run{{}, {}, stackScene(translucency ? "translucency" : "edgeHighlights", layers)};
+    Renderer renderer(run.scene, test::glContext().info());
+    renderer.render();
+    run.image = renderer.readColor();
+    run.aovs = renderer.readAovs();
+    return run;
+  }
+  std::vector<Expected> closedForm(const Run& run, int assumed) const {
+    const glm::vec3 colors[3] = {squareColor(0), squareColor(1), squareColor(2)};
+    return ::closedForm(GetParam(), run.aovs, run.scene, colors, assumed);
+  }
+};
 
 // All layers peeled: the image is the closed form within 8-bit rounding of the result and of
-// the squares' colours (2/255), at every pixel away from a square's border and a ramp's end;
-// and a good part of it is really translucent.
+// the squares' colours (2/255, plus compare()'s twentieth of a pixel), at every pixel away from
+// a square's border and where a fate may round either way; and a good part of it is really
+// translucent.
 TEST_P(TranslucentStack, EveryPixelIsTheClosedForm) {
-  const glm::vec3 colors[3] = {squareColor(0), squareColor(1), squareColor(2)};
-  const std::string apply =
-      GetParam() == ContextualCutawayOptions::Application::Translucency ? "translucency" : "edgeHighlights";
-  const Scene scene = stackScene(apply, 8);
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  const Rgba8Image image = renderer.readColor();
-  const auto expected = closedForm(GetParam(), renderer.readAovs(), scene, colors, 8);
+  const Run run = render(8);
+  const auto expected = closedForm(run, 8);
   int partly = 0;
   for (const Expected& e : expected) partly += e.smooth && e.translucent;
-  const Comparison c = compare(image, expected);
+  const Comparison c = compare(run.image, expected);
   EXPECT_GT(c.checked, kSize * kSize / 2);
   EXPECT_LE(c.maxError, 1.0) << c.over << " of " << c.checked << " pixels off; mean "
-                                     << c.meanError * 255.0 << "/255; worst " << c.worst;
+                             << c.meanError * 255.0 << "/255; worst " << c.worst;
   EXPECT_GT(partly, 1000);
 }
 
 // One layer of a depth complexity up to three: the image follows the closed form cut short,
 // and differs from the exact one, which measures what the layer budget costs.
 TEST_P(TranslucentStack, ALayerBudgetKeepsTheNearestLayersOnly) {
-  const glm::vec3 colors[3] = {squareColor(0), squareColor(1), squareColor(2)};
-  const std::string apply =
-      GetParam() == ContextualCutawayOptions::Application::Translucency ? "translucency" : "edgeHighlights";
-  const Scene scene = stackScene(apply, 1);
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  const Rgba8Image image = renderer.readColor();
-  const auto aovs = renderer.readAovs();
-  const Comparison truncated = compare(image, closedForm(GetParam(), aovs, scene, colors, 1));
-  const Comparison exact = compare(image, closedForm(GetParam(), aovs, scene, colors, 8));
+  const Run run = render(1);
+  const Comparison truncated = compare(run.image, closedForm(run, 1));
+  const Comparison exact = compare(run.image, closedForm(run, 8));
   EXPECT_LE(truncated.maxError, 1.0) << truncated.over << " of " << truncated.checked
-                                             << " pixels off; worst " << truncated.worst;
+                                     << " pixels off; worst " << truncated.worst;
   EXPECT_GT(exact.over, 500) << "one layer should differ from all layers";
   std::cout << "one layer against exact peeling: mean error " << exact.meanError * 255.0
             << "/255, max " << exact.maxAbsolute * 255.0 << "/255, " << exact.over << " of "
