@@ -38,7 +38,8 @@ inline std::vector<Case> cases() {
     Case c{t.path, {}, {}, 96, 72};
     if (t.path == "cutters.adaptive")
       c.examples = {"examples/engine-cutaway.json", "examples/ss64ne-city-cutaway.json",
-                    "examples/engine-contextual.json", "tests/data/render/edge-highlights-stack.json"},
+                    "examples/engine-contextual.json",
+                    "tests/data/render/edge-highlights-stack.json"},
       c.setup = {{"cutters.adaptive.ghostLines", "true"}};
     else if (t.path == "cutters.cutout")
       c.examples = {"examples/bunny-box-cutout.json", "examples/engine-cutout.json"},

@@ -200,11 +200,10 @@ TEST(Cli, BenchComparesPlainAndCutaway) {
   const auto result = nlohmann::json::parse(r.out);
   std::vector<std::string> labels;
   for (const auto& run : result["runs"]) labels.push_back(run["label"]);
-  EXPECT_EQ(labels, (std::vector<std::string>{"plain", "cutaway 512 gpu", "cutaway 512 cpu",
-                                              "cutaway 1024 gpu", "cutaway 1024 cpu",
-                                              "simple cutaway", "contextual cutaway",
-                                              "contextual translucency",
-                                              "contextual edge highlights"}));
+  EXPECT_EQ(labels, (std::vector<std::string>{
+                        "plain", "cutaway 512 gpu", "cutaway 512 cpu", "cutaway 1024 gpu",
+                        "cutaway 1024 cpu", "simple cutaway", "contextual cutaway",
+                        "contextual translucency", "contextual edge highlights"}));
   // The contextual structure runs the second surface's passes.
   const auto& passes = result["runs"][6]["passes"];
   EXPECT_TRUE(std::any_of(passes.begin(), passes.end(),
@@ -213,9 +212,9 @@ TEST(Cli, BenchComparesPlainAndCutaway) {
   // Translucency and edge highlights peel their layers.
   for (int run : {7, 8}) {
     const auto& layered = result["runs"][run]["passes"];
-    EXPECT_TRUE(std::any_of(layered.begin(), layered.end(),
-                            [](const auto& p) { return p["pass"] == "translucentLayers"; }))
-        << result["runs"][run]["label"];
+    EXPECT_TRUE(std::any_of(layered.begin(), layered.end(), [](const auto& p) {
+      return p["pass"] == "translucentLayers";
+    })) << result["runs"][run]["label"];
   }
   EXPECT_EQ(result["runs"][2]["computePath"], "cpu");
   EXPECT_GT(result["runs"][2]["cutawaySurfaceMs"].get<double>(), 0.0);

@@ -140,7 +140,8 @@ TEST(EmphasisRender, ColoursFollowEquations31To34PixelByPixel) {
 // unchanged.
 TEST(EmphasisRender, LinesOnlyBelowTheThresholdShowsThePaper) {
   const Rendered a = renderFrame(emphasisScene("{}"));
-  const Rendered b = renderFrame(emphasisScene(R"({"linesOnlyBelow": 0.5, "paper": [1, 0.95, 0.8]})"));
+  const Rendered b =
+      renderFrame(emphasisScene(R"({"linesOnlyBelow": 0.5, "paper": [1, 0.95, 0.8]})"));
   int paper = 0, unchanged = 0;
   for (int y = 0; y < a.color.height; ++y)
     for (int x = 0; x < a.color.width; ++x) {

@@ -23,13 +23,14 @@ using namespace cutaway;
 namespace {
 
 const std::string kData = CUTAWAY_TEST_DATA;
-constexpr int kSize = 128;  // the image's and the cutaway buffer's: a pixel centre is a texel centre
+constexpr int kSize =
+    128;  // the image's and the cutaway buffer's: a pixel centre is a texel centre
 constexpr float kInvisible = 1.0f / 512.0f;  // mesh.frag's: no layer for less opacity
 
 struct Square {
   const char* name;
-  float z;         // centre on the view axis
-  float tiltDeg;   // about the y axis
+  float z;        // centre on the view axis
+  float tiltDeg;  // about the y axis
   float importance;
   glm::vec3 color;
 };
@@ -59,19 +60,23 @@ Scene stackScene(const std::string& apply, int layers, int only = -1) {
   }
   const std::string size = std::to_string(kSize);
   return parseScene(R"({
-      "resolution": [)" + size + "," + size + R"(], "samples": 1,
+      "resolution": [)" +
+                        size + "," + size + R"(], "samples": 1,
       "style": {"name": "blinn-phong", "lines": false},
       "lights": [{"type": "directional", "direction": [0, 0, -1], "space": "camera"}],
       "camera": {"projection": "orthographic", "eye": [0, 0, 10], "target": [0, 0, 0],
                  "height": 10, "near": 1, "far": 30},
-      "objects": [)" + objects + R"(],
+      "objects": [)" + objects +
+                        R"(],
       "proxies": [{"name": "roi", "box": {"min": [-1, -1, -6], "max": [1, 1, -4]},
                    "role": "interest"}],
-      "cutters": {"adaptive": {"angle": 30, "bufferSize": )" + size + R"(, "outlines": false,
+      "cutters": {"adaptive": {"angle": 30, "bufferSize": )" +
+                        size + R"(, "outlines": false,
           "perspectiveCompensation": false, "edgeCompression": false,
           "contextual": {"transitionAngle": 60, "overlay": 1.5, "reduction": "importance",
-                         "apply": ")" + apply + R"(", "edgeExponent": 2, "layers": )" +
-                        std::to_string(layers) + R"(}}}})",
+                         "apply": ")" +
+                        apply + R"(", "edgeExponent": 2, "layers": )" + std::to_string(layers) +
+                        R"(}}}})",
                     "translucent-stack.json", kData + "/render");
 }
 
@@ -88,8 +93,8 @@ float viewDistance(const glm::mat4& inverseProjection, float c) {
 
 struct Expected {
   glm::vec3 color;
-  bool smooth;  // away from a square's border, where two cross, and where a fate may round
-                // either way
+  bool smooth;       // away from a square's border, where two cross, and where a fate may round
+                     // either way
   bool translucent;  // a partly transparent square shows here
 };
 
@@ -164,8 +169,8 @@ std::vector<Expected> closedForm(ContextualCutawayOptions::Application apply,
         const auto fateChanges = [&](glm::vec2 w, auto fate) {
           float z;
           const bool here = fate(opacity(k, w, z));
-          for (const glm::vec2 step : {glm::vec2(0.05f, 0), glm::vec2(-0.05f, 0), glm::vec2(0, 0.05f),
-                                       glm::vec2(0, -0.05f)})
+          for (const glm::vec2 step : {glm::vec2(0.05f, 0), glm::vec2(-0.05f, 0),
+                                       glm::vec2(0, 0.05f), glm::vec2(0, -0.05f)})
             if (fate(opacity(k, w + step, z)) != here) return true;
           return false;
         };
@@ -225,7 +230,8 @@ Comparison compare(const Rgba8Image& image, const std::vector<Expected>& expecte
       if (!e.smooth) continue;
       const glm::vec3 got = rgb(image, x, y);
       const glm::vec3 change =
-          glm::max(glm::abs(at(x + 1, y) - at(x - 1, y)), glm::abs(at(x, y + 1) - at(x, y - 1))) * 0.5f;
+          glm::max(glm::abs(at(x + 1, y) - at(x - 1, y)), glm::abs(at(x, y + 1) - at(x, y - 1))) *
+          0.5f;
       double pixelError = 0;  // in units of the tolerance
       for (int k = 0; k < 3; ++k) {
         const double error = std::abs(got[k] - e.color[k]);
@@ -237,7 +243,8 @@ Comparison compare(const Rgba8Image& image, const std::vector<Expected>& expecte
       if (pixelError > c.maxError) {
         c.maxError = pixelError;
         c.worst = "pixel " + std::to_string(x) + "," + std::to_string(y) + ": " +
-                  glm::to_string(got * 255.0f) + ", closed form " + glm::to_string(e.color * 255.0f);
+                  glm::to_string(got * 255.0f) + ", closed form " +
+                  glm::to_string(e.color * 255.0f);
       }
       ++c.checked;
     }
@@ -301,8 +308,8 @@ TEST_P(TranslucentStack, ALayerBudgetKeepsTheNearestLayersOnly) {
   const Run run = render(1);
   const Comparison truncated = compare(run.image, closedForm(run, 1));
   const Comparison exact = compare(run.image, closedForm(run, 8));
-  EXPECT_LE(truncated.maxError, 1.0) << truncated.over << " of " << truncated.checked
-                                     << " pixels off; worst " << truncated.worst;
+  EXPECT_LE(truncated.maxError, 1.0)
+      << truncated.over << " of " << truncated.checked << " pixels off; worst " << truncated.worst;
   EXPECT_GT(exact.over, 500) << "one layer should differ from all layers";
   std::cout << "one layer against exact peeling: mean error " << exact.meanError * 255.0
             << "/255, max " << exact.maxAbsolute * 255.0 << "/255, " << exact.over << " of "
@@ -322,10 +329,13 @@ INSTANTIATE_TEST_SUITE_P(Applications, TranslucentStack,
 TEST(ReducedOpacity, Equations21And22) {
   using A = ContextualCutawayOptions::Application;
   EXPECT_FLOAT_EQ(reducedOpacity(A::Translucency, 0.3f, 0.7f, 2.0f).x, 0.7f);
-  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 1.0f, 2.0f).x, 0.4f);  // facing: as eq. 2.1
+  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 1.0f, 2.0f).x,
+                  0.4f);  // facing: as eq. 2.1
   EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 0.0f, 2.0f).x, 1.0f);  // edge-on: opaque
-  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 0.5f, 3.0f).x, 1.0f - 0.6f * (1.0f - 0.125f));
-  // Never below plain translucency's opacity for the same R (§2.2's remark); lines as their surface.
+  EXPECT_FLOAT_EQ(reducedOpacity(A::EdgeHighlights, 0.6f, 0.5f, 3.0f).x,
+                  1.0f - 0.6f * (1.0f - 0.125f));
+  // Never below plain translucency's opacity for the same R (§2.2's remark); lines as their
+  // surface.
   for (float nDotV : {0.0f, 0.3f, 0.9f, 1.0f}) {
     const glm::vec2 edge = reducedOpacity(A::EdgeHighlights, 0.8f, nDotV, 4.0f);
     EXPECT_GE(edge.x, reducedOpacity(A::Translucency, 0.8f, nDotV, 4.0f).x);

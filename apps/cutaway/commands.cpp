@@ -673,9 +673,10 @@ int bench(const BenchOptions& options) {
     simple.cutters.find<AdaptiveCutawayOptions>()->contextual.reset();
     runs.push_back(measure("simple cutaway", simple, info, options.frames));
     using Application = ContextualCutawayOptions::Application;
-    for (const auto& [name, apply] : {std::pair{"contextual cutaway", Application::Cut},
-                                      std::pair{"contextual translucency", Application::Translucency},
-                                      std::pair{"contextual edge highlights", Application::EdgeHighlights}}) {
+    for (const auto& [name, apply] :
+         {std::pair{"contextual cutaway", Application::Cut},
+          std::pair{"contextual translucency", Application::Translucency},
+          std::pair{"contextual edge highlights", Application::EdgeHighlights}}) {
       Scene contextual = scene;
       AdaptiveCutawayOptions& a = *contextual.cutters.find<AdaptiveCutawayOptions>();
       if (!a.contextual) a.contextual = ContextualCutawayOptions{};

@@ -92,12 +92,13 @@ std::string cutterComposition(const std::vector<ActiveCutter>& active) {
   }
   // Ch. 2's occlusion reduction by opacity: the least the grading cutters leave the surface
   // (x) and its lines (y).
-  glsl += "  return fate;\n}\nvec2 cutOpacity(int cutBy, CutFragment f, vec3 normal, vec3 toEye) {\n"
-          "  vec2 opacity = vec2(1.0);\n";
+  glsl +=
+      "  return fate;\n}\nvec2 cutOpacity(int cutBy, CutFragment f, vec3 normal, vec3 toEye) {\n"
+      "  vec2 opacity = vec2(1.0);\n";
   for (const ActiveCutter& c : active)
     if (c.cutter->translucentLayers() > 0)
-      glsl += "  if ((cutBy & (1 << " + std::to_string(c.slot) + ")) != 0) opacity = min(opacity, " +
-              c.type->name + "Opacity(f, normal, toEye));\n";
+      glsl += "  if ((cutBy & (1 << " + std::to_string(c.slot) +
+              ")) != 0) opacity = min(opacity, " + c.type->name + "Opacity(f, normal, toEye));\n";
   glsl += "  return opacity;\n}\nvoid writeCutterChannels(int cutBy, CutFragment f) {\n";
   for (const ActiveCutter& c : active)
     for (std::size_t k = 0; k < c.channels.size(); ++k)

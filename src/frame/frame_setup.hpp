@@ -43,8 +43,8 @@ struct FrameSetup {
   // ("style.glsl") and the generated sources (the cutters' composition, the G-buffer's
   // channels). Filled by the composer once every technique has declared itself.
   std::map<std::string, std::string> shadingAliases, shadingSources;
-  // A cutter leaves translucent fragments (Cutter::translucentLayers): the kinds build the layer variant of their geometry
-  // programs (TRANSLUCENT_LAYER) for frame/translucent_layers.hpp.
+  // A cutter leaves translucent fragments (Cutter::translucentLayers): the kinds build the layer
+  // variant of their geometry programs (TRANSLUCENT_LAYER) for frame/translucent_layers.hpp.
   bool translucentLayers = false;
   gl::ProgramDesc geometryProgram(std::vector<std::pair<GLenum, std::string>> stages,
                                   std::map<std::string, std::string> defines = {}) const {

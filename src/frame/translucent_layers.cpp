@@ -17,18 +17,24 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
   const int samples = gbuffer.samples();
   // Premultiplied colour and coverage; half floats keep 8-bit colours exact through the
   // blending. The layer's other buffers as the G-buffer's (frame/gbuffer.glsl).
-  accumulation_ = frame.declare("translucentAccumulation", {.format = GL_RGBA16F, .samples = samples});
+  accumulation_ =
+      frame.declare("translucentAccumulation", {.format = GL_RGBA16F, .samples = samples});
   layer_.color = frame.declare("translucentLayer", {.format = GL_RGBA16F, .samples = samples});
-  layer_.normal = frame.declare("translucentLayerNormal", {.format = GL_RGBA16F, .samples = samples});
-  layer_.position = frame.declare("translucentLayerPosition", {.format = GL_RGBA32F, .samples = samples});
-  layer_.objectId = frame.declare("translucentLayerObjectId", {.format = GL_R32I, .samples = samples});
+  layer_.normal =
+      frame.declare("translucentLayerNormal", {.format = GL_RGBA16F, .samples = samples});
+  layer_.position =
+      frame.declare("translucentLayerPosition", {.format = GL_RGBA32F, .samples = samples});
+  layer_.objectId =
+      frame.declare("translucentLayerObjectId", {.format = GL_R32I, .samples = samples});
   lineCoverage_ = frame.declare("translucentLayerLines", {.format = GL_R16F});
   const GLenum depthFormat = frame.desc(gbuffer.depth()).format;  // copied from the opaque depth
   layerDepth_ = frame.declare("translucentLayerDepth", {.format = depthFormat, .samples = samples});
-  previousDepth_ = frame.declare("translucentPreviousDepth", {.format = depthFormat, .samples = samples});
+  previousDepth_ =
+      frame.declare("translucentPreviousDepth", {.format = depthFormat, .samples = samples});
 }
 
-void TranslucentLayers::addLayersPass(Frame& frame, std::function<void(bool)> drawLayer, Lines lines) {
+void TranslucentLayers::addLayersPass(Frame& frame, std::function<void(bool)> drawLayer,
+                                      Lines lines) {
   frame.addPass({.name = "translucentLayers",
                  .reads = {gbuffer_.depth()},
                  .writes = {accumulation_, layer_.color, layer_.normal, layer_.position,
@@ -51,7 +57,8 @@ void TranslucentLayers::attach() {
   const bool stencil = depthFormat == GL_DEPTH32F_STENCIL8 || depthFormat == GL_DEPTH24_STENCIL8;
   glNamedFramebufferTexture(layer, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
                             id(layerDepth_), 0);
-  glNamedFramebufferTexture(accumulationFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(accumulation_), 0);
+  glNamedFramebufferTexture(accumulationFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(accumulation_),
+                            0);
   glNamedFramebufferTexture(linesFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(lineCoverage_), 0);
   attached_ = true;
 }

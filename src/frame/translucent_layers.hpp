@@ -20,9 +20,9 @@
 // the opaque surfaces' lines behind a layer are dimmed by it too).
 //
 //   TranslucentLayers layers(setup.frame, bindings, gbuffer, [&] { return budget; });
-//   layers.addLayersPass(frame, drawLayer, lines);  // drawLayer: every kind's translucent fragments
-//   gbuffer.addCompositePass(frame, overlays);
-//   layers.addCompositePass(frame, gbuffer.finalColor());
+//   layers.addLayersPass(frame, drawLayer, lines);  // drawLayer: every kind's translucent
+//   fragments gbuffer.addCompositePass(frame, overlays); layers.addCompositePass(frame,
+//   gbuffer.finalColor());
 #pragma once
 
 #include <functional>

@@ -29,9 +29,10 @@ class GeometryKind {
   // Draws into the geometry pass's G-buffer, the cutters bound.
   virtual void drawGeometry(const std::vector<ActiveCutter>& /*cutters*/,
                             const GeometryDraw& /*draw*/) const {}
-  // Its fragments of cut opacity in (0, 1) (Cutter::translucentLayers) into the bound layer framebuffer
-  // of frame/translucent_layers.hpp, with the layer variant of its programs (built when
-  // FrameSetup::translucentLayers); `first`: the nearest layer (no previous depth to peel).
+  // Its fragments a grading cutter leaves partly reduced (Cutter::translucentLayers) into the
+  // bound layer framebuffer of frame/translucent_layers.hpp, with the layer variant of its
+  // programs (built when FrameSetup::translucentLayers); `first`: the nearest layer (no
+  // previous depth to peel).
   virtual void drawTranslucentLayer(const std::vector<ActiveCutter>& /*cutters*/,
                                     const GeometryDraw& /*draw*/, bool /*first*/) const {}
   // Its passes after the geometry pass (into the same G-buffer, or AOVs of its own).

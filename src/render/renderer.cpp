@@ -81,9 +81,9 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
                                    [](const auto& k) { return k->needsStencil(); });
   g.gbuffer.declare(g.frame, scene.samples, stencil);
   // Burns11 ch. 2: material a cutter reduces only partly is peeled into translucent layers.
-  setup.translucentLayers = std::any_of(g.cutters.begin(), g.cutters.end(), [](const ActiveCutter& c) {
-    return c.cutter->translucentLayers() > 0;
-  });
+  setup.translucentLayers =
+      std::any_of(g.cutters.begin(), g.cutters.end(),
+                  [](const ActiveCutter& c) { return c.cutter->translucentLayers() > 0; });
   if (setup.translucentLayers)
     g.layers = std::make_unique<TranslucentLayers>(g.frame, g.bindings, g.gbuffer, [&g] {
       int most = 0;
@@ -140,10 +140,11 @@ void Renderer::Impl::buildFrame() {
           if (!setup.scene.style.lines) return std::nullopt;
           return setup.scene.style.lines->color;
         },
-        .draw = [this](const TranslucentLayers::Layer& layer) {
-          layerLines->draw(frame, layer.normal, layer.position, layer.objectId, std::nullopt,
-                           *setup.scene.style.lines, setup.scene.samples, true);
-        }};
+        .draw =
+            [this](const TranslucentLayers::Layer& layer) {
+              layerLines->draw(frame, layer.normal, layer.position, layer.objectId, std::nullopt,
+                               *setup.scene.style.lines, setup.scene.samples, true);
+            }};
     layers->addLayersPass(
         frame,
         [this](bool first) {

@@ -101,8 +101,8 @@ float trimOcclusion(float importance);
 // lines' (y). Translucency and edge highlights (eq. 2.1, or eq. 2.2 with exponent k at a
 // surface point whose unit normal and view vector make n̂·v̂ = nDotV) give both the same; lines
 // 0 and 1 − R where R > 0 (§2.3); Application::Cut 1 below R = ½ and 0 from it.
-glm::vec2 reducedOpacity(ContextualCutawayOptions::Application apply, float reduction,
-                         float nDotV, float k);
+glm::vec2 reducedOpacity(ContextualCutawayOptions::Application apply, float reduction, float nDotV,
+                         float k);
 
 // The camera quantities the cone math needs.
 struct CutawayProjection {

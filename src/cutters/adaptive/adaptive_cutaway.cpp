@@ -157,7 +157,9 @@ void AdaptiveCutaway::setProgramUniforms(GLuint program) const {
   using Application = ContextualCutawayOptions::Application;
   if (graded_)
     glProgramUniform2f(program, applyLocation_,
-                       c.apply == Application::EdgeHighlights ? 1.0f : c.apply == Application::Lines ? 2.0f : 0.0f,
+                       c.apply == Application::EdgeHighlights ? 1.0f
+                       : c.apply == Application::Lines        ? 2.0f
+                                                              : 0.0f,
                        c.edgeExponent);
 }
 

@@ -40,8 +40,8 @@ float trimOcclusion(float importance) {
   return 0.5f * (tau0 + tau1);
 }
 
-glm::vec2 reducedOpacity(ContextualCutawayOptions::Application apply, float reduction,
-                         float nDotV, float k) {
+glm::vec2 reducedOpacity(ContextualCutawayOptions::Application apply, float reduction, float nDotV,
+                         float k) {
   using Application = ContextualCutawayOptions::Application;
   switch (apply) {
     case Application::Cut:

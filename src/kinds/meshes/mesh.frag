@@ -19,7 +19,7 @@ layout(location = 12) uniform float uLines;       // 1: this object takes featur
 layout(location = 13) uniform int uCutBy;         // bit k: the cutter of slot k cuts this object
 layout(location = 14) uniform int uCutSurfaces;   // bit k: its cuts of this object show cut surfaces
 layout(location = 15) uniform vec3 uBackColor;    // back faces that are no cut surface (an open or hollow inside)
-layout(location = 16) uniform float uEmphasisImportance;  // emphasisImportance(): 1 for objects of interest
+layout(location = 16) uniform float uEmphasisImportance;  // 1 for objects of interest
 layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cut surfaces' colour
 #ifdef TRANSLUCENT_LAYER
 // One layer of frame/translucent_layers.hpp: the nearest fragment of opacity > 0 behind the

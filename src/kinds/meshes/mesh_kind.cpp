@@ -7,8 +7,8 @@ namespace cutaway {
 namespace {
 // Uniform locations of kinds/meshes/mesh.frag and frame/mesh.vert.
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
-                kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kImportance = 16,
-                kFirstLayer = 17, kClipPlane = 18, kCutColor = 24;
+                kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kImportance = 16, kFirstLayer = 17,
+                kClipPlane = 18, kCutColor = 24;
 }  // namespace
 
 void MeshKind::prepare(const std::vector<ActiveCutter>&) {
@@ -21,7 +21,8 @@ void MeshKind::prepare(const std::vector<ActiveCutter>&) {
 
 std::vector<ObjectCut> MeshKind::objectCuts(const std::vector<ActiveCutter>& cutters) const {
   std::vector<ObjectCut> cuts;
-  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i) cuts.push_back(objectCut(cutters, i));
+  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
+    cuts.push_back(objectCut(cutters, i));
   return cuts;
 }
 
@@ -81,8 +82,8 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const Geom
       setUniforms);
 }
 
-void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters,
-                                    const GeometryDraw&, bool first) const {
+void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw&,
+                                    bool first) const {
   const GLuint program = layerProgram_.id();
   for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
   glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
@@ -95,7 +96,9 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters,
       [&](const SceneObject& o, std::size_t i) {
         return !o.proxy && (cuts[i].cutBy & grading) != 0 && cuts[i].clipPasses == 0;
       },
-      [&](const SceneObject& o, std::size_t i) { setObjectUniforms(program, cutters, cuts[i], o, i); });
+      [&](const SceneObject& o, std::size_t i) {
+        setObjectUniforms(program, cutters, cuts[i], o, i);
+      });
 }
 
 }  // namespace cutaway

@@ -15,5 +15,6 @@ float intensity(vec3 c) {
 vec3 emphasize(vec3 base, vec3 shaded, float importance) {
   if (importance < uEmphasis.z) return uPaper.rgb;
   vec3 suppressed = mix(shaded, base, uEmphasis.y * (1.0 - importance));  // eqs. 3.3–3.4
-  return mix(suppressed, vec3(intensity(suppressed)), uEmphasis.x * (1.0 - importance));  // eqs. 3.1–3.2
+  float grey = uEmphasis.x * (1.0 - importance);
+  return mix(suppressed, vec3(intensity(suppressed)), grey);  // eqs. 3.1–3.2
 }
