@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
 #include <fstream>
 #include <regex>
 #include <set>
@@ -72,6 +73,7 @@ std::string joined(const std::vector<std::string>& names) {
 struct Variant {
   std::string file;
   std::vector<std::pair<std::string, std::string>> options;  // setOption(path, value)
+  std::shared_ptr<const Scene> scene;  // the file, loaded once for all its variants
 };
 
 std::string variantName(const Variant& v) {
@@ -88,14 +90,15 @@ std::vector<Variant> variants() {
                                                            "/examples")) {
     if (e.path().extension() != ".json") continue;
     const std::string file = e.path().filename().string();
-    out.push_back({file, {}});
-    const Scene scene = loadScene(e.path());
-    if (scene.cutters.find<AdaptiveCutawayOptions>())
-      out.push_back({file, {{"cutters.adaptive.compute", "gpu"},
-                            {"cutters.adaptive.ghostLines", "true"}}});
-    if (scene.cutters.find<ClipSurfaceOptions>())
-      out.push_back({file, {{"cutters.clipSurfaces.parity", "perFrame"}}});
-    if (!scene.networks.empty()) out.push_back({file, {{"style.shadows", "true"}}});
+    const auto scene = std::make_shared<const Scene>(loadScene(e.path()));
+    out.push_back({file, {}, scene});
+    if (scene->cutters.find<AdaptiveCutawayOptions>())
+      out.push_back({file,
+                     {{"cutters.adaptive.compute", "gpu"}, {"cutters.adaptive.ghostLines", "true"}},
+                     scene});
+    if (scene->cutters.find<ClipSurfaceOptions>())
+      out.push_back({file, {{"cutters.clipSurfaces.parity", "perFrame"}}, scene});
+    if (!scene->networks.empty()) out.push_back({file, {{"style.shadows", "true"}}, scene});
   }
   std::sort(out.begin(), out.end(),
             [](const Variant& a, const Variant& b) { return variantName(a) < variantName(b); });
@@ -103,7 +106,7 @@ std::vector<Variant> variants() {
 }
 
 std::vector<std::string> passesOf(const Variant& v) {
-  Scene scene = loadScene(std::string(CUTAWAY_SOURCE_DIR) + "/examples/" + v.file);
+  Scene scene = *v.scene;
   scene.width = 64, scene.height = 48;
   for (const auto& [path, value] : v.options) setOption(scene, path, value);
   const Renderer renderer(scene, test::glContext().info());

@@ -118,6 +118,7 @@ void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const L
     fullscreen_.draw();
     glDisable(GL_BLEND);
   }
+  glDisable(GL_DEPTH_TEST);  // also when the loop ended at an empty layer
 }
 
 void TranslucentLayers::addCompositePass(Frame& frame, Target finalColor) {

@@ -20,9 +20,12 @@
 // the opaque surfaces' lines behind a layer are dimmed by it too).
 //
 //   TranslucentLayers layers(setup.frame, bindings, gbuffer, [&] { return budget; });
-//   layers.addLayersPass(frame, drawLayer, lines);  // drawLayer: every kind's translucent
-//   fragments gbuffer.addCompositePass(frame, overlays); layers.addCompositePass(frame,
-//   gbuffer.finalColor());
+//   layers.addLayersPass(frame, drawLayer, lines);  // drawLayer: the kinds' translucent share
+//   gbuffer.addCompositePass(frame, overlays);
+//   layers.addCompositePass(frame, gbuffer.finalColor());
+//
+// A surface that turns translucent leaves the opaque G-buffer there and starts in a layer, so
+// the line passes outline that boundary (where R leaves 0), as they outline a cut.
 #pragma once
 
 #include <functional>

@@ -37,8 +37,9 @@
 // - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines.
 // - capMask: Trapp13's cap coverage AOV.
 // - translucentLayers, translucentComposite: Burns11 ch. 2's occlusion reduction by
-//   translucency or edge highlights: the material a cutter reduces only partly, peeled front
-//   to back into layers (frame/translucent_layers.hpp), blended over the final colour.
+//   translucency, edge highlights or lines: the material a cutter reduces only partly, peeled
+//   front to back into layers with their own feature lines (frame/translucent_layers.hpp),
+//   blended over the final colour.
 // - lines: silhouettes, creases and cut outlines per sample (styles/lines).
 // - composite: the samples resolved, the line overlays blended, sample 0 of every
 //   intermediate buffer copied into single-sample AOVs.

@@ -154,8 +154,10 @@ void AdaptiveCutaway::setProgramUniforms(GLuint program) const {
   glProgramUniform3f(program, contextualLocation_, d, transitionOverlayOcclusion(transition, d > 0.0f),
                      reductionIsOcclusion() ? 1.0f : 0.0f);
   // clip.glsl's uApply.x: 0 translucency, 1 edge highlights, 2 lines.
+  // Only where the program uses it (the ghost and cap programs do not): a write to an
+  // inactive location is an error.
   using Application = ContextualCutawayOptions::Application;
-  if (graded_)
+  if (graded_ && glGetUniformLocation(program, "uApply") == applyLocation_)
     glProgramUniform2f(program, applyLocation_,
                        c.apply == Application::EdgeHighlights ? 1.0f
                        : c.apply == Application::Lines        ? 2.0f
