@@ -85,7 +85,7 @@ class Cutter {
   virtual CutLook look(std::size_t index) const = 0;
   virtual void setObjectUniforms(GLuint /*program*/, std::size_t /*index*/) const {}
   // 0 when its GLSL decides every fragment (for the renderer's life); else it leaves fragments
-  // partly reduced (Burns11 ch. 2's translucency and edge highlights), and this is the most
+  // partly reduced (Burns11 ch. 2's translucency, edge highlights, lines), and this is the most
   // translucent layers to peel per pixel (read every frame). Such a cutter's GLSL defines
   //   vec2 <name>Opacity(CutFragment f, vec3 normal, vec3 toEye);  // surface's, lines'
   // the composition's cutOpacity() is the least over the grading cutters of an object, the

@@ -31,6 +31,7 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
   layerDepth_ = frame.declare("translucentLayerDepth", {.format = depthFormat, .samples = samples});
   previousDepth_ =
       frame.declare("translucentPreviousDepth", {.format = depthFormat, .samples = samples});
+  attach();
 }
 
 void TranslucentLayers::addLayersPass(Frame& frame, std::function<void(bool)> drawLayer,
@@ -60,11 +61,9 @@ void TranslucentLayers::attach() {
   glNamedFramebufferTexture(accumulationFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(accumulation_),
                             0);
   glNamedFramebufferTexture(linesFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(lineCoverage_), 0);
-  attached_ = true;
 }
 
 void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const Lines& lines) {
-  if (!attached_) attach();
   const auto id = [this](Target t) { return frame_.texture(t).id(); };
   const int w = frame_.width(), h = frame_.height();
   const auto copyDepth = [&](Target from, Target to) {

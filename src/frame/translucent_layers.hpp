@@ -67,7 +67,7 @@ class TranslucentLayers {
 
  private:
   void peel(const std::function<void(bool)>& drawLayer, const Lines& lines);
-  void attach();
+  void attach();  // its targets to its framebuffers, once
 
   Frame& frame_;
   const GBuffer& gbuffer_;
@@ -79,7 +79,6 @@ class TranslucentLayers {
   gl::Program underProgram_, overProgram_;
   gl::Query anySamples_;
   FullscreenTriangle fullscreen_;
-  bool attached_ = false;
   int peeled_ = 0;
 };
 

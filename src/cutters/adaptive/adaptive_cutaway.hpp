@@ -25,7 +25,8 @@ class AdaptiveCutaway : public Cutter {
   void bindForGeometry() const override;
   void setProgramUniforms(GLuint program) const override;
   void setObjectUniforms(GLuint program, std::size_t index) const override;
-  // The contextual structure's R applied as translucency or edge highlights (Burns11 ch. 2).
+  // The contextual structure's R applied as translucency, edge highlights or lines (Burns11
+  // ch. 2).
   int translucentLayers() const override;
   // Every visible object but the objects of interest (Burns08 §4.1).
   bool cuts(std::size_t index) const override;

@@ -85,8 +85,9 @@ vec3 trimViewPoint(vec2 uv, float omega, bool frontFacing) {
 }
 
 // R ≥ ½ removes the fragment (§5.2.4: polygons take R fully or not at all); a back face
-// behind its object's trimming surface is that surface's cut. Applied as translucency or edge
-// highlights (ADAPTIVE_GRADED), R is the fragment's opacity instead (adaptiveOpacity).
+// behind its object's trimming surface is that surface's cut. Applied as translucency, edge
+// highlights or lines (ADAPTIVE_GRADED), R sets the fragment's opacities instead
+// (adaptiveOpacity).
 int contextualFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
 #ifdef ADAPTIVE_GRADED
   return kKeep;

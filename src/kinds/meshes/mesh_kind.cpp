@@ -85,19 +85,22 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const Geom
 void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw&,
                                     bool first) const {
   const GLuint program = layerProgram_.id();
-  for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
+  // The cuts and the cutters' program uniforms are the frame's: set once, at the first layer.
+  if (first) {
+    for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
+    layerCuts_ = objectCuts(cutters);
+  }
   glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
   int grading = 0;  // the slots of the cutters that leave translucent fragments
   for (const ActiveCutter& c : cutters)
     if (c.cutter->translucentLayers() > 0) grading |= 1 << c.slot;
-  const std::vector<ObjectCut> cuts = objectCuts(cutters);
   setup_.meshes.draw(
       program,
       [&](const SceneObject& o, std::size_t i) {
-        return !o.proxy && (cuts[i].cutBy & grading) != 0 && cuts[i].clipPasses == 0;
+        return !o.proxy && (layerCuts_[i].cutBy & grading) != 0 && layerCuts_[i].clipPasses == 0;
       },
       [&](const SceneObject& o, std::size_t i) {
-        setObjectUniforms(program, cutters, cuts[i], o, i);
+        setObjectUniforms(program, cutters, layerCuts_[i], o, i);
       });
 }
 

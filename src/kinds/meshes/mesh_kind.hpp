@@ -26,6 +26,7 @@ class MeshKind : public GeometryKind {
 
   FrameSetup& setup_;
   gl::Program program_, layerProgram_;
+  mutable std::vector<ObjectCut> layerCuts_;  // this frame's, from its first translucent layer
 };
 
 }  // namespace cutaway
