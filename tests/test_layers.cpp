@@ -38,7 +38,7 @@ Layer layerOf(const std::string& path) {
     return {8, ""};
   if (top == "scene") return {3, ""};
   // A technique's public header: its options and pure functions, at the scene model's level.
-  if (isPublic && (top == "cutters" || top == "styles")) return {3, ""};
+  if (isPublic && (top == "cutters" || top == "styles" || top == "kinds")) return {3, ""};
   if (top == "frame") return {4, ""};
   if (is({"cutters/cutter.hpp", "kinds/kind.hpp", "styles/style.hpp"})) return {5, ""};
   if (rel.rfind("cutters/registry", 0) == 0 || rel.rfind("styles/registry", 0) == 0)

@@ -88,7 +88,7 @@ const BadScene kBadScenes[] = {
     {"unknown_key_with_slash.json", "/style~1name",
      "unknown key \"style/name\""},  // RFC 6901 escape
     {"missing_objects.json", "/", "missing required key \"objects\""},
-    {"empty_objects.json", "/objects", "a scene needs at least one object or pipe network"},
+    {"empty_objects.json", "/objects", "a scene needs at least one object, pipe network or volume"},
     {"objects_not_array.json", "/objects", "expected an array, got object"},
     {"version_two.json", "/version", "value 2 is outside [1, 1]"},
     {"resolution_one_number.json", "/resolution", "expected [width, height]"},
@@ -181,8 +181,7 @@ const BadScene kBadScenes[] = {
     {"style_hatching_bad_lightness.json", "/style/hatching/lightness",
      "unknown value \"phong\" (expected one of: lambert, gooch)"},
     {"style_hatching_unknown_key.json", "/style/hatching/angle", "unknown key \"angle\""},
-    {"style_shadows_size_not_power_of_two.json", "/style/shadows/size",
-     "must be a power of two"},
+    {"style_shadows_size_not_power_of_two.json", "/style/shadows/size", "must be a power of two"},
     {"style_shadows_unknown_key.json", "/style/shadows/softness",
      "unknown key \"softness\" (expected one of: bias, enabled, pcfRadius, size, slopeBias)"},
     {"style_shadows_pcf_radius_9.json", "/style/shadows/pcfRadius", "value 9 is outside [0, 4]"},

@@ -193,6 +193,7 @@ void warnAboutFarCoordinates(const Scene& scene) {
       reach = std::max({c.x, c.y, c.z}), name = what, farthest = b;
   };
   for (const auto& n : scene.networks) consider(n.name, n.bounds());
+  for (const auto& v : scene.volumes) consider(v.name, v.worldBounds());
   for (const auto& o : scene.objects)
     if (!o.proxy && o.networkPart == NetworkPart::None) consider(o.name, o.worldBounds());
   if (name.empty()) return;
@@ -454,6 +455,19 @@ int info(const std::string& path) {
          {"shafts", net.shafts.size()},
          {"bounds", boundsJson(net.bounds())}});
   }
+  for (const SceneVolume& v : scene.volumes) {
+    const Volume& data = *v.volume;
+    out["volumes"].push_back({{"name", v.name},
+                              {"file", v.source},
+                              {"dims", {data.dims.x, data.dims.y, data.dims.z}},
+                              {"voxelType", data.voxelType},
+                              {"spacing", vec(data.spacing())},
+                              {"range", {data.minValue, data.maxValue}},
+                              {"role", roleName(v.role)},
+                              {"mode", volumeModeName(v.mode)},
+                              {"transferPoints", v.transfer.points.size()},
+                              {"bounds", boundsJson(v.worldBounds())}});
+  }
   if (const auto* b = scene.cutters.find<BreakawayOptions>()) {
     const BreakawayExtent extent = breakawayExtent(scene, *b);
     nlohmann::json clusters = nlohmann::json::array();
@@ -610,7 +624,30 @@ int bench(const BenchOptions& options) {
   std::vector<Measurement> runs;
   nlohmann::json references = nlohmann::json::object(), accuracy = nlohmann::json::object();
   constexpr int kAccuracySize = 256;
-  if (!scene.networks.empty()) {
+  if (!scene.volumes.empty()) {
+    // Volumes: plain ray casting, then each of the scene's cutters alone and all together,
+    // at the two image sizes the volumes issue asks for.
+    for (int n : {512, 1024}) {
+      const std::string size = std::to_string(n) + "²";
+      Scene plain = scene;
+      plain.width = plain.height = n;
+      plain.cutters.clear();
+      const std::size_t base = runs.size();
+      runs.push_back(measure("ray casting " + size, plain, info, options.frames));
+      const std::vector<std::string> keys = scene.cutters.keys();
+      for (const std::string& key : keys) {
+        Scene one = plain;
+        one.cutters.set(key, *scene.cutters.find(key));
+        runs.push_back(measure(key + " " + size, one, info, options.frames));
+      }
+      if (keys.size() > 1) {
+        Scene all = scene;
+        all.width = all.height = n;
+        runs.push_back(measure("all cutters " + size, all, info, options.frames));
+      }
+      for (std::size_t i = base; i < runs.size(); ++i) runs[i].plain = base;
+    }
+  } else if (!scene.networks.empty()) {
     pipeTable(scene, info, options.frames, runs);
   } else if (scene.cutters.find<CutoutOptions>() || scene.cutters.find<BreakawayOptions>()) {
     // Diepstraten03 §6's table: plain, cutout and breakaway for every style, in one run; a

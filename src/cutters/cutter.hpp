@@ -77,6 +77,10 @@ class Cutter {
   // Whether its GLSL decides the fragments of scene object `index` (a mesh object): by its
   // own rule, and only if the object allows it (SceneObject::mayBeCutBy its key).
   virtual bool cuts(std::size_t index) const = 0;
+  // Whether its GLSL decides the ray samples of scene volume `index` (kinds/volumes), each
+  // sample a front-facing CutFragment at its position, its window position CUT_FRAG_COORD
+  // (cutters/fate.glsl). Only cutters whose GLSL reads nothing per object but the bits.
+  virtual bool cutsVolume(std::size_t /*index*/) const { return false; }
   // Diepstraten03 §4.3's classic method: the object drawn this many times, each pass with one
   // hardware clip plane (kept where plane·x ≥ 0); 0: drawn once.
   virtual int clipPasses(std::size_t /*index*/) const { return 0; }

@@ -3,6 +3,11 @@
 #ifndef CUTTERS_FATE_GLSL
 #define CUTTERS_FATE_GLSL
 const int kKeep = 0, kDiscard = 1, kCutSurface = 2;
+// The window position (x, y, depth) of what is decided: the fragment's, or a volume's ray
+// sample's (kinds/volumes/volume.frag defines it as the sample's before including cutters).
+#ifndef CUT_FRAG_COORD
+#define CUT_FRAG_COORD gl_FragCoord
+#endif
 // A fragment of a cut object: world position, interpolated world normal (not normalised), and
 // the side seen.
 struct CutFragment {

@@ -1,5 +1,5 @@
 // The one interface every geometry kind implements: how one kind of scene geometry (triangle
-// meshes, Konev18's procedural pipe networks; volumes next) reaches the frame. A kind draws its
+// meshes, Konev18's procedural pipe networks, volumes) reaches the frame. A kind draws its
 // geometry into the G-buffer with the active cutters' decisions composed into its programs,
 // casts into the key light's shadow map, and draws its objects of interest's rear hulls for the
 // cutters that grow a cutaway around them (Burns08 §5.1), so that any kind can be cut and any
@@ -37,6 +37,9 @@ class GeometryKind {
                                     const GeometryDraw& /*draw*/, bool /*first*/) const {}
   // Its passes after the geometry pass (into the same G-buffer, or AOVs of its own).
   virtual void addPassesAfterGeometry(Frame&) {}
+  // Its passes after the composite, over the final colour, in front of the opaque depth
+  // (volumes ray cast up to the meshes).
+  virtual void addPassesAfterComposite(Frame&) {}
   // Into the bound shadow-map target, the light's frame uniforms bound (styles/shadows).
   virtual void drawShadowCasters() const {}
   // Into the bound seed targets (frame/frame_setup.hpp: RearHullRequest).

@@ -17,6 +17,7 @@
 #include "frame/translucent_layers.hpp"
 #include "kinds/meshes/mesh_kind.hpp"
 #include "kinds/pipes/pipe_kind.hpp"
+#include "kinds/volumes/volume_kind.hpp"
 #include "styles/emphasis/emphasis.hpp"
 #include "styles/lines/line_pass.hpp"
 #include "styles/registry.hpp"
@@ -75,6 +76,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   }
   g.kinds.push_back(std::make_unique<MeshKind>(setup));
   if (PipeKind::present(scene)) g.kinds.push_back(std::make_unique<PipeKind>(setup));
+  if (VolumeKind::present(scene)) g.kinds.push_back(std::make_unique<VolumeKind>(setup));
 
   // The G-buffer with the channels the cutters added, then every geometry program's shading.
   const bool stencil = std::any_of(g.kinds.begin(), g.kinds.end(),
@@ -230,7 +232,9 @@ void Renderer::Impl::buildFrame() {
   }
   // 6. The composite: the samples resolved, the overlays blended, the AOVs copied.
   gbuffer.addCompositePass(frame, std::move(overlays));
-  // 7. The translucent layers over the final colour, lines of what lies behind them included.
+  // 7. The kinds' passes over the final colour (volumes ray cast up to the opaque depth), then
+  //    the translucent layers, lines of what lies behind them included.
+  for (const auto& k : kinds) k->addPassesAfterComposite(frame);
   if (layers) layers->addCompositePass(frame, gbuffer.finalColor());
 }
 

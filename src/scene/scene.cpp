@@ -22,6 +22,30 @@ const char* roleName(Role role) {
   return "?";
 }
 
+const char* volumeModeName(VolumeMode mode) {
+  switch (mode) {
+    case VolumeMode::Composite:
+      return "composite";
+    case VolumeMode::Maximum:
+      return "maximum";
+    case VolumeMode::Isosurface:
+      return "isosurface";
+  }
+  return "?";
+}
+
+TransferPoint TransferFunction::at(float value) const {
+  if (value <= points.front().value) return points.front();
+  if (value >= points.back().value) return points.back();
+  const auto hi = std::upper_bound(points.begin(), points.end(), value,
+                                   [](float v, const TransferPoint& p) { return v < p.value; });
+  const TransferPoint& b = *hi;
+  const TransferPoint& a = *(hi - 1);
+  const float t = (value - a.value) / (b.value - a.value);
+  return {value, glm::mix(a.color, b.color, t), a.opacity + (b.opacity - a.opacity) * t,
+          a.importance + (b.importance - a.importance) * t};
+}
+
 const std::vector<ObjectParamSpec>& objectParameterSpecs() {
   static const std::vector<ObjectParamSpec> specs{
       {"lines", ObjectParamSpec::Type::Bool, 0, 0,
@@ -104,6 +128,7 @@ Bounds Scene::bounds() const {
   for (const auto& o : objects)
     if (!o.proxy) b.extend(o.worldBounds());
   for (const auto& n : networks) b.extend(n.bounds());
+  for (const auto& v : volumes) b.extend(v.worldBounds());
   return b;
 }
 

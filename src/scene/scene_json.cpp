@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/json_reader.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
 #include "cutaway/geometry/convex_hull.hpp"
@@ -21,8 +22,8 @@
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/io/raster_terrain.hpp"
+#include "cutaway/io/volume_import.hpp"
 #include "cutaway/scene/scene.hpp"
-#include "core/json_reader.hpp"
 #include "cutters/registry.hpp"
 #include "scene/network_json.hpp"
 #include "styles/registry.hpp"
@@ -500,6 +501,70 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
   objects.push_back(std::move(o));
 }
 
+// The transfer function's control points, in increasing value.
+TransferFunction transferFunction(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected an array of control points");
+  TransferFunction tf;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
+    TransferPoint p;
+    p.value = float(number(ctx, r.require("value"), r.at("value"), -1e30, 1e30));
+    if (const json* v = r.take("color")) p.color = color(ctx, *v, r.at("color"));
+    p.opacity = float(number(ctx, r.require("opacity"), r.at("opacity"), 0, 1));
+    if (const json* v = r.take("importance"))
+      p.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
+    r.finish();
+    if (!tf.points.empty() && !(p.value > tf.points.back().value))
+      ctx.fail(r.at("value"), "control points must have increasing values");
+    tf.points.push_back(p);
+  }
+  return tf;
+}
+
+void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene& scene) {
+  ObjectReader r(ctx, j, ptr);
+  SceneVolume v;
+  v.name = string(ctx, r.require("name"), r.at("name"));
+  if (v.name.empty()) ctx.fail(r.at("name"), "volume name must not be empty");
+  std::filesystem::path file = string(ctx, r.require("file"), r.at("file"));
+  if (file.is_relative()) file = ctx.baseDir / file;
+  v.source = file.string();
+  if (const json* t = r.take("transform")) v.transform = transform(ctx, *t, r.at("transform"));
+  if (const json* t = r.take("role")) v.role = role(ctx, *t, r.at("role"));
+  if (const json* t = r.take("cutBy")) {
+    std::vector<std::string> keys;
+    for (const CutterType& type : cutterTypes()) keys.push_back(type.key);
+    if (!t->is_array()) ctx.fail(r.at("cutBy"), "expected an array of cutter names");
+    v.cutBy.emplace();
+    for (std::size_t i = 0; i < t->size(); ++i)
+      v.cutBy->push_back(oneOf(ctx, (*t)[i], r.at("cutBy") + "/" + std::to_string(i), keys));
+  }
+  v.transfer = transferFunction(ctx, r.require("transferFunction"), r.at("transferFunction"));
+  if (const json* t = r.take("mode")) {
+    const std::string mode = oneOf(ctx, *t, r.at("mode"), {"composite", "maximum", "isosurface"});
+    v.mode = mode == "maximum"      ? VolumeMode::Maximum
+             : mode == "isosurface" ? VolumeMode::Isosurface
+                                    : VolumeMode::Composite;
+  }
+  if (const json* t = r.take("isoValue"))
+    v.isoValue = float(number(ctx, *t, r.at("isoValue"), -1e30, 1e30));
+  else if (v.mode == VolumeMode::Isosurface)
+    ctx.fail(ptr, "the isosurface mode needs an \"isoValue\"");
+  if (const json* t = r.take("sampleDistance"))
+    v.sampleDistance = float(number(ctx, *t, r.at("sampleDistance"), 0.05, 8));
+  if (const json* t = r.take("opacityDistance"))
+    v.opacityDistance = float(number(ctx, *t, r.at("opacityDistance"), 0.05, 1000));
+  if (const json* t = r.take("shading")) v.shading = boolean(ctx, *t, r.at("shading"));
+  if (const json* t = r.take("jitter")) v.jitter = boolean(ctx, *t, r.at("jitter"));
+  r.finish();
+  try {
+    v.volume = std::make_shared<const Volume>(importVolume(file));
+  } catch (const Error& e) {
+    ctx.fail(r.at("file"), e.what());
+  }
+  scene.volumes.push_back(std::move(v));
+}
+
 Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
   ObjectReader r(ctx, j, ptr);
   Camera c;
@@ -698,13 +763,15 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   }
 
   MeshCache cache;
-  // Pipe networks alone make a scene (Konev18's pipes without terrain); otherwise objects.
-  const bool networks = r.has("networks");
+  // Pipe networks or volumes alone make a scene (Konev18's pipes without terrain, a CT);
+  // otherwise objects.
+  const bool networks = r.has("networks"), volumes = r.has("volumes");
   const json noObjects = json::array();
-  const json& objects = networks && !r.has("objects") ? noObjects : r.require("objects");
+  const json& objects =
+      (networks || volumes) && !r.has("objects") ? noObjects : r.require("objects");
   if (!objects.is_array()) ctx.fail("/objects", "expected an array, got " + typeName(objects));
-  if (objects.empty() && !networks)
-    ctx.fail("/objects", "a scene needs at least one object or pipe network");
+  if (objects.empty() && !networks && !volumes)
+    ctx.fail("/objects", "a scene needs at least one object, pipe network or volume");
   for (std::size_t i = 0; i < objects.size(); ++i)
     readObject(ctx, objects[i], "/objects/" + std::to_string(i), cache, scene.objects);
   if (const json* v = r.take("proxies")) {
@@ -713,10 +780,19 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
       readProxy(ctx, (*v)[i], "/proxies/" + std::to_string(i), scene.objects);
   }
   if (const json* v = r.take("networks")) readNetworks(ctx, *v, "/networks", scene);
+  if (const json* v = r.take("volumes")) {
+    if (!v->is_array() || v->empty()) ctx.fail("/volumes", "expected an array of volumes");
+    for (std::size_t i = 0; i < v->size(); ++i)
+      readVolume(ctx, (*v)[i], "/volumes/" + std::to_string(i), scene);
+  }
   std::set<std::string> names;
   for (const auto& o : scene.objects)
     if (!names.insert(o.name).second)
       ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+    if (!names.insert(scene.volumes[i].name).second)
+      ctx.fail("/volumes/" + std::to_string(i) + "/name",
+               "the name \"" + scene.volumes[i].name + "\" is taken");
   // The cutters' checks across the scene (the roles they need, the network to open above).
   for (const CutterType& type : cutterTypes())
     if (type.complete && scene.cutters.find(type.key))

@@ -38,7 +38,7 @@ struct ContextualCutawayOptions {
   std::optional<float> overlay;   // d, world units along the view ray; 0: none; unset: 5% of the scene radius
   // How R follows from Ω: eqs. 7.1–7.3 with each object's importance, R = Ω (§7.2: a scene
   // that does not rank its objects), or auto: the former when the cut objects' importances
-  // differ, else the latter.
+  // differ (a cut volume's: its transfer function's), else the latter.
   enum class Reduction { Auto, Importance, Occlusion } reduction = Reduction::Auto;
   // How R is applied (ch. 2, §5.2.4): cut, fully or not at all (R ≥ ½ removed, with cut
   // surfaces; Burns08's binary cutaway is R ∈ {0, 1}); translucency, opacity α = 1 − R

@@ -2,9 +2,9 @@
 //
 // The Renderer composes the scene's techniques into one frame (src/render/renderer.cpp,
 // buildFrame): the shading style, the cutters in registry order (src/cutters/registry.cpp),
-// the geometry kinds (meshes, pipe networks). Its pass graph, in execution order; a bracketed
-// group runs where the scene asks for it (tests/test_pass_graph.cpp matches the frame of
-// every example against these lines):
+// the geometry kinds (meshes, pipe networks, volumes). Its pass graph, in execution order; a
+// bracketed group runs where the scene asks for it (tests/test_pass_graph.cpp matches the
+// frame of every example against these lines):
 //
 //   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth) cutawayDilate]
 //   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2) cutawayDilateC2]
@@ -20,6 +20,7 @@
 //   [ghostLines]
 //   composite
 //   [channels]
+//   [volumes]
 //   [translucentComposite]
 //
 // - cutawaySeed … cutawayDilate: the adaptive cutter (Burns08 §5): the region of interest's
@@ -45,6 +46,8 @@
 //   intermediate buffer copied into single-sample AOVs.
 // - channels: the same for the cutters' G-buffer channels (the cutout's signed distance, the
 //   contextual structure's Ω and R).
+// - volumes: the scene's volumes ray cast over the final colour up to the opaque depth, each
+//   sample decided by the cutters (src/kinds/volumes).
 //
 //   auto context = cutaway::gl::HeadlessContext::create();
 //   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");

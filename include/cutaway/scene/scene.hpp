@@ -22,9 +22,10 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "cutaway/geometry/mesh.hpp"
 #include "cutaway/core/geo_frame.hpp"
+#include "cutaway/geometry/mesh.hpp"
 #include "cutaway/geometry/pipe_network.hpp"
+#include "cutaway/geometry/volume.hpp"
 #include "cutaway/scene/camera.hpp"
 #include "cutaway/scene/settings.hpp"
 #include "cutaway/styles/emphasis.hpp"
@@ -105,6 +106,54 @@ struct SceneObject {
   Bounds worldBounds() const;
 };
 
+// A volume's transfer function: control points over its values (in the file's units),
+// interpolated linearly and held at the ends. Each point carries an importance, so that the
+// material a component stands for is emphasised and reduced like an object of that
+// importance (Burns11 §3.2, §7.1: bone and vessels important, soft tissue not).
+struct TransferPoint {
+  float value = 0.0f;
+  glm::vec3 color{1.0f};
+  float opacity = 0.0f;     // per unit of `SceneVolume::opacityDistance`
+  float importance = 0.5f;  // in [0, 1]
+};
+struct TransferFunction {
+  std::vector<TransferPoint> points;  // increasing values, at least one
+  TransferPoint at(float value) const;
+};
+
+enum class VolumeMode {
+  Composite,   // emission–absorption, front to back
+  Maximum,     // maximum intensity projection
+  Isosurface,  // the first crossing of `isoValue`, shaded as a surface
+};
+const char* volumeModeName(VolumeMode mode);
+
+// A scalar volume drawn by ray casting (src/kinds/volumes): placed by its file's voxel-to-world
+// matrix, then `transform`.
+struct SceneVolume {
+  std::string name;
+  std::string source;  // the file it came from
+  Role role = Role::Context;
+  std::optional<std::vector<std::string>> cutBy;  // as SceneObject::cutBy
+  std::shared_ptr<const Volume> volume;
+  glm::mat4 transform{1.0f};
+  TransferFunction transfer;
+  VolumeMode mode = VolumeMode::Composite;
+  float isoValue = 0.0f;
+  // Ray step in voxels (of the smallest spacing); the opacities hold per `opacityDistance`
+  // voxels and are corrected for the step (α' = 1 − (1 − α)^(step/opacityDistance)).
+  float sampleDistance = 0.5f;
+  float opacityDistance = 1.0f;
+  bool shading = true;  // gradient normals shaded by the style; false: emission only
+  bool jitter = true;   // ray starts offset per pixel (against wood-grain artefacts)
+
+  glm::mat4 indexToWorld() const { return transform * volume->indexToWorld; }
+  Bounds worldBounds() const { return volume->indexBounds().transformed(indexToWorld()); }
+  bool mayBeCutBy(const std::string& cutter) const {
+    return !cutBy || std::find(cutBy->begin(), cutBy->end(), cutter) != cutBy->end();
+  }
+};
+
 struct Light {
   enum class Type { Directional, Point } type = Type::Directional;
   glm::vec3 direction{-0.4f, -0.6f, -1.0f};  // direction the light travels (directional)
@@ -150,8 +199,9 @@ struct Scene {
   // Konev18 pipe networks drawn as billboards ("networks": […]). Their object ids in the
   // renderer's id buffer follow the objects': objects.size() + network index.
   std::vector<PipeNetwork> networks;
+  std::vector<SceneVolume> volumes;  // "volumes": […]
 
-  // Bounds of the visible (non-proxy) objects in world space.
+  // Bounds of the visible (non-proxy) objects, networks and volumes in world space.
   Bounds bounds() const;
   // Resolves "fit" and derived near/far planes into concrete camera values.
   Camera resolvedCamera() const { return resolvedCamera(0.0f); }

@@ -81,6 +81,11 @@ bool AdaptiveCutaway::cuts(std::size_t index) const {
   return o.role != Role::Interest && o.mayBeCutBy(AdaptiveCutawayOptions::kKey);
 }
 
+bool AdaptiveCutaway::cutsVolume(std::size_t index) const {
+  const SceneVolume& v = setup_.scene.volumes[index];
+  return v.role != Role::Interest && v.mayBeCutBy(AdaptiveCutawayOptions::kKey);
+}
+
 CutLook AdaptiveCutaway::look(std::size_t index) const {
   const SceneObject& o = setup_.scene.objects[index];
   using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
@@ -140,6 +145,14 @@ bool AdaptiveCutaway::reductionIsOcclusion() const {
     const float importance = setup_.scene.objects[i].importance;
     if (first && *first != importance) return false;
     first = importance;
+  }
+  // A volume's materials carry importances of their own (its transfer function's).
+  for (std::size_t i = 0; i < setup_.scene.volumes.size(); ++i) {
+    if (!cutsVolume(i)) continue;
+    for (const TransferPoint& p : setup_.scene.volumes[i].transfer.points) {
+      if (first && *first != p.importance) return false;
+      first = p.importance;
+    }
   }
   return true;
 }

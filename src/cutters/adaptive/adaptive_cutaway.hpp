@@ -30,6 +30,7 @@ class AdaptiveCutaway : public Cutter {
   int translucentLayers() const override;
   // Every visible object but the objects of interest (Burns08 §4.1).
   bool cuts(std::size_t index) const override;
+  bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   void addPassesAfterGeometry(Frame& frame) override;
   std::optional<glm::vec3> cutOutlineColor() const override;

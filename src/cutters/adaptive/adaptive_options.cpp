@@ -42,7 +42,8 @@ OptionsSchema contextualSchema() {
                {"importance", C::Reduction::Importance},
                {"occlusion", C::Reduction::Occlusion}},
               {.doc = "R from Ω: by importance (Burns11 eqs. 7.1–7.3), R = Ω (§7.2), or auto: "
-                      "by importance when the cut objects' importances differ."})
+                      "by importance when the cut objects' importances differ (a volume's: its "
+                      "transfer function's)."})
       .choice("apply", &C::apply,
               {{"cut", C::Application::Cut},
                {"translucency", C::Application::Translucency},

@@ -33,6 +33,10 @@ layout(binding = UNIT_CUTAWAY_DILATED_C2) uniform sampler2D uCutawayDilatedC2;
 // x: overlay thickness d (world units), y: t (§4.1.3.3), z: 1 for R = Ω (§7.2), 0 for eq. 7.3.
 layout(location = LOC_ADAPTIVE_CONTEXTUAL) uniform vec3 uContextual;
 layout(location = LOC_ADAPTIVE_IMPORTANCE) uniform float uImportance;  // I of the object drawn
+// A volume's ray samples take the importance of their own material (kinds/volumes).
+#ifndef CUT_IMPORTANCE
+#define CUT_IMPORTANCE uImportance
+#endif
 
 // Eq. 5.5; where a = b the step x > a (eq. 7.3's degenerate ends, §7.1.2).
 float contextualRamp(float a, float b, float x) {
@@ -63,14 +67,14 @@ float occlusionDistance(vec4 r, float omega) {
 // Eqs. 7.1–7.3, or R = Ω.
 float occlusionReduction(float omega) {
   if (uContextual.z > 0.5) return omega;
-  return contextualRamp(max(2.0 * uImportance - 1.0, 0.0), uImportance, omega);
+  return contextualRamp(max(2.0 * CUT_IMPORTANCE - 1.0, 0.0), CUT_IMPORTANCE, omega);
 }
 
 // The Ω where R reaches ½: the object's trimming surface (§5.2.4); above 1: never trimmed.
 float trimOcclusion() {
   if (uContextual.z > 0.5) return 0.5;
-  if (uImportance >= 1.0) return 2.0;
-  return 0.5 * (max(2.0 * uImportance - 1.0, 0.0) + uImportance);
+  if (CUT_IMPORTANCE >= 1.0) return 2.0;
+  return 0.5 * (max(2.0 * CUT_IMPORTANCE - 1.0, 0.0) + CUT_IMPORTANCE);
 }
 
 float fragmentDistance(vec3 worldPosition) {
@@ -92,7 +96,7 @@ int contextualFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) 
 #ifdef ADAPTIVE_GRADED
   return kKeep;
 #endif
-  vec2 uv = gl_FragCoord.xy * uViewport.zw;
+  vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
   vec4 r = contextualRay(uv, f.frontFacing);
   if (occlusionReduction(contextualOcclusion(r, fragmentDistance(f.position))) >= 0.5) return kDiscard;
   float omega = max(trimOcclusion(), 1e-6);  // I = 0: trimmed wherever Ω > 0, i.e. at C₂
@@ -109,7 +113,7 @@ int contextualFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) 
 
 // The G-buffer channels occlusion (Ω) and reduction (R) at a fragment of a cut object.
 float adaptiveChannel0(CutFragment f) {
-  vec2 uv = gl_FragCoord.xy * uViewport.zw;
+  vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
   return contextualOcclusion(contextualRay(uv, f.frontFacing), fragmentDistance(f.position));
 }
 float adaptiveChannel1(CutFragment f) {
@@ -139,10 +143,10 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   return contextualFragment(f, cutPosition, cutNormal);
 #else
   bool frontFacing = f.frontFacing;
-  vec2 uv = gl_FragCoord.xy * uViewport.zw;
+  vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
   // Burns11 eq. 5.4: Ω = 1 − step(C(p), p_z); back faces use the dilated surface.
   float c = frontFacing ? texture(uCutawayDepth, uv).r : texture(uCutawayDilated, uv).r;
-  if (gl_FragCoord.z < c) return kDiscard;
+  if (CUT_FRAG_COORD.z < c) return kDiscard;
   // A back face is a cut surface only where the cutaway surface lies in front of it; elsewhere
   // (no cut at this pixel) it is an ordinary inside view of an open mesh.
   if (frontFacing || c <= 0.0) return kKeep;
@@ -158,8 +162,8 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
 // Burns08 §4.3: how strongly a removed fragment shows as a ghost line: 1 at the cutaway
 // surface, fading to 0 at `distance` (world units) in front of it; 0 for kept fragments.
 float ghostFade(vec3 worldPosition, float distance) {
-  vec2 uv = gl_FragCoord.xy * uViewport.zw;
-  if (gl_FragCoord.z >= texture(uCutawayDepth, uv).r) return 0.0;
+  vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
+  if (CUT_FRAG_COORD.z >= texture(uCutawayDepth, uv).r) return 0.0;
   float fragmentDepth = -(uView * vec4(worldPosition, 1.0)).z;
   float cutawayDepth = -cutawayViewPoint(uv).z;
   return clamp(1.0 - (cutawayDepth - fragmentDepth) / distance, 0.0, 1.0);

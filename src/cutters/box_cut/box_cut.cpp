@@ -24,6 +24,11 @@ bool BoxCut::cuts(std::size_t index) const {
   return o.role != Role::Interest && o.mayBeCutBy(BoxCutOptions::kKey);
 }
 
+bool BoxCut::cutsVolume(std::size_t index) const {
+  const SceneVolume& v = setup_.scene.volumes[index];
+  return v.role != Role::Interest && v.mayBeCutBy(BoxCutOptions::kKey);
+}
+
 CutLook BoxCut::look(std::size_t index) const {
   // Diepstraten03 rule 5: a solid shows its cut wall; a hollow object its inside.
   const SceneObject& o = setup_.scene.objects[index];

@@ -12,6 +12,7 @@ class BoxCut : public Cutter {
  public:
   explicit BoxCut(FrameSetup& setup);
   bool cuts(std::size_t index) const override;
+  bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   void setProgramUniforms(GLuint program) const override;
   std::optional<glm::vec3> cutOutlineColor() const override;

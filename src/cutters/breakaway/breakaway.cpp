@@ -166,6 +166,11 @@ bool Breakaway::cuts(std::size_t index) const {
   return o.role == Role::Exterior && o.mayBeCutBy(BreakawayOptions::kKey);
 }
 
+bool Breakaway::cutsVolume(std::size_t index) const {
+  const SceneVolume& v = setup_.scene.volumes[index];
+  return v.role == Role::Exterior && v.mayBeCutBy(BreakawayOptions::kKey);
+}
+
 CutLook Breakaway::look(std::size_t index) const {
   const SceneObject& o = setup_.scene.objects[index];
   return {.cutSurface = o.solid(),

@@ -11,14 +11,14 @@ layout(binding = UNIT_BREAKAWAY_HULL_NORMAL) uniform sampler2D uBreakawayHullNor
 
 int breakawayFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   bool frontFacing = f.frontFacing;
-  ivec2 p = ivec2(gl_FragCoord.xy);
+  ivec2 p = ivec2(CUT_FRAG_COORD.xy);
   float outer = texelFetch(uBreakawayClipDepth, p, 0).r;
   float clip = frontFacing ? outer : texelFetch(uBreakawayInnerDepth, p, 0).r;
-  if (gl_FragCoord.z <= clip) return kDiscard;
+  if (CUT_FRAG_COORD.z <= clip) return kDiscard;
   // A back face behind the hole is seen through the removed material: there the wall lies
   // on the outer hull's foremost surface.
   if (frontFacing || outer <= 0.0) return kKeep;
-  vec4 ndc = vec4(gl_FragCoord.xy * uViewport.zw * 2.0 - 1.0, outer * 2.0 - 1.0, 1.0);
+  vec4 ndc = vec4(CUT_FRAG_COORD.xy * uViewport.zw * 2.0 - 1.0, outer * 2.0 - 1.0, 1.0);
   vec4 world = uInverseView * (uInverseProjection * ndc);
   cutPosition = world.xyz / world.w;
   cutNormal = texelFetch(uBreakawayHullNormal, p, 0).xyz;

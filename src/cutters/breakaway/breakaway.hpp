@@ -20,6 +20,7 @@ class Breakaway : public Cutter {
   void bindForGeometry() const override;
   // Diepstraten03 rule 1: only the exterior objects.
   bool cuts(std::size_t index) const override;
+  bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   std::optional<glm::vec3> cutOutlineColor() const override { return glm::vec3(0.0f); }
 

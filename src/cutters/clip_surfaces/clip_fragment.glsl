@@ -8,6 +8,6 @@ int clipSurfacesFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal
   cutPosition = f.position;
   cutNormal = vec3(0.0);
   if (!clippedBySurfaces(f.position, -1)) return kKeep;
-  imageAtomicMax(uClipMask, ivec2(gl_FragCoord.xy), 1u);
+  imageAtomicMax(uClipMask, ivec2(CUT_FRAG_COORD.xy), 1u);
   return kDiscard;
 }

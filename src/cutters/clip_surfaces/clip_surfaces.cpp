@@ -286,6 +286,11 @@ bool ClipSurfaceCutter::cuts(std::size_t index) const {
   return o.role != Role::Interest && o.mayBeCutBy(ClipSurfaceOptions::kKey);
 }
 
+bool ClipSurfaceCutter::cutsVolume(std::size_t index) const {
+  const SceneVolume& v = setup_.scene.volumes[index];
+  return v.role != Role::Interest && v.mayBeCutBy(ClipSurfaceOptions::kKey);
+}
+
 CutLook ClipSurfaceCutter::look(std::size_t index) const {
   // Its cuts are covered by caps, never shown as cut surfaces.
   return {.cutSurface = false, .cutColor = setup_.scene.objects[index].material.color};

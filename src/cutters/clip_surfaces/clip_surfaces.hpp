@@ -42,6 +42,7 @@ class ClipSurfaceCutter : public Cutter {
   // Clears the clip-mask and parity images; binds the block, relief textures and images.
   void bindForGeometry() const override;
   bool cuts(std::size_t index) const override;
+  bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   // Every cap of every capped object (cap.vert + cap.frag).
   void drawGeometry(const GeometryDraw& draw) const override;

@@ -18,7 +18,7 @@ float terrainDistanceAt(vec2 uv) {
 
 int terrainFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   vec3 x = f.position;
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 pixel = ivec2(CUT_FRAG_COORD.xy);
   vec2 uv = (x.xz - uTerrainFrame.xy) * uTerrainFrame.zw;
   float dc = length(uEye.xyz - x);
   float w = uTerrainParams.x, s = uTerrainParams.y;

@@ -1,0 +1,41 @@
+// cutaway/io/volume_import.hpp — scalar volumes from NIfTI-1/-2 (.nii, .nii.gz), NumPy (.npy,
+// .npz), VolPack density files (.den) and raw voxels described by a JSON header (.json).
+//
+// The format is chosen by the file name's suffix, case-insensitively. Values become floats in
+// the file's units (NIfTI's scl_slope/scl_inter applied); NIfTI keeps its world, RAS+ in mm,
+// from the sform, else the qform, else pixdim; the other formats place voxel (i, j, k) at
+// (i, j, k) unless a JSON header gives spacing and origin. A 4-D NIfTI series yields its first
+// volume. Every malformed, truncated or oversized file is a cutaway::Error naming the file,
+// a place in it ("header", a JSON pointer, an .npz member) and the reason; nothing is
+// allocated from a size the file claims before it has been checked against VolumeLimits.
+//
+//   cutaway::Volume head = cutaway::importVolume("/usr/share/mricron/templates/ch2.nii.gz");
+//   glm::vec4 centre = head.indexToWorld * glm::vec4(glm::vec3(head.dims / 2), 1.0f);  // mm
+//
+// A raw volume's JSON header (the raw path relative to the JSON file's folder):
+//
+//   {"file": "head.raw", "dims": [256, 256, 109], "type": "u16", "spacing": [1, 1, 1.5],
+//    "origin": [0, 0, 0], "endianness": "big", "headerBytes": 0}
+//
+// "type" is one of u8, i8, u16, i16, u32, i32, f32, f64; spacing (default 1, 1, 1), origin
+// (default 0, 0, 0), endianness (default little) and headerBytes (bytes to skip, default 0)
+// are optional; any other key is an error.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+
+#include "cutaway/geometry/volume.hpp"
+
+namespace cutaway {
+
+struct VolumeLimits {
+  // Larger volumes are refused before anything is allocated: 2³⁰ voxels are 4 GiB of floats.
+  std::size_t maxVoxels = std::size_t(1) << 30;
+};
+
+// Throws cutaway::Error(file, place, reason) on any bad input.
+Volume importVolume(const std::filesystem::path& file);
+Volume importVolume(const std::filesystem::path& file, const VolumeLimits& limits);
+
+}  // namespace cutaway

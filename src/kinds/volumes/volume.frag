@@ -1,0 +1,203 @@
+#version 450 core
+// Ray casting of one scene volume over the final colour (kinds/volumes/volume_kind.hpp): the
+// view ray through the pixel centre, from where it enters the volume's box to where it
+// leaves it or meets the opaque surfaces (sample 0 of the G-buffer's depth), sampled every
+// uStep world units from a per-pixel jittered start. Each sample is decided by the cutters
+// that cut the volume, like a fragment at its position (cutters/cutter.hpp), and classified by
+// the transfer function. Mirrored on the CPU by volume_ray_cast.cpp.
+#include "frame/frame_uniforms.glsl"
+#include "styles/surface.glsl"
+#include "style.glsl"
+#include "styles/shadows/shadow_lookup.glsl"
+#include "styles/emphasis/emphasis.glsl"
+// The sample the cutters decide: its window position and its material's importance.
+vec4 gSampleCoord;
+float gSampleImportance;
+#define CUT_FRAG_COORD gSampleCoord
+#define CUT_IMPORTANCE gSampleImportance
+#include "frame/gbuffer_channels.glsl"
+#include "cutters/composition.glsl"
+
+layout(binding = 0) uniform sampler2DMS uOpaqueDepth;
+layout(binding = 1) uniform sampler3D uVolume;       // the values, linear filter
+layout(binding = 2) uniform sampler1D uTransfer;     // colour, opacity over uTransferRange
+layout(binding = 3) uniform sampler1D uMaterialImportance;   // importance over uTransferRange
+layout(binding = 4) uniform sampler3D uGradient;     // index-space central differences
+layout(location = 0) uniform mat4 uWorldToIndex;
+layout(location = 1) uniform vec3 uDims;
+layout(location = 2) uniform float uStep;            // world units
+layout(location = 3) uniform float uOpacityExponent; // step / opacity distance (both in voxels)
+layout(location = 4) uniform vec2 uTransferRange;    // values of the table's first and last texel
+layout(location = 5) uniform int uMode;              // 0 composite, 1 maximum, 2 isosurface
+layout(location = 6) uniform float uIsoValue;
+layout(location = 7) uniform int uShading;           // 1: gradient normals shaded by the style
+layout(location = 8) uniform int uJitter;
+layout(location = 9) uniform int uCutBy;             // bit k: the cutter of slot k cuts it
+layout(location = 10) uniform int uInterest;         // 1: of interest (emphasis as I = 1)
+layout(location = 11) uniform mat3 uGradientToWorld; // transpose of the inverse linear part
+layout(location = 14) uniform float uVoxel;          // the smallest spacing, world units
+
+layout(location = 0) out vec4 outColor;  // premultiplied, blended over the final colour
+layout(location = 1) out float outEntryDepth;
+layout(location = 2) out float outHitDepth;
+layout(location = 3) out float outOpacity;
+
+const float kNaN = uintBitsToFloat(0x7fc00000u);
+
+// An integer hash of the pixel (the same in volume_ray_cast.cpp): the jitter is fixed
+// per pixel, so still frames and their goldens repeat exactly.
+float pixelJitter(uvec2 p) {
+  uint h = (p.x * 0x8da6b343u) ^ (p.y * 0xd8163841u);
+  h ^= h >> 16;
+  h *= 0x7feb352du;
+  h ^= h >> 15;
+  h *= 0x846ca68bu;
+  h ^= h >> 16;
+  return float(h >> 8) * (1.0 / 16777216.0);
+}
+
+vec3 worldAtWindow(vec2 uv, float depth) {
+  vec4 h = uInverseView * (uInverseProjection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0));
+  return h.xyz / h.w;
+}
+
+float valueAt(vec3 index) {
+  return texture(uVolume, (index + 0.5) / uDims).r;
+}
+
+float transferCoordinate(float value) {
+  float n = float(textureSize(uTransfer, 0));
+  float t = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
+  return (t * (n - 1.0) + 0.5) / n;  // texel centres at the ends
+}
+
+// The unit normal at a sample, against the gradient of the values (zero where they are
+// flat). The gradient is precomputed per voxel (central differences) and interpolated.
+vec3 normalAt(vec3 index) {
+  vec3 g = uGradientToWorld * texture(uGradient, (index + 0.5) / uDims).xyz;
+  return dot(g, g) > 1e-20 ? -normalize(g) : vec3(0.0);
+}
+
+// The cutters' fate of the sample at world position p, asked as a front face, or as a back
+// face for the cut's normal: a sample just behind removed material stands where a back face
+// would show the cut surface (Burns11 §5.2.4.1).
+int sampleFate(vec3 p, bool frontFacing, out vec3 cutNormal) {
+  vec4 clip = uViewProjection * vec4(p, 1.0);
+  gSampleCoord = vec4(gl_FragCoord.xy, clip.z / clip.w * 0.5 + 0.5, 1.0);
+  vec3 cutPosition;
+  int cutter;
+  return cutFragment(uCutBy, CutFragment(p, vec3(0.0), frontFacing), cutPosition, cutNormal,
+                     cutter);
+}
+
+// The sample's colour: the transfer function's, shaded with the normal `n` (zero: unshaded),
+// emphasised by its importance (Burns11 eqs. 3.1–3.4).
+vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
+  if (uShading == 0 || n == vec3(0.0)) return emphasize(base, base, importance);
+  SurfacePoint s;
+  s.position = p;
+  s.toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - p);
+  s.normal = dot(n, s.toEye) < 0.0 ? -n : n;  // lit from the side seen, as two-sided meshes
+  s.baseColor = base;
+  s.specular = 0.2;
+  s.shininess = 32.0;
+  s.keyLightVisibility = keyLightVisibility(p);
+  return emphasize(base, shadeSurface(s), importance);
+}
+
+void main() {
+  outColor = vec4(0.0);
+  outEntryDepth = kNaN;
+  outHitDepth = kNaN;
+  outOpacity = 0.0;
+  vec2 uv = gl_FragCoord.xy * uViewport.zw;
+  vec3 origin = worldAtWindow(uv, 0.0);
+  vec3 direction = normalize(worldAtWindow(uv, 1.0) - origin);
+  float opaque = texelFetch(uOpaqueDepth, ivec2(gl_FragCoord.xy), 0).r;
+  float tOpaque = opaque < 1.0 ? distance(origin, worldAtWindow(uv, opaque)) : 1e30;
+  // The box [−½, dims − ½] in index space, where the ray is o + t·d with the same t.
+  vec3 o = (uWorldToIndex * vec4(origin, 1.0)).xyz;
+  vec3 d = mat3(uWorldToIndex) * direction;
+  vec3 inv = 1.0 / d;
+  vec3 a = (vec3(-0.5) - o) * inv, b = (uDims - 0.5 - o) * inv;
+  float tIn = max(max(min(a.x, b.x), min(a.y, b.y)), max(min(a.z, b.z), 0.0));
+  float tOut = min(min(max(a.x, b.x), max(a.y, b.y)), min(max(a.z, b.z), tOpaque));
+  if (!(tIn < tOut)) discard;
+  float offset = uJitter != 0 ? pixelJitter(uvec2(gl_FragCoord.xy)) : 0.5;
+  vec4 sum = vec4(0.0);  // premultiplied colour, opacity
+  float maxValue = -1e30, maxT = 0.0;
+  float previousValue = 0.0;
+  bool previousKept = false;
+  // The cut's face: samples this close behind where a ray entered kept material from removed
+  // material take the cut's normal, so that the cut reads as a solid face (one and a half
+  // voxels: the gradient's reach).
+  float cutSkin = 1.5 * uVoxel, tCut = -1e30;
+  vec3 faceNormal = vec3(0.0);
+  for (float t = tIn + offset * uStep; t < tOut; t += uStep) {
+    vec3 p = origin + t * direction;
+    vec3 index = o + t * d;
+    float value = valueAt(index);
+    float u = transferCoordinate(value);
+    vec4 c = texture(uTransfer, u);
+    // Empty space costs no cutter and no shading (composite: no opacity; isosurface: below
+    // the isovalue, where only the previous value matters).
+    if ((uMode == 0 && c.a == 0.0) || (uMode == 2 && value < uIsoValue && uCutBy == 0)) {
+      previousKept = uMode == 2;
+      previousValue = value;
+      continue;
+    }
+    gSampleImportance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
+    vec3 cutNormal;
+    if (uCutBy != 0 && sampleFate(p, true, cutNormal) == kDiscard) {
+      previousKept = false;
+      continue;
+    }
+    float depth = -(uView * vec4(p, 1.0)).z;
+    if (isnan(outEntryDepth)) outEntryDepth = depth;
+    // Entering kept material from removed material: the cut's face, lit by its normal.
+    if (uCutBy != 0 && !previousKept && t - uStep > tIn &&
+        sampleFate(p - uStep * direction, true, cutNormal) == kDiscard &&
+        sampleFate(p, false, cutNormal) == kCutSurface)
+      tCut = t, faceNormal = cutNormal;
+    bool onCut = t - tCut < cutSkin;
+    if (uMode == 1) {
+      if (value > maxValue) maxValue = value, maxT = t;
+    } else if (uMode == 2) {
+      // The first crossing of the isovalue, placed by linear interpolation between samples;
+      // material cut open above the isovalue shows the cut's face.
+      if (value >= uIsoValue) {
+        float tHit = t;
+        if (previousKept) tHit = t - uStep * (value - uIsoValue) / (value - previousValue);
+        vec3 q = origin + tHit * direction;
+        float iso = transferCoordinate(uIsoValue);
+        float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, iso).r;
+        vec3 n = onCut ? faceNormal : normalAt(o + tHit * d);
+        sum = vec4(shadeSample(q, texture(uTransfer, iso).rgb, importance, n), 1.0);
+        outHitDepth = -(uView * vec4(q, 1.0)).z;
+        break;
+      }
+    } else {
+      // Opacity correction for the step (the table holds opacity per opacity distance).
+      float alpha = 1.0 - pow(1.0 - c.a, uOpacityExponent);
+      vec3 n = onCut ? faceNormal : normalAt(index);
+      vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - p);
+      // Burns11 ch. 2 per sample: what a grading cutter leaves of its opacity.
+      alpha *= cutOpacity(uCutBy, CutFragment(p, n, true), n, toEye).x;
+      vec3 color = shadeSample(p, c.rgb, gSampleImportance, n);
+      sum += (1.0 - sum.a) * vec4(clamp(color, 0.0, 1.0) * alpha, alpha);
+      if (isnan(outHitDepth) && sum.a >= 0.5) outHitDepth = depth;
+      if (sum.a > 0.995) break;  // early ray termination
+    }
+    previousKept = true;
+    previousValue = value;
+  }
+  if (uMode == 1 && maxValue > -1e30) {
+    float u = transferCoordinate(maxValue);
+    vec4 c = texture(uTransfer, u);
+    float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
+    sum = vec4(emphasize(c.rgb, c.rgb, importance) * c.a, c.a);
+    outHitDepth = -(uView * vec4(origin + maxT * direction, 1.0)).z;
+  }
+  outColor = sum;
+  outOpacity = sum.a;
+}

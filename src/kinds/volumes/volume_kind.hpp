@@ -1,0 +1,52 @@
+// Scalar volumes as a geometry kind (Burns11 §5.2.5, §7.1): each scene volume ray cast on the
+// GPU after the composite, over the final colour and up to the opaque surfaces' depth, so
+// that meshes in front hide it and meshes inside it (an ultrasound plane, a tool) sit in it.
+// The cutters that cut a volume (Cutter::cutsVolume) decide every ray sample as they decide a
+// fragment: an adaptive cutaway's rays start at its cutaway surface, Trapp13's clip surfaces
+// and the box cut open it, and a grading cutter reduces each sample's opacity by R (Burns11
+// ch. 2, eqs. 7.1–7.3 with the importance of the sample's material). The frame's pass:
+//   volumes   every volume in scene order, blended over the final colour, with the AOVs
+//             volumeEntryDepth, volumeHitDepth and volumeOpacity
+#pragma once
+
+#include <vector>
+
+#include "cutaway/gl/objects.hpp"
+#include "frame/fullscreen.hpp"
+#include "kinds/kind.hpp"
+
+namespace cutaway {
+
+// The transfer function as the table the GPU reads: `size` texels from the first control
+// point's value to the last's (colour and opacity, and importance), exact at the texels.
+struct TransferTable {
+  float first = 0.0f, last = 1.0f;
+  std::vector<glm::vec4> colorOpacity;
+  std::vector<float> importance;
+};
+TransferTable transferTable(const TransferFunction& tf, int size);
+
+class VolumeKind : public GeometryKind {
+ public:
+  // Uploads the volumes; throws cutaway::Error for a volume the GPU cannot hold.
+  explicit VolumeKind(FrameSetup& setup);
+  static bool present(const Scene& scene) { return !scene.volumes.empty(); }
+  void prepare(const std::vector<ActiveCutter>& cutters) override;
+  void addPassesAfterComposite(Frame& frame) override;
+
+ private:
+  struct VolumeGpu {
+    gl::Texture values, gradient, transfer, importance;
+    glm::vec2 transferRange;
+  };
+  void draw(const std::vector<ActiveCutter>& cutters) const;
+
+  FrameSetup& setup_;
+  const std::vector<ActiveCutter>* cutters_ = nullptr;
+  std::vector<VolumeGpu> volumes_;
+  gl::Program program_;
+  FullscreenTriangle fullscreen_;
+  Target entryDepth_, hitDepth_, opacity_;
+};
+
+}  // namespace cutaway

@@ -1,0 +1,115 @@
+#include "cutaway/kinds/volume_ray_cast.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cutaway {
+
+namespace {
+glm::vec3 worldAtWindow(const glm::mat4& inverseViewProjection, glm::vec2 uv, float depth) {
+  const glm::vec4 h =
+      inverseViewProjection * glm::vec4(uv * 2.0f - 1.0f, depth * 2.0f - 1.0f, 1.0f);
+  return glm::vec3(h) / h.w;
+}
+}  // namespace
+
+float sampleVolume(const Volume& v, glm::vec3 p) {
+  const glm::vec3 hi = glm::vec3(v.dims - 1);
+  // GL_CLAMP_TO_EDGE with texel centres at integers: beyond the last centre, the edge value.
+  p = glm::clamp(p, glm::vec3(-0.5f), glm::vec3(v.dims) - 0.5f);
+  const glm::vec3 base = glm::floor(p), f = p - base;
+  float sum = 0.0f;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const glm::ivec3 at = glm::ivec3(glm::clamp(base + glm::vec3(o), glm::vec3(0.0f), hi));
+    const glm::vec3 w = glm::mix(1.0f - f, f, glm::vec3(o));
+    sum += w.x * w.y * w.z * v.at(at);
+  }
+  return sum;
+}
+
+float volumeJitter(glm::uvec2 p) {
+  // The same integer hash as volume.frag's pixelJitter.
+  std::uint32_t h = (p.x * 0x8da6b343u) ^ (p.y * 0xd8163841u);
+  h ^= h >> 16;
+  h *= 0x7feb352du;
+  h ^= h >> 15;
+  h *= 0x846ca68bu;
+  h ^= h >> 16;
+  return float(h >> 8) * (1.0f / 16777216.0f);
+}
+
+VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm::mat4& projection,
+                        glm::ivec2 size, glm::ivec2 pixel, float opaqueDepth,
+                        const std::function<bool(const glm::vec3&)>& keep) {
+  VolumeRay ray;
+  const Volume& volume = *sv.volume;
+  const glm::mat4 inverse = glm::inverse(projection * view);
+  const glm::vec2 uv = (glm::vec2(pixel) + 0.5f) / glm::vec2(size);
+  const glm::vec3 origin = worldAtWindow(inverse, uv, 0.0f);
+  const glm::vec3 direction = glm::normalize(worldAtWindow(inverse, uv, 1.0f) - origin);
+  const float tOpaque =
+      opaqueDepth < 1.0f ? glm::distance(origin, worldAtWindow(inverse, uv, opaqueDepth)) : 1e30f;
+  const glm::mat4 worldToIndex = glm::inverse(sv.indexToWorld());
+  const glm::vec3 o = glm::vec3(worldToIndex * glm::vec4(origin, 1.0f));
+  const glm::vec3 d = glm::mat3(worldToIndex) * direction;
+  const glm::vec3 a = (glm::vec3(-0.5f) - o) / d, b = (glm::vec3(volume.dims) - 0.5f - o) / d;
+  const glm::vec3 lo = glm::min(a, b), hi = glm::max(a, b);
+  const float tIn = std::max({lo.x, lo.y, lo.z, 0.0f});
+  const float tOut = std::min({hi.x, hi.y, hi.z, tOpaque});
+  if (!(tIn < tOut)) return ray;
+  const glm::mat3 m(sv.indexToWorld());
+  const float step =
+      sv.sampleDistance * std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+  const float exponent = sv.sampleDistance / sv.opacityDistance;
+  const float offset = sv.jitter ? volumeJitter(glm::uvec2(pixel)) : 0.5f;
+  const auto viewDepth = [&](const glm::vec3& p) { return -(view * glm::vec4(p, 1.0f)).z; };
+  float maxValue = -1e30f, maxT = 0.0f, previousValue = 0.0f;
+  bool previousKept = false;
+  for (float t = tIn + offset * step; t < tOut; t += step) {
+    const glm::vec3 p = origin + t * direction;
+    const float value = sampleVolume(volume, o + t * d);
+    const TransferPoint c = sv.transfer.at(value);
+    // Samples of no opacity are no material: the cutters are not asked (as on the GPU).
+    if (sv.mode == VolumeMode::Composite && c.opacity == 0.0f) {
+      previousKept = false;
+      continue;
+    }
+    if (keep && !keep(p)) {
+      previousKept = false;
+      continue;
+    }
+    if (std::isnan(ray.entryDepth)) ray.entryDepth = viewDepth(p);
+    if (sv.mode == VolumeMode::Maximum) {
+      if (value > maxValue) maxValue = value, maxT = t;
+    } else if (sv.mode == VolumeMode::Isosurface) {
+      if (value >= sv.isoValue) {
+        float tHit = t;
+        if (previousKept) tHit = t - step * (value - sv.isoValue) / (value - previousValue);
+        ray.color = sv.transfer.at(sv.isoValue).color;
+        ray.opacity = 1.0f;
+        ray.hitDepth = viewDepth(origin + tHit * direction);
+        break;
+      }
+    } else {
+      const float alpha = 1.0f - std::pow(1.0f - c.opacity, exponent);
+      if (alpha > 0.0f) {
+        ray.color += (1.0f - ray.opacity) * glm::clamp(c.color, 0.0f, 1.0f) * alpha;
+        ray.opacity += (1.0f - ray.opacity) * alpha;
+        if (std::isnan(ray.hitDepth) && ray.opacity >= 0.5f) ray.hitDepth = viewDepth(p);
+        if (ray.opacity > 0.995f) break;
+      }
+    }
+    previousKept = true;
+    previousValue = value;
+  }
+  if (sv.mode == VolumeMode::Maximum && maxValue > -1e30f) {
+    const TransferPoint c = sv.transfer.at(maxValue);
+    ray.color = c.color * c.opacity;
+    ray.opacity = c.opacity;
+    ray.hitDepth = viewDepth(origin + maxT * direction);
+  }
+  return ray;
+}
+
+}  // namespace cutaway

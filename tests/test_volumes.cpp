@@ -1,0 +1,368 @@
+// Volumes as a geometry kind (src/kinds/volumes): the GPU ray caster against the CPU reference
+// (kinds/volumes/volume_ray_cast.cpp) pixel by pixel, the CPU reference against closed forms (a
+// sampled sphere's isosurface, the emission–absorption integral of a constant block), depth
+// against meshes inside, the cutters deciding ray samples (the box cut's C++ mirror, the
+// adaptive cutaway's surface), and the scene file's checks.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cutaway/cutters/box_cut.hpp"
+#include "cutaway/kinds/volume_ray_cast.hpp"
+#include "cutaway/scene/scene.hpp"
+#include "expect_error.hpp"
+#include "render_aovs.hpp"
+
+namespace fs = std::filesystem;
+using namespace cutaway;
+using test::aov;
+using test::expectError;
+using test::renderAovs;
+
+namespace {
+
+const std::string kData = CUTAWAY_TEST_DATA;
+
+class VolumeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("cutaway-volumes-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // A float volume of n³ voxels, voxel centres from −h to h on each axis (spacing 2h/(n−1)),
+  // with value f(world point); returns its JSON header's path.
+  template <class F>
+  fs::path volume(const std::string& name, int n, float h, F f) {
+    const float spacing = 2.0f * h / float(n - 1);
+    std::vector<float> values;
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+          values.push_back(f(glm::vec3(-h) + spacing * glm::vec3(i, j, k)));
+    std::ofstream(dir_ / (name + ".raw"), std::ios::binary)
+        .write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * 4));
+    const std::string s = std::to_string(spacing), o = std::to_string(-h);
+    std::ofstream(dir_ / (name + ".json"))
+        << R"({"file": ")" << name << R"(.raw", "dims": [)" << n << ", " << n << ", " << n
+        << R"(], "type": "f32", "spacing": [)" << s << ", " << s << ", " << s << R"(], "origin": [)"
+        << o << ", " << o << ", " << o << "]}";
+    return dir_ / (name + ".json");
+  }
+
+  Scene scene(const std::string& volumes, const std::string& rest = "") {
+    const std::string text = R"({"resolution": [96, 72], "samples": 1, "background": [0, 0, 0],
+      "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": [0.6, 0.9, 4.0], "target": [0, 0, 0], "fov": 40},
+      "volumes": [)" + volumes +
+                             "]" + rest + "}";
+    return parseScene(text, "volumes.json", dir_);
+  }
+
+  fs::path dir_;
+};
+
+glm::vec4 pixel(const FloatImage& image, int x, int y) {
+  const float* v = image.at(x, y);
+  return {v[0], image.channels > 1 ? v[1] : 0.0f, image.channels > 2 ? v[2] : 0.0f,
+          image.channels > 3 ? v[3] : 0.0f};
+}
+
+// The distance along the ray from o (unit direction d) to the sphere |x| = r; < 0: a miss.
+float sphereHit(glm::vec3 o, glm::vec3 d, float r) {
+  const float b = glm::dot(o, d), c = glm::dot(o, o) - r * r, disc = b * b - c;
+  return disc < 0.0f ? -1.0f : -b - std::sqrt(disc);
+}
+
+const char* kRamp = R"("transferFunction": [
+    {"value": 0.0, "color": [0.2, 0.4, 1.0], "opacity": 0.0, "importance": 0.2},
+    {"value": 0.5, "color": [1.0, 0.6, 0.2], "opacity": 0.08, "importance": 0.5},
+    {"value": 1.0, "color": [1.0, 1.0, 1.0], "opacity": 0.3, "importance": 1.0}])";
+
+}  // namespace
+
+TEST(TransferFunction, InterpolatesLinearlyAndHoldsItsEnds) {
+  TransferFunction tf{{{0.0f, {0, 0, 0}, 0.0f, 0.0f}, {2.0f, {1, 0.5f, 0}, 0.4f, 1.0f}}};
+  EXPECT_FLOAT_EQ(tf.at(1.0f).opacity, 0.2f);
+  EXPECT_FLOAT_EQ(tf.at(1.0f).color.g, 0.25f);
+  EXPECT_FLOAT_EQ(tf.at(0.5f).importance, 0.25f);
+  EXPECT_FLOAT_EQ(tf.at(-5.0f).opacity, 0.0f);
+  EXPECT_FLOAT_EQ(tf.at(7.0f).opacity, 0.4f);
+}
+
+TEST_F(VolumeTest, TheCpuRayCasterIntegratesAConstantBlockInClosedForm) {
+  // A block of constant value: n samples of opacity α' each leave 1 − (1 − α)^(n·Δs/d).
+  const fs::path file = volume("block", 16, 1.0f, [](glm::vec3) { return 1.0f; });
+  Scene s = scene(R"({"name": "b", "file": ")" + file.string() +
+                  R"(", "jitter": false, "sampleDistance": 0.25, "opacityDistance": 2,
+                  "transferFunction": [{"value": 0, "opacity": 0}, {"value": 1, "opacity": 0.1}]})");
+  s.camera.fit = false;
+  s.camera.projection = Projection::Orthographic;
+  s.camera.eye = {0.0f, 0.0f, 5.0f};
+  s.camera.target = {0.0f, 0.0f, 0.0f};
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  const SceneVolume& v = s.volumes[0];
+  const VolumeRay r = castVolumeRay(v, c.view(), c.projectionMatrix(aspect), {s.width, s.height},
+                                    {s.width / 2, s.height / 2});
+  // The box spans [−1 − ½Δ, 1 + ½Δ] along z with Δ = 2/15; samples every Δ/4 from its front
+  // plus half a step.
+  const float delta = 2.0f / 15.0f, length = 2.0f + delta, step = 0.25f * delta;
+  const int samples = int(std::ceil(length / step - 0.5f));
+  const float expected = 1.0f - std::pow(0.9f, samples * 0.25f / 2.0f);
+  EXPECT_NEAR(r.opacity, expected, 1e-4f);
+  EXPECT_NEAR(r.entryDepth, 5.0f - (1.0f + 0.5f * delta) + 0.5f * step, 1e-4f);
+  EXPECT_NEAR(r.color.r, expected, 1e-4f);  // white emission, premultiplied
+}
+
+// The GPU's isosurface of a sampled sphere lies where the sphere is, within a tenth of a
+// voxel; the CPU's too.
+TEST_F(VolumeTest, TheIsosurfaceOfASampledSphereIsTheSphere) {
+  const float radius = 0.7f;
+  const fs::path file =
+      volume("sphere", 40, 1.0f, [&](glm::vec3 p) { return radius - glm::length(p); });
+  const Scene s = scene(R"({"name": "sphere", "file": ")" + file.string() +
+                        R"(", "mode": "isosurface", "isoValue": 0, "sampleDistance": 0.5,
+                        "transferFunction": [{"value": 0, "color": [0.9, 0.8, 0.7], "opacity": 1}]})");
+  const auto aovs = renderAovs(s);
+  const FloatImage& hit = aov(aovs, "volumeHitDepth");
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  const glm::mat4 inverse = glm::inverse(c.projectionMatrix(aspect) * c.view());
+  const float voxel = 2.0f / 39.0f;
+  int hits = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
+      glm::vec4 a = inverse * glm::vec4(uv * 2.0f - 1.0f, -1.0f, 1.0f);
+      glm::vec4 b = inverse * glm::vec4(uv * 2.0f - 1.0f, 1.0f, 1.0f);
+      const glm::vec3 o = glm::vec3(a) / a.w, d = glm::normalize(glm::vec3(b) / b.w - o);
+      const float t = sphereHit(o, d, radius);
+      // Only rays clearly inside the silhouette (not grazing within a voxel of it).
+      if (sphereHit(o, d, radius + voxel) < 0.0f || sphereHit(o, d, radius - voxel) < 0.0f)
+        continue;
+      ++hits;
+      const float expected = -(c.view() * glm::vec4(o + t * d, 1.0f)).z;
+      ASSERT_FALSE(std::isnan(hit.at(x, y)[0])) << x << "," << y;
+      EXPECT_NEAR(hit.at(x, y)[0], expected, 0.1f * voxel) << x << "," << y;
+      const VolumeRay cpu = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+                                          {s.width, s.height}, {x, s.height - 1 - y});
+      EXPECT_NEAR(cpu.hitDepth, expected, 0.1f * voxel) << x << "," << y;
+    }
+  EXPECT_GT(hits, 500);
+}
+
+// Composite and maximum modes: the volume AOVs and the colour (emission only over black) as
+// the CPU reference casts them, pixel by pixel.
+class VolumeModes : public VolumeTest, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(VolumeModes, TheGpuCastsWhatTheCpuReferenceCasts) {
+  const fs::path file = volume("blob", 32, 1.0f, [](glm::vec3 p) {
+    return std::exp(-2.0f * glm::dot(p - glm::vec3(0.2f, 0, 0), p - glm::vec3(0.2f, 0, 0))) +
+           0.3f * std::sin(4.0f * p.y) * std::exp(-glm::dot(p, p));
+  });
+  const Scene s = scene(R"({"name": "blob", "file": ")" + file.string() + R"(", "mode": ")" +
+                        GetParam() + R"(", "shading": false, )" + kRamp + "}");
+  Renderer renderer(s, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const Rgba8Image color = renderer.readColor();
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth"),
+                   &hit = aov(aovs, "volumeHitDepth");
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  const float step = 0.5f * 2.0f / 31.0f;
+  int covered = 0, opaque = 0;
+  double colorError = 0.0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const VolumeRay cpu = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+                                          {s.width, s.height}, {x, s.height - 1 - y});
+      EXPECT_EQ(std::isnan(entry.at(x, y)[0]), std::isnan(cpu.entryDepth)) << x << "," << y;
+      if (std::isnan(cpu.entryDepth)) continue;
+      ++covered;
+      EXPECT_NEAR(entry.at(x, y)[0], cpu.entryDepth, 1e-3f) << x << "," << y;
+      // The GPU's transfer table (1024 texels) and filtering weights against exact ones.
+      EXPECT_NEAR(opacity.at(x, y)[0], cpu.opacity, 0.01f) << x << "," << y;
+      // Composite: where the opacity clearly passes ½; maximum: wherever there is one.
+      const bool maximum = std::string(GetParam()) == "maximum";
+      if (!std::isnan(cpu.hitDepth) && cpu.opacity > (maximum ? 0.01f : 0.55f)) {
+        ++opaque;
+        EXPECT_NEAR(hit.at(x, y)[0], cpu.hitDepth, 2.0f * step) << x << "," << y;
+      }
+      const std::uint8_t* rgb = &color.pixels[(std::size_t(y) * s.width + x) * 4];
+      for (int k = 0; k < 3; ++k) {
+        const float e = std::abs(rgb[k] / 255.0f - cpu.color[k]);
+        colorError = std::max(colorError, double(e));
+      }
+    }
+  EXPECT_LT(colorError, 0.02) << "largest colour difference";
+  EXPECT_GT(covered, s.width * s.height / 4);
+  EXPECT_GT(opaque, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, VolumeModes, ::testing::Values("composite", "maximum"));
+
+// A mesh inside the volume stops the rays: in front of it the volume is cast up to its depth,
+// exactly as the CPU reference casts it with that depth.
+TEST_F(VolumeTest, AMeshInsideTheVolumeStopsTheRays) {
+  const fs::path file = volume("fog", 24, 1.0f, [](glm::vec3) { return 1.0f; });
+  const std::string tf =
+      R"("transferFunction": [{"value": 0, "opacity": 0}, {"value": 1, "opacity": 0.05}])";
+  Scene s = scene(
+      R"({"name": "fog", "file": ")" + file.string() + R"(", "shading": false, )" + tf + "}",
+      R"(, "objects": [{"name": "core", "file": ")" + kData +
+          R"(/meshes/cube.obj", "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}])");
+  const auto aovs = renderAovs(s);
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &depth = aov(aovs, "depth"),
+                   &ids = aov(aovs, "objectId");
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  int onMesh = 0;
+  double blocked = 0.0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::ivec2 p(x, s.height - 1 - y);
+      const VolumeRay cpu = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+                                          {s.width, s.height}, p, depth.at(x, y)[0]);
+      EXPECT_NEAR(opacity.at(x, y)[0], cpu.opacity, 0.01f) << x << "," << y;
+      if (ids.at(x, y)[0] != 0.0f) continue;
+      ++onMesh;
+      const VolumeRay through =
+          castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect), {s.width, s.height}, p);
+      blocked += through.opacity - opacity.at(x, y)[0];
+    }
+  EXPECT_GT(onMesh, 200);
+  EXPECT_GT(blocked / onMesh, 0.1) << "the fog behind the core is not drawn over it";
+}
+
+// The box cut removes ray samples where its C++ mirror says, and rays entering the block
+// through the cut show its face.
+TEST_F(VolumeTest, TheBoxCutDecidesRaySamplesAsItsCppMirror) {
+  const fs::path file = volume("solid", 24, 1.0f, [](glm::vec3 p) { return 0.6f + 0.4f * p.x; });
+  Scene s = scene(
+      R"({"name": "solid", "file": ")" + file.string() + R"(", "shading": false, )" + kRamp + "}",
+      R"(, "cutters": {"boxCut": {"center": [0.6, 0.6, 0.8], "size": [1.4, 1.4, 1.4],
+                       "rotate": [0, 20, 0]}})");
+  const BoxCutOptions& box = *s.cutters.find<BoxCutOptions>();
+  const auto aovs = renderAovs(s);
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth");
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  const auto keep = [&](const glm::vec3& p) {
+    return boxCutFragment(box, p, true, c.rayOrigin(p)).fate != BoxCutFate::Fate::Discard;
+  };
+  int deeper = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::ivec2 p(x, s.height - 1 - y);
+      const VolumeRay cut = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+                                          {s.width, s.height}, p, 1.0f, keep);
+      const VolumeRay whole =
+          castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect), {s.width, s.height}, p);
+      if (std::isnan(cut.entryDepth)) {
+        EXPECT_TRUE(std::isnan(entry.at(x, y)[0])) << x << "," << y;
+        continue;
+      }
+      EXPECT_NEAR(entry.at(x, y)[0], cut.entryDepth, 1e-3f) << x << "," << y;
+      EXPECT_NEAR(opacity.at(x, y)[0], cut.opacity, 0.01f) << x << "," << y;
+      if (cut.entryDepth > whole.entryDepth + 0.05f) ++deeper;
+    }
+  EXPECT_GT(deeper, 200) << "the box opens the volume";
+}
+
+// Burns11 §5.2.5: with an adaptive cutaway around an object of interest inside, the rays
+// start at the cutaway surface, not before it.
+TEST_F(VolumeTest, RaysStartAtTheAdaptiveCutawaySurface) {
+  const fs::path file = volume("ct", 24, 1.0f, [](glm::vec3) { return 0.6f; });
+  Scene s = scene(
+      R"({"name": "ct", "file": ")" + file.string() + R"(", "shading": false, )" + kRamp + "}",
+      R"(, "objects": [{"name": "probe", "file": ")" + kData +
+          R"(/meshes/cube.obj", "role": "interest",
+                      "transform": {"translate": [-0.25, -0.25, -0.25], "scale": 0.5}}],
+                  "cutters": {"adaptive": {"angle": 35}})");
+  const auto aovs = renderAovs(s);
+  const FloatImage &entry = aov(aovs, "volumeEntryDepth"), &cutaway = aov(aovs, "cutawayDepth");
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  const glm::mat4 inverseProjection = glm::inverse(c.projectionMatrix(aspect));
+  const float step = 0.5f * 2.0f / 23.0f;
+  int opened = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const float e = entry.at(x, y)[0];
+      // The cutaway buffer has a size of its own: sampled as the GLSL samples it (bilinear).
+      const glm::vec2 texel((x + 0.5f) / s.width * cutaway.width - 0.5f,
+                            (y + 0.5f) / s.height * cutaway.height - 0.5f);
+      const glm::ivec2 base = glm::ivec2(glm::floor(texel));
+      const glm::vec2 f = texel - glm::vec2(base);
+      const auto at = [&](int i, int j) {
+        return cutaway.at(std::clamp(base.x + i, 0, cutaway.width - 1),
+                          std::clamp(base.y + j, 0, cutaway.height - 1))[0];
+      };
+      const float w =
+          glm::mix(glm::mix(at(0, 0), at(1, 0), f.x), glm::mix(at(0, 1), at(1, 1), f.x), f.y);
+      if (std::isnan(e) || !(w > 0.0f)) continue;
+      const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
+      const glm::vec4 h = inverseProjection * glm::vec4(uv * 2.0f - 1.0f, w * 2.0f - 1.0f, 1.0f);
+      const float surface = -h.z / h.w;
+      // The first kept sample lies behind the surface, by less than a step (plus the
+      // surface's bilinear filtering between pixels).
+      EXPECT_GE(e, surface - 0.02f) << x << "," << y;
+      // Only where the volume begins in front of the surface (the cut opens it).
+      const VolumeRay whole = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+                                            {s.width, s.height}, {x, s.height - 1 - y});
+      if (!(whole.entryDepth < surface)) continue;
+      ++opened;
+      EXPECT_LE(e, surface + step + 0.02f) << x << "," << y;
+    }
+  EXPECT_GT(opened, 300);
+}
+
+TEST_F(VolumeTest, BadVolumeEntriesAreRejectedWithTheirPlace) {
+  const fs::path file = volume("v", 4, 1.0f, [](glm::vec3) { return 0.0f; });
+  const std::string f = R"("name": "v", "file": ")" + file.string() + "\", ";
+  expectError(
+      [&] {
+        scene("{" + f +
+              R"("mode": "isosurface", "transferFunction": [{"value": 0, "opacity": 1}]})");
+      },
+      {"/volumes/0", "isoValue"});
+  expectError(
+      [&] {
+        scene("{" + f +
+              R"("transferFunction": [{"value": 1, "opacity": 1}, {"value": 0, "opacity": 0}]})");
+      },
+      {"/volumes/0/transferFunction/1/value", "increasing"});
+  expectError([&] { scene("{" + f + R"("transferFunction": []})"); },
+              {"/volumes/0/transferFunction"});
+  expectError(
+      [&] {
+        scene("{" + f + R"("mode": "xray", "transferFunction": [{"value": 0, "opacity": 1}]})");
+      },
+      {"/volumes/0/mode", "xray"});
+  expectError(
+      [&] {
+        scene("{" + f +
+              R"("sampleDistance": 0, "transferFunction": [{"value": 0, "opacity": 1}]})");
+      },
+      {"/volumes/0/sampleDistance"});
+  expectError(
+      [&] {
+        scene(
+            R"({"name": "v", "file": "missing.nii.gz", "transferFunction": [{"value": 0, "opacity": 1}]})");
+      },
+      {"/volumes/0/file", "missing.nii.gz"});
+  expectError(
+      [&] { scene("{" + f + R"("transferFunction": [{"value": 0, "opacity": 1}], "colour": 1})"); },
+      {"/volumes/0", "colour"});
+}
