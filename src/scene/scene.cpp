@@ -1,6 +1,7 @@
 #include "cutaway/scene/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <regex>
 
@@ -32,6 +33,14 @@ const char* volumeModeName(VolumeMode mode) {
       return "isosurface";
   }
   return "?";
+}
+
+TransferPoint SceneVolume::material(float value) const {
+  if (!labels) return transfer.at(value);
+  const float label = std::round(value);
+  for (const TransferPoint& p : transfer.points)
+    if (p.value == label) return p;
+  return {label, glm::vec3(0.0f), 0.0f, 0.0f};
 }
 
 TransferPoint TransferFunction::at(float value) const {

@@ -556,7 +556,19 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene
     v.opacityDistance = float(number(ctx, *t, r.at("opacityDistance"), 0.05, 1000));
   if (const json* t = r.take("shading")) v.shading = boolean(ctx, *t, r.at("shading"));
   if (const json* t = r.take("jitter")) v.jitter = boolean(ctx, *t, r.at("jitter"));
+  if (const json* t = r.take("labels")) v.labels = boolean(ctx, *t, r.at("labels"));
   r.finish();
+  if (v.labels) {
+    // One texel per label between the first and the last (kinds/volumes' table).
+    for (std::size_t i = 0; i < v.transfer.points.size(); ++i)
+      if (v.transfer.points[i].value != std::round(v.transfer.points[i].value))
+        ctx.fail(r.at("transferFunction") + "/" + std::to_string(i) + "/value",
+                 "a label volume's points are whole label values");
+    if (v.transfer.points.back().value - v.transfer.points.front().value >= 65536)
+      ctx.fail(r.at("transferFunction"), "labels span more than 65536 values");
+    if (v.mode == VolumeMode::Isosurface)
+      ctx.fail(r.at("labels"), "a label volume is drawn in the composite or maximum mode");
+  }
   try {
     v.volume = std::make_shared<const Volume>(importVolume(file));
   } catch (const Error& e) {

@@ -146,6 +146,12 @@ struct SceneVolume {
   float opacityDistance = 1.0f;
   bool shading = true;  // gradient normals shaded by the style; false: emission only
   bool jitter = true;   // ray starts offset per pixel (against wood-grain artefacts)
+  // A label volume (an atlas, a segmentation): integer values sampled at the nearest voxel,
+  // each transfer-function point one label's material; labels it does not list are clear.
+  bool labels = false;
+
+  // The material of a value: the transfer function's, or the label's.
+  TransferPoint material(float value) const;
 
   glm::mat4 indexToWorld() const { return transform * volume->indexToWorld; }
   Bounds worldBounds() const { return volume->indexBounds().transformed(indexToWorld()); }

@@ -17,17 +17,16 @@ float gSampleImportance;
 #define CUT_IMPORTANCE gSampleImportance
 #include "frame/gbuffer_channels.glsl"
 #include "cutters/composition.glsl"
+#include "kinds/volumes/volume_ray.glsl"
 
 layout(binding = 0) uniform sampler2DMS uOpaqueDepth;
-layout(binding = 1) uniform sampler3D uVolume;       // the values, linear filter
-layout(binding = 2) uniform sampler1D uTransfer;     // colour, opacity over uTransferRange
-layout(binding = 3) uniform sampler1D uMaterialImportance;   // importance over uTransferRange
-layout(binding = 4) uniform sampler3D uGradient;     // index-space central differences
-layout(location = 0) uniform mat4 uWorldToIndex;
-layout(location = 1) uniform vec3 uDims;
+// Where the volumes drawn before this one stopped the rays: their nearest hit, entry and
+// accumulated opacity (copies of the AOVs), so that overlapping volumes hide each other.
+layout(binding = 5) uniform sampler2D uPreviousHit;
+layout(binding = 6) uniform sampler2D uPreviousEntry;
+layout(binding = 7) uniform sampler2D uPreviousOpacity;
 layout(location = 2) uniform float uStep;            // world units
 layout(location = 3) uniform float uOpacityExponent; // step / opacity distance (both in voxels)
-layout(location = 4) uniform vec2 uTransferRange;    // values of the table's first and last texel
 layout(location = 5) uniform int uMode;              // 0 composite, 1 maximum, 2 isosurface
 layout(location = 6) uniform float uIsoValue;
 layout(location = 7) uniform int uShading;           // 1: gradient normals shaded by the style
@@ -54,21 +53,6 @@ float pixelJitter(uvec2 p) {
   h *= 0x846ca68bu;
   h ^= h >> 16;
   return float(h >> 8) * (1.0 / 16777216.0);
-}
-
-vec3 worldAtWindow(vec2 uv, float depth) {
-  vec4 h = uInverseView * (uInverseProjection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0));
-  return h.xyz / h.w;
-}
-
-float valueAt(vec3 index) {
-  return texture(uVolume, (index + 0.5) / uDims).r;
-}
-
-float transferCoordinate(float value) {
-  float n = float(textureSize(uTransfer, 0));
-  float t = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
-  return (t * (n - 1.0) + 0.5) / n;  // texel centres at the ends
 }
 
 // The unit normal at a sample, against the gradient of the values (zero where they are
@@ -105,24 +89,34 @@ vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
   return emphasize(base, shadeSurface(s), importance);
 }
 
+// The distance along the ray (origin, unit direction) to the point at view depth z.
+float distanceAtViewDepth(vec3 origin, vec3 direction, float z) {
+  float along = dot(direction, uForward.xyz);
+  return (z + (uView * vec4(origin, 1.0)).z) / along;
+}
+
 void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  // What the volumes before this one left: their values stand where this one casts nothing.
+  float previousHit = texelFetch(uPreviousHit, pixel, 0).r;
+  float previousEntry = texelFetch(uPreviousEntry, pixel, 0).r;
+  float previousOpacity = texelFetch(uPreviousOpacity, pixel, 0).r;
   outColor = vec4(0.0);
-  outEntryDepth = kNaN;
-  outHitDepth = kNaN;
-  outOpacity = 0.0;
+  outEntryDepth = previousEntry;
+  outHitDepth = previousHit;
+  outOpacity = previousOpacity;
   vec2 uv = gl_FragCoord.xy * uViewport.zw;
   vec3 origin = worldAtWindow(uv, 0.0);
   vec3 direction = normalize(worldAtWindow(uv, 1.0) - origin);
-  float opaque = texelFetch(uOpaqueDepth, ivec2(gl_FragCoord.xy), 0).r;
-  float tOpaque = opaque < 1.0 ? distance(origin, worldAtWindow(uv, opaque)) : 1e30;
-  // The box [−½, dims − ½] in index space, where the ray is o + t·d with the same t.
-  vec3 o = (uWorldToIndex * vec4(origin, 1.0)).xyz;
-  vec3 d = mat3(uWorldToIndex) * direction;
-  vec3 inv = 1.0 / d;
-  vec3 a = (vec3(-0.5) - o) * inv, b = (uDims - 0.5 - o) * inv;
-  float tIn = max(max(min(a.x, b.x), min(a.y, b.y)), max(min(a.z, b.z), 0.0));
-  float tOut = min(min(max(a.x, b.x), max(a.y, b.y)), min(max(a.z, b.z), tOpaque));
+  // The rays stop at the opaque surfaces and where an earlier volume's material hid the rest.
+  float opaque = texelFetch(uOpaqueDepth, pixel, 0).r;
+  float tEnd = opaque < 1.0 ? distance(origin, worldAtWindow(uv, opaque)) : 1e30;
+  if (!isnan(previousHit)) tEnd = min(tEnd, distanceAtViewDepth(origin, direction, previousHit));
+  VolumeRay ray = volumeRay(uv, tEnd);
+  float tIn = ray.tIn, tOut = ray.tOut;
+  vec3 o = ray.o, d = ray.d;
   if (!(tIn < tOut)) discard;
+  float entry = kNaN, hit = kNaN;
   float offset = uJitter != 0 ? pixelJitter(uvec2(gl_FragCoord.xy)) : 0.5;
   vec4 sum = vec4(0.0);  // premultiplied colour, opacity
   float maxValue = -1e30, maxT = 0.0;
@@ -153,7 +147,7 @@ void main() {
       continue;
     }
     float depth = -(uView * vec4(p, 1.0)).z;
-    if (isnan(outEntryDepth)) outEntryDepth = depth;
+    if (isnan(entry)) entry = depth;
     // Entering kept material from removed material: the cut's face, lit by its normal.
     if (uCutBy != 0 && !previousKept && t - uStep > tIn &&
         sampleFate(p - uStep * direction, true, cutNormal) == kDiscard &&
@@ -173,7 +167,7 @@ void main() {
         float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, iso).r;
         vec3 n = onCut ? faceNormal : normalAt(o + tHit * d);
         sum = vec4(shadeSample(q, texture(uTransfer, iso).rgb, importance, n), 1.0);
-        outHitDepth = -(uView * vec4(q, 1.0)).z;
+        hit = -(uView * vec4(q, 1.0)).z;
         break;
       }
     } else {
@@ -185,7 +179,7 @@ void main() {
       alpha *= cutOpacity(uCutBy, CutFragment(p, n, true), n, toEye).x;
       vec3 color = shadeSample(p, c.rgb, gSampleImportance, n);
       sum += (1.0 - sum.a) * vec4(clamp(color, 0.0, 1.0) * alpha, alpha);
-      if (isnan(outHitDepth) && sum.a >= 0.5) outHitDepth = depth;
+      if (isnan(hit) && sum.a >= 0.5) hit = depth;
       if (sum.a > 0.995) break;  // early ray termination
     }
     previousKept = true;
@@ -196,8 +190,11 @@ void main() {
     vec4 c = texture(uTransfer, u);
     float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
     sum = vec4(emphasize(c.rgb, c.rgb, importance) * c.a, c.a);
-    outHitDepth = -(uView * vec4(origin + maxT * direction, 1.0)).z;
+    hit = -(uView * vec4(origin + maxT * direction, 1.0)).z;
   }
   outColor = sum;
-  outOpacity = sum.a;
+  // Over the volumes before: the nearest entry and hit, the opacity accumulated.
+  outEntryDepth = isnan(previousEntry) ? entry : isnan(entry) ? previousEntry : min(entry, previousEntry);
+  outHitDepth = isnan(previousHit) ? hit : isnan(hit) ? previousHit : min(hit, previousHit);
+  outOpacity = 1.0 - (1.0 - previousOpacity) * (1.0 - sum.a);
 }

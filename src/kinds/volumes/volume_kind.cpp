@@ -13,12 +13,18 @@ namespace {
 // Uniform locations of kinds/volumes/volume.frag.
 constexpr GLint kWorldToIndex = 0, kDims = 1, kStep = 2, kOpacityExponent = 3, kTransferRange = 4,
                 kMode = 5, kIsoValue = 6, kShading = 7, kJitter = 8, kCutBy = 9, kInterest = 10,
-                kGradientToWorld = 11, kVoxel = 14;
-constexpr int kTransferSize = 1024;
+                kGradientToWorld = 11, kVoxel = 14, kStepRearHull = 2, kTheta = 16, kPassSize = 17;
+constexpr int kTransferSize = 1024;  // texels of a continuous transfer function's table
 
 // Central differences over one voxel in index space, clamped at the edges, per voxel: the
-// shading's gradient, interpolated by the GPU (one fetch per sample instead of six).
-std::vector<glm::vec4> voxelGradients(const Volume& v) {
+// shading's gradient, interpolated by the GPU (one fetch per sample instead of six). A label
+// volume's is the gradient of its materials' opacity: labels have no order to differentiate.
+std::vector<glm::vec4> voxelGradients(const SceneVolume& sv) {
+  const Volume& v = *sv.volume;
+  std::vector<float> field;
+  if (sv.labels)
+    for (float value : v.values) field.push_back(sv.material(value).opacity);
+  const std::vector<float>& f = sv.labels ? field : v.values;
   std::vector<glm::vec4> out(v.voxelCount());
   const glm::ivec3 hi = v.dims - 1;
   std::size_t n = 0;
@@ -26,7 +32,9 @@ std::vector<glm::vec4> voxelGradients(const Volume& v) {
     for (int j = 0; j < v.dims.y; ++j)
       for (int i = 0; i < v.dims.x; ++i, ++n) {
         const auto at = [&](int x, int y, int z) {
-          return v.at(glm::clamp(glm::ivec3(x, y, z), glm::ivec3(0), hi));
+          const glm::ivec3 c = glm::clamp(glm::ivec3(x, y, z), glm::ivec3(0), hi);
+          return f[std::size_t(c.x) +
+                   std::size_t(v.dims.x) * (std::size_t(c.y) + std::size_t(v.dims.y) * c.z)];
         };
         out[n] = glm::vec4(0.5f * (at(i + 1, j, k) - at(i - 1, j, k)),
                            0.5f * (at(i, j + 1, k) - at(i, j - 1, k)),
@@ -35,24 +43,25 @@ std::vector<glm::vec4> voxelGradients(const Volume& v) {
   return out;
 }
 
-gl::Texture texture3D(GLenum format, glm::ivec3 dims, GLenum components, const void* data) {
+gl::Texture texture3D(GLenum format, glm::ivec3 dims, GLenum components, const void* data,
+                      GLenum filter) {
   gl::Texture t = gl::Texture::create(GL_TEXTURE_3D);
   glTextureStorage3D(t.id(), 1, format, dims.x, dims.y, dims.z);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTextureSubImage3D(t.id(), 0, 0, 0, 0, dims.x, dims.y, dims.z, components, GL_FLOAT, data);
   for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
     glTextureParameteri(t.id(), p, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
+  glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
   return t;
 }
 
-gl::Texture texture1D(GLenum format, GLenum type, int size, const void* data) {
+gl::Texture texture1D(GLenum format, int size, const void* data, GLenum filter) {
   gl::Texture t = gl::Texture::create(GL_TEXTURE_1D);
   glTextureStorage1D(t.id(), 1, format, size);
-  glTextureSubImage1D(t.id(), 0, 0, size, format == GL_RGBA32F ? GL_RGBA : GL_RED, type, data);
-  glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureSubImage1D(t.id(), 0, 0, size, format == GL_RGBA32F ? GL_RGBA : GL_RED, GL_FLOAT, data);
+  glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
+  glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
   glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   return t;
 }
@@ -64,14 +73,20 @@ float smallestSpacing(const SceneVolume& v) {
 }
 }  // namespace
 
-TransferTable transferTable(const TransferFunction& tf, int size) {
+TransferTable transferTable(const SceneVolume& v) {
+  const TransferFunction& tf = v.transfer;
   TransferTable table;
   table.first = tf.points.front().value;
   // One control point: a constant, over any range.
   table.last = tf.points.size() > 1 ? tf.points.back().value : table.first + 1.0f;
+  // Labels: one texel per label, and a clear one beyond each end, which the lookup's clamping
+  // gives every label outside the listed range.
+  if (v.labels)
+    table.first = tf.points.front().value - 1.0f, table.last = tf.points.back().value + 1.0f;
+  const int size = v.labels ? int(table.last - table.first) + 1 : kTransferSize;
   for (int i = 0; i < size; ++i) {
     const float t = float(i) / float(size - 1);
-    const TransferPoint p = tf.at(table.first + t * (table.last - table.first));
+    const TransferPoint p = v.material(table.first + t * (table.last - table.first));
     table.colorOpacity.emplace_back(p.color, p.opacity);
     table.importance.push_back(p.importance);
   }
@@ -91,15 +106,18 @@ VolumeKind::VolumeKind(FrameSetup& setup) : setup_(setup) {
                       "×" + std::to_string(data.dims.z) +
                       " voxels exceeds the GPU's 3-D texture size of " + std::to_string(maxSize));
     VolumeGpu gpu;
-    gpu.values = texture3D(GL_R32F, data.dims, GL_RED, data.values.data());
-    gpu.gradient = texture3D(GL_RGBA16F, data.dims, GL_RGBA, voxelGradients(data).data());
+    // Labels are sampled at the nearest voxel: interpolating between two would invent a third.
+    const GLenum filter = v.labels ? GL_NEAREST : GL_LINEAR;
+    gpu.values = texture3D(GL_R32F, data.dims, GL_RED, data.values.data(), filter);
+    gpu.gradient = texture3D(GL_RGBA16F, data.dims, GL_RGBA, voxelGradients(v).data(), GL_LINEAR);
     if (glGetError() == GL_OUT_OF_MEMORY)
       throw Error(v.source, "",
                   "volume of " + std::to_string(data.voxelCount() * 12 / (1 << 20)) +
                       " MiB (values and gradients) does not fit in the GPU's memory");
-    const TransferTable table = transferTable(v.transfer, kTransferSize);
-    gpu.transfer = texture1D(GL_RGBA32F, GL_FLOAT, kTransferSize, table.colorOpacity.data());
-    gpu.importance = texture1D(GL_R32F, GL_FLOAT, kTransferSize, table.importance.data());
+    const TransferTable table = transferTable(v);
+    const int size = int(table.importance.size());
+    gpu.transfer = texture1D(GL_RGBA32F, size, table.colorOpacity.data(), filter);
+    gpu.importance = texture1D(GL_R32F, size, table.importance.data(), filter);
     gpu.transferRange = {table.first, table.last};
     volumes_.push_back(std::move(gpu));
   }
@@ -119,6 +137,13 @@ VolumeKind::VolumeKind(FrameSetup& setup) : setup_(setup) {
 
 void VolumeKind::prepare(const std::vector<ActiveCutter>& cutters) {
   cutters_ = &cutters;
+  rearHullProgram_ = setup_.bindings.build(
+      {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                  {GL_FRAGMENT_SHADER, "kinds/volumes/volume_rear_hull.frag"}}});
+  const int w = setup_.frame.width(), h = setup_.frame.height();
+  previousEntry_ = gl::Texture::create2D(GL_R32F, w, h);
+  previousHit_ = gl::Texture::create2D(GL_R32F, w, h);
+  previousOpacity_ = gl::Texture::create2D(GL_R32F, w, h);
   program_ =
       gl::buildProgram(setup_.geometryProgram({{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                                                {GL_FRAGMENT_SHADER, "kinds/volumes/volume.frag"}}));
@@ -147,23 +172,29 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
   glDisable(GL_DEPTH_TEST);
   glEnablei(GL_BLEND, 0);  // "over" the final colour; the AOVs are written as they are
   glBlendFunci(0, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  for (std::size_t i = 0; i < volumes_.size(); ++i) {
+  // Those of interest first: the others' rays stop at their material.
+  std::vector<std::size_t> order(volumes_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) {
+    return setup_.scene.volumes[i].role == Role::Interest;
+  });
+  const int w = frame.width(), h = frame.height();
+  for (const std::size_t i : order) {
     const SceneVolume& v = setup_.scene.volumes[i];
-    const VolumeGpu& gpu = volumes_[i];
     int cutBy = 0;
     for (const ActiveCutter& c : cutters)
       if (c.cutter->cutsVolume(i)) cutBy |= 1 << c.slot;
-    const glm::mat4 indexToWorld = v.indexToWorld();
-    const glm::mat4 worldToIndex = glm::inverse(indexToWorld);
-    const glm::mat3 gradientToWorld = glm::transpose(glm::mat3(worldToIndex));
-    const glm::vec3 dims(v.volume->dims);
+    for (const auto& [aov, copy] :
+         {std::pair{entryDepth_, previousEntry_.id()}, std::pair{hitDepth_, previousHit_.id()},
+          std::pair{opacity_, previousOpacity_.id()}})
+      glCopyImageSubData(frame.texture(aov).id(), GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0,
+                         0, 0, 0, w, h, 1);
+    bindVolume(program, i);
+    const glm::mat3 gradientToWorld = glm::transpose(glm::mat3(glm::inverse(v.indexToWorld())));
     const float spacing = smallestSpacing(v);
-    glProgramUniformMatrix4fv(program, kWorldToIndex, 1, GL_FALSE, &worldToIndex[0][0]);
-    glProgramUniform3fv(program, kDims, 1, &dims[0]);
     glProgramUniform1f(program, kStep, v.sampleDistance * spacing);
     glProgramUniform1f(program, kVoxel, spacing);
     glProgramUniform1f(program, kOpacityExponent, v.sampleDistance / v.opacityDistance);
-    glProgramUniform2fv(program, kTransferRange, 1, &gpu.transferRange[0]);
     glProgramUniform1i(program, kMode, int(v.mode));
     glProgramUniform1f(program, kIsoValue, v.isoValue);
     glProgramUniform1i(program, kShading, v.shading);
@@ -171,13 +202,42 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
     glProgramUniform1i(program, kCutBy, cutBy);
     glProgramUniform1i(program, kInterest, v.role == Role::Interest);
     glProgramUniformMatrix3fv(program, kGradientToWorld, 1, GL_FALSE, &gradientToWorld[0][0]);
-    glBindTextureUnit(1, gpu.values.id());
-    glBindTextureUnit(2, gpu.transfer.id());
-    glBindTextureUnit(3, gpu.importance.id());
-    glBindTextureUnit(4, gpu.gradient.id());
+    glBindTextureUnit(5, previousHit_.id());
+    glBindTextureUnit(6, previousEntry_.id());
+    glBindTextureUnit(7, previousOpacity_.id());
     fullscreen_.draw();
   }
   glDisablei(GL_BLEND, 0);
+}
+
+void VolumeKind::bindVolume(GLuint program, std::size_t i) const {
+  const SceneVolume& v = setup_.scene.volumes[i];
+  const VolumeGpu& gpu = volumes_[i];
+  const glm::mat4 worldToIndex = glm::inverse(v.indexToWorld());
+  const glm::vec3 dims(v.volume->dims);
+  glProgramUniformMatrix4fv(program, kWorldToIndex, 1, GL_FALSE, &worldToIndex[0][0]);
+  glProgramUniform3fv(program, kDims, 1, &dims[0]);
+  glProgramUniform2fv(program, kTransferRange, 1, &gpu.transferRange[0]);
+  glBindTextureUnit(1, gpu.values.id());
+  glBindTextureUnit(2, gpu.transfer.id());
+  glBindTextureUnit(3, gpu.importance.id());
+  glBindTextureUnit(4, gpu.gradient.id());
+}
+
+void VolumeKind::drawInterestRearHulls(const RearHullRequest& request) const {
+  const GLuint program = rearHullProgram_.id();
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glUseProgram(program);
+  glProgramUniform2f(program, kPassSize, float(viewport[2]), float(viewport[3]));
+  glProgramUniform1f(program, kTheta, request.theta(nullptr));
+  for (std::size_t i = 0; i < volumes_.size(); ++i) {
+    const SceneVolume& v = setup_.scene.volumes[i];
+    if (v.role != Role::Interest) continue;
+    bindVolume(program, i);
+    glProgramUniform1f(program, kStepRearHull, v.sampleDistance * smallestSpacing(v));
+    fullscreen_.draw();
+  }
 }
 
 }  // namespace cutaway

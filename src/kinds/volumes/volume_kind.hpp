@@ -5,8 +5,9 @@
 // fragment: an adaptive cutaway's rays start at its cutaway surface, Trapp13's clip surfaces
 // and the box cut open it, and a grading cutter reduces each sample's opacity by R (Burns11
 // ch. 2, eqs. 7.1–7.3 with the importance of the sample's material). The frame's pass:
-//   volumes   every volume in scene order, blended over the final colour, with the AOVs
-//             volumeEntryDepth, volumeHitDepth and volumeOpacity
+//   volumes   every volume, those of interest first, blended over the final colour, each
+//             ray stopping where the volumes before it hid the rest; the AOVs
+//             volumeEntryDepth, volumeHitDepth and volumeOpacity over all of them
 #pragma once
 
 #include <vector>
@@ -17,14 +18,15 @@
 
 namespace cutaway {
 
-// The transfer function as the table the GPU reads: `size` texels from the first control
-// point's value to the last's (colour and opacity, and importance), exact at the texels.
+// The transfer function as the table the GPU reads, from the first control point's value to
+// the last's (colour and opacity, and importance), exact at the texels: 1024 texels, or one
+// per label of a label volume.
 struct TransferTable {
   float first = 0.0f, last = 1.0f;
   std::vector<glm::vec4> colorOpacity;
   std::vector<float> importance;
 };
-TransferTable transferTable(const TransferFunction& tf, int size);
+TransferTable transferTable(const SceneVolume& volume);
 
 class VolumeKind : public GeometryKind {
  public:
@@ -33,6 +35,9 @@ class VolumeKind : public GeometryKind {
   static bool present(const Scene& scene) { return !scene.volumes.empty(); }
   void prepare(const std::vector<ActiveCutter>& cutters) override;
   void addPassesAfterComposite(Frame& frame) override;
+  // A volume of interest seeds the cutaway with the rear of its material: along each ray, the
+  // farthest sample its transfer function makes visible (volume_rear_hull.frag).
+  void drawInterestRearHulls(const RearHullRequest& request) const override;
 
  private:
   struct VolumeGpu {
@@ -40,13 +45,17 @@ class VolumeKind : public GeometryKind {
     glm::vec2 transferRange;
   };
   void draw(const std::vector<ActiveCutter>& cutters) const;
+  // Binds volume i's textures and sets the uniforms every volume program shares.
+  void bindVolume(GLuint program, std::size_t i) const;
 
   FrameSetup& setup_;
   const std::vector<ActiveCutter>* cutters_ = nullptr;
   std::vector<VolumeGpu> volumes_;
-  gl::Program program_;
+  gl::Program program_, rearHullProgram_;
   FullscreenTriangle fullscreen_;
   Target entryDepth_, hitDepth_, opacity_;
+  // The AOVs as the volumes drawn so far left them, read by the next (volume.frag).
+  gl::Texture previousEntry_, previousHit_, previousOpacity_;
 };
 
 }  // namespace cutaway

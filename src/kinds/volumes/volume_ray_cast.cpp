@@ -68,8 +68,12 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
   bool previousKept = false;
   for (float t = tIn + offset * step; t < tOut; t += step) {
     const glm::vec3 p = origin + t * direction;
-    const float value = sampleVolume(volume, o + t * d);
-    const TransferPoint c = sv.transfer.at(value);
+    const glm::vec3 index = o + t * d;
+    // A label volume is sampled at the nearest voxel (GL_NEAREST).
+    const float value = sv.labels ? volume.at(glm::clamp(glm::ivec3(glm::floor(index + 0.5f)),
+                                                         glm::ivec3(0), volume.dims - 1))
+                                  : sampleVolume(volume, index);
+    const TransferPoint c = sv.material(value);
     // Samples of no opacity are no material: the cutters are not asked (as on the GPU).
     if (sv.mode == VolumeMode::Composite && c.opacity == 0.0f) {
       previousKept = false;
@@ -86,7 +90,7 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
       if (value >= sv.isoValue) {
         float tHit = t;
         if (previousKept) tHit = t - step * (value - sv.isoValue) / (value - previousValue);
-        ray.color = sv.transfer.at(sv.isoValue).color;
+        ray.color = sv.material(sv.isoValue).color;
         ray.opacity = 1.0f;
         ray.hitDepth = viewDepth(origin + tHit * direction);
         break;
@@ -104,7 +108,7 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
     previousValue = value;
   }
   if (sv.mode == VolumeMode::Maximum && maxValue > -1e30f) {
-    const TransferPoint c = sv.transfer.at(maxValue);
+    const TransferPoint c = sv.material(maxValue);
     ray.color = c.color * c.opacity;
     ray.opacity = c.opacity;
     ray.hitDepth = viewDepth(origin + maxT * direction);
