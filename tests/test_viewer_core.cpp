@@ -183,7 +183,8 @@ TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
   // Clip surfaces come from the scene file; the viewer edits those there are.
   const ClipSurfaceOptions clip{.surfaces = std::vector<ClipSurface>(kMaxClipSurfaces)};
   scene.cutters.enable<ClipSurfaceOptions>() = clip;
-  scene.networks.resize(2);  // likewise the pipe networks
+  scene.networks.resize(2);  // likewise the pipe networks and the volumes
+  scene.volumes.resize(2);
   for (const auto& group : parameterGroups())
     for (const auto& p : group.parameters) {
       SCOPED_TRACE(p.key);
@@ -552,6 +553,29 @@ TEST(ViewerSave, NetworkOptionsReadBack) {
   EXPECT_EQ(saved.networks[0].waterHigh, glm::vec3(0.0f, 0.1f, 0.4f));
   EXPECT_EQ(saved.networks[0].waterLow, original.networks[0].waterLow);
   EXPECT_EQ(saved.networks[0].pipes.size(), original.networks[0].pipes.size());
+}
+
+// The volumes' edited options saved into their entries; the files and transfer functions
+// stay as written.
+TEST(ViewerSave, VolumeOptionsReadBack) {
+  const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
+  const Scene original = loadScene(examples / "mri-head-box-cut.json");
+  Scene current = original;
+  current.camera = original.resolvedCamera();
+  current.camera.fit = false;
+  findParameter("volumes.sampleDistance")->assign(current, 0.25);
+  findParameter("volumes.mode")->assign(current, std::string("maximum"));
+  findParameter("volumes.shading")->assign(current, false);
+  const fs::path target = scratch("mri-head-box-cut.json");
+  SceneDocument::load(examples / "mri-head-box-cut.json").save(original, current, target);
+  const Scene saved = loadScene(target);
+  ASSERT_EQ(saved.volumes.size(), 1u);
+  EXPECT_EQ(saved.volumes[0].sampleDistance, 0.25f);
+  EXPECT_EQ(saved.volumes[0].mode, VolumeMode::Maximum);
+  EXPECT_FALSE(saved.volumes[0].shading);
+  EXPECT_EQ(saved.volumes[0].opacityDistance, original.volumes[0].opacityDistance);
+  EXPECT_EQ(saved.volumes[0].transfer.points.size(), original.volumes[0].transfer.points.size());
+  EXPECT_EQ(saved.volumes[0].source, original.volumes[0].source);
 }
 
 // The Diepstraten03 and Trapp13 cutters' parameters saved: each edited value reads back, the

@@ -14,6 +14,7 @@ const std::vector<ParameterGroup>& parameterGroups() {
       out.push_back(std::move(g));
     }
     out.push_back({"networks", "Pipe networks (Konev18)", "", networkParameters()});
+    out.push_back({"volumes", "Volumes", "", volumeParameters()});
     return out;
   }();
   return groups;

@@ -660,10 +660,11 @@ void Viewer::drawPanels() {
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) filePanel(state_);
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) cameraPanel(state_);
     // Every technique's panel, generated from the registries: the cutters (those the scene
-    // uses start open), the pipe networks, then the style with the current shading style's
-    // options.
+    // uses start open), the pipe networks, the volumes, then the style with the current
+    // shading style's options.
     const auto enabled = [&](const ParameterGroup& g) {
       if (g.name == "networks") return !state_.scene.networks.empty();
+      if (g.name == "volumes") return !state_.scene.volumes.empty();
       const Parameter* on = findParameter(g.name);
       return on && std::get<bool>(on->value(state_.scene));
     };

@@ -148,6 +148,19 @@ class Source {
   virtual std::size_t read(unsigned char* out, std::size_t n) = 0;
 };
 
+// Skips `n` bytes of `in` by reading them; returns how many there were.
+std::uint64_t skipBytes(Source& in, std::uint64_t n) {
+  std::vector<unsigned char> sink(std::size_t(std::min<std::uint64_t>(n, 1 << 16)));
+  std::uint64_t done = 0;
+  while (done < n) {
+    const std::size_t got =
+        in.read(sink.data(), std::size_t(std::min<std::uint64_t>(n - done, sink.size())));
+    if (got == 0) break;
+    done += got;
+  }
+  return done;
+}
+
 class FileSource : public Source {
  public:
   FileSource(const fs::path& file, const Where& where)
@@ -190,17 +203,7 @@ class GzSource : public Source {
     return done;
   }
   // Skips to `offset` by reading, so a stream too short to reach it reads as truncated.
-  std::uint64_t skip(std::uint64_t offset) {
-    std::vector<unsigned char> sink(1 << 16);
-    std::uint64_t done = 0;
-    while (done < offset) {
-      const std::size_t got =
-          read(sink.data(), std::size_t(std::min<std::uint64_t>(offset - done, sink.size())));
-      if (got == 0) break;
-      done += got;
-    }
-    return done;
-  }
+  std::uint64_t skip(std::uint64_t offset) { return skipBytes(*this, offset); }
 
  private:
   gzFile gz_;

@@ -174,6 +174,16 @@ json networkJson(const PipeNetwork& n) {
           {"waterColors", {vec(n.waterLow), vec(n.waterHigh)}}};
 }
 
+// The volume options the viewer edits (apps/cutaway-view/parameters/volumes.cpp).
+json volumeJson(const SceneVolume& v) {
+  return {{"mode", volumeModeName(v.mode)},
+          {"sampleDistance", exact(v.sampleDistance)},
+          {"opacityDistance", exact(v.opacityDistance)},
+          {"isoValue", exact(v.isoValue)},
+          {"shading", v.shading},
+          {"jitter", v.jitter}};
+}
+
 // `edited` merged into `into` key by key: objects recursively, arrays element by element,
 // anything else replaced; keys only `into` has stay.
 void merge(json& into, const json& edited) {
@@ -219,7 +229,10 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
   const std::size_t n = std::size_t(
       std::count_if(current.objects.begin(), current.objects.end(),
                     [](const SceneObject& o) { return o.networkPart == NetworkPart::None; }));
-  for (auto& entry : doc["objects"]) {
+  // A scene of pipe networks or volumes alone may have no "objects" key (operator[] would
+  // add one, as null).
+  json noObjects = json::array();
+  for (auto& entry : doc.contains("objects") ? doc["objects"] : noObjects) {
     if (k >= n) break;  // reported below
     const std::string name = entry.at("name").get<std::string>();
     if (entry.value("split", "file") != "nodes") {
@@ -267,6 +280,10 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
     if (const json edited = networkJson(current.networks[i]);
         edited != networkJson(original.networks[i]))
       for (auto& [key, value] : edited.items()) doc["networks"][i][key] = value;
+  for (std::size_t i = 0; i < current.volumes.size() && i < original.volumes.size(); ++i)
+    if (const json edited = volumeJson(current.volumes[i]);
+        edited != volumeJson(original.volumes[i]))
+      for (auto& [key, value] : edited.items()) doc["volumes"][i][key] = value;
   const fs::path from = fs::weakly_canonical(fs::absolute(path_)).parent_path();
   const fs::path to = fs::weakly_canonical(fs::absolute(target)).parent_path();
   if (from != to) makePathsAbsolute(doc, path_.parent_path());
@@ -306,6 +323,10 @@ void SceneDocument::save(const Scene& original, const Scene& current,
   for (std::size_t i = 0; i < saved.networks.size(); ++i)
     if (networkJson(saved.networks[i]) != networkJson(current.networks[i]))
       mismatch("pipe network \"" + current.networks[i].name + "\"");
+  if (saved.volumes.size() != current.volumes.size()) mismatch("volumes");
+  for (std::size_t i = 0; i < saved.volumes.size(); ++i)
+    if (volumeJson(saved.volumes[i]) != volumeJson(current.volumes[i]))
+      mismatch("volume \"" + current.volumes[i].name + "\"");
   if (saved.width != current.width || saved.height != current.height) mismatch("resolution");
   writeFileAtomically(target, [&](std::ostream& os) { os << text; });
 }

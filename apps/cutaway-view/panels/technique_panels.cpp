@@ -37,6 +37,11 @@ void notes(const std::string& group, const ViewerState& state) {
       ImGui::TextDisabled("%s: %zu pipes, %zu shafts, %s", net.name.c_str(), net.pipes.size(),
                           net.shafts.size(),
                           net.mode == PipeNetwork::Mode::Billboards ? "billboards" : "meshed");
+  } else if (group == "volumes") {
+    for (const SceneVolume& v : scene.volumes)
+      ImGui::TextDisabled("%s: %d×%d×%d %s, %s%s", v.name.c_str(), v.volume->dims.x,
+                          v.volume->dims.y, v.volume->dims.z, v.volume->voxelType.c_str(),
+                          roleName(v.role), v.labels ? ", labels" : "");
   }
 }
 
@@ -45,6 +50,10 @@ void notes(const std::string& group, const ViewerState& state) {
 void techniquePanel(const ParameterGroup& group, ViewerState& state) {
   if (group.name == "networks" && state.scene.networks.empty()) {
     ImGui::TextDisabled("no pipe networks in this scene (networks)");
+    return;
+  }
+  if (group.name == "volumes" && state.scene.volumes.empty()) {
+    ImGui::TextDisabled("no volumes in this scene (volumes)");
     return;
   }
   parameterTable(group.parameters, state);

@@ -106,15 +106,13 @@ void main() {
   outHitDepth = previousHit;
   outOpacity = previousOpacity;
   vec2 uv = gl_FragCoord.xy * uViewport.zw;
-  vec3 origin = worldAtWindow(uv, 0.0);
-  vec3 direction = normalize(worldAtWindow(uv, 1.0) - origin);
+  VolumeRay ray = volumeRay(uv);
+  vec3 origin = ray.origin, direction = ray.direction, o = ray.o, d = ray.d;
   // The rays stop at the opaque surfaces and where an earlier volume's material hid the rest.
-  float opaque = texelFetch(uOpaqueDepth, pixel, 0).r;
-  float tEnd = opaque < 1.0 ? distance(origin, worldAtWindow(uv, opaque)) : 1e30;
-  if (!isnan(previousHit)) tEnd = min(tEnd, distanceAtViewDepth(origin, direction, previousHit));
-  VolumeRay ray = volumeRay(uv, tEnd);
   float tIn = ray.tIn, tOut = ray.tOut;
-  vec3 o = ray.o, d = ray.d;
+  float opaque = texelFetch(uOpaqueDepth, pixel, 0).r;
+  if (opaque < 1.0) tOut = min(tOut, distance(origin, worldAtWindow(uv, opaque)));
+  if (!isnan(previousHit)) tOut = min(tOut, distanceAtViewDepth(origin, direction, previousHit));
   if (!(tIn < tOut)) discard;
   float entry = kNaN, hit = kNaN;
   float offset = uJitter != 0 ? pixelJitter(uvec2(gl_FragCoord.xy)) : 0.5;

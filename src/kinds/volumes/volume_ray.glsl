@@ -26,12 +26,12 @@ float transferCoordinate(float value) {
 
 // The view ray through uv (window coordinates over the drawn viewport, in [0, 1]): world
 // origin on the near plane and unit direction, the same ray in index space (o + t·d for the
-// same t), and its span [tIn, tOut] through the box [−½, dims − ½] and before `tEnd`.
+// same t), and its span [tIn, tOut] through the box [−½, dims − ½] in front of the eye.
 struct VolumeRay {
   vec3 origin, direction, o, d;
   float tIn, tOut;
 };
-VolumeRay volumeRay(vec2 uv, float tEnd) {
+VolumeRay volumeRay(vec2 uv) {
   VolumeRay r;
   r.origin = worldAtWindow(uv, 0.0);
   r.direction = normalize(worldAtWindow(uv, 1.0) - r.origin);
@@ -40,6 +40,6 @@ VolumeRay volumeRay(vec2 uv, float tEnd) {
   vec3 inv = 1.0 / r.d;
   vec3 a = (vec3(-0.5) - r.o) * inv, b = (uDims - 0.5 - r.o) * inv;
   r.tIn = max(max(min(a.x, b.x), min(a.y, b.y)), max(min(a.z, b.z), 0.0));
-  r.tOut = min(min(max(a.x, b.x), max(a.y, b.y)), min(max(a.z, b.z), tEnd));
+  r.tOut = min(min(max(a.x, b.x), max(a.y, b.y)), max(a.z, b.z));
   return r;
 }

@@ -11,7 +11,7 @@ layout(location = 17) uniform vec2 uPassSize;  // the seed buffer's pixels
 layout(location = 0) out float outSeedDepth;
 layout(location = 1) out float outSeedAngle;
 void main() {
-  VolumeRay r = volumeRay(gl_FragCoord.xy / uPassSize, 1e30);
+  VolumeRay r = volumeRay(gl_FragCoord.xy / uPassSize);
   if (!(r.tIn < r.tOut)) discard;
   // Back to front from the box's far side: the first sample of material is the rear.
   for (float t = r.tOut - 0.5 * uStep; t > r.tIn; t -= uStep) {
