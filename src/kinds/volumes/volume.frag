@@ -25,6 +25,9 @@ layout(binding = 0) uniform sampler2DMS uOpaqueDepth;
 layout(binding = 5) uniform sampler2D uPreviousHit;
 layout(binding = 6) uniform sampler2D uPreviousEntry;
 layout(binding = 7) uniform sampler2D uPreviousOpacity;
+// Per block of kBlock³ voxels: 0 where every value its samples can interpolate is clear.
+layout(binding = UNIT_VOLUME_OCCUPANCY) uniform usampler3D uOccupancy;
+const float kBlock = 8.0;  // VolumeKind's kBlock
 layout(location = 2) uniform float uStep;            // world units
 layout(location = 3) uniform float uOpacityExponent; // step / opacity distance (both in voxels)
 layout(location = 5) uniform int uMode;              // 0 composite, 1 maximum, 2 isosurface
@@ -125,9 +128,27 @@ void main() {
   // voxels: the gradient's reach).
   float cutSkin = 1.5 * uVoxel, tCut = -1e30;
   vec3 faceNormal = vec3(0.0);
-  for (float t = tIn + offset * uStep; t < tOut; t += uStep) {
+  // The samples lie on the lattice t₀ + k·step, so skipping empty blocks changes none of them.
+  float t0 = tIn + offset * uStep;
+  for (int k = 0; t0 + float(k) * uStep < tOut; ++k) {
+    float t = t0 + float(k) * uStep;
     vec3 p = origin + t * direction;
     vec3 index = o + t * d;
+    // Composite: a block whose values the transfer function makes all clear is skipped to
+    // its far side (empty-space skipping; the blocks' flags are conservative).
+    if (uMode == 0) {
+      ivec3 block = clamp(ivec3(floor((index + 0.5) / kBlock)), ivec3(0),
+                          textureSize(uOccupancy, 0) - 1);
+      if (texelFetch(uOccupancy, block, 0).r == 0u) {
+        vec3 lo = vec3(block) * kBlock - 0.5;
+        vec3 a = (lo - o) / d, b = (lo + kBlock - o) / d;
+        vec3 far = max(a, b);
+        float tExit = min(far.x, min(far.y, far.z));
+        k = max(k, int(ceil((tExit - t0) / uStep)) - 1);
+        previousKept = false;
+        continue;
+      }
+    }
     float value = valueAt(index);
     float u = transferCoordinate(value);
     vec4 c = texture(uTransfer, u);

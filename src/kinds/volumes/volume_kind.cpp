@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -39,6 +40,51 @@ std::vector<glm::vec4> voxelGradients(const SceneVolume& sv) {
         out[n] = glm::vec4(0.5f * (at(i + 1, j, k) - at(i - 1, j, k)),
                            0.5f * (at(i, j + 1, k) - at(i, j - 1, k)),
                            0.5f * (at(i, j, k + 1) - at(i, j, k - 1)), 0.0f);
+      }
+  return out;
+}
+
+// Empty-space skipping (volume.frag): per block of kBlock³ voxels, 1 where a sample in it can
+// have opacity. A sample interpolates the voxels of its block and at most one beyond, so a
+// block's values are bounded by the least and largest over its block and the 26 around it;
+// the transfer function's opacity over that interval is largest at its ends or at a control
+// point inside, so the flag is conservative.
+constexpr int kBlock = 8;  // volume.frag's kBlock
+
+std::vector<std::uint8_t> occupancy(const SceneVolume& sv, glm::ivec3& grid) {
+  const Volume& v = *sv.volume;
+  grid = (v.dims + kBlock - 1) / kBlock;
+  const auto block = [&](glm::ivec3 b) {
+    return std::size_t(b.x) + std::size_t(grid.x) * (std::size_t(b.y) + std::size_t(grid.y) * b.z);
+  };
+  const std::size_t blocks = std::size_t(grid.x) * grid.y * grid.z;
+  std::vector<float> lo(blocks, std::numeric_limits<float>::infinity()), hi(blocks, -lo[0]);
+  std::size_t n = 0;
+  for (int k = 0; k < v.dims.z; ++k)
+    for (int j = 0; j < v.dims.y; ++j)
+      for (int i = 0; i < v.dims.x; ++i, ++n) {
+        const std::size_t b = block(glm::ivec3(i, j, k) / kBlock);
+        lo[b] = std::min(lo[b], v.values[n]), hi[b] = std::max(hi[b], v.values[n]);
+      }
+  std::vector<std::uint8_t> out(blocks, 0);
+  for (int z = 0; z < grid.z; ++z)
+    for (int y = 0; y < grid.y; ++y)
+      for (int x = 0; x < grid.x; ++x) {
+        float a = std::numeric_limits<float>::infinity(), b = -a;
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              const glm::ivec3 q(x + dx, y + dy, z + dz);
+              if (glm::any(glm::lessThan(q, glm::ivec3(0))) ||
+                  glm::any(glm::greaterThanEqual(q, grid)))
+                continue;
+              a = std::min(a, lo[block(q)]), b = std::max(b, hi[block(q)]);
+            }
+        // NaN voxels make no interval: their blocks are kept.
+        bool visible = !(a <= b) || sv.material(a).opacity > 0.0f || sv.material(b).opacity > 0.0f;
+        for (const TransferPoint& p : sv.transfer.points)
+          visible = visible || (p.value >= a && p.value <= b && p.opacity > 0.0f);
+        out[block({x, y, z})] = visible;
       }
   return out;
 }
@@ -93,7 +139,8 @@ TransferTable transferTable(const SceneVolume& v) {
   return table;
 }
 
-VolumeKind::VolumeKind(FrameSetup& setup) : setup_(setup) {
+VolumeKind::VolumeKind(FrameSetup& setup)
+    : setup_(setup), occupancyUnit_(setup.bindings.textureUnit("VOLUME_OCCUPANCY")) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
   while (glGetError() != GL_NO_ERROR) {
@@ -114,6 +161,17 @@ VolumeKind::VolumeKind(FrameSetup& setup) : setup_(setup) {
       throw Error(v.source, "",
                   "volume of " + std::to_string(data.voxelCount() * 12 / (1 << 20)) +
                       " MiB (values and gradients) does not fit in the GPU's memory");
+    glm::ivec3 grid;
+    const std::vector<std::uint8_t> blocks = occupancy(v, grid);
+    gpu.occupancy = gl::Texture::create(GL_TEXTURE_3D);
+    glTextureStorage3D(gpu.occupancy.id(), 1, GL_R8UI, grid.x, grid.y, grid.z);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(gpu.occupancy.id(), 0, 0, 0, 0, grid.x, grid.y, grid.z, GL_RED_INTEGER,
+                        GL_UNSIGNED_BYTE, blocks.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    // An integer texture is complete only without mipmap filtering.
+    glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     const TransferTable table = transferTable(v);
     const int size = int(table.importance.size());
     gpu.transfer = texture1D(GL_RGBA32F, size, table.colorOpacity.data(), filter);
@@ -202,6 +260,7 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
     glProgramUniform1i(program, kCutBy, cutBy);
     glProgramUniform1i(program, kInterest, v.role == Role::Interest);
     glProgramUniformMatrix3fv(program, kGradientToWorld, 1, GL_FALSE, &gradientToWorld[0][0]);
+    glBindTextureUnit(occupancyUnit_, volumes_[i].occupancy.id());
     glBindTextureUnit(5, previousHit_.id());
     glBindTextureUnit(6, previousEntry_.id());
     glBindTextureUnit(7, previousOpacity_.id());

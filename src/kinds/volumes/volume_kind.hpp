@@ -41,7 +41,7 @@ class VolumeKind : public GeometryKind {
 
  private:
   struct VolumeGpu {
-    gl::Texture values, gradient, transfer, importance;
+    gl::Texture values, gradient, transfer, importance, occupancy;
     glm::vec2 transferRange;
   };
   void draw(const std::vector<ActiveCutter>& cutters) const;
@@ -54,6 +54,7 @@ class VolumeKind : public GeometryKind {
   gl::Program program_, rearHullProgram_;
   FullscreenTriangle fullscreen_;
   Target entryDepth_, hitDepth_, opacity_;
+  GLuint occupancyUnit_;
   // The AOVs as the volumes drawn so far left them, read by the next (volume.frag).
   gl::Texture previousEntry_, previousHit_, previousOpacity_;
 };

@@ -66,7 +66,9 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
   const auto viewDepth = [&](const glm::vec3& p) { return -(view * glm::vec4(p, 1.0f)).z; };
   float maxValue = -1e30f, maxT = 0.0f, previousValue = 0.0f;
   bool previousKept = false;
-  for (float t = tIn + offset * step; t < tOut; t += step) {
+  const float t0 = tIn + offset * step;
+  for (int k = 0; t0 + float(k) * step < tOut; ++k) {
+    const float t = t0 + float(k) * step;
     const glm::vec3 p = origin + t * direction;
     const glm::vec3 index = o + t * d;
     // A label volume is sampled at the nearest voxel (GL_NEAREST).
