@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cutaway/cutters/box_cut.hpp"
+#include "cutaway/cutters/clip_surfaces.hpp"
 #include "cutaway/kinds/volume_ray_cast.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "expect_error.hpp"
@@ -278,6 +279,43 @@ TEST_F(VolumeTest, TheBoxCutDecidesRaySamplesAsItsCppMirror) {
       if (cut.entryDepth > whole.entryDepth + 0.05f) ++deeper;
     }
   EXPECT_GT(deeper, 200) << "the box opens the volume";
+}
+
+// Trapp13's clip surface with a relief removes ray samples where its C++ mirror says; a ray
+// entering the volume through the cut shows its face, lit by the relief's normal.
+TEST_F(VolumeTest, AClipSurfaceDecidesRaySamplesAsItsCppMirror) {
+  const fs::path file = volume("solid", 24, 1.0f, [](glm::vec3 p) { return 0.6f + 0.4f * p.y; });
+  Scene s = scene(
+      R"({"name": "solid", "file": ")" + file.string() + R"(", "shading": false, )" + kRamp + "}",
+      R"(, "cutters": {"clipSurfaces": {"surfaces": [
+                       {"origin": [-2, -2, 0.2], "u": [0, 4, 0], "v": [4, 0, 0], "scale": [2, 2, 0.3],
+                        "offsetMap": {"pattern": "noise", "frequency": 3, "octaves": 3, "size": 64}}]}})");
+  const ClipSurfaceOptions& clip = *s.cutters.find<ClipSurfaceOptions>();
+  const auto aovs = renderAovs(s);
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth");
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  const auto keep = [&](const glm::vec3& p) { return !clippedBySurfaces(clip, p); };
+  int deeper = 0, compared = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::ivec2 p(x, s.height - 1 - y);
+      const VolumeRay cut = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+                                          {s.width, s.height}, p, 1.0f, keep);
+      const VolumeRay whole =
+          castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect), {s.width, s.height}, p);
+      ASSERT_EQ(std::isnan(entry.at(x, y)[0]), std::isnan(cut.entryDepth)) << x << "," << y;
+      if (std::isnan(cut.entryDepth)) continue;
+      ++compared;
+      // The relief is a texture on the GPU, bilinear over 64² texels: a sample within its
+      // interpolation error of the surface may fall on the other side, moving the entry by a
+      // step.
+      EXPECT_NEAR(entry.at(x, y)[0], cut.entryDepth, 0.05f) << x << "," << y;
+      EXPECT_NEAR(opacity.at(x, y)[0], cut.opacity, 0.02f) << x << "," << y;
+      if (cut.entryDepth > whole.entryDepth + 0.1f) ++deeper;
+    }
+  EXPECT_GT(compared, s.width * s.height / 4);
+  EXPECT_GT(deeper, 200) << "the surface opens the volume";
 }
 
 // Burns11 §5.2.5: with an adaptive cutaway around an object of interest inside, the rays

@@ -8,6 +8,9 @@ const int kKeep = 0, kDiscard = 1, kCutSurface = 2;
 #ifndef CUT_FRAG_COORD
 #define CUT_FRAG_COORD gl_FragCoord
 #endif
+// CUT_VOLUME_SAMPLE, defined by kinds/volumes/volume.frag: what is decided is a volume's ray
+// sample (a cutter that covers its cuts by geometry of its own, as Trapp13's caps, gives such a
+// sample asked as a back face the cut's normal).
 // A fragment of a cut object: world position, interpolated world normal (not normalised), and
 // the side seen.
 struct CutFragment {

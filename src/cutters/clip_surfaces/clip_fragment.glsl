@@ -3,11 +3,43 @@
 // 1 where a fragment was removed by a clip surface (at any depth): the clip-mask AOV.
 layout(binding = IMAGE_CLIP_MASK, r32ui) uniform coherent uimage2D uClipMask;
 
+#ifdef CUT_VOLUME_SAMPLE
+// The cut's normal at p: the relief normal of the enabled surface nearest to p (its cap's
+// normal in cap.frag), or its plane's without the caps' normal map.
+vec3 clipCutNormal(vec3 p) {
+  int nearest = -1;
+  float best = 1e30;
+  for (int i = 0; i < uClipCount.x; ++i) {
+    if (uClipOrigin[i].w == 0.0) continue;
+    float distance = abs(clipSurfaceFunction(i, p));
+    if (distance < best) best = distance, nearest = i;
+  }
+  if (nearest < 0) return vec3(0.0);
+  vec3 n = clipSurfaceNormal(nearest);
+  if (uClipCount.z == 0) return -n;
+  vec4 relief = clipRelief(nearest, clipSurfaceTexCoord(nearest, p));
+  vec3 ds = uClipU[nearest].xyz - uClipScale[nearest].z * uClipScale[nearest].x * relief.g * n;
+  vec3 dt = uClipV[nearest].xyz - uClipScale[nearest].z * uClipScale[nearest].y * relief.b * n;
+  vec3 normal = normalize(cross(ds, dt));
+  return dot(normal, n) > 0.0 ? -normal : normal;
+}
+#endif
+
 int clipSurfacesFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   // Trapp13 clips the solid; its cut is covered by the caps, not by cut surfaces.
   cutPosition = f.position;
   cutNormal = vec3(0.0);
-  if (!clippedBySurfaces(f.position, -1)) return kKeep;
+  if (!clippedBySurfaces(f.position, -1)) {
+#ifdef CUT_VOLUME_SAMPLE
+    // A volume has no caps: its sample just behind clipped material, asked as a back face, is
+    // the cut's face, lit by the surface's normal (kinds/volumes).
+    if (!f.frontFacing) {
+      cutNormal = clipCutNormal(f.position);
+      return kCutSurface;
+    }
+#endif
+    return kKeep;
+  }
   imageAtomicMax(uClipMask, ivec2(CUT_FRAG_COORD.xy), 1u);
   return kDiscard;
 }

@@ -15,6 +15,9 @@ vec4 gSampleCoord;
 float gSampleImportance;
 #define CUT_FRAG_COORD gSampleCoord
 #define CUT_IMPORTANCE gSampleImportance
+// Cutters that cover their cuts by geometry of their own (Trapp13's caps) give a volume's
+// samples the cut's normal instead.
+#define CUT_VOLUME_SAMPLE
 #include "frame/gbuffer_channels.glsl"
 #include "cutters/composition.glsl"
 #include "kinds/volumes/volume_ray.glsl"
