@@ -78,6 +78,18 @@ glm::vec4 pixel(const FloatImage& image, int x, int y) {
           image.channels > 3 ? v[3] : 0.0f};
 }
 
+// The view ray through uv (window coordinates in [0, 1], y up) of the inverse view-projection:
+// its origin on the near plane and unit direction.
+struct PixelRay {
+  glm::vec3 o, d;
+};
+PixelRay pixelRay(const glm::mat4& inverseViewProjection, glm::vec2 uv) {
+  const glm::vec4 a = inverseViewProjection * glm::vec4(uv * 2.0f - 1.0f, -1.0f, 1.0f);
+  const glm::vec4 b = inverseViewProjection * glm::vec4(uv * 2.0f - 1.0f, 1.0f, 1.0f);
+  const glm::vec3 o = glm::vec3(a) / a.w;
+  return {o, glm::normalize(glm::vec3(b) / b.w - o)};
+}
+
 // The distance along the ray from o (unit direction d) to the sphere |x| = r; < 0: a miss.
 float sphereHit(glm::vec3 o, glm::vec3 d, float r) {
   const float b = glm::dot(o, d), c = glm::dot(o, o) - r * r, disc = b * b - c;
@@ -144,9 +156,7 @@ TEST_F(VolumeTest, TheIsosurfaceOfASampledSphereIsTheSphere) {
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
       const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
-      glm::vec4 a = inverse * glm::vec4(uv * 2.0f - 1.0f, -1.0f, 1.0f);
-      glm::vec4 b = inverse * glm::vec4(uv * 2.0f - 1.0f, 1.0f, 1.0f);
-      const glm::vec3 o = glm::vec3(a) / a.w, d = glm::normalize(glm::vec3(b) / b.w - o);
+      const auto [o, d] = pixelRay(inverse, uv);
       const float t = sphereHit(o, d, radius);
       // Only rays clearly inside the silhouette (not grazing within a voxel of it).
       if (sphereHit(o, d, radius + voxel) < 0.0f || sphereHit(o, d, radius - voxel) < 0.0f)
@@ -419,9 +429,7 @@ TEST_F(VolumeTest, AVolumeOfInterestSeedsTheCutawayWithItsRear) {
   for (int y = 0; y < seed.height; ++y)
     for (int x = 0; x < seed.width; ++x) {
       const glm::vec2 uv((x + 0.5f) / seed.width, 1.0f - (y + 0.5f) / seed.height);
-      const glm::vec4 a = inverse * glm::vec4(uv * 2.0f - 1.0f, -1.0f, 1.0f);
-      const glm::vec4 b = inverse * glm::vec4(uv * 2.0f - 1.0f, 1.0f, 1.0f);
-      const glm::vec3 o = glm::vec3(a) / a.w, d = glm::normalize(glm::vec3(b) / b.w - o);
+      const auto [o, d] = pixelRay(inverse, uv);
       // Rays clearly through the sphere: the rear at the far intersection.
       const float near = sphereHit(o, d, radius - voxel);
       const float w = seed.at(x, y)[0];
