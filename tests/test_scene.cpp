@@ -296,6 +296,14 @@ const BadScene kBadScenes[] = {
      "value -1 is outside [0, 1e+06]"},
     {"animation_keyframe_matrix.json", "/objects/0/animation/0/matrix", "unknown key \"matrix\""},
     {"animation_proxy_zero_scale.json", "/proxies/0/animation/1/scale", "scale must not be zero"},
+    // Volumes.
+    {"volume_missing_transfer_function.json", "/volumes/0",
+     "missing required key \"transferFunction\""},
+    {"volume_labels_fractional.json", "/volumes/0/transferFunction/1/value",
+     "a label volume's points are whole label values"},
+    {"volume_not_a_volume.json", "/volumes/0/file",
+     "unknown volume format (expected"},
+    {"volume_name_taken.json", "/volumes/0/name", "the name \"head\" is taken"},
 };
 
 void PrintTo(const BadScene& bad, std::ostream* os) {
