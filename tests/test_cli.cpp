@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -105,6 +106,34 @@ TEST(Cli, InfoPrintsObjectsAndWatertightness) {
     for (const auto& o : info["objects"]) sum += o["triangles"].get<int>();
     return sum;
   }());
+}
+
+// A volume scene end to end: `info` describes the volume as the file has it, `render` writes
+// the picture and the volume AOVs, whose opacity covers the head.
+TEST(Cli, VolumeSceneInfoAndRenderWithAovs) {
+  const std::string scene = kSource + "/examples/mri-head-box-cut.json";
+  const Result info = run("info " + scene);
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const auto j = nlohmann::json::parse(info.out);
+  ASSERT_EQ(j["volumes"].size(), 1u);
+  EXPECT_EQ(j["volumes"][0]["dims"], nlohmann::json({181, 217, 181}));
+  EXPECT_EQ(j["volumes"][0]["voxelType"], "u8");
+  EXPECT_EQ(j["volumes"][0]["mode"], "composite");
+  const fs::path dir = scratch("volume-aovs"), out = scratch("head.png");
+  const Result r = run("render " + scene + " -o " + out.string() + " --size 96x96 --aov " +
+                       dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out));
+  const FloatImage opacity = readPfm(dir / "volumeOpacity.pfm");
+  const FloatImage entry = readPfm(dir / "volumeEntryDepth.pfm");
+  int opaque = 0, entered = 0;
+  for (int y = 0; y < opacity.height; ++y)
+    for (int x = 0; x < opacity.width; ++x) {
+      opaque += opacity.at(x, y)[0] > 0.9f;
+      entered += !std::isnan(entry.at(x, y)[0]);
+    }
+  EXPECT_GT(opaque, 96 * 96 / 5);
+  EXPECT_GE(entered, opaque);
 }
 
 TEST(Cli, BenchPrintsJsonAndTable) {
