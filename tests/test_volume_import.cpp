@@ -1,10 +1,22 @@
 // Volume import: three real files checked against numbers read independently with Python,
 // NIfTI-1 and NIfTI-2 written here byte by byte (sform, qform, pixdim, scaling, byte order, a
 // 4-D series), raw voxels with a JSON header in every type and both byte orders, .npy in C
-// and Fortran order, .npz archives written through libzip, .den files, and every bad input.
+// and Fortran order, .npz archives written through libzip, .den files, MetaImage, NRRD and
+// VTK files written here as their writers (ITK, teem, VTK) write them, DICOM series written
+// through GDCM, and every bad input.
 #include <gtest/gtest.h>
 #include <unistd.h>
 #include <zip.h>
+#include <zlib.h>
+
+// The DICOM tests write their series through GDCM.
+#include <gdcmDataElement.h>
+#include <gdcmDataSet.h>
+#include <gdcmFile.h>
+#include <gdcmTag.h>
+#include <gdcmTransferSyntax.h>
+#include <gdcmVR.h>
+#include <gdcmWriter.h>
 
 #include <algorithm>
 #include <bit>
@@ -165,6 +177,59 @@ std::string npyDict(const std::string& descr, const std::string& shape, bool for
          ", 'shape': " + shape + ", }";
 }
 
+// `bytes` deflated as a zlib stream (MetaImage's CompressedData) or, with `gzip`, as a gzip
+// file (NRRD's gzip encoding).
+std::string deflated(const std::string& bytes, bool gzip = false) {
+  z_stream z{};
+  EXPECT_EQ(
+      deflateInit2(&z, Z_BEST_COMPRESSION, Z_DEFLATED, gzip ? 15 + 16 : 15, 8, Z_DEFAULT_STRATEGY),
+      Z_OK);
+  std::string out(deflateBound(&z, uLong(bytes.size())), '\0');
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  z.avail_in = uInt(bytes.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = uInt(out.size());
+  EXPECT_EQ(deflate(&z, Z_FINISH), Z_STREAM_END);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  return out;
+}
+
+// A MetaImage header as ITK's MetaImageIO writes it; `extra` lines go before ElementDataFile
+// and, MetaIO keeping a repeated key's last value, override the defaults.
+std::string metaHeader(const std::string& dims, const std::string& type,
+                       const std::string& extra = "", const std::string& dataFile = "LOCAL") {
+  return "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+         "CompressedData = False\nTransformMatrix = 1 0 0 0 1 0 0 0 1\nOffset = 0 0 0\n"
+         "CenterOfRotation = 0 0 0\nAnatomicalOrientation = RAI\nElementSpacing = 1 1 1\n"
+         "DimSize = " +
+         dims + "\nElementType = " + type + "\n" + extra + "ElementDataFile = " + dataFile + "\n";
+}
+
+// A NRRD header as teem's unu writes it, the given fields after its comment lines.
+std::string nrrdHeader(const std::string& fields) {
+  return "NRRD0004\n# Complete NRRD file format specification at:\n"
+         "# http://teem.sourceforge.net/nrrd/format.html\n" +
+         fields;
+}
+
+// A VTK legacy header for structured points; `geometry` holds DIMENSIONS, SPACING, ORIGIN.
+std::string vtkHeader(const std::string& format, const std::string& geometry, int points,
+                      const std::string& type) {
+  return "# vtk DataFile Version 3.0\nwritten by a test\n" + format +
+         "\nDATASET STRUCTURED_POINTS\n" + geometry + "POINT_DATA " + std::to_string(points) +
+         "\nSCALARS scalars " + type + "\nLOOKUP_TABLE default\n";
+}
+
+// Numbers as text, `perLine` to a line.
+template <typename T>
+std::string asText(const std::vector<T>& values, std::size_t perLine = 5) {
+  std::string s;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    s += std::to_string(values[i]) + ((i + 1) % perLine == 0 ? "\n" : " ");
+  return s;
+}
+
 class VolumeImportTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -238,6 +303,88 @@ class VolumeImportTest : public ::testing::Test {
 const glm::ivec3 kSmall{2, 3, 4};
 int smallValue(int i, int j, int k) {
   return i + 10 * j + 100 * k - 50;
+}
+
+// One DICOM CT slice written through GDCM, every tag given here as it lies in the file.
+struct DicomSpec {
+  std::string series = "1.2.826.0.1.3680043.2.1125.1";
+  std::string position = "5\\-20\\30";
+  std::string orientation = "0\\1\\0\\0\\0\\-1";  // along a row +y, down a column −z
+  std::string spacing = "0.5\\0.75";              // between rows, between columns
+  std::string slope = "2", intercept = "-1024";
+  std::string frames;  // NumberOfFrames, when not empty
+  std::uint16_t rows = 6, columns = 8;
+  bool implicit = false;  // Implicit VR Little Endian instead of Explicit
+  bool image = true;      // false: no image pixel module, like a structured report
+  std::vector<std::int16_t> pixels;
+};
+
+void putDicom(gdcm::DataSet& ds, std::uint16_t group, std::uint16_t element, const char* vr,
+              std::string value) {
+  const gdcm::VR type = gdcm::VR::GetVRType(vr);
+  if (value.size() % 2) value += type == gdcm::VR::UI ? '\0' : ' ';  // values have even lengths
+  gdcm::DataElement e(gdcm::Tag(group, element));
+  e.SetVR(type);
+  e.SetByteValue(value.data(), gdcm::VL(std::uint32_t(value.size())));
+  ds.Insert(e);
+}
+
+std::string us(std::uint16_t v) {
+  return encode<std::uint16_t>({v});
+}
+
+void writeDicom(const fs::path& file, const DicomSpec& s, int instance) {
+  gdcm::Writer writer;
+  writer.SetFileName(file.c_str());
+  writer.GetFile().GetHeader().SetDataSetTransferSyntax(
+      s.implicit ? gdcm::TransferSyntax::ImplicitVRLittleEndian
+                 : gdcm::TransferSyntax::ExplicitVRLittleEndian);
+  gdcm::DataSet& ds = writer.GetFile().GetDataSet();
+  putDicom(ds, 0x0008, 0x0016, "UI", "1.2.840.10008.5.1.4.1.1.2");  // CT Image Storage
+  putDicom(ds, 0x0008, 0x0018, "UI", s.series + "." + std::to_string(instance));
+  putDicom(ds, 0x0008, 0x0060, "CS", "CT");
+  putDicom(ds, 0x0020, 0x000D, "UI", "1.2.826.0.1.3680043.2.1125.0");
+  if (!s.series.empty()) putDicom(ds, 0x0020, 0x000E, "UI", s.series);
+  putDicom(ds, 0x0020, 0x0013, "IS", std::to_string(instance));
+  if (!s.image) {
+    ASSERT_TRUE(writer.Write());
+    return;
+  }
+  if (!s.position.empty()) putDicom(ds, 0x0020, 0x0032, "DS", s.position);
+  putDicom(ds, 0x0020, 0x0037, "DS", s.orientation);
+  putDicom(ds, 0x0028, 0x0002, "US", us(1));
+  putDicom(ds, 0x0028, 0x0004, "CS", "MONOCHROME2");
+  if (!s.frames.empty()) putDicom(ds, 0x0028, 0x0008, "IS", s.frames);
+  putDicom(ds, 0x0028, 0x0010, "US", us(s.rows));
+  putDicom(ds, 0x0028, 0x0011, "US", us(s.columns));
+  putDicom(ds, 0x0028, 0x0030, "DS", s.spacing);
+  putDicom(ds, 0x0028, 0x0100, "US", us(16));
+  putDicom(ds, 0x0028, 0x0101, "US", us(16));
+  putDicom(ds, 0x0028, 0x0102, "US", us(15));
+  putDicom(ds, 0x0028, 0x0103, "US", us(1));
+  putDicom(ds, 0x0028, 0x1052, "DS", s.intercept);
+  putDicom(ds, 0x0028, 0x1053, "DS", s.slope);
+  std::vector<std::int16_t> pixels = s.pixels;
+  pixels.resize(std::size_t(s.rows) * s.columns);
+  putDicom(ds, 0x7FE0, 0x0010, "OW", encode(pixels));
+  ASSERT_TRUE(writer.Write()) << file;
+}
+
+// The series of the DICOM tests: 8 columns × 6 rows × 5 slices, slice k at (5 − 2.5k, −20, 30)
+// — 2.5 mm apart along the normal row × column = (−1, 0, 0) — holding i + 10j + 100k − 200,
+// rescaled by 2 and −1024 + k.
+constexpr glm::ivec3 kSeries{8, 6, 5};
+int seriesValue(int i, int j, int k) {
+  return i + 10 * j + 100 * k - 200;
+}
+DicomSpec seriesSlice(int k) {
+  DicomSpec s;
+  s.position = std::to_string(5 - 2.5 * k) + "\\-20\\30";
+  s.intercept = std::to_string(-1024 + k);
+  s.implicit = k % 2 == 1;
+  s.pixels = fill<std::int16_t>({kSeries.x, kSeries.y, 1},
+                                [k](int i, int j, int) { return seriesValue(i, j, k); });
+  return s;
 }
 
 }  // namespace
@@ -836,17 +983,728 @@ TEST_F(VolumeImportTest, DenBadInput) {
 }
 
 // ----------------------------------------------------------------------------------------------
+// MetaImage
+
+TEST_F(VolumeImportTest, MhaPlacesVoxelsByTransformMatrixSpacingAndOffset) {
+  // TransformMatrix's first three numbers are the direction of i (ITK's column-major reading):
+  // i along +y, j along −x, k along +z in the file's LPS; in RAS, i along −y and j along +x.
+  const fs::path file =
+      write("v.mha", metaHeader("2 3 4", "MET_SHORT",
+                                "TransformMatrix = 0 1 0 -1 0 0 0 0 1\nElementSpacing = 0.5 2 3\n"
+                                "Offset = 10 -5 1\n") +
+                         encode(fill<std::int16_t>(kSmall, smallValue)));
+  const Volume v = importVolume(file);
+  EXPECT_EQ(v.dims, kSmall);
+  EXPECT_EQ(v.voxelType, "i16");
+  EXPECT_EQ(v.values, fill<float>(kSmall, smallValue));
+  EXPECT_EQ(world(v, {0, 0, 0}), glm::vec3(-10, 5, 1));
+  EXPECT_EQ(world(v, {1, 0, 0}), glm::vec3(-10, 4.5f, 1));
+  EXPECT_EQ(world(v, {1, 2, 3}), glm::vec3(-6, 4.5f, 10));
+  EXPECT_EQ(v.spacing(), glm::vec3(0.5f, 2, 3));
+  EXPECT_EQ(v.minValue, -50.0f);
+  EXPECT_EQ(v.maxValue, float(smallValue(1, 2, 3)));
+}
+
+TEST_F(VolumeImportTest, MhaSynonymsBigEndianAndEveryElementType) {
+  // MetaIO's older spellings: Position, Orientation, ElementSize, ElementByteOrderMSB.
+  const std::string header =
+      "ObjectType = Image\nNDims = 3\nDimSize = 2 3 4\nElementType = MET_USHORT\n"
+      "ElementByteOrderMSB = True\nPosition = 1 2 3\nOrientation = 1 0 0 0 0 1 0 -1 0\n"
+      "ElementSize = 2 2 2\nElementDataFile = LOCAL\n";
+  const Volume v = importVolume(write(
+      "old.MHA",
+      header + encode(fill<std::uint16_t>(
+                          kSmall, [](int i, int j, int k) { return 40000 + i + 2 * j + 6 * k; }),
+                      true)));
+  EXPECT_EQ(v.voxelType, "u16");
+  EXPECT_EQ(v.at({1, 2, 3}), 40023.0f);
+  EXPECT_EQ(world(v, {1, 1, 1}), glm::vec3(-3, 0, 5));  // j along +z, k along −y (LPS)
+  // ElementSpacing wins over ElementSize.
+  EXPECT_EQ(importVolume(write("both.mha", metaHeader("1 1 1", "MET_UCHAR",
+                                                      "ElementSize = 9 9 9\n"
+                                                      "ElementSpacing = 1 2 3\n") +
+                                               "x"))
+                .spacing(),
+            glm::vec3(1, 2, 3));
+
+  struct Case {
+    const char* met;
+    const char* name;
+    std::string bytes;  // voxel 0 and 1, little- then big-endian
+    std::string big;
+    float first, second;
+  };
+  const Case cases[] = {
+      {"MET_UCHAR", "u8", encode<std::uint8_t>({250, 1}), encode<std::uint8_t>({250, 1}), 250, 1},
+      {"MET_CHAR", "i8", encode<std::int8_t>({-120, 1}), encode<std::int8_t>({-120, 1}), -120, 1},
+      {"MET_USHORT", "u16", encode<std::uint16_t>({65535, 1}),
+       encode<std::uint16_t>({65535, 1}, true), 65535, 1},
+      {"MET_SHORT", "i16", encode<std::int16_t>({-30000, 1}),
+       encode<std::int16_t>({-30000, 1}, true), -30000, 1},
+      {"MET_UINT", "u32", encode<std::uint32_t>({4000000000u, 1}),
+       encode<std::uint32_t>({4000000000u, 1}, true), 4000000000.0f, 1},
+      {"MET_INT", "i32", encode<std::int32_t>({-2000000000, 1}),
+       encode<std::int32_t>({-2000000000, 1}, true), -2000000000.0f, 1},
+      {"MET_FLOAT", "f32", encode<float>({-1.25f, 1}), encode<float>({-1.25f, 1}, true), -1.25f, 1},
+      {"MET_DOUBLE", "f64", encode<double>({0.1, 1}), encode<double>({0.1, 1}, true), float(0.1),
+       1},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.met);
+    for (const bool big : {false, true}) {
+      const Volume t = importVolume(
+          write("t.mha", metaHeader("2 1 1", c.met, big ? "BinaryDataByteOrderMSB = True\n" : "") +
+                             (big ? c.big : c.bytes)));
+      EXPECT_EQ(t.voxelType, c.name);
+      EXPECT_EQ(t.values, std::vector<float>({c.first, c.second}));
+    }
+  }
+}
+
+TEST_F(VolumeImportTest, MhdWithARawFileHeaderSizeAndCompression) {
+  const std::string voxels = encode(fill<std::int16_t>(kSmall, smallValue));
+  const std::vector<float> expected = fill<float>(kSmall, smallValue);
+  write("v.raw", voxels);
+  EXPECT_EQ(importVolume(write("v.mhd", metaHeader("2 3 4", "MET_SHORT", "", "v.raw"))).values,
+            expected);
+  // HeaderSize: bytes to skip in the data file; −1: the data are its last bytes.
+  write("skip.raw", "seven b" + voxels);
+  EXPECT_EQ(importVolume(
+                write("skip.mhd", metaHeader("2 3 4", "MET_SHORT", "HeaderSize = 7\n", "skip.raw")))
+                .values,
+            expected);
+  write("end.raw", std::string(33, '?') + voxels);
+  EXPECT_EQ(importVolume(
+                write("end.mhd", metaHeader("2 3 4", "MET_SHORT", "HeaderSize = -1\n", "end.raw")))
+                .values,
+            expected);
+  // HeaderSize in a LOCAL file counts from the end of the header.
+  EXPECT_EQ(importVolume(write("local.mha", metaHeader("2 3 4", "MET_SHORT", "HeaderSize = 3\n") +
+                                                "abc" + voxels))
+                .values,
+            expected);
+  // zlib-compressed, with and without CompressedDataSize, attached and in a file of its own.
+  const std::string z = deflated(voxels);
+  for (const std::string& size : {std::string(), std::to_string(z.size())}) {
+    SCOPED_TRACE("CompressedDataSize " + size);
+    const std::string extra =
+        "CompressedData = True\n" + (size.empty() ? "" : "CompressedDataSize = " + size + "\n");
+    EXPECT_EQ(importVolume(write("z.mha", metaHeader("2 3 4", "MET_SHORT", extra) + z)).values,
+              expected);
+    write("z.zraw", z);
+    EXPECT_EQ(
+        importVolume(write("z.mhd", metaHeader("2 3 4", "MET_SHORT", extra, "z.zraw"))).values,
+        expected);
+  }
+  // The compressed size bounds the stream: bytes after it are not read.
+  EXPECT_EQ(importVolume(write("zs.mha", metaHeader("2 3 4", "MET_SHORT",
+                                                    "CompressedData = True\nCompressedDataSize = " +
+                                                        std::to_string(z.size()) + "\n") +
+                                             z + "trailing"))
+                .values,
+            expected);
+  // Text voxels.
+  const Volume ascii = importVolume(write(
+      "a.mha", metaHeader("2 3 4", "MET_SHORT", "BinaryData = False\n") + asText(expected, 7)));
+  EXPECT_EQ(ascii.values, expected);
+}
+
+TEST_F(VolumeImportTest, MetaImageBadInput) {
+  const std::string voxels = encode(fill<std::int16_t>(kSmall, smallValue));
+  const auto bad = [&](const std::string& name, const std::string& bytes) {
+    return [this, name, bytes] { importVolume(write(name, bytes)); };
+  };
+  const auto header = [](const std::string& extra, const std::string& dims = "2 3 4",
+                         const std::string& type = "MET_SHORT") {
+    return metaHeader(dims, type, extra);
+  };
+  expectError(bad("n.mha", header("NDims = 2\n", "2 3") + voxels),
+              {"n.mha", "NDims is 2: only 3-D images are read"});
+  expectError(bad("n4.mha", header("NDims = 4\n", "2 3 4 1") + voxels), {"NDims is 4"});
+  expectError(bad("d.mha", header("", "2 3") + voxels),
+              {"d.mha", "line 11", "DimSize: expected 3 integers, got \"2 3\""});
+  expectError(bad("z.mha", header("", "2 0 4") + voxels),
+              {"z.mha", "dims must be positive, got 2×0×4"});
+  expectError(bad("neg.mha", header("", "2 -3 4") + voxels), {"dims must be positive"});
+  expectError(bad("t.mha", header("", "2 3 4", "MET_LONG") + voxels),
+              {"t.mha", "line 12", "unsupported ElementType \"MET_LONG\""});
+  expectError(bad("t2.mha", header("", "2 3 4", "MET_UCHAR_ARRAY") + voxels),
+              {"unsupported ElementType \"MET_UCHAR_ARRAY\""});
+  expectError(bad("c.mha", header("ElementNumberOfChannels = 3\n") + voxels),
+              {"c.mha", "ElementNumberOfChannels is 3: only single-channel"});
+  std::string mesh = header("");
+  mesh.replace(mesh.find("Image"), 5, "Mesh");
+  expectError(bad("o.mha", mesh + voxels),
+              {"o.mha", "line 1", "ObjectType is \"Mesh\": only Image is read"});
+  expectError(bad("m.mha", header("TransformMatrix = 1 0 0 0 1 0 0 0\n") + voxels),
+              {"m.mha", "TransformMatrix: expected 9 finite numbers"});
+  expectError(bad("s.mha", header("TransformMatrix = 1 0 0 1 0 0 0 0 1\n") + voxels),
+              {"s.mha", "TransformMatrix", "singular"});
+  expectError(bad("sp.mha", header("ElementSpacing = 1 0 1\n") + voxels),
+              {"sp.mha", "line 13", "ElementSpacing", "singular"});
+  expectError(bad("nan.mha", header("Offset = 0 nan 0\n") + voxels),
+              {"Offset: expected 3 finite numbers"});
+  expectError(bad("b.mha", header("BinaryData = maybe\n") + voxels),
+              {"BinaryData: expected True or False, got \"maybe\""});
+  expectError(bad("short.mha", header("") + voxels.substr(0, 47)),
+              {"short.mha", "data", "truncated: 47 bytes of voxel data, expected 48"});
+  expectError(bad("long.mha", header("") + voxels + "x"),
+              {"long.mha", "49 bytes of voxel data, expected 48", "dims disagree"});
+  expectError(bad("nodata.mha", "ObjectType = Image\nNDims = 3\nDimSize = 2 3 4\n"),
+              {"nodata.mha", "no ElementDataFile line"});
+  expectError(bad("nodims.mha", "NDims = 3\nElementType = MET_SHORT\nElementDataFile = LOCAL\n"),
+              {"nodims.mha", "header", "no DimSize line"});
+  expectError(bad("binary.mha", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16)),
+              {"binary.mha", "line 1", "expected \"Key = Value\", got \"\\x89PNG\""});
+  expectError(bad("huge.mha", std::string(2 << 20, 'x')),
+              {"huge.mha", "no end of the header in its first 1048576 bytes"});
+  expectError(bad("missing.mhd", metaHeader("2 3 4", "MET_SHORT", "", "absent.raw")),
+              {"missing.mhd", "data: ", "absent.raw: data file not found"});
+  expectError(bad("list.mhd", metaHeader("2 3 4", "MET_SHORT", "", "LIST 2D")),
+              {"list.mhd", "lists and patterns of data files are not read"});
+  expectError(bad("pattern.mhd", metaHeader("2 3 4", "MET_SHORT", "", "slice%03d.raw 1 4 1")),
+              {"pattern.mhd", "lists and patterns"});
+  expectError(bad("hs.mha", header("HeaderSize = -2\n") + voxels),
+              {"hs.mha", "HeaderSize must be −1"});
+  expectError(bad("hs2.mha", header("HeaderSize = 49\n") + voxels),
+              {"hs2.mha", "the file ends within the 49 bytes to skip"});
+  // Compressed data: corrupt, cut short, longer than the dims, or a size past the file's end.
+  std::string z = deflated(voxels);
+  const std::string compressed = "CompressedData = True\n";
+  expectError(bad("cut.mha", header(compressed) + z.substr(0, z.size() / 2)),
+              {"cut.mha", "data", "truncated: ", "bytes of voxel data, expected 48"});
+  std::string flipped = z;
+  for (std::size_t i = 2; i < flipped.size(); ++i) flipped[i] = char(~flipped[i]);
+  expectError(bad("flip.mha", header(compressed) + flipped),
+              {"flip.mha", "data", "corrupt compressed data"});
+  expectError(bad("notz.mha", header(compressed) + voxels), {"notz.mha", "corrupt compressed"});
+  expectError(bad("more.mha", header(compressed) + deflated(voxels + "xy")),
+              {"more.mha", "more inflated voxel data than the 48 bytes expected", "dims disagree"});
+  expectError(bad("size.mha", header(compressed + "CompressedDataSize = 1000\n") + z),
+              {"size.mha", "truncated: " + std::to_string(z.size()) +
+                               " bytes of compressed data, expected 1000"});
+  expectError(bad("hsz.mha", header(compressed + "HeaderSize = -1\n") + z),
+              {"HeaderSize = −1 needs binary, uncompressed data or a CompressedDataSize"});
+  // Text voxels: not numbers, out of the type's range, too few.
+  expectError(bad("a.mha", header("BinaryData = False\n", "2 1 1", "MET_UCHAR") + "1 x"),
+              {"a.mha", "data", "value 1, \"x\", is not a number"});
+  expectError(bad("a2.mha", header("BinaryData = False\n", "2 1 1", "MET_UCHAR") + "1 300"),
+              {"value 1, \"300\", does not fit u8"});
+  expectError(bad("a3.mha", header("BinaryData = False\n", "2 1 1", "MET_UCHAR") + "1.5 3"),
+              {"value 0, \"1.5\", does not fit u8"});
+  expectError(bad("a4.mha", header("BinaryData = False\n", "2 1 1", "MET_UCHAR") + " 7\n"),
+              {"truncated: 1 values, expected 2"});
+  expectError([&] { importVolume(write("over.mha", header("") + voxels), {.maxVoxels = 20}); },
+              {"over.mha", "line 11", "2×3×4 = 24 voxels exceed the limit of 20"});
+}
+
+// ----------------------------------------------------------------------------------------------
+// NRRD
+
+TEST_F(VolumeImportTest, NrrdAttachedRawWithSpaceDirectionsAndOrigin) {
+  // As Slicer writes a scan: LPS, axes not aligned with the world, key/value pairs, kinds.
+  const std::string fields =
+      "type: short\ndimension: 3\nspace: left-posterior-superior\nsizes: 2 3 4\n"
+      "space directions: (0,0.5,0) (-2,0,0) (0,0,3)\nkinds: domain domain domain\n"
+      "endian: little\nencoding: raw\nspace origin: (10,-5,1)\nDICOM_tag:=0008|0060 CT\n"
+      "labels: \"i\" \"j\" \"k\"\nspace units: \"mm\" \"mm\" \"mm\"\n\n";
+  const Volume v = importVolume(
+      write("v.nrrd", nrrdHeader(fields) + encode(fill<std::int16_t>(kSmall, smallValue))));
+  EXPECT_EQ(v.dims, kSmall);
+  EXPECT_EQ(v.voxelType, "i16");
+  EXPECT_EQ(v.values, fill<float>(kSmall, smallValue));
+  // (6, −4.5, 10) in the file's LPS, turned to RAS.
+  EXPECT_EQ(world(v, {1, 2, 3}), glm::vec3(-6, 4.5f, 10));
+  EXPECT_EQ(v.spacing(), glm::vec3(0.5f, 2, 3));
+}
+
+TEST_F(VolumeImportTest, NrrdSpacesLineUpInRas) {
+  // One voxel grid described in each space: all place voxel (1, 2, 3) at RAS (6, −4.5, 10).
+  const std::pair<const char*, const char*> cases[] = {
+      {"right-anterior-superior", "(0,0.5,0) (-2,0,0) (0,0,3)\nspace origin: (10,-5,1)"},
+      {"RAS", "(0,0.5,0) (-2,0,0) (0,0,3)\nspace origin: (10,-5,1)"},
+      {"left-anterior-superior", "(0,0.5,0) (2,0,0) (0,0,3)\nspace origin: (-10,-5,1)"},
+      {"left-posterior-superior", "(0,-0.5,0) (2,0,0) (0,0,3)\nspace origin: (-10,5,1)"},
+      {"scanner-xyz", "(0,0.5,0) (-2,0,0) (0,0,3)\nspace origin: (10,-5,1)"}};
+  for (const auto& [space, placement] : cases) {
+    const std::string fields = std::string("type: uchar\ndimension: 3\nspace: ") + space +
+                               "\nsizes: 2 3 4\nencoding: raw\nspace directions: " +
+                               placement + "\n\n";
+    const Volume v = importVolume(write("v.nrrd", nrrdHeader(fields) + std::string(24, '\1')));
+    EXPECT_EQ(world(v, {1, 2, 3}), glm::vec3(6, -4.5f, 10)) << space;
+  }
+}
+
+TEST_F(VolumeImportTest, NrrdGzipAsciiDetachedSkipsAndFourDimensions) {
+  const std::string voxels = encode(fill<std::int16_t>(kSmall, smallValue), true);
+  const std::vector<float> expected = fill<float>(kSmall, smallValue);
+  const std::string common = "type: int16\ndimension: 3\nsizes: 2 3 4\nendian: big\n";
+  EXPECT_EQ(importVolume(
+                write("g.nrrd", nrrdHeader(common + "encoding: gzip\n\n") + deflated(voxels, true)))
+                .values,
+            expected);
+  // gz, and a zlib stream too: the stream's header tells them apart.
+  EXPECT_EQ(
+      importVolume(write("z.nrrd", nrrdHeader(common + "encoding: gz\n\n") + deflated(voxels)))
+          .values,
+      expected);
+  // A gzip byte skip counts inflated bytes.
+  EXPECT_EQ(importVolume(write("gs.nrrd", nrrdHeader(common + "encoding: gzip\nbyte skip: 5\n\n") +
+                                              deflated("12345" + voxels, true)))
+                .values,
+            expected);
+  EXPECT_EQ(importVolume(write("a.nrrd", nrrdHeader("type: short\ndimension: 3\nsizes: 2 3 4\n"
+                                                    "encoding: ascii\n\n") +
+                                             asText(expected, 4)))
+                .values,
+            expected);
+  // Detached: the data file beside the header, after lines and bytes to skip.
+  write("v.raw", "a line\nanother\nxyz" + voxels);
+  const Volume d = importVolume(
+      write("v.nhdr", nrrdHeader(common + "encoding: raw\ndata file: v.raw\nline skip: 2\n"
+                                          "byte skip: 3\nspacings: 0.5 0.25 2\n")));
+  EXPECT_EQ(d.values, expected);
+  EXPECT_EQ(d.indexToWorld, glm::mat4(glm::vec4(0.5f, 0, 0, 0), glm::vec4(0, 0.25f, 0, 0),
+                                      glm::vec4(0, 0, 2, 0), glm::vec4(0, 0, 0, 1)));
+  // byte skip −1: the data end the file.
+  write("end.raw", std::string(100, '#') + voxels);
+  EXPECT_EQ(importVolume(write("end.nhdr", nrrdHeader(common + "encoding: raw\n"
+                                                               "datafile: end.raw\n"
+                                                               "byteskip: -1\n")))
+                .values,
+            expected);
+  write("v.raw.gz", deflated(voxels, true));
+  EXPECT_EQ(importVolume(write("gz.NHDR", nrrdHeader(common + "encoding: gzip\n"
+                                                              "data file: v.raw.gz\n")))
+                .values,
+            expected);
+  // 4-D with a first axis of one sample.
+  const Volume four = importVolume(write(
+      "four.nrrd",
+      nrrdHeader("type: float\ndimension: 4\nspace: RAS\nsizes: 1 2 3 4\n"
+                 "space directions: none (1,0,0) (0,1,0) (0,0,1)\nendian: little\nencoding: raw\n"
+                 "space origin: (1, 2, 3)\nkinds: vector domain domain domain\n\n") +
+          encode(fill<float>(kSmall, smallValue))));
+  EXPECT_EQ(four.dims, kSmall);
+  EXPECT_EQ(four.voxelType, "f32");
+  EXPECT_EQ(four.values, expected);
+  EXPECT_EQ(world(four, {1, 1, 1}), glm::vec3(2, 3, 4));
+  const Volume spaced = importVolume(
+      write("s4.nrrd", nrrdHeader("type: uchar\ndimension: 4\nsizes: 1 2 1 1\nspacings: nan 2 3 4\n"
+                                  "encoding: raw\n\n") +
+                           "ab"));
+  EXPECT_EQ(spaced.spacing(), glm::vec3(2, 3, 4));
+}
+
+TEST_F(VolumeImportTest, NrrdEveryTypeSpelling) {
+  struct Case {
+    const char* spelling;
+    const char* name;
+    std::string bytes;  // big-endian
+    float value;
+  };
+  std::vector<Case> cases;
+  for (const char* s : {"signed char", "int8", "int8_t"})
+    cases.push_back({s, "i8", encode<std::int8_t>({-100}), -100});
+  for (const char* s : {"uchar", "unsigned char", "uint8", "uint8_t"})
+    cases.push_back({s, "u8", encode<std::uint8_t>({200}), 200});
+  for (const char* s :
+       {"short", "short int", "signed short", "signed short int", "int16", "int16_t"})
+    cases.push_back({s, "i16", encode<std::int16_t>({-300}, true), -300});
+  for (const char* s : {"ushort", "unsigned short", "unsigned short int", "uint16", "uint16_t"})
+    cases.push_back({s, "u16", encode<std::uint16_t>({60000}, true), 60000});
+  for (const char* s : {"int", "signed int", "int32", "int32_t"})
+    cases.push_back({s, "i32", encode<std::int32_t>({-70000}, true), -70000});
+  for (const char* s : {"uint", "unsigned int", "uint32", "uint32_t"})
+    cases.push_back({s, "u32", encode<std::uint32_t>({70000}, true), 70000});
+  cases.push_back({"float", "f32", encode<float>({-1.5f}, true), -1.5f});
+  cases.push_back({"double", "f64", encode<double>({0.1}, true), float(0.1)});
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.spelling);
+    const Volume v = importVolume(
+        write("t.nrrd", nrrdHeader(std::string("type: ") + c.spelling +
+                                   "\ndimension: 3\nsizes: 1 1 1\nendian: big\nencoding: raw\n\n") +
+                            c.bytes));
+    EXPECT_EQ(v.voxelType, c.name);
+    EXPECT_EQ(v.values, std::vector<float>({c.value}));
+  }
+}
+
+TEST_F(VolumeImportTest, NrrdBadInput) {
+  const std::string voxels = encode(fill<std::int16_t>(kSmall, smallValue));
+  const std::string type = "type: short\n", dims = "dimension: 3\n", sizes = "sizes: 2 3 4\n",
+                    endian = "endian: little\n", raw = "encoding: raw\n";
+  const auto bad = [&](const std::string& name, const std::string& fields,
+                       const std::string& data) {
+    return [this, name, fields, data] { importVolume(write(name, nrrdHeader(fields) + data)); };
+  };
+  const std::string ok = type + dims + sizes + endian + raw;
+  expectError([&] { importVolume(write("magic.nrrd", "NRRD0009\n" + ok + "\n" + voxels)); },
+              {"magic.nrrd", "header", "not a NRRD file"});
+  expectError([&] { importVolume(write("empty.nrrd", "")); }, {"empty.nrrd", "not a NRRD file"});
+  expectError(bad("d2.nrrd", type + "dimension: 2\nsizes: 2 3\n" + endian + raw + "\n", voxels),
+              {"d2.nrrd", "line 5", "dimension is 2: only 3-D volumes"});
+  expectError(bad("d4.nrrd", type + "dimension: 4\nsizes: 3 2 3 4\n" + endian + raw + "\n", voxels),
+              {"d4.nrrd", "a 4-D volume whose first axis has 3 samples"});
+  expectError(bad("s.nrrd", type + dims + "sizes: 2 3\n" + endian + raw + "\n", voxels),
+              {"s.nrrd", "line 6", "sizes: expected 3 integers, got \"2 3\""});
+  expectError(bad("z.nrrd", type + dims + "sizes: 2 0 4\n" + endian + raw + "\n", ""),
+              {"z.nrrd", "dims must be positive, got 2×0×4"});
+  expectError(
+      [&] { importVolume(write("over.nrrd", nrrdHeader(ok + "\n") + voxels), {.maxVoxels = 10}); },
+      {"over.nrrd", "line 6", "2×3×4 = 24 voxels exceed the limit of 10"});
+  expectError(bad("t.nrrd", "type: complex\n" + dims + sizes + endian + raw + "\n", voxels),
+              {"t.nrrd", "line 4", "unknown type \"complex\""});
+  expectError(bad("t64.nrrd", "type: long long\n" + dims + sizes + endian + raw + "\n", voxels),
+              {"unsupported type \"long long\""});
+  expectError(bad("char.nrrd", "type: char\n" + dims + sizes + raw + "\n", voxels),
+              {"unknown type \"char\""});
+  expectError(bad("bz.nrrd", type + dims + sizes + endian + "encoding: bzip2\n\n", voxels),
+              {"bz.nrrd", "unsupported encoding \"bzip2\" (raw, gzip and ascii are read)"});
+  expectError(bad("hex.nrrd", type + dims + sizes + endian + "encoding: hex\n\n", voxels),
+              {"unsupported encoding \"hex\""});
+  expectError(bad("e.nrrd", type + dims + sizes + endian + "encoding: rot13\n\n", voxels),
+              {"unknown encoding \"rot13\""});
+  expectError(bad("noendian.nrrd", type + dims + sizes + raw + "\n", voxels),
+              {"noendian.nrrd", "header", "no \"endian\" field, needed for short data"});
+  expectError(bad("endian.nrrd", type + dims + sizes + "endian: middle\n" + raw + "\n", voxels),
+              {"endian: expected little or big"});
+  expectError(bad("f.nrrd", ok + "colour: red\n\n", voxels),
+              {"f.nrrd", "line 9", "unknown field \"colour\""});
+  expectError(bad("twice.nrrd", ok + "type: short\n\n", voxels), {"field \"type\" given twice"});
+  expectError(bad("line.nrrd", ok + "no colon here\n\n", voxels),
+              {"line.nrrd", "line 9", "expected \"field: description\""});
+  expectError(bad("nosize.nrrd", type + dims + endian + raw + "\n", voxels),
+              {"nosize.nrrd", "header", "no \"sizes\" field"});
+  const std::string space = "space: LPS\n";
+  expectError(bad("dir.nrrd", ok + space + "space directions: (1,0,0) (0,1,0)\n\n", voxels),
+              {"dir.nrrd", "space directions: expected 3 vectors (or none)"});
+  expectError(bad("dir2.nrrd", ok + space + "space directions: (1,0,0) (0,1) (0,0,1)\n\n", voxels),
+              {"space directions: expected 3 vectors"});
+  expectError(
+      bad("dir3.nrrd", ok + space + "space directions: (1,0,0) (0,1,0) (0,0,inf)\n\n", voxels),
+      {"space directions: expected 3 vectors"});
+  expectError(bad("none.nrrd", ok + space + "space directions: (1,0,0) none (0,0,1)\n\n", voxels),
+              {"none.nrrd", "axis 1 of the volume has no direction"});
+  expectError(bad("nospace.nrrd", ok + "space directions: (1,0,0) (0,1,0) (0,0,1)\n\n", voxels),
+              {"space directions without a \"space\""});
+  expectError(
+      bad("flat.nrrd", ok + space + "space directions: (1,0,0) (2,0,0) (0,0,1)\n\n", voxels),
+      {"flat.nrrd", "line 10", "singular"});
+  expectError(bad("sp.nrrd", ok + space + "space: RAS\n\n", voxels), {"given twice"});
+  expectError(bad("unk.nrrd", ok + "space: up-down-sideways\n\n", voxels),
+              {"unknown space \"up-down-sideways\""});
+  expectError(bad("time.nrrd", ok + "space: right-anterior-superior-time\n\n", voxels),
+              {"has time as a 4th axis"});
+  expectError(bad("sd.nrrd", ok + "space dimension: 2\n\n", voxels),
+              {"space dimension is 2: only 3 is read"});
+  expectError(bad("spacings.nrrd", ok + "spacings: 1 nan 1\n\n", voxels),
+              {"spacings: axis 1 needs a finite spacing, got \"nan\""});
+  expectError(bad("short.nrrd", ok + "\n", voxels.substr(0, 40)),
+              {"short.nrrd", "data", "truncated: 40 bytes of voxel data, expected 48"});
+  expectError(bad("long.nrrd", ok + "\n", voxels + "\n"),
+              {"long.nrrd", "49 bytes of voxel data, expected 48", "dims disagree"});
+  expectError(bad("noblank.nrrd", ok, ""),
+              {"noblank.nrrd", "no \"data file\" field and no blank line before attached data"});
+  expectError(bad("nofile.nhdr", ok + "data file: absent.raw\n", ""),
+              {"nofile.nhdr", "data: ", "absent.raw: data file not found"});
+  expectError(bad("list.nhdr", ok + "data file: LIST\n", ""), {"lists and patterns"});
+  expectError(bad("pattern.nhdr", ok + "data file: slice%03d.raw 1 4 1 2\n", ""),
+              {"lists and patterns"});
+  expectError(bad("ls.nrrd", ok + "line skip: 3\n\n", "one\ntwo\n"),
+              {"ls.nrrd", "the file ends within the 3 lines to skip"});
+  expectError(bad("bs.nrrd", ok + "byte skip: 100\n\n", voxels),
+              {"bs.nrrd", "the file ends within the 100 bytes to skip"});
+  expectError(bad("bs2.nrrd", ok + "byte skip: -2\n\n", voxels), {"byte skip must be −1"});
+  const std::string gzip = type + dims + sizes + endian + "encoding: gzip\n";
+  expectError(bad("bsg.nrrd", gzip + "byte skip: -1\n\n", deflated(voxels, true)),
+              {"byte skip −1 needs raw encoding"});
+  const std::string gz = deflated(voxels, true);
+  expectError(bad("cut.nrrd", gzip + "\n", gz.substr(0, gz.size() - 20)),
+              {"cut.nrrd", "data", "truncated"});
+  std::string corrupt = gz;
+  for (std::size_t i = 10; i < corrupt.size() - 8; ++i) corrupt[i] = char(corrupt[i] ^ 0x55);
+  expectError(bad("corrupt.nrrd", gzip + "\n", corrupt),
+              {"corrupt.nrrd", "data", "corrupt compressed data"});
+  std::string crc = gz;
+  crc[crc.size() - 6] = char(crc[crc.size() - 6] ^ 1);  // the CRC-32 in the gzip trailer
+  expectError(bad("crc.nrrd", gzip + "\n", crc), {"crc.nrrd", "corrupt compressed data"});
+  expectError(bad("gmore.nrrd", gzip + "\n", deflated(voxels + "xx", true)),
+              {"gmore.nrrd", "dims disagree"});
+  expectError(bad("gskip.nrrd", gzip + "byte skip: 60\n\n", gz),
+              {"gskip.nrrd", "the inflated data end within the 60 bytes to skip"});
+  const std::string ascii = "type: uchar\n" + dims + "sizes: 2 1 1\nencoding: text\n\n";
+  expectError(bad("a.nrrd", ascii, "1 -1"), {"a.nrrd", "data", "value 1, \"-1\", does not fit u8"});
+  expectError(bad("a2.nrrd", ascii, "1,2"), {"value 0, \"1,2\", is not a number"});
+  expectError(bad("a3.nrrd", ascii, "\n"), {"truncated: 0 values, expected 2"});
+}
+
+// ----------------------------------------------------------------------------------------------
+// VTK legacy structured points
+
+TEST_F(VolumeImportTest, VtkBinaryAndAscii) {
+  const std::vector<float> expected = fill<float>(kSmall, smallValue);
+  // vtkStructuredPointsWriter's BINARY output: big-endian, a newline after the data.
+  const Volume b = importVolume(write(
+      "b.vtk",
+      vtkHeader("BINARY", "DIMENSIONS 2 3 4\nSPACING 0.5 2 3\nORIGIN 10 -5 1\n", 24, "short 1") +
+          encode(fill<std::int16_t>(kSmall, smallValue), true) + "\n"));
+  EXPECT_EQ(b.dims, kSmall);
+  EXPECT_EQ(b.voxelType, "i16");
+  EXPECT_EQ(b.values, expected);
+  EXPECT_EQ(world(b, {1, 2, 3}), glm::vec3(10.5f, -1, 10));
+  // ASCII, keywords in any case and order, ASPECT_RATIO for SPACING, CRLF line ends.
+  const Volume a = importVolume(
+      write("A.VTK",
+            "# vtk DataFile Version 2.0\r\ntitle\r\nascii\r\ndataset structured_points\r\n"
+            "origin 1 2 3\r\n\r\naspect_ratio 1 1 2\r\ndimensions 2 3 4\r\npoint_data 24\r\n"
+            "scalars density float\r\nlookup_table default\r\n" +
+                asText(expected, 6) + "\r\nVECTORS v float\r\n"));
+  EXPECT_EQ(a.voxelType, "f32");
+  EXPECT_EQ(a.values, expected);
+  EXPECT_EQ(world(a, {1, 1, 1}), glm::vec3(2, 3, 5));
+  // Defaults: spacing 1, origin 0.
+  EXPECT_EQ(importVolume(write("d.vtk", vtkHeader("ASCII", "DIMENSIONS 1 1 2\n", 2, "int") + "5 6"))
+                .indexToWorld,
+            glm::mat4(1.0f));
+
+  struct Case {
+    const char* type;
+    const char* name;
+    std::string bytes;  // big-endian
+    float value;
+  };
+  const Case cases[] = {
+      {"unsigned_char", "u8", encode<std::uint8_t>({250}), 250},
+      {"char", "i8", encode<std::int8_t>({-120}), -120},
+      {"unsigned_short", "u16", encode<std::uint16_t>({65535}, true), 65535},
+      {"short", "i16", encode<std::int16_t>({-30000}, true), -30000},
+      {"unsigned_int", "u32", encode<std::uint32_t>({4000000000u}, true), 4000000000.0f},
+      {"int", "i32", encode<std::int32_t>({-2000000000}, true), -2000000000.0f},
+      {"float", "f32", encode<float>({-1.25f}, true), -1.25f},
+      {"double", "f64", encode<double>({0.1}, true), float(0.1)},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.type);
+    const Volume v = importVolume(
+        write("t.vtk", vtkHeader("BINARY", "DIMENSIONS 1 1 1\n", 1, c.type) + c.bytes));
+    EXPECT_EQ(v.voxelType, c.name);
+    EXPECT_EQ(v.values, std::vector<float>({c.value}));
+  }
+}
+
+TEST_F(VolumeImportTest, VtkBadInput) {
+  const std::string voxels = encode(fill<std::int16_t>(kSmall, smallValue), true);
+  const std::string geometry = "DIMENSIONS 2 3 4\n";
+  const auto bad = [&](const std::string& name, const std::string& bytes) {
+    return [this, name, bytes] { importVolume(write(name, bytes)); };
+  };
+  expectError(bad("x.vtk", "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\">\n"),
+              {"x.vtk", "header", "not a VTK legacy file"});
+  expectError(bad("poly.vtk", "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\n"),
+              {"poly.vtk", "line 4", "DATASET POLYDATA is not read, only STRUCTURED_POINTS"});
+  expectError(bad("grid.vtk", "# vtk DataFile Version 5.1\nt\nBINARY\nDATASET unstructured_grid\n"),
+              {"DATASET UNSTRUCTURED_GRID is not read"});
+  expectError(bad("fmt.vtk", "# vtk DataFile Version 3.0\nt\nXML\nDATASET STRUCTURED_POINTS\n"),
+              {"fmt.vtk", "line 3", "expected ASCII or BINARY, got \"XML\""});
+  expectError(bad("title.vtk", "# vtk DataFile Version 3.0\n"), {"no title line"});
+  expectError(bad("ds.vtk", "# vtk DataFile Version 3.0\nt\nASCII\nDIMENSIONS 2 3 4\n"),
+              {"ds.vtk", "line 4", "expected DATASET"});
+  expectError(bad("dims.vtk", vtkHeader("BINARY", "DIMENSIONS 2 3\n", 6, "short") + voxels),
+              {"dims.vtk", "line 5", "DIMENSIONS: expected 3 values, got \"DIMENSIONS 2 3\""});
+  expectError(bad("nodims.vtk", vtkHeader("BINARY", "SPACING 1 1 1\n", 6, "short") + voxels),
+              {"nodims.vtk", "header", "no DIMENSIONS line"});
+  expectError(bad("zero.vtk", vtkHeader("BINARY", "DIMENSIONS 2 0 4\n", 0, "short")),
+              {"zero.vtk", "dims must be positive, got 2×0×4"});
+  expectError(bad("points.vtk", vtkHeader("BINARY", geometry, 25, "short") + voxels),
+              {"points.vtk", "line 6", "POINT_DATA 25 disagrees with DIMENSIONS 2×3×4 = 24"});
+  expectError(bad("comp.vtk", vtkHeader("BINARY", geometry, 24, "short 3") + voxels),
+              {"comp.vtk", "line 7", "SCALARS of 3 components: only 1 is read"});
+  expectError(bad("long.vtk", vtkHeader("BINARY", geometry, 24, "long") + voxels),
+              {"long.vtk", "unsupported SCALARS type \"long\""});
+  expectError(bad("bit.vtk", vtkHeader("BINARY", geometry, 24, "bit") + voxels),
+              {"unsupported SCALARS type \"bit\""});
+  expectError(bad("vec.vtk", "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET STRUCTURED_POINTS\n" +
+                                 geometry + "POINT_DATA 24\nVECTORS v float\n"),
+              {"vec.vtk", "the first point data are \"VECTORS\": only SCALARS are read"});
+  expectError(bad("cell.vtk", "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET STRUCTURED_POINTS\n" +
+                                  geometry + "CELL_DATA 6\n"),
+              {"cell.vtk", "unexpected \"CELL_DATA\""});
+  expectError(bad("lut.vtk", "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET STRUCTURED_POINTS\n" +
+                                 geometry + "POINT_DATA 24\nSCALARS s short\n" + voxels),
+              {"lut.vtk", "expected \"LOOKUP_TABLE name\" after SCALARS"});
+  expectError(
+      bad("nolut.vtk", "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET STRUCTURED_POINTS\n" +
+                           geometry + "POINT_DATA 24\nSCALARS s short\n"),
+      {"nolut.vtk", "truncated header: no LOOKUP_TABLE"});
+  expectError(bad("short.vtk", vtkHeader("BINARY", geometry, 24, "short") + voxels.substr(0, 47)),
+              {"short.vtk", "data", "truncated: 47 bytes of voxel data, expected 48"});
+  expectError(bad("ascii.vtk", vtkHeader("ASCII", geometry, 24, "short") + "1 2 3"),
+              {"ascii.vtk", "data", "truncated: 3 values, expected 24"});
+  expectError(bad("range.vtk", vtkHeader("ASCII", "DIMENSIONS 1 1 1\n", 1, "short") + "40000"),
+              {"value 0, \"40000\", does not fit i16"});
+  expectError(
+      bad("sing.vtk", vtkHeader("BINARY", geometry + "SPACING 1 0 1\n", 24, "short") + voxels),
+      {"sing.vtk", "line 6", "singular"});
+  expectError(
+      [&] {
+        importVolume(write("over.vtk", vtkHeader("BINARY", geometry, 24, "short") + voxels),
+                     {.maxVoxels = 23});
+      },
+      {"over.vtk", "DIMENSIONS", "2×3×4 = 24 voxels exceed the limit of 23"});
+}
+
+// ----------------------------------------------------------------------------------------------
+// DICOM series
+
+
+TEST_F(VolumeImportTest, DicomSeriesSortedPlacedAndRescaled) {
+  // File names out of slice order; a text file and a DICOM file without an image beside them.
+  for (int k = 0; k < kSeries.z; ++k)
+    writeDicom(dir_ / ("im" + std::to_string(k * 3 % 5) + ".dcm"), seriesSlice(k), k + 1);
+  write("README.txt", "not DICOM\n");
+  DicomSpec report;
+  report.image = false;
+  writeDicom(dir_ / "report.dcm", report, 99);
+
+  const Volume v = importVolume(dir_);
+  EXPECT_EQ(v.dims, kSeries);
+  EXPECT_EQ(v.voxelType, "i16");
+  for (int k = 0; k < kSeries.z; ++k)
+    for (int j = 0; j < kSeries.y; ++j)
+      for (int i = 0; i < kSeries.x; ++i)
+        ASSERT_EQ(v.at({i, j, k}), float(2 * seriesValue(i, j, k) - 1024 + k)) << i << j << k;
+  EXPECT_EQ(v.minValue, 2.0f * -200 - 1024);
+  EXPECT_EQ(v.maxValue, 2.0f * seriesValue(7, 5, 4) - 1024 + 4);
+  // i along the row direction by the column spacing (PixelSpacing[1] = 0.75), j down the
+  // column direction by the row spacing (PixelSpacing[0] = 0.5), k along the normal; the
+  // patient's LPS turned to RAS (x and y negated).
+  const glm::mat4 expected(glm::vec4(0, -0.75f, 0, 0), glm::vec4(0, 0, -0.5f, 0),
+                           glm::vec4(2.5f, 0, 0, 0), glm::vec4(-5, 20, 30, 1));
+  EXPECT_EQ(v.indexToWorld, expected);
+  EXPECT_EQ(world(v, {7, 5, 4}), glm::vec3(5, 14.75f, 27.5f));
+}
+
+TEST_F(VolumeImportTest, DicomTiltedGantrySlicesStepSideways) {
+  for (int k = 0; k < 3; ++k) {
+    DicomSpec s;
+    s.orientation = "1\\0\\0\\0\\1\\0";
+    s.position = "0\\" + std::to_string(0.5 * k) + "\\" + std::to_string(2 * k);
+    s.slope = "1", s.intercept = "0";
+    writeDicom(dir_ / ("s" + std::to_string(k) + ".dcm"), s, k + 1);
+  }
+  const Volume v = importVolume(dir_);
+  EXPECT_EQ(v.dims, glm::ivec3(8, 6, 3));
+  EXPECT_EQ(glm::vec3(v.indexToWorld[2]), glm::vec3(0, -0.5f, 2));  // LPS (0, 0.5, 2) in RAS
+  EXPECT_EQ(v.values, std::vector<float>(8 * 6 * 3, 0.0f));
+}
+
+TEST_F(VolumeImportTest, DicomSeveralSeriesOrAMissingSlice) {
+  const fs::path mixed = dir_ / "mixed", gap = dir_ / "gap", uneven = dir_ / "uneven";
+  for (const fs::path& d : {mixed, gap, uneven}) fs::create_directories(d);
+  for (int k = 0; k < kSeries.z; ++k) {
+    writeDicom(mixed / ("a" + std::to_string(k) + ".dcm"), seriesSlice(k), k + 1);
+    if (k != 2) writeDicom(gap / ("a" + std::to_string(k) + ".dcm"), seriesSlice(k), k + 1);
+  }
+  DicomSpec other = seriesSlice(0);
+  other.series = "1.2.826.0.1.3680043.2.1125.2";
+  writeDicom(mixed / "other.dcm", other, 1);
+  expectError([&] { importVolume(mixed); }, {"mixed", "2 series in the folder, one expected",
+                                             "1.2.826.0.1.3680043.2.1125.1 (5 images)",
+                                             "1.2.826.0.1.3680043.2.1125.2 (1 image)"});
+  expectError([&] { importVolume(gap); }, {"gap", "a gap of 5 mm between", "a1.dcm", "a3.dcm",
+                                           "(at -2.5 mm and 2.5 mm along the normal)",
+                                           "the step elsewhere 2.5 mm: 1 slice(s) missing"});
+  for (int k : {0, 1, 3}) {
+    DicomSpec s = seriesSlice(k);
+    if (k == 3) s.position = "-3.5\\-20\\30";  // 3.5 mm after slice 1, not 2.5 or 5
+    writeDicom(uneven / ("u" + std::to_string(k) + ".dcm"), s, k + 1);
+  }
+  expectError([&] { importVolume(uneven); },
+              {"uneven slice spacing: 6 mm between", "u1.dcm", "u3.dcm"});
+}
+
+TEST_F(VolumeImportTest, DicomBadInput) {
+  // Each case: a folder of the series' first three slices, `change` applied to slice 1.
+  int folder = 0;
+  const auto series = [&](auto change) {
+    const fs::path d = dir_ / ("case" + std::to_string(folder++));
+    fs::create_directories(d);
+    for (int k = 0; k < 3; ++k) {
+      DicomSpec s = seriesSlice(k);
+      if (k == 1) change(s);
+      writeDicom(d / ("s" + std::to_string(k) + ".dcm"), s, k + 1);
+    }
+    return d;
+  };
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.rows = 5; })); },
+              {"images of different sizes: 8×6 in", "s0.dcm", "8×5 in", "s1.dcm"});
+  expectError(
+      [&] { importVolume(series([](DicomSpec& s) { s.orientation = "0\\0\\1\\0\\1\\0"; })); },
+      {"images of different orientations", "s1.dcm"});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.spacing = "0.5\\0.5"; })); },
+              {"images of different pixel spacings"});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.position = "5\\-20\\30"; })); },
+              {"two images at the same position, -5 mm along the normal", "s0.dcm", "s1.dcm"});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.position = "2.5\\-19\\30"; })); },
+              {"the image positions do not lie on a line", "s1.dcm"});
+  expectError(
+      [&] { importVolume(series([](DicomSpec& s) { s.orientation = "0\\1\\0\\0\\1\\0"; })); },
+      {"s1.dcm", "(0020,0037) ImageOrientationPatient", "not two orthogonal unit vectors"});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.position = ""; })); },
+              {"s1.dcm", "(0020,0032) ImagePositionPatient", "missing"});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.position = "1\\2"; })); },
+              {"(0020,0032) ImagePositionPatient", "expected 3 finite numbers"});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.spacing = "0\\0.5"; })); },
+              {"(0028,0030) PixelSpacing", "not positive"});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.slope = "two"; })); },
+              {"(0028,1053) RescaleSlope", "expected 1 finite number, got \"two\""});
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.frames = "2"; })); },
+              {"s1.dcm", "(0028,0008) NumberOfFrames",
+               "\"2\" frames: only single-frame images are read"});
+  // A slice without SeriesInstanceUID is a series of its own.
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.series = ""; })); },
+              {"2 series", "(none) (1 image)"});
+  expectError([&] { importVolume(series([](DicomSpec&) {}), {.maxVoxels = 100}); },
+              {"8×6×3 = 144 voxels exceed the limit of 100"});
+
+  // No images at all.
+  fs::create_directories(dir_ / "empty");
+  std::ofstream(dir_ / "empty" / "notes.txt") << "no DICOM here";
+  expectError([&] { importVolume(dir_ / "empty"); },
+              {"empty", "no DICOM images in the folder (1 files)"});
+
+  // A 1 KB file whose element claims 2 GB is refused before GDCM allocates them.
+  const fs::path one = series([](DicomSpec&) {});
+  std::ifstream in(one / "s0.dcm", std::ios::binary);  // explicit VR
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t pixelData = bytes.rfind(std::string("\xE0\x7F\x10\x00OW", 6));
+  ASSERT_NE(pixelData, std::string::npos);
+  std::string huge = bytes;
+  huge.insert(pixelData, std::string("\x29\x00\x10\x10UN\0\0\xF0\xFF\xFF\x7Fxxxx", 16));
+  std::ofstream(one / "s0.dcm", std::ios::binary) << huge;
+  expectError([&] { importVolume(one); }, {"s0.dcm", "claims 2147483632 bytes, more than the"});
+  std::ofstream(one / "s0.dcm", std::ios::binary) << bytes.substr(0, pixelData + 20);
+  expectError([&] { importVolume(one); }, {"s0.dcm", "claims 96 bytes, more than the 8 left"});
+  std::ofstream(one / "s0.dcm", std::ios::binary) << bytes.substr(0, 300);
+  expectError([&] { importVolume(one); }, {"s0.dcm", "DICOM element"});
+}
+
+// ----------------------------------------------------------------------------------------------
 // Formats, files and ranges
 
 TEST_F(VolumeImportTest, UnknownFormatOrMissingFile) {
-  for (const char* name : {"volume.vtk", "volume", "volume.nii.gz.bak", "volume.raw"})
-    expectError(
-        [&] { importVolume(write(name, "x")); },
-        {name, "unknown volume format (expected .nii, .nii.gz, .npy, .npz, .den or .json)"});
-  for (const char* name : {"absent.nii.gz", "absent.npz", "absent.json"})
+  for (const char* name : {"volume.vti", "volume", "volume.nii.gz.bak", "volume.raw", "v.dcm"})
+    expectError([&] { importVolume(write(name, "x")); },
+                {name,
+                 "unknown volume format (expected .nii, .nii.gz, .npy, .npz, .den, .json, "
+                 ".mha, .mhd, .nrrd, .nhdr, .vtk or a folder of DICOM images)"});
+  for (const char* name :
+       {"absent.nii.gz", "absent.npz", "absent.json", "absent.mha", "absent.nhdr", "absent.vtk"})
     expectError([&] { importVolume(dir_ / name); }, {name, "volume file not found"});
+  // A folder is a DICOM series, whatever its name.
   fs::create_directories(dir_ / "folder.nii");
-  expectError([&] { importVolume(dir_ / "folder.nii"); }, {"volume file not found"});
+  expectError([&] { importVolume(dir_ / "folder.nii"); }, {"folder.nii", "DICOM"});
 }
 
 TEST(VolumeRange, IgnoresNanAndInfinities) {

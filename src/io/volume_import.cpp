@@ -4,17 +4,33 @@
 #include <zip.h>
 #include <zlib.h>
 
+#include <gdcmByteValue.h>
+#include <gdcmDataSet.h>
+#include <gdcmDictEntry.h>
+#include <gdcmDicts.h>
+#include <gdcmGlobal.h>
+#include <gdcmImage.h>
+#include <gdcmImageReader.h>
+#include <gdcmPixelFormat.h>
+#include <gdcmReader.h>
+#include <gdcmTrace.h>
+
 #include <algorithm>
 #include <bit>
 #include <cctype>
+#include <charconv>
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/json_reader.hpp"
@@ -138,6 +154,18 @@ glm::mat4 checkTransform(const glm::dmat4& m, const Where& where) {
   if (!(scale > 0.0) || std::abs(glm::determinant(a)) <= 1e-9 * scale)
     where.fail("the voxel-to-world transform is singular");
   return glm::mat4(m);
+}
+
+// Scanner data are placed in RAS+ millimetres, NIfTI's world (+x to the patient's right, +y
+// anterior, +z superior). DICOM and ITK's MetaImage are LPS+ (+x left, +y posterior), as NRRD's
+// left-… spaces are: those axes turn round, so volumes and meshes from any of these formats
+// line up in one scene.
+glm::dmat4 toRas(glm::dmat4 m, bool flipX, bool flipY) {
+  for (int c = 0; c < 4; ++c) {
+    if (flipX) m[c].x = -m[c].x;
+    if (flipY) m[c].y = -m[c].y;
+  }
+  return m;
 }
 
 // A stream of bytes to read voxels from: a file, a gzip file or a zip member.
@@ -741,6 +769,1382 @@ Volume loadRawJson(const fs::path& file, const VolumeLimits& limits) {
   return v;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Text headers: MetaImage, NRRD and VTK files begin with lines of text.
+
+// Real headers take a few hundred bytes; a binary file under one of their suffixes stops here.
+constexpr std::uint64_t kMaxTextHeader = 1 << 20;
+
+bool isSpace(char c) {
+  return std::isspace(static_cast<unsigned char>(c)) != 0;
+}
+
+std::string trim(std::string_view s) {
+  while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
+  while (!s.empty() && isSpace(s.back())) s.remove_suffix(1);
+  return std::string(s);
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string upper(std::string s) {
+  for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::vector<std::string> words(std::string_view s) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && isSpace(s[i])) ++i;
+    const std::size_t start = i;
+    while (i < s.size() && !isSpace(s[i])) ++i;
+    if (i > start) out.emplace_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+// A value quoted for an error message, cut short if long, bytes other than printable ASCII as
+// \xNN (it may come from a binary file).
+std::string inQuotes(std::string_view s) {
+  std::string out = "\"";
+  for (const char c : s.substr(0, 60)) {
+    if (c >= ' ' && c <= '~') {
+      out += c;
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", unsigned(static_cast<unsigned char>(c)));
+      out += hex;
+    }
+  }
+  return out + (s.size() > 60 ? "…\"" : "\"");
+}
+
+// A length in mm for an error message: "2.5", not "2.500000".
+std::string mm(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%g mm", v);
+  return s;
+}
+
+// A number as C writes it ("1.5", "-2e3", "+4", "nan"), whatever the locale.
+std::optional<double> toNumber(std::string_view s) {
+  if (s.starts_with('+') && !s.starts_with("+-")) s.remove_prefix(1);  // from_chars: '-' only
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+std::optional<std::int64_t> toInteger(std::string_view s) {
+  if (s.starts_with('+') && !s.starts_with("+-")) s.remove_prefix(1);
+  std::int64_t v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+  return v;
+}
+
+// `text` as exactly `n` finite numbers, else an error naming `what`.
+std::vector<double> numberList(const std::string& text, std::size_t n, const std::string& what,
+                               const Where& where) {
+  const std::vector<std::string> w = words(text);
+  std::vector<double> out;
+  for (const std::string& s : w)
+    if (const std::optional<double> v = toNumber(s); v && std::isfinite(*v)) out.push_back(*v);
+  if (w.size() != n || out.size() != n)
+    where.fail((what.empty() ? "" : what + ": ") + "expected " + std::to_string(n) +
+               (n == 1 ? " finite number" : " finite numbers") + ", got " + inQuotes(text));
+  return out;
+}
+
+std::vector<std::int64_t> integerList(const std::string& text, std::size_t n,
+                                      const std::string& what, const Where& where) {
+  const std::vector<std::string> w = words(text);
+  std::vector<std::int64_t> out;
+  for (const std::string& s : w)
+    if (const std::optional<std::int64_t> v = toInteger(s)) out.push_back(*v);
+  if (w.size() != n || out.size() != n)
+    where.fail(what + ": expected " + std::to_string(n) + (n == 1 ? " integer" : " integers") +
+               ", got " + inQuotes(text));
+  return out;
+}
+
+std::int64_t integer(const std::string& text, const std::string& what, const Where& where) {
+  return integerList(text, 1, what, where)[0];
+}
+
+// The lines of a header, each without its "\n" or "\r\n", counted from 1; where the next line
+// (or attached data) starts.
+class HeaderLines {
+ public:
+  HeaderLines(const fs::path& file, const Where& where)
+      : in_(file, std::ios::binary), where_(where) {
+    if (!in_) where.fail("cannot open for reading: " + std::string(std::strerror(errno)));
+  }
+  // False at the end of the file.
+  bool next(std::string& line) {
+    line.clear();
+    int c = in_.get();
+    if (c == EOF) {
+      if (in_.bad()) where_.fail("read error");
+      return false;
+    }
+    ++number_;
+    for (; c != EOF && c != '\n'; c = in_.get()) {
+      if (++offset_ > kMaxTextHeader)
+        where_.fail("no end of the header in its first " + std::to_string(kMaxTextHeader) +
+                    " bytes: not a header, or a broken one");
+      line += char(c);
+    }
+    if (c == '\n') ++offset_;
+    if (in_.bad()) where_.fail("read error");
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  }
+  int number() const { return number_; }
+  std::uint64_t offset() const { return offset_; }
+  // The line just read, as a place for errors.
+  Where here() const { return where_.at("line " + std::to_string(number_)); }
+
+ private:
+  std::ifstream in_;
+  Where where_;
+  int number_ = 0;
+  std::uint64_t offset_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Voxels stored raw, deflated (zlib or gzip) or as text, where a header says.
+
+enum class Encoding { kRaw, kDeflate, kAscii };
+
+struct DataLayout {
+  fs::path file;
+  std::uint64_t offset = 0;  // where the data, or the lines to skip, start
+  std::int64_t lineSkip = 0;
+  // Bytes skipped in the file after those lines; −1: the data are the file's last bytes (the
+  // voxels' size when raw, compressedSize when deflated).
+  std::int64_t byteSkip = 0;
+  std::int64_t inflatedSkip = 0;  // bytes skipped once inflated (NRRD's byte skip with gzip)
+  std::optional<std::uint64_t> compressedSize;
+  Encoding encoding = Encoding::kRaw;
+  bool big = false;
+  bool exact = true;  // more data than the dims need is an error
+};
+
+// A zlib or a gzip stream (told apart by its header) inflated from at most `limit` bytes of
+// `in`.
+class InflateSource : public Source {
+ public:
+  InflateSource(Source& in, std::uint64_t limit, const Where& where)
+      : in_(in), left_(limit), where_(where), buffer_(1 << 16) {
+    if (inflateInit2(&z_, 15 + 32) != Z_OK) where.fail("zlib cannot start inflating");
+  }
+  ~InflateSource() override { inflateEnd(&z_); }
+  std::size_t read(unsigned char* out, std::size_t n) override {
+    std::size_t done = 0;
+    while (done < n && !ended_) {
+      if (z_.avail_in == 0 && left_ > 0) {
+        const std::size_t got =
+            in_.read(buffer_.data(), std::size_t(std::min<std::uint64_t>(left_, buffer_.size())));
+        left_ = got == 0 ? 0 : left_ - got;
+        z_.next_in = buffer_.data();
+        z_.avail_in = uInt(got);
+      }
+      const uInt ask = uInt(std::min<std::size_t>(n - done, 1u << 30));
+      z_.next_out = out + done;
+      z_.avail_out = ask;
+      const int rc = inflate(&z_, Z_NO_FLUSH);
+      done += ask - z_.avail_out;
+      if (rc == Z_STREAM_END)
+        ended_ = true;
+      else if (rc == Z_BUF_ERROR)
+        break;  // no input left: a truncated stream, told by the caller from the count
+      else if (rc != Z_OK)
+        where_.fail("corrupt compressed data: " + std::string(z_.msg ? z_.msg : "zlib error"));
+    }
+    return done;
+  }
+
+ private:
+  Source& in_;
+  std::uint64_t left_;
+  Where where_;
+  std::vector<unsigned char> buffer_;
+  z_stream z_{};
+  bool ended_ = false;
+};
+
+// The value range of an integer voxel type, for numbers read as text.
+bool holds(const VoxelType& t, double v) {
+  if (t.kind == 'f') return true;
+  const double bits = t.bytes * 8;
+  const double lo = t.kind == 'u' ? 0.0 : -std::exp2(bits - 1);
+  const double hi = (t.kind == 'u' ? std::exp2(bits) : std::exp2(bits - 1)) - 1.0;
+  return v == std::floor(v) && v >= lo && v <= hi;
+}
+
+// `count` whitespace-separated numbers; an integer type takes the integers it can hold.
+std::vector<float> readAsciiVoxels(Source& in, std::size_t count, const VoxelType& t,
+                                   const Where& where) {
+  std::vector<float> values;
+  values.reserve(std::min(count, kChunkBytes / sizeof(float)));  // grows as values arrive
+  std::vector<unsigned char> buffer(1 << 16);
+  std::size_t have = 0, at = 0;
+  const auto next = [&]() -> int {
+    if (at == have) {
+      have = in.read(buffer.data(), buffer.size()), at = 0;
+      if (have == 0) return EOF;
+    }
+    return buffer[at++];
+  };
+  std::string token;
+  while (values.size() < count) {
+    token.clear();
+    int c = next();
+    while (c != EOF && isSpace(char(c))) c = next();
+    for (; c != EOF && !isSpace(char(c)); c = next()) {
+      if (token.size() == 64) where.fail("value " + std::to_string(values.size()) + " is too long");
+      token += char(c);
+    }
+    if (token.empty())
+      where.fail("truncated: " + std::to_string(values.size()) + " values, expected " +
+                 std::to_string(count));
+    const std::optional<double> v = toNumber(token);
+    if (!v)
+      where.fail("value " + std::to_string(values.size()) + ", " + inQuotes(token) +
+                 ", is not a number");
+    if (!holds(t, *v))
+      where.fail("value " + std::to_string(values.size()) + ", " + inQuotes(token) +
+                 ", does not fit " + t.name);
+    values.push_back(float(*v));
+  }
+  return values;
+}
+
+std::vector<float> readData(const DataLayout& d, std::size_t count, const VoxelType& t,
+                            const Where& data) {
+  std::error_code ec;
+  if (!fs::is_regular_file(d.file, ec)) data.fail("data file not found");
+  const std::uint64_t size = fileSize(d.file, data);
+  const std::uint64_t expected = std::uint64_t(count) * std::uint64_t(t.bytes);
+  if (d.offset > size) data.fail(truncated(0, expected));
+  std::uint64_t start = d.offset;
+  if (d.lineSkip > 0) {
+    std::ifstream lines(d.file, std::ios::binary);
+    lines.seekg(std::streamoff(start));
+    for (std::int64_t i = 0; i < d.lineSkip; ++i)
+      if (!lines.ignore(std::numeric_limits<std::streamsize>::max(), '\n') || lines.eof())
+        data.fail("the file ends within the " + std::to_string(d.lineSkip) + " lines to skip");
+    start = std::uint64_t(lines.tellg());
+  }
+  FileSource in(d.file, data);
+  const std::uint64_t left = size - start;
+  const bool swap = d.big != kNativeIsBig;
+
+  if (d.encoding == Encoding::kRaw) {
+    std::uint64_t available = left;
+    if (d.byteSkip == -1) {
+      if (available < expected) data.fail(truncated(available, expected));
+      start = size - expected, available = expected;
+    } else {
+      if (std::uint64_t(d.byteSkip) > left)
+        data.fail("truncated: the file ends within the " + std::to_string(d.byteSkip) +
+                  " bytes to skip");
+      start += std::uint64_t(d.byteSkip), available -= std::uint64_t(d.byteSkip);
+    }
+    if (d.exact)
+      checkDataSize(available, count, t, data);
+    else if (available < expected)
+      data.fail(truncated(available, expected));
+    in.seek(start);
+    return readVoxels(in, count, t, swap, {}, true, data);
+  }
+
+  if (d.byteSkip == -1) {
+    if (!d.compressedSize) data.fail("data at the file's end need a compressed size");
+    if (*d.compressedSize > left) data.fail(truncated(left, *d.compressedSize) + " (compressed)");
+    start = size - *d.compressedSize;
+  } else {
+    if (std::uint64_t(d.byteSkip) > left)
+      data.fail("truncated: the file ends within the " + std::to_string(d.byteSkip) +
+                " bytes to skip");
+    start += std::uint64_t(d.byteSkip);
+  }
+  in.seek(start);
+  if (d.encoding == Encoding::kAscii) return readAsciiVoxels(in, count, t, data);
+
+  std::uint64_t limit = size - start;
+  if (d.compressedSize) {
+    if (*d.compressedSize > limit)
+      data.fail("truncated: " + std::to_string(limit) + " bytes of compressed data, expected " +
+                std::to_string(*d.compressedSize));
+    limit = *d.compressedSize;
+  }
+  InflateSource z(in, limit, data);
+  if (const std::uint64_t skip = std::uint64_t(d.inflatedSkip); skipBytes(z, skip) < skip)
+    data.fail(truncated(0, expected) + " (the inflated data end within the " +
+              std::to_string(skip) + " bytes to skip)");
+  std::vector<float> values = readVoxels(z, count, t, swap, {}, false, data);
+  unsigned char extra;
+  if (d.exact && z.read(&extra, 1) != 0)
+    data.fail("more inflated voxel data than the " + std::to_string(expected) +
+              " bytes expected: the dims disagree with the data size");
+  return values;
+}
+
+// The file a header names, beside the header unless the path is absolute; patterns and lists
+// of files (several slices' files) are not read.
+fs::path dataFile(const fs::path& header, const std::string& name, const Where& where,
+                  const std::string& what) {
+  if (name.empty()) where.fail(what + " is empty");
+  const std::vector<std::string> w = words(name);
+  if (upper(w[0]) == "LIST" || name.find('%') != std::string::npos)
+    where.fail(what + " " + inQuotes(name) +
+               ": lists and patterns of data files are not read, only a single file");
+  return header.parent_path() / name;
+}
+
+// ---------------------------------------------------------------------------------------------
+// MetaImage (.mha, .mhd): "Key = Value" lines, the last of them ElementDataFile, then the
+// voxels (ElementDataFile = LOCAL) or the voxels' file's name. See ITK's MetaIO (metaImage.cxx)
+// and itk::MetaImageIO.
+
+struct MetaTypeName {
+  const char* name;
+  const VoxelType* type;
+};
+constexpr MetaTypeName kMetaTypes[] = {
+    {"MET_UCHAR", &kU8}, {"MET_CHAR", &kI8}, {"MET_USHORT", &kU16}, {"MET_SHORT", &kI16},
+    {"MET_UINT", &kU32}, {"MET_INT", &kI32}, {"MET_FLOAT", &kF32},  {"MET_DOUBLE", &kF64}};
+
+Volume loadMetaImage(const fs::path& file, const VolumeLimits& limits) {
+  const Where header{file.string(), "header"}, data{file.string(), "data"};
+  struct Field {
+    std::string key, value;  // the key as written
+    Where where;
+  };
+  std::map<std::string, Field> fields;  // by lower-case key; a repeated key's last value
+  HeaderLines lines(file, header);
+  std::string line;
+  bool ended = false;
+  while (!ended && lines.next(line)) {
+    const std::string text = trim(line);
+    if (text.empty()) continue;
+    const std::size_t eq = text.find('=');
+    if (eq == std::string::npos)
+      lines.here().fail("expected \"Key = Value\", got " + inQuotes(text));
+    const std::string key = trim(text.substr(0, eq));
+    fields[lower(key)] = {key, trim(text.substr(eq + 1)), lines.here()};
+    ended = lower(key) == "elementdatafile";
+  }
+  if (!ended) header.fail("no ElementDataFile line: not a MetaImage header, or a cut one");
+
+  // The first of `keys` present (MetaIO's synonyms, in order of precedence).
+  const auto get = [&](std::initializer_list<const char*> keys) -> const Field* {
+    for (const char* k : keys)
+      if (const auto it = fields.find(lower(k)); it != fields.end()) return &it->second;
+    return nullptr;
+  };
+  const auto require = [&](const char* key) -> const Field& {
+    const Field* f = get({key});
+    if (!f) header.fail("no " + std::string(key) + " line");
+    return *f;
+  };
+  const auto boolean = [&](std::initializer_list<const char*> keys, bool otherwise) {
+    const Field* f = get(keys);
+    if (!f) return otherwise;
+    const std::string v = lower(f->value);
+    if (v != "true" && v != "false" && v != "1" && v != "0")
+      f->where.fail(f->key + ": expected True or False, got " + inQuotes(f->value));
+    return v == "true" || v == "1";
+  };
+
+  if (const Field* f = get({"ObjectType"}); f && lower(f->value) != "image")
+    f->where.fail("ObjectType is " + inQuotes(f->value) + ": only Image is read");
+  const Field& nDims = require("NDims");
+  if (const std::int64_t n = integer(nDims.value, "NDims", nDims.where); n != 3)
+    nDims.where.fail("NDims is " + std::to_string(n) + ": only 3-D images are read");
+  const Field& dimSize = require("DimSize");
+  const std::vector<std::int64_t> d = integerList(dimSize.value, 3, "DimSize", dimSize.where);
+  const std::size_t count = checkDims(d.data(), limits, dimSize.where);
+  if (const Field* f = get({"ElementNumberOfChannels"}))
+    if (const std::int64_t n = integer(f->value, f->key, f->where); n != 1)
+      f->where.fail("ElementNumberOfChannels is " + std::to_string(n) +
+                    ": only single-channel (scalar) images are read");
+  const Field& elementType = require("ElementType");
+  const VoxelType* type = nullptr;
+  for (const auto& [name, t] : kMetaTypes)
+    if (upper(elementType.value) == name) type = t;
+  if (!type)
+    elementType.where.fail("unsupported ElementType " + inQuotes(elementType.value) +
+                           " (expected MET_UCHAR, MET_CHAR, MET_USHORT, MET_SHORT, MET_UINT, "
+                           "MET_INT, MET_FLOAT or MET_DOUBLE)");
+
+  // World = Offset + TransformMatrix·diag(ElementSpacing)·(i, j, k): ITK's MetaImageIO reads
+  // TransformMatrix's numbers 3a, 3a + 1, 3a + 2 as the direction of index axis a (a column of
+  // itk::Image's direction matrix) and writes them so. Offset is voxel (0, 0, 0)'s centre.
+  glm::dmat4 m(1.0);
+  const Field* spacing = get({"ElementSpacing", "ElementSize"});
+  const Field* offset = get({"Offset", "Position", "Origin"});
+  const Field* matrix = get({"TransformMatrix", "Rotation", "Orientation"});
+  const std::vector<double> s = spacing
+                                    ? numberList(spacing->value, 3, spacing->key, spacing->where)
+                                    : std::vector<double>{1, 1, 1};
+  if (matrix) {
+    const std::vector<double> t = numberList(matrix->value, 9, matrix->key, matrix->where);
+    for (int a = 0; a < 3; ++a)
+      for (int r = 0; r < 3; ++r) m[a][r] = t[std::size_t(3 * a + r)];
+  }
+  for (int a = 0; a < 3; ++a) m[a] *= s[std::size_t(a)];
+  if (offset) {
+    const std::vector<double> o = numberList(offset->value, 3, offset->key, offset->where);
+    m[3] = glm::dvec4(o[0], o[1], o[2], 1.0);
+  }
+
+  DataLayout layout;
+  const Field& elementDataFile = *get({"ElementDataFile"});
+  if (upper(elementDataFile.value) == "LOCAL") {
+    layout.file = file;
+    layout.offset = lines.offset();
+  } else {
+    layout.file = dataFile(file, elementDataFile.value, elementDataFile.where, "ElementDataFile");
+  }
+  layout.big = boolean({"BinaryDataByteOrderMSB", "ElementByteOrderMSB"}, false);
+  const bool binary = boolean({"BinaryData"}, true);  // MetaImage files are binary in practice
+  const bool compressed = boolean({"CompressedData"}, false);
+  if (!binary && compressed)
+    get({"CompressedData"})->where.fail("CompressedData = True with BinaryData = False");
+  layout.encoding = !binary ? Encoding::kAscii : compressed ? Encoding::kDeflate : Encoding::kRaw;
+  if (const Field* f = get({"CompressedDataSize"}); f && compressed) {
+    const std::int64_t n = integer(f->value, f->key, f->where);
+    if (n < 0) f->where.fail("CompressedDataSize must not be negative");
+    if (n > 0) layout.compressedSize = std::uint64_t(n);  // 0: unknown, to the file's end
+  }
+  if (const Field* f = get({"HeaderSize"})) {
+    layout.byteSkip = integer(f->value, f->key, f->where);
+    if (layout.byteSkip < -1) f->where.fail("HeaderSize must be −1 (data at the end) or more");
+    if (layout.byteSkip == -1 && (!binary || (compressed && !layout.compressedSize)))
+      f->where.fail("HeaderSize = −1 needs binary, uncompressed data or a CompressedDataSize");
+  }
+
+  Volume v;
+  v.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
+  v.voxelType = type->name;
+  // A zero spacing is the likelier culprit of a singular transform.
+  const bool zero = std::find(s.begin(), s.end(), 0.0) != s.end();
+  const Field* culprit = spacing && (zero || !matrix) ? spacing : matrix;
+  v.indexToWorld = checkTransform(
+      toRas(m, true, true), culprit ? culprit->where.at(culprit->where.place + ": " + culprit->key) : header);
+  v.values = readData(layout, count, *type,
+                      layout.file == file ? data : data.at("data: " + layout.file.string()));
+  return v;
+}
+
+// ---------------------------------------------------------------------------------------------
+// NRRD (.nrrd with the data attached after a blank line, .nhdr naming a data file), after
+// http://teem.sourceforge.net/nrrd/format.html: the fields that place and decode a 3-D
+// volume; a 4-D one whose first axis has one sample (a "vector" of one value) reads as 3-D.
+
+struct NrrdTypeName {
+  const char* name;
+  const VoxelType* type;  // nullptr: a type of the spec that is not read
+};
+constexpr NrrdTypeName kNrrdTypes[] = {
+    {"signed char", &kI8},
+    {"int8", &kI8},
+    {"int8_t", &kI8},
+    {"uchar", &kU8},
+    {"unsigned char", &kU8},
+    {"uint8", &kU8},
+    {"uint8_t", &kU8},
+    {"short", &kI16},
+    {"short int", &kI16},
+    {"signed short", &kI16},
+    {"signed short int", &kI16},
+    {"int16", &kI16},
+    {"int16_t", &kI16},
+    {"ushort", &kU16},
+    {"unsigned short", &kU16},
+    {"unsigned short int", &kU16},
+    {"uint16", &kU16},
+    {"uint16_t", &kU16},
+    {"int", &kI32},
+    {"signed int", &kI32},
+    {"int32", &kI32},
+    {"int32_t", &kI32},
+    {"uint", &kU32},
+    {"unsigned int", &kU32},
+    {"uint32", &kU32},
+    {"uint32_t", &kU32},
+    {"float", &kF32},
+    {"double", &kF64},
+    {"longlong", nullptr},
+    {"long long", nullptr},
+    {"long long int", nullptr},
+    {"signed long long", nullptr},
+    {"signed long long int", nullptr},
+    {"int64", nullptr},
+    {"int64_t", nullptr},
+    {"ulonglong", nullptr},
+    {"unsigned long long", nullptr},
+    {"unsigned long long int", nullptr},
+    {"uint64", nullptr},
+    {"uint64_t", nullptr},
+    {"block", nullptr},
+};
+
+// The fields read, and those that do not change the voxels or their placement (the spec's
+// alternative spellings without spaces included: names are compared without spaces).
+constexpr const char* kNrrdFields[] = {
+    "dimension", "type",           "sizes",           "encoding",    "endian",
+    "space",     "spacedimension", "spacedirections", "spaceorigin", "spacings",
+    "byteskip",  "lineskip",       "datafile"};
+constexpr const char* kNrrdIgnoredFields[] = {
+    "content", "number",     "blocksize", "min",         "max",         "oldmin",
+    "oldmax",  "axismins",   "axismaxs",  "centers",     "centerings",  "labels",
+    "units",   "spaceunits", "kinds",     "thicknesses", "sampleunits", "measurementframe"};
+
+// The spaces of the spec, all 3-D but those with time.
+constexpr const char* kNrrdSpaces[] = {"right-anterior-superior",
+                                       "ras",
+                                       "left-anterior-superior",
+                                       "las",
+                                       "left-posterior-superior",
+                                       "lps",
+                                       "scanner-xyz",
+                                       "3d-right-handed",
+                                       "3d-left-handed"};
+constexpr const char* kNrrdTimeSpaces[] = {"right-anterior-superior-time",
+                                           "rast",
+                                           "left-anterior-superior-time",
+                                           "last",
+                                           "left-posterior-superior-time",
+                                           "lpst",
+                                           "scanner-xyz-time",
+                                           "3d-right-handed-time",
+                                           "3d-left-handed-time"};
+
+// "(x,y,z)" vectors or "none", `n` of them.
+std::vector<std::optional<glm::dvec3>> nrrdVectors(const std::string& text, std::size_t n,
+                                                   const std::string& what, const Where& where) {
+  const auto bad = [&] {
+    where.fail(what + ": expected " + std::to_string(n) +
+               (n == 1 ? " vector" : " vectors (or none)") + " of 3 finite numbers, got " +
+               inQuotes(text));
+  };
+  std::vector<std::optional<glm::dvec3>> out;
+  std::size_t i = 0;
+  for (;;) {
+    while (i < text.size() && isSpace(text[i])) ++i;
+    if (i == text.size()) break;
+    if (text.compare(i, 4, "none") == 0) {
+      out.emplace_back(), i += 4;
+      continue;
+    }
+    const std::size_t close = text.find(')', i);
+    if (text[i] != '(' || close == std::string::npos) bad();
+    std::string inner = text.substr(i + 1, close - i - 1);
+    std::replace(inner.begin(), inner.end(), ',', ' ');
+    const std::vector<std::string> w = words(inner);
+    glm::dvec3 v(0.0);
+    for (std::size_t a = 0; a < w.size() && a < 3; ++a) {
+      const std::optional<double> x = toNumber(w[a]);
+      if (!x || !std::isfinite(*x)) bad();
+      v[int(a)] = *x;
+    }
+    if (w.size() != 3 || std::count(text.begin() + std::ptrdiff_t(i),
+                                    text.begin() + std::ptrdiff_t(close), ',') != 2)
+      bad();
+    out.emplace_back(v), i = close + 1;
+  }
+  if (out.size() != n) bad();
+  return out;
+}
+
+Volume loadNrrd(const fs::path& file, const VolumeLimits& limits) {
+  const Where header{file.string(), "header"}, data{file.string(), "data"};
+  HeaderLines lines(file, header);
+  std::string line;
+  if (!lines.next(line) || line.size() != 8 || !line.starts_with("NRRD000") || line[7] < '1' ||
+      line[7] > '5')
+    header.fail("not a NRRD file (no NRRD0001 to NRRD0005 magic line)");
+  struct Field {
+    std::string name, value;
+    Where where;
+  };
+  std::map<std::string, Field> fields;  // by name without spaces
+  bool blank = false;
+  while (!blank && lines.next(line)) {
+    if (trim(line).empty()) {
+      blank = true;  // the end of the header; attached data follow
+      continue;
+    }
+    if (line[0] == '#') continue;
+    const std::size_t colon = line.find(": "), pair = line.find(":=");
+    if (pair != std::string::npos && (colon == std::string::npos || pair < colon))
+      continue;  // a key/value pair: free-form annotation
+    std::string name, value;
+    if (colon != std::string::npos)
+      name = line.substr(0, colon), value = trim(line.substr(colon + 2));
+    else if (line.back() == ':')
+      name = line.substr(0, line.size() - 1);
+    else
+      lines.here().fail("expected \"field: description\", got " + inQuotes(line));
+    std::string key = lower(name);
+    key.erase(std::remove_if(key.begin(), key.end(), isSpace), key.end());
+    const auto known = [&](const auto& list) {
+      return std::any_of(std::begin(list), std::end(list), [&](const char* k) { return key == k; });
+    };
+    if (known(kNrrdIgnoredFields)) continue;
+    if (!known(kNrrdFields)) lines.here().fail("unknown field " + inQuotes(name));
+    if (fields.count(key)) lines.here().fail("field " + inQuotes(name) + " given twice");
+    fields[key] = {name, value, lines.here()};
+  }
+  const auto get = [&](const char* key) -> const Field* {
+    const auto it = fields.find(key);
+    return it == fields.end() ? nullptr : &it->second;
+  };
+  const auto require = [&](const char* key, const char* name) -> const Field& {
+    const Field* f = get(key);
+    if (!f) header.fail(std::string("no \"") + name + "\" field");
+    return *f;
+  };
+
+  const Field& dimension = require("dimension", "dimension");
+  const std::int64_t dim = integer(dimension.value, "dimension", dimension.where);
+  if (dim != 3 && dim != 4)
+    dimension.where.fail("dimension is " + std::to_string(dim) +
+                         ": only 3-D volumes (or 4-D with a first axis of size 1) are read");
+  const std::size_t axes = std::size_t(dim), first = axes - 3;  // the first spatial axis
+  const Field& sizes = require("sizes", "sizes");
+  const std::vector<std::int64_t> size = integerList(sizes.value, axes, "sizes", sizes.where);
+  if (dim == 4 && size[0] != 1)
+    sizes.where.fail("a 4-D volume whose first axis has " + std::to_string(size[0]) +
+                     " samples: only a first axis of size 1 is read");
+  const std::size_t count = checkDims(size.data() + first, limits, sizes.where);
+
+  const Field& typeField = require("type", "type");
+  const std::string typeName = lower(trim(typeField.value));
+  const NrrdTypeName* type = nullptr;
+  for (const NrrdTypeName& t : kNrrdTypes)
+    if (words(typeName) == words(t.name)) type = &t;
+  if (!type) typeField.where.fail("unknown type " + inQuotes(typeField.value));
+  if (!type->type) typeField.where.fail("unsupported type " + inQuotes(typeField.value));
+
+  DataLayout layout;
+  const Field& encoding = require("encoding", "encoding");
+  const std::string enc = lower(encoding.value);
+  if (enc == "raw")
+    layout.encoding = Encoding::kRaw;
+  else if (enc == "gzip" || enc == "gz")
+    layout.encoding = Encoding::kDeflate;
+  else if (enc == "ascii" || enc == "text" || enc == "txt")
+    layout.encoding = Encoding::kAscii;
+  else if (enc == "hex" || enc == "bzip2" || enc == "bz2" || enc == "zrl")
+    encoding.where.fail("unsupported encoding " + inQuotes(encoding.value) +
+                        " (raw, gzip and ascii are read)");
+  else
+    encoding.where.fail("unknown encoding " + inQuotes(encoding.value));
+  if (const Field* f = get("endian")) {
+    const std::string e = lower(f->value);
+    if (e != "little" && e != "big")
+      f->where.fail("endian: expected little or big, got " + inQuotes(f->value));
+    layout.big = e == "big";
+  } else if (type->type->bytes > 1 && layout.encoding != Encoding::kAscii) {
+    header.fail("no \"endian\" field, needed for " + std::string(type->name) + " data");
+  }
+
+  // RAS and scanner coordinates are kept; LPS and LAS turn round (toRas).
+  bool space = false, left = false, posterior = false;
+  if (const Field* f = get("space")) {
+    const std::string s = lower(f->value);
+    left = s == "lps" || s == "left-posterior-superior" || s == "las" ||
+           s == "left-anterior-superior";
+    posterior = s == "lps" || s == "left-posterior-superior";
+    const auto in = [&](const auto& list) {
+      return std::any_of(std::begin(list), std::end(list), [&](const char* k) { return s == k; });
+    };
+    if (in(kNrrdTimeSpaces))
+      f->where.fail("space " + inQuotes(f->value) + " has time as a 4th axis: not read");
+    if (!in(kNrrdSpaces)) f->where.fail("unknown space " + inQuotes(f->value));
+    space = true;
+  }
+  if (const Field* f = get("spacedimension")) {
+    if (const std::int64_t n = integer(f->value, f->name, f->where); n != 3)
+      f->where.fail("space dimension is " + std::to_string(n) + ": only 3 is read");
+    space = true;
+  }
+
+  glm::dmat4 m(1.0);
+  Where placement = header;
+  if (const Field* f = get("spacedirections")) {
+    if (!space) f->where.fail("space directions without a \"space\" or \"space dimension\" field");
+    const auto directions = nrrdVectors(f->value, axes, f->name, f->where);
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (!directions[first + a])
+        f->where.fail("axis " + std::to_string(first + a) + " of the volume has no direction");
+      m[int(a)] = glm::dvec4(*directions[first + a], 0.0);
+    }
+    placement = f->where;
+  } else if (const Field* f = get("spacings")) {
+    const std::vector<std::string> w = words(f->value);
+    if (w.size() != axes)
+      f->where.fail("spacings: expected " + std::to_string(axes) + " numbers, got " +
+                    inQuotes(f->value));
+    for (std::size_t a = 0; a < 3; ++a) {
+      const std::optional<double> x = toNumber(w[first + a]);
+      if (!x || !std::isfinite(*x))
+        f->where.fail("spacings: axis " + std::to_string(first + a) +
+                      " needs a finite spacing, got " + inQuotes(w[first + a]));
+      m[int(a)][int(a)] = *x;
+    }
+    placement = f->where;
+  }
+  if (const Field* f = get("spaceorigin")) {
+    if (!space) f->where.fail("space origin without a \"space\" or \"space dimension\" field");
+    m[3] = glm::dvec4(*nrrdVectors(f->value, 1, f->name, f->where)[0], 1.0);
+  }
+
+  if (const Field* f = get("lineskip")) {
+    layout.lineSkip = integer(f->value, f->name, f->where);
+    if (layout.lineSkip < 0) f->where.fail("line skip must not be negative");
+  }
+  if (const Field* f = get("byteskip")) {
+    const std::int64_t skip = integer(f->value, f->name, f->where);
+    if (skip < -1) f->where.fail("byte skip must be −1 (data at the end) or more");
+    if (skip == -1 && layout.encoding != Encoding::kRaw)
+      f->where.fail("byte skip −1 needs raw encoding");
+    (layout.encoding == Encoding::kDeflate ? layout.inflatedSkip : layout.byteSkip) = skip;
+  }
+  if (const Field* f = get("datafile")) {
+    layout.file = dataFile(file, f->value, f->where, f->name);
+  } else {
+    if (!blank) header.fail("no \"data file\" field and no blank line before attached data");
+    layout.file = file;
+    layout.offset = lines.offset();
+  }
+
+  Volume v;
+  v.dims = glm::ivec3(int(size[first]), int(size[first + 1]), int(size[first + 2]));
+  v.voxelType = type->type->name;
+  v.indexToWorld = checkTransform(toRas(m, left, posterior), placement);
+  v.values = readData(layout, count, *type->type,
+                      layout.file == file ? data : data.at("data: " + layout.file.string()));
+  return v;
+}
+
+// ---------------------------------------------------------------------------------------------
+// VTK legacy files (.vtk) holding STRUCTURED_POINTS: the first point data array, which must
+// be SCALARS of one component. BINARY data are big-endian.
+
+struct VtkTypeName {
+  const char* name;
+  const VoxelType* type;
+};
+constexpr VtkTypeName kVtkTypes[] = {
+    {"unsigned_char", &kU8}, {"char", &kI8}, {"unsigned_short", &kU16}, {"short", &kI16},
+    {"unsigned_int", &kU32}, {"int", &kI32}, {"float", &kF32},          {"double", &kF64}};
+
+Volume loadVtk(const fs::path& file, const VolumeLimits& limits) {
+  const Where header{file.string(), "header"}, data{file.string(), "data"};
+  HeaderLines lines(file, header);
+  std::string line;
+  if (!lines.next(line) || !line.starts_with("# vtk DataFile Version"))
+    header.fail("not a VTK legacy file (no \"# vtk DataFile Version\" line)");
+  if (!lines.next(line)) header.fail("truncated header: no title line");
+  if (!lines.next(line)) header.fail("truncated header: no ASCII or BINARY line");
+  const std::string format = upper(trim(line));
+  if (format != "ASCII" && format != "BINARY")
+    lines.here().fail("expected ASCII or BINARY, got " + inQuotes(line));
+
+  std::vector<std::string> w;  // the next line's words, blank lines skipped
+  const auto next = [&](const char* expected) {
+    do
+      if (!lines.next(line)) header.fail(std::string("truncated header: no ") + expected);
+    while ((w = words(line)).empty());
+    w[0] = upper(w[0]);
+  };
+  const auto arguments = [&](std::size_t n) {
+    if (w.size() != n + 1)
+      lines.here().fail(w[0] + ": expected " + std::to_string(n) + (n == 1 ? " value" : " values") +
+                        ", got " + inQuotes(line));
+    const std::string t = trim(line);
+    return trim(t.substr(t.find_first_of(" \t")));
+  };
+
+  next("DATASET");
+  if (w[0] != "DATASET") lines.here().fail("expected DATASET, got " + inQuotes(line));
+  const std::string dataset = upper(arguments(1));
+  if (dataset != "STRUCTURED_POINTS")
+    lines.here().fail("DATASET " + dataset + " is not read, only STRUCTURED_POINTS");
+  std::optional<std::vector<std::int64_t>> dims;
+  std::vector<double> spacing{1, 1, 1}, origin{0, 0, 0};
+  Where placement = header;
+  for (next("POINT_DATA"); w[0] != "POINT_DATA"; next("POINT_DATA")) {
+    if (w[0] == "DIMENSIONS") {
+      dims = integerList(arguments(3), 3, "DIMENSIONS", lines.here());
+    } else if (w[0] == "SPACING" || w[0] == "ASPECT_RATIO") {
+      spacing = numberList(arguments(3), 3, w[0], lines.here());
+      placement = lines.here();
+    } else if (w[0] == "ORIGIN") {
+      origin = numberList(arguments(3), 3, "ORIGIN", lines.here());
+    } else {
+      lines.here().fail("unexpected " + inQuotes(w[0]) +
+                        " (expected DIMENSIONS, SPACING, ORIGIN or POINT_DATA)");
+    }
+  }
+  const Where pointData = lines.here();
+  const std::int64_t points = integer(arguments(1), "POINT_DATA", pointData);
+  if (!dims) header.fail("no DIMENSIONS line");
+  const std::size_t count = checkDims(dims->data(), limits, header.at("DIMENSIONS"));
+  if (points < 0 || std::uint64_t(points) != count)
+    pointData.fail("POINT_DATA " + std::to_string(points) + " disagrees with DIMENSIONS " +
+                   dimsText(dims->data()) + " = " + std::to_string(count));
+
+  next("SCALARS");
+  if (w[0] != "SCALARS")
+    lines.here().fail("the first point data are " + inQuotes(w[0]) + ": only SCALARS are read");
+  if (w.size() != 3 && w.size() != 4)
+    lines.here().fail("SCALARS: expected a name, a type and an optional number of components");
+  if (w.size() == 4 && w[3] != "1")
+    lines.here().fail("SCALARS of " + w[3] + " components: only 1 is read");
+  const VoxelType* type = nullptr;
+  for (const auto& [name, t] : kVtkTypes)
+    if (lower(w[2]) == name) type = t;
+  if (!type)
+    lines.here().fail("unsupported SCALARS type " + inQuotes(w[2]) +
+                      " (expected unsigned_char, char, unsigned_short, short, unsigned_int, int, "
+                      "float or double)");
+  next("LOOKUP_TABLE");
+  if (w[0] != "LOOKUP_TABLE" || w.size() != 2)
+    lines.here().fail("expected \"LOOKUP_TABLE name\" after SCALARS, got " + inQuotes(line));
+
+  DataLayout layout;
+  layout.file = file;
+  layout.offset = lines.offset();
+  layout.encoding = format == "ASCII" ? Encoding::kAscii : Encoding::kRaw;
+  layout.big = true;
+  layout.exact = false;  // other arrays may follow, and VTK ends binary data with a newline
+
+  Volume v;
+  v.dims = glm::ivec3(int((*dims)[0]), int((*dims)[1]), int((*dims)[2]));
+  v.voxelType = type->name;
+  glm::dmat4 m(1.0);
+  for (int a = 0; a < 3; ++a) m[a][a] = spacing[std::size_t(a)], m[3][a] = origin[std::size_t(a)];
+  v.indexToWorld = checkTransform(m, placement);
+  v.values = readData(layout, count, *type, data);
+  return v;
+}
+
+// ---------------------------------------------------------------------------------------------
+// DICOM series: a folder of single-frame images, read through GDCM.
+
+std::string tagText(std::uint16_t group, std::uint16_t element) {
+  char s[16];
+  std::snprintf(s, sizeof s, "(%04X,%04X)", group, element);
+  return s;
+}
+
+// GDCM allocates an element's claimed length before reading its value: a 1 KB file claiming
+// 4 GB gets 4 GB. So the element structure is walked here first, each defined length checked
+// against the bytes left in its file, item or sequence. (Part 5, §7: elements, sequences and
+// items of defined or undefined length; encapsulated pixel data as fragments.)
+class DicomWalker {
+ public:
+  DicomWalker(const fs::path& file, std::uint64_t size, const Where& where)
+      : in_(file, std::ios::binary), size_(size), where_(where) {
+    if (!in_) where.fail("cannot open for reading: " + std::string(std::strerror(errno)));
+  }
+
+  // The pixel data's length, when native (not encapsulated): GDCM, given less than the image
+  // needs, pads it or asserts.
+  std::optional<std::uint64_t> nativePixelData;
+  bool encapsulated = false;
+
+  // The file meta information (explicit VR little-endian) from byte 132, then the data set as
+  // its transfer syntax says.
+  void walk() {
+    pos_ = 132;
+    in_.seekg(std::streamoff(pos_));
+    std::string syntax;
+    std::uint64_t metaEnd = 0;
+    while (pos_ + 4 <= size_ && peekGroup() == 0x0002) {
+      const Element e = element(true, false);
+      if (e.length == kUndefined) where_.fail("file meta information of undefined length");
+      if (e.tag == 0x00020000u && e.length == 4) {
+        const std::uint32_t groupLength = number(4, false);
+        metaEnd = pos_ + groupLength;
+      } else if (e.tag == 0x00020010u && e.length <= 64) {
+        syntax.assign(e.length, '\0');
+        read(syntax.data(), e.length);
+        while (!syntax.empty() && (syntax.back() == '\0' || syntax.back() == ' '))
+          syntax.pop_back();
+      } else {
+        skip(e.length, size_);
+      }
+    }
+    // GDCM asserts on a file that ends within or right after its meta information.
+    if (metaEnd > size_ || pos_ >= size_)
+      where_.fail("truncated DICOM file: it ends within or right after its meta information");
+    if (syntax == "1.2.840.10008.1.2.1.99")
+      where_.fail("deflated data sets (transfer syntax " + syntax + ") are not read");
+    explicit_ = syntax != "1.2.840.10008.1.2";
+    big_ = syntax == "1.2.840.10008.1.2.2";
+    elements(size_, false, 0);
+  }
+
+ private:
+  static constexpr std::uint32_t kUndefined = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kItem = 0xFFFEE000u, kItemEnd = 0xFFFEE00Du,
+                                 kSequenceEnd = 0xFFFEE0DDu, kPixelData = 0x7FE00010u;
+  struct Element {
+    std::uint32_t tag, length;
+    bool sequence;  // SQ, or UN / implicit of undefined length: items follow
+  };
+
+  void read(char* out, std::uint64_t n) {
+    if (n > size_ - pos_ || !in_.read(out, std::streamsize(n)))
+      where_.fail("truncated DICOM element at byte " + std::to_string(pos_));
+    pos_ += n;
+  }
+  std::uint32_t number(int bytes, bool big) {
+    unsigned char b[4];
+    read(reinterpret_cast<char*>(b), std::uint64_t(bytes));
+    std::uint32_t v = 0;
+    for (int i = 0; i < bytes; ++i) v |= std::uint32_t(b[big ? bytes - 1 - i : i]) << (8 * i);
+    return v;
+  }
+  std::uint16_t peekGroup() {
+    unsigned char b[2];
+    if (!in_.read(reinterpret_cast<char*>(b), 2)) where_.fail("read error");
+    in_.seekg(std::streamoff(pos_));
+    return std::uint16_t(big_ ? b[0] << 8 | b[1] : b[1] << 8 | b[0]);
+  }
+  // Fails unless `n` bytes are left before `end`.
+  void bound(std::uint64_t n, std::uint64_t end) {
+    if (n > end - pos_)
+      where_.fail("DICOM element at byte " + std::to_string(pos_) + " claims " + std::to_string(n) +
+                  " bytes, more than the " + std::to_string(end - pos_) + " left");
+  }
+  void skip(std::uint64_t n, std::uint64_t end) {
+    bound(n, end);
+    pos_ += n;
+    in_.seekg(std::streamoff(pos_));
+  }
+  Element element(bool explicitVR, bool big) {
+    const std::uint32_t group = number(2, big), elem = number(2, big);
+    Element e{group << 16 | elem, 0, false};
+    if (group == 0xFFFE) {  // items and delimiters: no VR, whatever the syntax
+      e.length = number(4, big);
+      return e;
+    }
+    if (!explicitVR) {
+      e.length = number(4, big);
+      e.sequence = e.length == kUndefined && e.tag != kPixelData;
+      return e;
+    }
+    char vr[2];
+    read(vr, 2);
+    const std::string v(vr, 2);
+    // GDCM asserts (aborts, in Debian's build) on a VR it does not know.
+    static const char* const kVRs[] = {"AE", "AS", "AT", "CS", "DA", "DS", "DT", "FL", "FD",
+                                       "IS", "LO", "LT", "OB", "OD", "OF", "OL", "OV", "OW",
+                                       "PN", "SH", "SL", "SQ", "SS", "ST", "SV", "TM", "UC",
+                                       "UI", "UL", "UN", "UR", "US", "UT", "UV"};
+    if (std::none_of(std::begin(kVRs), std::end(kVRs), [&](const char* k) { return v == k; }))
+      where_.fail("invalid VR " + inQuotes(v) + " at byte " + std::to_string(pos_ - 2));
+    // And on a public tag of a VR its dictionary does not allow, when it reads the tag.
+    if (group % 2 == 0 && v != "UN") {
+      const gdcm::Tag tag{std::uint16_t(group), std::uint16_t(elem)};
+      const gdcm::VR dictionary = gdcm::Global::GetInstance().GetDicts().GetDictEntry(tag).GetVR();
+      if (dictionary != gdcm::VR::INVALID && dictionary != gdcm::VR::UN &&
+          !dictionary.Compatible(gdcm::VR(gdcm::VR::GetVRType(v.c_str()))))
+        where_.fail(tagText(std::uint16_t(group), std::uint16_t(elem)) + " has the VR " + v +
+                    ", not the dictionary's " + gdcm::VR::GetVRString(dictionary));
+    }
+    static const char* const kLong[] = {"OB", "OD", "OF", "OL", "OV", "OW", "SQ",
+                                        "SV", "UC", "UN", "UR", "UT", "UV"};
+    if (std::any_of(std::begin(kLong), std::end(kLong), [&](const char* k) { return v == k; })) {
+      number(2, big);
+      e.length = number(4, big);
+    } else {
+      e.length = number(2, big);
+    }
+    e.sequence = v == "SQ" || (v == "UN" && e.length == kUndefined);
+    return e;
+  }
+  // Elements until `end`, or until an item's end when `inItem` and of undefined length.
+  void elements(std::uint64_t end, bool inItem, int depth) {
+    if (depth > 32) where_.fail("DICOM sequences nested too deeply");
+    while (pos_ < end) {
+      const Element e = element(explicit_, big_);
+      if (e.tag == kItemEnd && inItem) return;
+      if (e.tag == kItem || e.tag == kItemEnd || e.tag == kSequenceEnd)
+        where_.fail("misplaced DICOM item or delimiter at byte " + std::to_string(pos_ - 8));
+      if (e.tag == kPixelData && depth == 0) {
+        encapsulated = e.length == kUndefined;
+        if (!encapsulated) nativePixelData = e.length;
+      }
+      if (e.length == kUndefined) {
+        if (e.sequence)
+          items(end, depth + 1, false);
+        else
+          fragments(end);
+      } else if (bound(e.length, end); e.sequence || (!explicit_ && startsWithItem(e.length))) {
+        items(pos_ + e.length, depth + 1, true);
+      } else {
+        skip(e.length, end);
+      }
+    }
+    if (inItem) where_.fail("a DICOM item without its end");
+  }
+  bool startsWithItem(std::uint32_t length) {
+    if (length < 8) return false;
+    const std::uint64_t at = pos_;
+    const bool item = number(4, big_) == (big_ ? 0xFFFEE000u : 0xE000FFFEu);
+    pos_ = at;
+    in_.seekg(std::streamoff(pos_));
+    return item;
+  }
+  // The items of a sequence, up to its delimiter, or to `end` when `defined`.
+  void items(std::uint64_t end, int depth, bool defined) {
+    if (depth > 32) where_.fail("DICOM sequences nested too deeply");
+    while (!defined || pos_ < end) {
+      const Element e = element(false, big_);
+      if (e.tag == kSequenceEnd && !defined) return;
+      if (e.tag != kItem) where_.fail("expected a DICOM item at byte " + std::to_string(pos_ - 8));
+      if (e.length == kUndefined) {
+        elements(end, true, depth + 1);
+      } else {
+        bound(e.length, end);
+        elements(pos_ + e.length, false, depth + 1);
+      }
+    }
+  }
+  // Encapsulated pixel data: an offset table and fragments, each an item of defined length.
+  void fragments(std::uint64_t end) {
+    for (;;) {
+      const Element e = element(false, big_);
+      if (e.tag == kSequenceEnd) return;
+      if (e.tag != kItem || e.length == kUndefined)
+        where_.fail("expected a pixel data fragment at byte " + std::to_string(pos_ - 8));
+      skip(e.length, end);
+    }
+  }
+
+  std::ifstream in_;
+  std::uint64_t size_, pos_ = 0;
+  Where where_;
+  bool explicit_ = true, big_ = false;
+};
+
+// Part 10 files begin with a 128-byte preamble and "DICM".
+bool isDicomFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char b[132];
+  return in.read(b, 132) && std::memcmp(b + 128, "DICM", 4) == 0;
+}
+
+struct DicomSlice {
+  std::string file, series;
+  std::int64_t rows = 0, columns = 0;
+  glm::dvec3 row{0.0}, column{0.0};  // ImageOrientationPatient: along a row, down a column
+  glm::dvec3 position{0.0};          // ImagePositionPatient: the first pixel's centre
+  glm::dvec2 pixelSpacing{0.0};      // PixelSpacing: between rows, between columns
+  Scaling scaling;
+  double along = 0.0;  // the position along the slice normal
+};
+
+// A DICOM tag, its name and where its value is bad.
+struct DicomTag {
+  std::uint16_t group, element;
+  const char* name;
+  Where at(const std::string& file) const { return {file, tagText(group, element) + " " + name}; }
+};
+constexpr DicomTag kSeriesUid{0x0020, 0x000E, "SeriesInstanceUID"},
+    kPosition{0x0020, 0x0032, "ImagePositionPatient"},
+    kOrientation{0x0020, 0x0037, "ImageOrientationPatient"},
+    kSamples{0x0028, 0x0002, "SamplesPerPixel"}, kFrames{0x0028, 0x0008, "NumberOfFrames"},
+    kRows{0x0028, 0x0010, "Rows"}, kColumns{0x0028, 0x0011, "Columns"},
+    kSpacing{0x0028, 0x0030, "PixelSpacing"}, kIntercept{0x0028, 0x1052, "RescaleIntercept"},
+    kSlope{0x0028, 0x1053, "RescaleSlope"},
+    kPhotometric{0x0028, 0x0004, "PhotometricInterpretation"},
+    kBitsAllocated{0x0028, 0x0100, "BitsAllocated"}, kBitsStored{0x0028, 0x0101, "BitsStored"},
+    kHighBit{0x0028, 0x0102, "HighBit"},
+    kPixelRepresentation{0x0028, 0x0103, "PixelRepresentation"},
+    kPixelData{0x7FE0, 0x0010, "PixelData"};
+
+const gdcm::ByteValue* dicomValue(const gdcm::DataSet& ds, const DicomTag& t) {
+  const gdcm::Tag tag(t.group, t.element);
+  return ds.FindDataElement(tag) ? ds.GetDataElement(tag).GetByteValue() : nullptr;
+}
+
+// A text value (UI, CS, DS, IS) without its padding; nullopt when absent or empty.
+std::optional<std::string> dicomText(const gdcm::DataSet& ds, const DicomTag& t) {
+  const gdcm::ByteValue* v = dicomValue(ds, t);
+  if (!v || !v->GetPointer()) return std::nullopt;
+  std::string s(v->GetPointer(), std::min<std::size_t>(v->GetLength(), 1024));
+  std::replace(s.begin(), s.end(), '\0', ' ');
+  s = trim(s);
+  return s.empty() ? std::nullopt : std::optional(s);
+}
+
+// A US value: two bytes, little-endian as GDCM holds it in memory.
+std::optional<std::int64_t> dicomUs(const gdcm::DataSet& ds, const DicomTag& t,
+                                    const std::string& file) {
+  const gdcm::ByteValue* v = dicomValue(ds, t);
+  if (!v) return std::nullopt;
+  if (v->GetLength() != 2 || !v->GetPointer()) t.at(file).fail("expected one US value");
+  const auto* b = reinterpret_cast<const unsigned char*>(v->GetPointer());
+  return std::int64_t(b[0] | b[1] << 8);
+}
+
+// Decimal strings separated by backslashes, exactly `n` of them.
+std::vector<double> dicomNumbers(const gdcm::DataSet& ds, const DicomTag& t, std::size_t n,
+                                 const std::string& file) {
+  const std::optional<std::string> s = dicomText(ds, t);
+  if (!s) t.at(file).fail("missing");
+  std::string spaced = *s;
+  std::replace(spaced.begin(), spaced.end(), '\\', ' ');
+  return numberList(spaced, n, "", t.at(file));
+}
+
+// The slice's header, or nullopt when the file is no image (a DICOMDIR, a report).
+std::optional<DicomSlice> readDicomHeader(const fs::path& path, const std::string& file) {
+  const Where where{file, ""};
+  DicomWalker walker(path, fileSize(path, where), where);
+  walker.walk();
+  gdcm::Reader reader;
+  reader.SetFileName(path.c_str());
+  const gdcm::Tag pixelData(0x7FE0, 0x0010);
+  bool read = false;
+  try {
+    read = reader.ReadUpToTag(pixelData, {pixelData});
+  } catch (const std::exception& e) {
+    where.fail(std::string("GDCM cannot read the file: ") + e.what());
+  }
+  if (!read) where.fail("GDCM cannot read the file");
+  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+  if (!ds.FindDataElement(gdcm::Tag(kRows.group, kRows.element))) return std::nullopt;
+
+  DicomSlice s;
+  s.file = file;
+  s.series = dicomText(ds, kSeriesUid).value_or("(none)");
+  if (const auto frames = dicomText(ds, kFrames))
+    if (const auto n = toInteger(*frames); !n || *n != 1)
+      kFrames.at(file).fail(inQuotes(*frames) + " frames: only single-frame images are read");
+  const auto rows = dicomUs(ds, kRows, file), columns = dicomUs(ds, kColumns, file);
+  if (!rows) kRows.at(file).fail("empty");
+  if (!columns) kColumns.at(file).fail("missing");
+  s.rows = *rows, s.columns = *columns;
+
+  // The image pixel module as PS3.3 C.7.6.3 has it for grey-scale images. GDCM asserts on
+  // some other combinations (a palette without its tables, one bit allocated, …).
+  const auto us = [&](const DicomTag& t) {
+    const std::optional<std::int64_t> v = dicomUs(ds, t, file);
+    if (!v) t.at(file).fail("missing");
+    return *v;
+  };
+  if (const std::int64_t samples = us(kSamples); samples != 1)
+    kSamples.at(file).fail(std::to_string(samples) + ": only grey-scale images are read");
+  const std::string photometric = dicomText(ds, kPhotometric).value_or("");
+  if (photometric != "MONOCHROME1" && photometric != "MONOCHROME2")
+    kPhotometric.at(file).fail(inQuotes(photometric) +
+                               ": only MONOCHROME1 and MONOCHROME2 images are read");
+  const std::int64_t allocated = us(kBitsAllocated), stored = us(kBitsStored),
+                     highBit = us(kHighBit), representation = us(kPixelRepresentation);
+  if (allocated != 8 && allocated != 16 && allocated != 32)
+    kBitsAllocated.at(file).fail(std::to_string(allocated) + ": 8, 16 or 32 are read");
+  if (stored < 1 || stored > allocated)
+    kBitsStored.at(file).fail(std::to_string(stored) + " of " + std::to_string(allocated) +
+                              " bits allocated");
+  if (highBit != stored - 1)
+    kHighBit.at(file).fail(std::to_string(highBit) +
+                           ", not BitsStored − 1 = " + std::to_string(stored - 1));
+  if (representation != 0 && representation != 1)
+    kPixelRepresentation.at(file).fail(std::to_string(representation) + ", not 0 or 1");
+  if (!walker.encapsulated) {
+    const std::uint64_t needed =
+        std::uint64_t(s.rows) * std::uint64_t(s.columns) * std::uint64_t(allocated / 8);
+    if (!walker.nativePixelData) kPixelData.at(file).fail("missing");
+    if (*walker.nativePixelData < needed)
+      kPixelData.at(file).fail(std::to_string(*walker.nativePixelData) + " bytes, " +
+                               std::to_string(s.columns) + "×" + std::to_string(s.rows) +
+                               " pixels need " + std::to_string(needed));
+  }
+  const std::vector<double> o = dicomNumbers(ds, kOrientation, 6, file);
+  s.row = {o[0], o[1], o[2]}, s.column = {o[3], o[4], o[5]};
+  if (std::abs(glm::length(s.row) - 1.0) > 1e-3 || std::abs(glm::length(s.column) - 1.0) > 1e-3 ||
+      std::abs(glm::dot(s.row, s.column)) > 1e-3)
+    kOrientation.at(file).fail("not two orthogonal unit vectors");
+  const std::vector<double> p = dicomNumbers(ds, kPosition, 3, file);
+  s.position = {p[0], p[1], p[2]};
+  const std::vector<double> ps = dicomNumbers(ds, kSpacing, 2, file);
+  if (!(ps[0] > 0.0 && ps[1] > 0.0)) kSpacing.at(file).fail("not positive");
+  s.pixelSpacing = {ps[0], ps[1]};
+  if (dicomText(ds, kSlope)) s.scaling.slope = dicomNumbers(ds, kSlope, 1, file)[0];
+  if (dicomText(ds, kIntercept)) s.scaling.inter = dicomNumbers(ds, kIntercept, 1, file)[0];
+  return s;
+}
+
+const VoxelType* dicomVoxelType(const gdcm::PixelFormat& pf) {
+  switch (pf.GetScalarType()) {
+    case gdcm::PixelFormat::UINT8:
+      return &kU8;
+    case gdcm::PixelFormat::INT8:
+      return &kI8;
+    case gdcm::PixelFormat::UINT16:
+      return &kU16;
+    case gdcm::PixelFormat::INT16:
+      return &kI16;
+    case gdcm::PixelFormat::UINT32:
+      return &kU32;
+    case gdcm::PixelFormat::INT32:
+      return &kI32;
+    case gdcm::PixelFormat::FLOAT32:
+      return &kF32;
+    case gdcm::PixelFormat::FLOAT64:
+      return &kF64;
+    default:
+      return nullptr;
+  }
+}
+
+// Reads slice `s`'s pixels into `out` (rows·columns values), rescaled.
+const VoxelType& readDicomPixels(const DicomSlice& s, float* out) {
+  const Where where{s.file, "(7FE0,0010) PixelData"};
+  gdcm::ImageReader reader;
+  reader.SetFileName(s.file.c_str());
+  bool read = false;
+  try {
+    read = reader.Read();
+  } catch (const std::exception& e) {
+    where.fail(std::string("GDCM cannot read the image: ") + e.what());
+  }
+  if (!read) where.fail("GDCM cannot read the image");
+  const gdcm::Image& image = reader.GetImage();
+  if (std::int64_t(image.GetColumns()) != s.columns || std::int64_t(image.GetRows()) != s.rows ||
+      (image.GetNumberOfDimensions() == 3 && image.GetDimension(2) != 1))
+    where.fail("GDCM sees an image of another size than Rows and Columns say");
+  const gdcm::PixelFormat& pf = image.GetPixelFormat();
+  const VoxelType* type = dicomVoxelType(pf);
+  if (pf.GetSamplesPerPixel() != 1 || !type)
+    where.fail(std::string("unsupported pixel format ") + pf.GetScalarTypeAsString() + " × " +
+               std::to_string(pf.GetSamplesPerPixel()) + " samples");
+  const std::size_t n = std::size_t(s.rows) * std::size_t(s.columns);
+  if (image.GetBufferLength() != n * std::size_t(type->bytes))
+    where.fail("pixel data of " + std::to_string(image.GetBufferLength()) + " bytes, expected " +
+               std::to_string(n * std::size_t(type->bytes)));
+  std::vector<unsigned char> buffer(n * std::size_t(type->bytes));
+  if (!image.GetBuffer(reinterpret_cast<char*>(buffer.data())))
+    where.fail("GDCM cannot decode the pixel data");
+  convert(*type, buffer.data(), n, false, s.scaling, out);  // GDCM hands native byte order
+  return *type;
+}
+
+Volume loadDicomSeries(const fs::path& folder, const VolumeLimits& limits) {
+  const Where where{folder.string(), ""};
+  // GDCM reports on stderr what is reported here by throwing.
+  gdcm::Trace::WarningOff();
+  gdcm::Trace::ErrorOff();
+  gdcm::Trace::DebugOff();
+
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+    if (std::error_code e; it->is_regular_file(e)) files.push_back(it->path());
+  if (ec) where.fail("cannot list the folder: " + ec.message());
+  std::sort(files.begin(), files.end());
+  std::vector<DicomSlice> slices;
+  for (const fs::path& f : files)
+    if (isDicomFile(f))
+      if (std::optional<DicomSlice> s = readDicomHeader(f, f.string())) slices.push_back(*s);
+  if (slices.empty())
+    where.fail("no DICOM images in the folder (" + std::to_string(files.size()) + " files)");
+
+  std::map<std::string, int> series;
+  for (const DicomSlice& s : slices) ++series[s.series];
+  if (series.size() > 1) {
+    std::string list;
+    for (const auto& [uid, n] : series)
+      list += (list.empty() ? "" : ", ") + uid + " (" + std::to_string(n) +
+              (n == 1 ? " image)" : " images)");
+    where.fail(std::to_string(series.size()) + " series in the folder, one expected: " + list);
+  }
+
+  const DicomSlice& first = slices.front();
+  const glm::dvec3 normal = glm::cross(first.row, first.column);
+  for (DicomSlice& s : slices) {
+    if (s.rows != first.rows || s.columns != first.columns)
+      where.fail("images of different sizes: " + std::to_string(first.columns) + "×" +
+                 std::to_string(first.rows) + " in " + first.file + ", " +
+                 std::to_string(s.columns) + "×" + std::to_string(s.rows) + " in " + s.file);
+    if (glm::length(s.row - first.row) > 1e-4 || glm::length(s.column - first.column) > 1e-4)
+      where.fail("images of different orientations: " + first.file + " and " + s.file);
+    if (glm::length(s.pixelSpacing - first.pixelSpacing) > 1e-4 * glm::length(first.pixelSpacing))
+      where.fail("images of different pixel spacings: " + first.file + " and " + s.file);
+    s.along = glm::dot(s.position, normal);
+  }
+  std::stable_sort(slices.begin(), slices.end(),
+                   [](const DicomSlice& a, const DicomSlice& b) { return a.along < b.along; });
+
+  // The slices must be evenly spaced: a gap several steps wide is a missing slice.
+  const std::size_t n = slices.size();
+  double step = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 1; k < n; ++k) {
+    const double d = slices[k].along - slices[k - 1].along;
+    if (d < 1e-4)
+      where.fail("two images at the same position, " + mm(slices[k].along) +
+                 " along the normal: " + slices[k - 1].file + " and " + slices[k].file);
+    step = std::min(step, d);
+  }
+  for (std::size_t k = 1; k < n; ++k) {
+    const double d = slices[k].along - slices[k - 1].along;
+    if (d - step <= 0.01 * step) continue;
+    const double ratio = d / step;
+    const std::string between = " between " + slices[k - 1].file + " and " + slices[k].file +
+                                " (at " + mm(slices[k - 1].along) + " and " + mm(slices[k].along) +
+                                " along the normal)";
+    if (ratio < 1000 && std::abs(ratio - std::round(ratio)) <= 0.01 * ratio)
+      where.fail("a gap of " + mm(d) + between + ", the step elsewhere " + mm(step) + ": " +
+                 std::to_string(int(std::round(ratio)) - 1) + " slice(s) missing");
+    where.fail("uneven slice spacing: " + mm(d) + between + ", " + mm(step) + " elsewhere");
+  }
+  // Slices of a tilted gantry step sideways too: k's direction goes from the first to the last.
+  const glm::dvec3 k = n > 1 ? (slices.back().position - first.position) / double(n - 1)
+                             : normal;  // one slice: a unit thickness
+  for (std::size_t i = 0; i < n; ++i)
+    if (glm::length(slices[i].position - (slices.front().position + double(i) * k)) >
+        0.01 * glm::length(k))
+      where.fail("the image positions do not lie on a line: " + slices[i].file);
+
+  const std::int64_t d[3] = {first.columns, first.rows, std::int64_t(n)};
+  const std::size_t count = checkDims(d, limits, where);
+  Volume v;
+  v.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
+  // i runs along a row (columns apart), j down a column (rows apart).
+  glm::dmat4 m(1.0);
+  m[0] = glm::dvec4(first.row * first.pixelSpacing[1], 0.0);
+  m[1] = glm::dvec4(first.column * first.pixelSpacing[0], 0.0);
+  m[2] = glm::dvec4(k, 0.0);
+  m[3] = glm::dvec4(slices.front().position, 1.0);
+  v.indexToWorld = checkTransform(toRas(m, true, true), where);
+  v.values.resize(count);
+  const std::size_t perSlice = std::size_t(first.rows) * std::size_t(first.columns);
+  for (std::size_t i = 0; i < n; ++i) {
+    const VoxelType& type = readDicomPixels(slices[i], v.values.data() + i * perSlice);
+    if (i == 0) v.voxelType = type.name;
+    if (v.voxelType != type.name)
+      where.fail("images of different pixel types: " + v.voxelType + " in " + slices.front().file +
+                 ", " + type.name + " in " + slices[i].file);
+  }
+  return v;
+}
+
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() &&
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -753,24 +2157,27 @@ Volume importVolume(const std::filesystem::path& file) {
 }
 
 Volume importVolume(const std::filesystem::path& file, const VolumeLimits& limits) {
+  std::error_code ec;
+  if (fs::is_directory(file, ec)) {
+    Volume v = loadDicomSeries(file, limits);
+    v.updateRange();
+    return v;
+  }
   std::string name = file.filename().string();
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
+  static constexpr std::pair<const char*, Volume (*)(const fs::path&, const VolumeLimits&)>
+      kReaders[] = {{".nii", loadNifti},     {".nii.gz", loadNifti},  {".npy", loadNpy},
+                    {".npz", loadNpz},       {".den", loadDen},       {".json", loadRawJson},
+                    {".mha", loadMetaImage}, {".mhd", loadMetaImage}, {".nrrd", loadNrrd},
+                    {".nhdr", loadNrrd},     {".vtk", loadVtk}};
   Volume (*reader)(const fs::path&, const VolumeLimits&) = nullptr;
-  if (endsWith(name, ".nii") || endsWith(name, ".nii.gz"))
-    reader = loadNifti;
-  else if (endsWith(name, ".npy"))
-    reader = loadNpy;
-  else if (endsWith(name, ".npz"))
-    reader = loadNpz;
-  else if (endsWith(name, ".den"))
-    reader = loadDen;
-  else if (endsWith(name, ".json"))
-    reader = loadRawJson;
-  else
+  for (const auto& [suffix, r] : kReaders)
+    if (endsWith(name, suffix)) reader = r;
+  if (!reader)
     throw Error(file.string(), "",
-                "unknown volume format (expected .nii, .nii.gz, .npy, .npz, .den or .json)");
-  std::error_code ec;
+                "unknown volume format (expected .nii, .nii.gz, .npy, .npz, .den, .json, .mha, "
+                ".mhd, .nrrd, .nhdr, .vtk or a folder of DICOM images)");
   if (!fs::is_regular_file(file, ec)) throw Error(file.string(), "", "volume file not found");
   Volume v = reader(file, limits);
   v.updateRange();

@@ -1,10 +1,15 @@
 // cutaway/io/volume_import.hpp — scalar volumes from NIfTI-1/-2 (.nii, .nii.gz), NumPy (.npy,
-// .npz), VolPack density files (.den) and raw voxels described by a JSON header (.json).
+// .npz), VolPack density files (.den), MetaImage (.mha, .mhd), NRRD (.nrrd, .nhdr), VTK legacy
+// structured points (.vtk), DICOM series (a folder of single-frame slices) and raw voxels
+// described by a JSON header (.json).
 //
-// The format is chosen by the file name's suffix, case-insensitively. Values become floats in
-// the file's units (NIfTI's scl_slope/scl_inter applied); NIfTI keeps its world, RAS+ in mm,
-// from the sform, else the qform, else pixdim; the other formats place voxel (i, j, k) at
-// (i, j, k) unless a JSON header gives spacing and origin. A 4-D NIfTI series yields its first
+// The format is chosen by the file name's suffix, case-insensitively, or a folder for DICOM.
+// Values become floats in the file's units (NIfTI's scl_slope/scl_inter, DICOM's rescale
+// applied). Scanner formats are placed in RAS+ millimetres, NIfTI's world: NIfTI from the
+// sform, else the qform, else pixdim; MetaImage, DICOM (patient position and orientation, slices
+// sorted along their normal) and NRRD's LPS/LAS spaces turned from LPS/LAS to RAS. VTK, .npy,
+// .npz and .den place voxel (i, j, k) at origin + spacing·(i, j, k) as they give them (the
+// identity when they give none), as does a JSON header. A 4-D NIfTI series yields its first
 // volume. Every malformed, truncated or oversized file is a cutaway::Error naming the file,
 // a place in it ("header", a JSON pointer, an .npz member) and the reason; nothing is
 // allocated from a size the file claims before it has been checked against VolumeLimits.
