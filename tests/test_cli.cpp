@@ -3,9 +3,9 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -120,8 +120,8 @@ TEST(Cli, VolumeSceneInfoAndRenderWithAovs) {
   EXPECT_EQ(j["volumes"][0]["voxelType"], "u8");
   EXPECT_EQ(j["volumes"][0]["mode"], "composite");
   const fs::path dir = scratch("volume-aovs"), out = scratch("head.png");
-  const Result r = run("render " + scene + " -o " + out.string() + " --size 96x96 --aov " +
-                       dir.string());
+  const Result r =
+      run("render " + scene + " -o " + out.string() + " --size 96x96 --aov " + dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(fs::exists(out));
   const FloatImage opacity = readPfm(dir / "volumeOpacity.pfm");

@@ -1228,8 +1228,8 @@ TEST_F(VolumeImportTest, NrrdSpacesLineUpInRas) {
       {"scanner-xyz", "(0,0.5,0) (-2,0,0) (0,0,3)\nspace origin: (10,-5,1)"}};
   for (const auto& [space, placement] : cases) {
     const std::string fields = std::string("type: uchar\ndimension: 3\nspace: ") + space +
-                               "\nsizes: 2 3 4\nencoding: raw\nspace directions: " +
-                               placement + "\n\n";
+                               "\nsizes: 2 3 4\nencoding: raw\nspace directions: " + placement +
+                               "\n\n";
     const Volume v = importVolume(write("v.nrrd", nrrdHeader(fields) + std::string(24, '\1')));
     EXPECT_EQ(world(v, {1, 2, 3}), glm::vec3(6, -4.5f, 10)) << space;
   }
@@ -1557,7 +1557,6 @@ TEST_F(VolumeImportTest, VtkBadInput) {
 // ----------------------------------------------------------------------------------------------
 // DICOM series
 
-
 TEST_F(VolumeImportTest, DicomSeriesSortedPlacedAndRescaled) {
   // File names out of slice order; a text file and a DICOM file without an image beside them.
   for (int k = 0; k < kSeries.z; ++k)
@@ -1659,9 +1658,9 @@ TEST_F(VolumeImportTest, DicomBadInput) {
               {"(0028,0030) PixelSpacing", "not positive"});
   expectError([&] { importVolume(series([](DicomSpec& s) { s.slope = "two"; })); },
               {"(0028,1053) RescaleSlope", "expected 1 finite number, got \"two\""});
-  expectError([&] { importVolume(series([](DicomSpec& s) { s.frames = "2"; })); },
-              {"s1.dcm", "(0028,0008) NumberOfFrames",
-               "\"2\" frames: only single-frame images are read"});
+  expectError(
+      [&] { importVolume(series([](DicomSpec& s) { s.frames = "2"; })); },
+      {"s1.dcm", "(0028,0008) NumberOfFrames", "\"2\" frames: only single-frame images are read"});
   // A slice without SeriesInstanceUID is a series of its own.
   expectError([&] { importVolume(series([](DicomSpec& s) { s.series = ""; })); },
               {"2 series", "(none) (1 image)"});

@@ -1238,7 +1238,8 @@ Volume loadMetaImage(const fs::path& file, const VolumeLimits& limits) {
   const bool zero = std::find(s.begin(), s.end(), 0.0) != s.end();
   const Field* culprit = spacing && (zero || !matrix) ? spacing : matrix;
   v.indexToWorld = checkTransform(
-      toRas(m, true, true), culprit ? culprit->where.at(culprit->where.place + ": " + culprit->key) : header);
+      toRas(m, true, true),
+      culprit ? culprit->where.at(culprit->where.place + ": " + culprit->key) : header);
   v.values = readData(layout, count, *type,
                       layout.file == file ? data : data.at("data: " + layout.file.string()));
   return v;
@@ -1462,8 +1463,8 @@ Volume loadNrrd(const fs::path& file, const VolumeLimits& limits) {
   bool space = false, left = false, posterior = false;
   if (const Field* f = get("space")) {
     const std::string s = lower(f->value);
-    left = s == "lps" || s == "left-posterior-superior" || s == "las" ||
-           s == "left-anterior-superior";
+    left =
+        s == "lps" || s == "left-posterior-superior" || s == "las" || s == "left-anterior-superior";
     posterior = s == "lps" || s == "left-posterior-superior";
     const auto in = [&](const auto& list) {
       return std::any_of(std::begin(list), std::end(list), [&](const char* k) { return s == k; });
