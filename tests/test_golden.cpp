@@ -66,11 +66,13 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"ss64ne-city-translucent", "ss64ne-city-translucent.json", "", 480, 300},
         // Volumes: an MRI head opened by a box cut (solid cut faces), by an adaptive cutaway
         // around atlas regions (a label volume of interest) and by a clip surface with a
-        // ridged relief (Trapp13), a CT with a plane of interest inside under a contextual
-        // cutaway (Burns11 §7.1).
+        // ridged relief (Trapp13), by a jittered cutout wedge on its main axis showing atlas
+        // regions inside (Diepstraten03), a CT with a plane of interest inside under a
+        // contextual cutaway (Burns11 §7.1).
         GoldenCase{"mri-head-box-cut", "mri-head-box-cut.json", "", 240, 240},
         GoldenCase{"mri-head-atlas-cutaway", "mri-head-atlas-cutaway.json", "", 240, 240},
         GoldenCase{"mri-head-clip", "mri-head-clip.json", "", 240, 240},
+        GoldenCase{"mri-head-cutout", "mri-head-cutout.json", "", 240, 240},
         GoldenCase{"ct-stent-contextual", "ct-stent-contextual.json", "", 200, 250},
         GoldenCase{"house-cutaway", "house-cutaway.json", "", 320, 240},
         GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240},

@@ -15,6 +15,7 @@
 
 #include "cutaway/cutters/box_cut.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
+#include "cutaway/cutters/cutout.hpp"
 #include "cutaway/kinds/volume_ray_cast.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "expect_error.hpp"
@@ -289,6 +290,52 @@ TEST_F(VolumeTest, TheBoxCutDecidesRaySamplesAsItsCppMirror) {
       if (cut.entryDepth > whole.entryDepth + 0.05f) ++deeper;
     }
   EXPECT_GT(deeper, 200) << "the box opens the volume";
+}
+
+// Diepstraten03 on an exterior volume: the wedge lies on the main axis of its material (rule
+// 3: here a slab long along z inside a cubic grid), faces the viewer, and removes the ray
+// samples its C++ mirror says, jitter included; rays entering through the cut show the wall.
+TEST_F(VolumeTest, TheCutoutWedgeLiesOnTheMaterialsMainAxisAndDecidesRaySamples) {
+  const fs::path file = volume("slab", 32, 1.0f, [](glm::vec3 p) {
+    return std::abs(p.x) < 0.45f && std::abs(p.y) < 0.3f && std::abs(p.z) < 0.9f ? 0.8f : 0.0f;
+  });
+  Scene s = scene(R"({"name": "slab", "role": "exterior", "file": ")" + file.string() +
+                      R"(", "shading": false, )" + kRamp + "}",
+                  R"(, "cutters": {"cutout": {"angle": 70,
+                       "jitter": {"pattern": "sawtooth", "amplitude": 0.02, "frequency": 6}}})");
+  const std::vector<ExteriorUnit> units = exteriorUnits(s);
+  ASSERT_EQ(units.size(), 1u);
+  EXPECT_EQ(units[0].volumes, std::vector<std::size_t>{0});
+  EXPECT_GT(std::abs(units[0].axes.axes[0].z), 0.999f) << "the main axis runs along the slab";
+  // The hull of the material's voxel centres: z from −0.871 to 0.871 (spacing 2/31).
+  EXPECT_NEAR(units[0].axes.extentMax - units[0].axes.extentMin, 2 * 27 / 31.0f, 1e-4f);
+
+  const auto aovs = renderAovs(s);
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth");
+  const Camera c = s.resolvedCamera();
+  const CutoutOptions& options = *s.cutters.find<CutoutOptions>();
+  const CutoutWedge wedge = cutoutWedge(units[0].axes, options, c.eye - units[0].axes.center);
+  const float aspect = float(s.width) / float(s.height);
+  const auto keep = [&](const glm::vec3& p) {
+    return cutoutDistance(wedge, options.jitter, p) <= 0.0f;
+  };
+  int deeper = 0, compared = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::ivec2 p(x, s.height - 1 - y);
+      const VolumeRay cut = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+                                          {s.width, s.height}, p, 1.0f, keep);
+      const VolumeRay whole =
+          castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect), {s.width, s.height}, p);
+      ASSERT_EQ(std::isnan(entry.at(x, y)[0]), std::isnan(cut.entryDepth)) << x << "," << y;
+      if (std::isnan(cut.entryDepth)) continue;
+      ++compared;
+      EXPECT_NEAR(entry.at(x, y)[0], cut.entryDepth, 1e-3f) << x << "," << y;
+      EXPECT_NEAR(opacity.at(x, y)[0], cut.opacity, 0.01f) << x << "," << y;
+      if (cut.entryDepth > whole.entryDepth + 0.05f) ++deeper;
+    }
+  EXPECT_GT(compared, 500);
+  EXPECT_GT(deeper, 150) << "the wedge opens the slab";
 }
 
 // Trapp13's clip surface with a relief removes ray samples where its C++ mirror says; a ray

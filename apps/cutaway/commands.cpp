@@ -380,8 +380,11 @@ int info(const std::string& path) {
     const PrincipalAxes& a = unit.axes;
     nlohmann::json members = nlohmann::json::array();
     for (const std::size_t i : unit.objects) members.push_back(scene.objects[i].name);
+    nlohmann::json volumes = nlohmann::json::array();
+    for (const std::size_t i : unit.volumes) volumes.push_back(scene.volumes[i].name);
     out["exteriors"].push_back({{"name", unit.name},
                                 {"objects", members},
+                                {"volumes", volumes},
                                 {"centre", vec(a.center)},
                                 {"mainAxis", vec(a.axes[0])},
                                 {"axes", {vec(a.axes[0]), vec(a.axes[1]), vec(a.axes[2])}},

@@ -79,7 +79,7 @@ class Cutter {
   virtual bool cuts(std::size_t index) const = 0;
   // Whether its GLSL decides the ray samples of scene volume `index` (kinds/volumes), each
   // sample a front-facing CutFragment at its position, its window position CUT_FRAG_COORD
-  // (cutters/fate.glsl). Only cutters whose GLSL reads nothing per object but the bits.
+  // (cutters/fate.glsl); per volume, its GLSL reads the bits and setVolumeUniforms'.
   virtual bool cutsVolume(std::size_t /*index*/) const { return false; }
   // Diepstraten03 §4.3's classic method: the object drawn this many times, each pass with one
   // hardware clip plane (kept where plane·x ≥ 0); 0: drawn once.
@@ -88,6 +88,8 @@ class Cutter {
   // The look of its cuts of object `index` (called for the objects it cuts or clips).
   virtual CutLook look(std::size_t index) const = 0;
   virtual void setObjectUniforms(GLuint /*program*/, std::size_t /*index*/) const {}
+  // Uniforms of its GLSL for scene volume `index`, set before the volume's rays are cast.
+  virtual void setVolumeUniforms(GLuint /*program*/, std::size_t /*index*/) const {}
   // 0 when its GLSL decides every fragment (for the renderer's life); else it leaves fragments
   // partly reduced (Burns11 ch. 2's translucency, edge highlights, lines), and this is the most
   // translucent layers to peel per pixel (read every frame). Such a cutter's GLSL defines

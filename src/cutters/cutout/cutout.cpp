@@ -7,6 +7,42 @@
 
 namespace cutaway {
 
+namespace {
+
+// The material of a volume for its main axis: in each row of voxels along i, the first and the
+// last that the transfer function does not make clear. Every material voxel lies between the
+// two of its row, so their convex hull is that of all the material, from ≤ 2·dims.y·dims.z
+// points.
+std::vector<glm::vec3> volumeHullPoints(const SceneVolume& v) {
+  const Volume& vol = *v.volume;
+  const glm::mat4 m = v.indexToWorld();
+  std::vector<glm::vec3> points;
+  for (int k = 0; k < vol.dims.z; ++k)
+    for (int j = 0; j < vol.dims.y; ++j) {
+      int first = -1, last = -1;
+      for (int i = 0; i < vol.dims.x; ++i)
+        if (v.material(vol.at({i, j, k})).opacity > 0.0f) {
+          if (first < 0) first = i;
+          last = i;
+        }
+      if (first < 0) continue;
+      for (const int i : {first, last})
+        points.push_back(glm::vec3(m * glm::vec4(float(i), float(j), float(k), 1.0f)));
+    }
+  return points;
+}
+
+// Diepstraten03 rule 1: the cutters need the inside/outside classification.
+void requireExterior(const json_reader::Context& ctx, const std::string& pointer, Scene& s) {
+  for (const SceneVolume& v : s.volumes)
+    if (v.role == Role::Exterior) return;
+  requireRole(ctx, pointer, s, Role::Exterior,
+              "nothing to cut (give the outside objects or volumes that role, or match objects "
+              "by name with \"overrides\")");
+}
+
+}  // namespace
+
 std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
   std::vector<ExteriorUnit> units;
   std::map<std::string, std::size_t> unitOfGroup;
@@ -14,19 +50,26 @@ std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
     const SceneObject& o = scene.objects[i];
     if (o.proxy || o.role != Role::Exterior) continue;
     if (o.group.empty()) {
-      units.push_back({o.name, {i}, {}});
+      units.push_back({o.name, {i}, {}, {}});
       continue;
     }
     const auto [it, added] = unitOfGroup.emplace(o.group, units.size());
-    if (added) units.push_back({o.group, {}, {}});
+    if (added) units.push_back({o.group, {}, {}, {}});
     units[it->second].objects.push_back(i);
   }
+  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+    if (scene.volumes[i].role == Role::Exterior)
+      units.push_back({scene.volumes[i].name, {}, {i}, {}});
   for (auto& unit : units) {
     std::vector<glm::vec3> points;
     for (const std::size_t i : unit.objects) {
       const SceneObject& o = scene.objects[i];
       const glm::mat4 m = o.transformAt(0.0f);
       for (const auto& p : o.mesh->positions) points.push_back(glm::vec3(m * glm::vec4(p, 1.0f)));
+    }
+    for (const std::size_t i : unit.volumes) {
+      const std::vector<glm::vec3> hull = volumeHullPoints(scene.volumes[i]);
+      points.insert(points.end(), hull.begin(), hull.end());
     }
     try {
       unit.axes = principalAxes(points);
@@ -44,12 +87,7 @@ CutterType cutoutCutterType() {
           .glsl = "cutters/cutout/cutout.glsl",
           .name = "cutout",
           .schema = &cutoutSchema(),
-          // Diepstraten03 rule 1: the cutters need the inside/outside classification.
-          .complete = [](const json_reader::Context& ctx, const std::string& pointer, Scene& s) {
-            requireRole(ctx, pointer, s, Role::Exterior,
-                        "nothing to cut (give the outside objects that role, or match them by "
-                        "name with \"overrides\")");
-          },
+          .complete = requireExterior,
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<Cutout>(setup);
           }};
@@ -60,14 +98,17 @@ Cutout::Cutout(FrameSetup& setup)
       method_(options().method),
       units_(exteriorUnits(setup.scene)),
       unitOfObject_(setup.scene.objects.size(), -1),
+      unitOfVolume_(setup.scene.volumes.size(), -1),
       imageUnit_(setup.bindings.textureUnit("CUTOUT_IMAGE")),
       planesLocation_(setup.bindings.uniformLocation("CUTOUT_PLANES", kMaxCutoutPlanes)),
       planeCountLocation_(setup.bindings.uniformLocation("CUTOUT_PLANE_COUNT")),
       originLocation_(setup.bindings.uniformLocation("CUTOUT_ORIGIN")),
       axisLocation_(setup.bindings.uniformLocation("CUTOUT_AXIS")),
       jitterLocation_(setup.bindings.uniformLocation("CUTOUT_JITTER")) {
-  for (std::size_t u = 0; u < units_.size(); ++u)
+  for (std::size_t u = 0; u < units_.size(); ++u) {
     for (const std::size_t i : units_[u].objects) unitOfObject_[i] = int(u);
+    for (const std::size_t i : units_[u].volumes) unitOfVolume_[i] = int(u);
+  }
   wedges_.resize(units_.size());
   const CutoutJitter& jitter = options().jitter;
   if (jitter.pattern == CutoutJitter::Pattern::Image) {
@@ -106,14 +147,19 @@ void Cutout::bindForGeometry() const {
   if (imageTexture_.id()) glBindTextureUnit(imageUnit_, imageTexture_.id());
 }
 
-const CutoutWedge* Cutout::wedgeOf(std::size_t index) const {
-  const int u = unitOfObject_[index];
-  return u < 0 ? nullptr : &wedges_[std::size_t(u)];
+const CutoutWedge* Cutout::wedgeOf(int unit) const {
+  return unit < 0 ? nullptr : &wedges_[std::size_t(unit)];
 }
 
 bool Cutout::cuts(std::size_t index) const {
   return method_ == CutoutOptions::Method::Texture && unitOfObject_[index] >= 0 &&
          setup_.scene.objects[index].mayBeCutBy(CutoutOptions::kKey);
+}
+
+// Ray samples have no hardware clip planes: a volume is cut by §4.5's per-sample test whatever
+// the method (without jitter under the clip-plane method, as its meshes are).
+bool Cutout::cutsVolume(std::size_t index) const {
+  return unitOfVolume_[index] >= 0 && setup_.scene.volumes[index].mayBeCutBy(CutoutOptions::kKey);
 }
 
 int Cutout::clipPasses(std::size_t index) const {
@@ -126,7 +172,7 @@ int Cutout::clipPasses(std::size_t index) const {
 glm::vec4 Cutout::clipPlane(std::size_t index, int pass) const {
   // Diepstraten03 §4.3: each pass keeps the far side of one plane (n·x + w <= 0); the union of
   // the passes is everything outside the wedge. A wedge with fewer planes clips the pass away.
-  const CutoutWedge* w = wedgeOf(index);
+  const CutoutWedge* w = wedgeOf(unitOfObject_[index]);
   return w && pass < int(w->planes.size()) ? -w->planes[std::size_t(pass)]
                                            : glm::vec4(0, 0, 0, -1);
 }
@@ -141,7 +187,14 @@ CutLook Cutout::look(std::size_t index) const {
 }
 
 void Cutout::setObjectUniforms(GLuint program, std::size_t index) const {
-  const CutoutWedge* w = wedgeOf(index);
+  setWedgeUniforms(program, wedgeOf(unitOfObject_[index]));
+}
+
+void Cutout::setVolumeUniforms(GLuint program, std::size_t index) const {
+  setWedgeUniforms(program, wedgeOf(unitOfVolume_[index]));
+}
+
+void Cutout::setWedgeUniforms(GLuint program, const CutoutWedge* w) const {
   if (!w) {
     glProgramUniform1i(program, planeCountLocation_, 0);
     return;
@@ -152,7 +205,8 @@ void Cutout::setObjectUniforms(GLuint program, std::size_t index) const {
                      w->axisLength);
   glProgramUniform3fv(program, axisLocation_, 1, &w->axis[0]);
   const CutoutJitter& j = options().jitter;
-  glProgramUniform4f(program, jitterLocation_, float(int(j.pattern)), j.amplitude * w->axisLength,
+  const int pattern = method_ == CutoutOptions::Method::Texture ? int(j.pattern) : 0;
+  glProgramUniform4f(program, jitterLocation_, float(pattern), j.amplitude * w->axisLength,
                      j.frequency / w->axisLength, float(j.octaves));
 }
 

@@ -19,22 +19,26 @@ class Cutout : public Cutter {
   void bindForGeometry() const override;
   // Diepstraten03 rule 1: only the exterior objects, per fragment with the texture method…
   bool cuts(std::size_t index) const override;
+  bool cutsVolume(std::size_t index) const override;
   // … or with one hardware clip plane per pass.
   int clipPasses(std::size_t index) const override;
   glm::vec4 clipPlane(std::size_t index, int pass) const override;
   CutLook look(std::size_t index) const override;
   void setObjectUniforms(GLuint program, std::size_t index) const override;
+  void setVolumeUniforms(GLuint program, std::size_t index) const override;
   std::optional<glm::vec3> cutOutlineColor() const override { return glm::vec3(0.0f); }
 
  private:
   const CutoutOptions& options() const { return *setup_.scene.cutters.find<CutoutOptions>(); }
-  // The wedge that cuts object `index`, or null when it is not exterior.
-  const CutoutWedge* wedgeOf(std::size_t index) const;
+  // The wedge of exterior unit `unit`, or null for -1 (not exterior).
+  const CutoutWedge* wedgeOf(int unit) const;
+  void setWedgeUniforms(GLuint program, const CutoutWedge* wedge) const;
 
   FrameSetup& setup_;
   const CutoutOptions::Method method_;
   std::vector<ExteriorUnit> units_;
   std::vector<int> unitOfObject_;  // -1: not exterior
+  std::vector<int> unitOfVolume_;
   std::vector<CutoutWedge> wedges_;
   gl::Texture imageTexture_;
   GLuint imageUnit_;

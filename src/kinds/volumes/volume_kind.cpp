@@ -241,7 +241,10 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
     const SceneVolume& v = setup_.scene.volumes[i];
     int cutBy = 0;
     for (const ActiveCutter& c : cutters)
-      if (c.cutter->cutsVolume(i)) cutBy |= 1 << c.slot;
+      if (c.cutter->cutsVolume(i)) {
+        cutBy |= 1 << c.slot;
+        c.cutter->setVolumeUniforms(program, i);
+      }
     for (const auto& [aov, copy] :
          {std::pair{entryDepth_, previousEntry_.id()}, std::pair{hitDepth_, previousHit_.id()},
           std::pair{opacity_, previousOpacity_.id()}})
