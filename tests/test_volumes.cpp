@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -257,6 +258,38 @@ TEST_F(VolumeTest, AMeshInsideTheVolumeStopsTheRays) {
   EXPECT_GT(blocked / onMesh, 0.1) << "the fog behind the core is not drawn over it";
 }
 
+namespace {
+
+// Scene `s`'s volume AOVs on the GPU against the CPU reference whose samples `keep` decides,
+// within the tolerances; counts the pixels compared and those whose entry the cut moved more
+// than `deeperBy` behind the uncut volume's.
+struct CutAgreement {
+  int compared = 0, deeper = 0;
+};
+CutAgreement expectCutAsCpu(const Scene& s, const std::function<bool(const glm::vec3&)>& keep,
+                            float entryTolerance, float opacityTolerance, float deeperBy) {
+  const auto aovs = renderAovs(s);
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth");
+  const Camera c = s.resolvedCamera();
+  const glm::mat4 view = c.view(), projection = c.projectionMatrix(float(s.width) / s.height);
+  CutAgreement a;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::ivec2 p(x, s.height - 1 - y), size(s.width, s.height);
+      const VolumeRay cut = castVolumeRay(s.volumes[0], view, projection, size, p, 1.0f, keep);
+      const VolumeRay whole = castVolumeRay(s.volumes[0], view, projection, size, p);
+      EXPECT_EQ(std::isnan(entry.at(x, y)[0]), std::isnan(cut.entryDepth)) << x << "," << y;
+      if (std::isnan(cut.entryDepth) || std::isnan(entry.at(x, y)[0])) continue;
+      ++a.compared;
+      EXPECT_NEAR(entry.at(x, y)[0], cut.entryDepth, entryTolerance) << x << "," << y;
+      EXPECT_NEAR(opacity.at(x, y)[0], cut.opacity, opacityTolerance) << x << "," << y;
+      if (cut.entryDepth > whole.entryDepth + deeperBy) ++a.deeper;
+    }
+  return a;
+}
+
+}  // namespace
+
 // The box cut removes ray samples where its C++ mirror says, and rays entering the block
 // through the cut show its face.
 TEST_F(VolumeTest, TheBoxCutDecidesRaySamplesAsItsCppMirror) {
@@ -266,30 +299,14 @@ TEST_F(VolumeTest, TheBoxCutDecidesRaySamplesAsItsCppMirror) {
       R"(, "cutters": {"boxCut": {"center": [0.6, 0.6, 0.8], "size": [1.4, 1.4, 1.4],
                        "rotate": [0, 20, 0]}})");
   const BoxCutOptions& box = *s.cutters.find<BoxCutOptions>();
-  const auto aovs = renderAovs(s);
-  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth");
   const Camera c = s.resolvedCamera();
-  const float aspect = float(s.width) / float(s.height);
-  const auto keep = [&](const glm::vec3& p) {
-    return boxCutFragment(box, p, true, c.rayOrigin(p)).fate != BoxCutFate::Fate::Discard;
-  };
-  int deeper = 0;
-  for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x) {
-      const glm::ivec2 p(x, s.height - 1 - y);
-      const VolumeRay cut = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
-                                          {s.width, s.height}, p, 1.0f, keep);
-      const VolumeRay whole =
-          castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect), {s.width, s.height}, p);
-      if (std::isnan(cut.entryDepth)) {
-        EXPECT_TRUE(std::isnan(entry.at(x, y)[0])) << x << "," << y;
-        continue;
-      }
-      EXPECT_NEAR(entry.at(x, y)[0], cut.entryDepth, 1e-3f) << x << "," << y;
-      EXPECT_NEAR(opacity.at(x, y)[0], cut.opacity, 0.01f) << x << "," << y;
-      if (cut.entryDepth > whole.entryDepth + 0.05f) ++deeper;
-    }
-  EXPECT_GT(deeper, 200) << "the box opens the volume";
+  const CutAgreement a = expectCutAsCpu(
+      s,
+      [&](const glm::vec3& p) {
+        return boxCutFragment(box, p, true, c.rayOrigin(p)).fate != BoxCutFate::Fate::Discard;
+      },
+      1e-3f, 0.01f, 0.05f);
+  EXPECT_GT(a.deeper, 200) << "the box opens the volume";
 }
 
 // Diepstraten03 on an exterior volume: the wedge lies on the main axis of its material (rule
@@ -310,32 +327,14 @@ TEST_F(VolumeTest, TheCutoutWedgeLiesOnTheMaterialsMainAxisAndDecidesRaySamples)
   // The hull of the material's voxel centres: z from −0.871 to 0.871 (spacing 2/31).
   EXPECT_NEAR(units[0].axes.extentMax - units[0].axes.extentMin, 2 * 27 / 31.0f, 1e-4f);
 
-  const auto aovs = renderAovs(s);
-  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth");
   const Camera c = s.resolvedCamera();
   const CutoutOptions& options = *s.cutters.find<CutoutOptions>();
   const CutoutWedge wedge = cutoutWedge(units[0].axes, options, c.eye - units[0].axes.center);
-  const float aspect = float(s.width) / float(s.height);
-  const auto keep = [&](const glm::vec3& p) {
-    return cutoutDistance(wedge, options.jitter, p) <= 0.0f;
-  };
-  int deeper = 0, compared = 0;
-  for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x) {
-      const glm::ivec2 p(x, s.height - 1 - y);
-      const VolumeRay cut = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
-                                          {s.width, s.height}, p, 1.0f, keep);
-      const VolumeRay whole =
-          castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect), {s.width, s.height}, p);
-      ASSERT_EQ(std::isnan(entry.at(x, y)[0]), std::isnan(cut.entryDepth)) << x << "," << y;
-      if (std::isnan(cut.entryDepth)) continue;
-      ++compared;
-      EXPECT_NEAR(entry.at(x, y)[0], cut.entryDepth, 1e-3f) << x << "," << y;
-      EXPECT_NEAR(opacity.at(x, y)[0], cut.opacity, 0.01f) << x << "," << y;
-      if (cut.entryDepth > whole.entryDepth + 0.05f) ++deeper;
-    }
-  EXPECT_GT(compared, 500);
-  EXPECT_GT(deeper, 150) << "the wedge opens the slab";
+  const CutAgreement a = expectCutAsCpu(
+      s, [&](const glm::vec3& p) { return cutoutDistance(wedge, options.jitter, p) <= 0.0f; },
+      1e-3f, 0.01f, 0.05f);
+  EXPECT_GT(a.compared, 500);
+  EXPECT_GT(a.deeper, 150) << "the wedge opens the slab";
 }
 
 // Trapp13's clip surface with a relief removes ray samples where its C++ mirror says; a ray
@@ -348,31 +347,12 @@ TEST_F(VolumeTest, AClipSurfaceDecidesRaySamplesAsItsCppMirror) {
                        {"origin": [-2, -2, 0.2], "u": [0, 4, 0], "v": [4, 0, 0], "scale": [2, 2, 0.3],
                         "offsetMap": {"pattern": "noise", "frequency": 3, "octaves": 3, "size": 64}}]}})");
   const ClipSurfaceOptions& clip = *s.cutters.find<ClipSurfaceOptions>();
-  const auto aovs = renderAovs(s);
-  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &entry = aov(aovs, "volumeEntryDepth");
-  const Camera c = s.resolvedCamera();
-  const float aspect = float(s.width) / float(s.height);
-  const auto keep = [&](const glm::vec3& p) { return !clippedBySurfaces(clip, p); };
-  int deeper = 0, compared = 0;
-  for (int y = 0; y < s.height; ++y)
-    for (int x = 0; x < s.width; ++x) {
-      const glm::ivec2 p(x, s.height - 1 - y);
-      const VolumeRay cut = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
-                                          {s.width, s.height}, p, 1.0f, keep);
-      const VolumeRay whole =
-          castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect), {s.width, s.height}, p);
-      ASSERT_EQ(std::isnan(entry.at(x, y)[0]), std::isnan(cut.entryDepth)) << x << "," << y;
-      if (std::isnan(cut.entryDepth)) continue;
-      ++compared;
-      // The relief is a texture on the GPU, bilinear over 64² texels: a sample within its
-      // interpolation error of the surface may fall on the other side, moving the entry by a
-      // step.
-      EXPECT_NEAR(entry.at(x, y)[0], cut.entryDepth, 0.05f) << x << "," << y;
-      EXPECT_NEAR(opacity.at(x, y)[0], cut.opacity, 0.02f) << x << "," << y;
-      if (cut.entryDepth > whole.entryDepth + 0.1f) ++deeper;
-    }
-  EXPECT_GT(compared, s.width * s.height / 4);
-  EXPECT_GT(deeper, 200) << "the surface opens the volume";
+  // The relief is a texture on the GPU, bilinear over 64² texels: a sample within its
+  // interpolation error of the surface may fall on the other side, moving the entry by a step.
+  const CutAgreement a = expectCutAsCpu(
+      s, [&](const glm::vec3& p) { return !clippedBySurfaces(clip, p); }, 0.05f, 0.02f, 0.1f);
+  EXPECT_GT(a.compared, s.width * s.height / 4);
+  EXPECT_GT(a.deeper, 200) << "the surface opens the volume";
 }
 
 // Burns11 §5.2.5: with an adaptive cutaway around an object of interest inside, the rays

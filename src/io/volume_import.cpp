@@ -1113,11 +1113,12 @@ fs::path dataFile(const fs::path& header, const std::string& name, const Where& 
 // voxels (ElementDataFile = LOCAL) or the voxels' file's name. See ITK's MetaIO (metaImage.cxx)
 // and itk::MetaImageIO.
 
-struct MetaTypeName {
+// A voxel type as a text header spells it.
+struct TypeName {
   const char* name;
   const VoxelType* type;
 };
-constexpr MetaTypeName kMetaTypes[] = {
+constexpr TypeName kMetaTypes[] = {
     {"MET_UCHAR", &kU8}, {"MET_CHAR", &kI8}, {"MET_USHORT", &kU16}, {"MET_SHORT", &kI16},
     {"MET_UINT", &kU32}, {"MET_INT", &kI32}, {"MET_FLOAT", &kF32},  {"MET_DOUBLE", &kF64}};
 
@@ -1542,11 +1543,7 @@ Volume loadNrrd(const fs::path& file, const VolumeLimits& limits) {
 // VTK legacy files (.vtk) holding STRUCTURED_POINTS: the first point data array, which must
 // be SCALARS of one component. BINARY data are big-endian.
 
-struct VtkTypeName {
-  const char* name;
-  const VoxelType* type;
-};
-constexpr VtkTypeName kVtkTypes[] = {
+constexpr TypeName kVtkTypes[] = {
     {"unsigned_char", &kU8}, {"char", &kI8}, {"unsigned_short", &kU16}, {"short", &kI16},
     {"unsigned_int", &kU32}, {"int", &kI32}, {"float", &kF32},          {"double", &kF64}};
 
