@@ -74,6 +74,7 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"mri-head-clip", "mri-head-clip.json", "", 240, 240},
         GoldenCase{"mri-head-cutout", "mri-head-cutout.json", "", 240, 240},
         GoldenCase{"ct-stent-contextual", "ct-stent-contextual.json", "", 200, 250},
+        GoldenCase{"ct-stent-boundaries", "ct-stent-boundaries.json", "", 200, 250},
         GoldenCase{"house-cutaway", "house-cutaway.json", "", 320, 240},
         GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240},
         // Diepstraten03 cutout and breakaway, each in two styles.

@@ -574,7 +574,8 @@ TEST(ViewerSave, VolumeOptionsReadBack) {
   EXPECT_EQ(saved.volumes[0].mode, VolumeMode::Maximum);
   EXPECT_FALSE(saved.volumes[0].shading);
   EXPECT_EQ(saved.volumes[0].opacityDistance, original.volumes[0].opacityDistance);
-  EXPECT_EQ(saved.volumes[0].transfer.points.size(), original.volumes[0].transfer.points.size());
+  EXPECT_EQ(saved.volumes[0].transfer.rows.front().points.size(),
+            original.volumes[0].transfer.rows.front().points.size());
   EXPECT_EQ(saved.volumes[0].source, original.volumes[0].source);
 }
 

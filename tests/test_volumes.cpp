@@ -106,7 +106,7 @@ const char* kRamp = R"("transferFunction": [
 }  // namespace
 
 TEST(TransferFunction, InterpolatesLinearlyAndHoldsItsEnds) {
-  TransferFunction tf{{{0.0f, {0, 0, 0}, 0.0f, 0.0f}, {2.0f, {1, 0.5f, 0}, 0.4f, 1.0f}}};
+  TransferFunction tf{{{0.0f, {{0.0f, {0, 0, 0}, 0.0f, 0.0f}, {2.0f, {1, 0.5f, 0}, 0.4f, 1.0f}}}}};
   EXPECT_FLOAT_EQ(tf.at(1.0f).opacity, 0.2f);
   EXPECT_FLOAT_EQ(tf.at(1.0f).color.g, 0.25f);
   EXPECT_FLOAT_EQ(tf.at(0.5f).importance, 0.25f);
@@ -174,17 +174,11 @@ TEST_F(VolumeTest, TheIsosurfaceOfASampledSphereIsTheSphere) {
   EXPECT_GT(hits, 500);
 }
 
-// Composite and maximum modes: the volume AOVs and the colour (emission only over black) as
-// the CPU reference casts them, pixel by pixel.
-class VolumeModes : public VolumeTest, public ::testing::WithParamInterface<const char*> {};
+namespace {
 
-TEST_P(VolumeModes, TheGpuCastsWhatTheCpuReferenceCasts) {
-  const fs::path file = volume("blob", 32, 1.0f, [](glm::vec3 p) {
-    return std::exp(-2.0f * glm::dot(p - glm::vec3(0.2f, 0, 0), p - glm::vec3(0.2f, 0, 0))) +
-           0.3f * std::sin(4.0f * p.y) * std::exp(-glm::dot(p, p));
-  });
-  const Scene s = scene(R"({"name": "blob", "file": ")" + file.string() + R"(", "mode": ")" +
-                        GetParam() + R"(", "shading": false, )" + kRamp + "}");
+// The volume AOVs and the colour (emission only over black) of scene `s` as the CPU reference
+// casts them, pixel by pixel.
+void expectCastAsCpu(const Scene& s) {
   Renderer renderer(s, test::glContext().info());
   renderer.render();
   const auto aovs = renderer.readAovs();
@@ -193,12 +187,14 @@ TEST_P(VolumeModes, TheGpuCastsWhatTheCpuReferenceCasts) {
                    &hit = aov(aovs, "volumeHitDepth");
   const Camera c = s.resolvedCamera();
   const float aspect = float(s.width) / float(s.height);
-  const float step = 0.5f * 2.0f / 31.0f;
+  const SceneVolume& v = s.volumes[0];
+  const float step = v.sampleDistance * 2.0f / float(v.volume->dims.x - 1);
+  const bool maximum = v.mode == VolumeMode::Maximum;
   int covered = 0, opaque = 0;
   double colorError = 0.0;
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
-      const VolumeRay cpu = castVolumeRay(s.volumes[0], c.view(), c.projectionMatrix(aspect),
+      const VolumeRay cpu = castVolumeRay(v, c.view(), c.projectionMatrix(aspect),
                                           {s.width, s.height}, {x, s.height - 1 - y});
       EXPECT_EQ(std::isnan(entry.at(x, y)[0]), std::isnan(cpu.entryDepth)) << x << "," << y;
       if (std::isnan(cpu.entryDepth)) continue;
@@ -207,7 +203,6 @@ TEST_P(VolumeModes, TheGpuCastsWhatTheCpuReferenceCasts) {
       // The GPU's transfer table (1024 texels) and filtering weights against exact ones.
       EXPECT_NEAR(opacity.at(x, y)[0], cpu.opacity, 0.01f) << x << "," << y;
       // Composite: where the opacity clearly passes ½; maximum: wherever there is one.
-      const bool maximum = std::string(GetParam()) == "maximum";
       if (!std::isnan(cpu.hitDepth) && cpu.opacity > (maximum ? 0.01f : 0.55f)) {
         ++opaque;
         EXPECT_NEAR(hit.at(x, y)[0], cpu.hitDepth, 2.0f * step) << x << "," << y;
@@ -223,7 +218,95 @@ TEST_P(VolumeModes, TheGpuCastsWhatTheCpuReferenceCasts) {
   EXPECT_GT(opaque, 0);
 }
 
+// A blob: a Gaussian off centre with a ripple, so values and gradient magnitudes both vary.
+float blob(glm::vec3 p) {
+  return std::exp(-2.0f * glm::dot(p - glm::vec3(0.2f, 0, 0), p - glm::vec3(0.2f, 0, 0))) +
+         0.3f * std::sin(4.0f * p.y) * std::exp(-glm::dot(p, p));
+}
+
+}  // namespace
+
+// Composite and maximum modes.
+class VolumeModes : public VolumeTest, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(VolumeModes, TheGpuCastsWhatTheCpuReferenceCasts) {
+  const fs::path file = volume("blob", 32, 1.0f, blob);
+  expectCastAsCpu(scene(R"({"name": "blob", "file": ")" + file.string() + R"(", "mode": ")" +
+                        GetParam() + R"(", "shading": false, )" + kRamp + "}"));
+}
+
 INSTANTIATE_TEST_SUITE_P(Modes, VolumeModes, ::testing::Values("composite", "maximum"));
+
+TEST(TransferFunction, TwoDimensionalInterpolatesBetweenRowsAndHoldsBeyondThem) {
+  TransferFunction tf;
+  tf.rows = {{1.0f, {{0.0f, {1, 0, 0}, 0.0f, 0.0f}, {2.0f, {1, 0, 0}, 0.4f, 1.0f}}},
+             {3.0f, {{1.0f, {0, 0, 1}, 0.8f, 0.5f}}}};
+  // Halfway between the rows at value 1: row 1 gives 0.2, row 2 (one point) 0.8.
+  EXPECT_FLOAT_EQ(tf.at(1.0f, 2.0f).opacity, 0.5f);
+  EXPECT_FLOAT_EQ(tf.at(1.0f, 2.5f).color.b, 0.75f);
+  EXPECT_FLOAT_EQ(tf.at(1.0f, 2.5f).importance, 0.5f);
+  EXPECT_FLOAT_EQ(tf.at(2.0f, 0.0f).opacity, 0.4f);  // below the first row: the first
+  EXPECT_FLOAT_EQ(tf.at(-4.0f, 9.0f).opacity, 0.8f);  // beyond the last: the last
+  EXPECT_FLOAT_EQ(tf.maxOpacity(0.0f), 0.8f);
+  TransferFunction clear;
+  clear.rows = {{0.0f, {{0.0f, {1, 1, 1}, 0.0f, 0.5f}, {1.0f, {1, 1, 1}, 0.0f, 0.5f},
+                        {2.0f, {1, 1, 1}, 0.3f, 0.5f}}},
+                {5.0f, {{0.0f, {1, 1, 1}, 0.0f, 0.5f}}}};
+  EXPECT_FALSE(clear.opaqueSomewhere(-1.0f, 1.0f));
+  EXPECT_TRUE(clear.opaqueSomewhere(-1.0f, 1.5f));
+}
+
+// The gradient the two-dimensional transfer function reads: the voxels' central differences,
+// interpolated and taken to world units, against the analytic gradient of the sampled field
+// (central differences are exact to O(h²)).
+TEST_F(VolumeTest, TheInterpolatedGradientIsTheSampledFieldsGradient) {
+  const auto f = [](glm::vec3 p) { return std::exp(-2.0f * glm::dot(p, p)); };
+  const fs::path file = volume("gauss", 48, 1.0f, f);
+  const Scene s = scene(R"({"name": "g", "file": ")" + file.string() +
+                        R"(", "transferFunction": [{"value": 0, "opacity": 0.1}]})");
+  const SceneVolume& v = s.volumes[0];
+  const glm::mat4 worldToIndex = glm::inverse(v.indexToWorld());
+  const glm::mat3 toWorld = glm::transpose(glm::mat3(worldToIndex));
+  const float h = 2.0f / 47.0f;
+  double worst = 0.0;
+  for (int n = 0; n < 200; ++n) {
+    // Points on a spiral inside the box, off the voxel centres.
+    const float a = 0.37f * float(n), r = 0.8f * float(n) / 200.0f;
+    const glm::vec3 p(r * std::cos(a), r * std::sin(a), 0.6f * std::sin(0.11f * float(n)));
+    const glm::vec3 analytic = -4.0f * p * f(p);
+    const glm::vec3 index = glm::vec3(worldToIndex * glm::vec4(p, 1.0f));
+    const glm::vec3 g = toWorld * sampleGradient(*v.volume, index);
+    worst = std::max(worst, double(glm::length(g - analytic)));
+  }
+  // |∂³f| ≤ ~20 here: central differences err by h²/6·20, interpolation by h²/8·|∂²∇f|.
+  EXPECT_LT(worst, 12.0 * h * h) << "largest gradient error";
+}
+
+// A two-dimensional transfer function (value × gradient magnitude): the GPU casts what the CPU
+// reference casts, and the gradient rows matter (the first row alone casts another image).
+TEST_F(VolumeTest, ATwoDimensionalTransferFunctionCastsAsTheCpuReference) {
+  const fs::path file = volume("blob", 32, 1.0f, blob);
+  const std::string rows = R"("transferFunction2D": [
+      {"gradient": 0.2, "points": [{"value": 0.2, "color": [0.2, 0.4, 1.0], "opacity": 0.0},
+                                   {"value": 1.0, "color": [0.2, 0.4, 1.0], "opacity": 0.05}]},
+      {"gradient": 1.0, "points": [{"value": 0.1, "color": [1.0, 0.5, 0.1], "opacity": 0.0},
+                                   {"value": 0.4, "color": [1.0, 0.5, 0.1], "opacity": 0.4}]}])";
+  const std::string head = R"({"name": "blob", "file": ")" + file.string() + R"(", "shading": false, )";
+  for (const char* mode : {"composite", "maximum"}) {
+    SCOPED_TRACE(mode);
+    expectCastAsCpu(scene(head + R"("mode": ")" + mode + R"(", )" + rows + "}"));
+  }
+  const Scene twoD = scene(head + rows + "}");
+  Scene firstRow = twoD;
+  firstRow.volumes[0].transfer.rows.resize(1);
+  const auto a = renderAovs(twoD), b = renderAovs(firstRow);
+  const FloatImage &withRows = aov(a, "volumeOpacity"), &without = aov(b, "volumeOpacity");
+  float largest = 0.0f;
+  for (int y = 0; y < twoD.height; ++y)
+    for (int x = 0; x < twoD.width; ++x)
+      largest = std::max(largest, std::abs(withRows.at(x, y)[0] - without.at(x, y)[0]));
+  EXPECT_GT(largest, 0.2f);
+}
 
 // A mesh inside the volume stops the rays: in front of it the volume is cast up to its depth,
 // exactly as the CPU reference casts it with that depth.
@@ -514,4 +597,18 @@ TEST_F(VolumeTest, BadVolumeEntriesAreRejectedWithTheirPlace) {
   expectError(
       [&] { scene("{" + f + R"("transferFunction": [{"value": 0, "opacity": 1}], "colour": 1})"); },
       {"/volumes/0", "colour"});
+  const std::string row = R"({"gradient": 0, "points": [{"value": 0, "opacity": 1}]})";
+  expectError(
+      [&] {
+        scene("{" + f + R"("transferFunction": [{"value": 0, "opacity": 1}], "transferFunction2D": [)" +
+              row + "]}");
+      },
+      {"/volumes/0/transferFunction2D", "not both"});
+  expectError([&] { scene("{" + f + R"("transferFunction2D": [)" + row + ", " + row + "]}"); },
+              {"/volumes/0/transferFunction2D/1/gradient", "increasing"});
+  expectError([&] { scene("{" + f + R"("transferFunction2D": [{"gradient": 0}]})"); },
+              {"/volumes/0/transferFunction2D/0", "points"});
+  expectError(
+      [&] { scene("{" + f + R"("labels": true, "transferFunction2D": [)" + row + "]}"); },
+      {"/volumes/0/transferFunction2D", "per label"});
 }

@@ -460,6 +460,8 @@ int info(const std::string& path) {
   }
   for (const SceneVolume& v : scene.volumes) {
     const Volume& data = *v.volume;
+    std::size_t transferPoints = 0;
+    for (const TransferFunction::Row& row : v.transfer.rows) transferPoints += row.points.size();
     out["volumes"].push_back({{"name", v.name},
                               {"file", v.source},
                               {"dims", {data.dims.x, data.dims.y, data.dims.z}},
@@ -468,7 +470,8 @@ int info(const std::string& path) {
                               {"range", {data.minValue, data.maxValue}},
                               {"role", roleName(v.role)},
                               {"mode", volumeModeName(v.mode)},
-                              {"transferPoints", v.transfer.points.size()},
+                              {"transferPoints", transferPoints},
+                              {"transferRows", v.transfer.rows.size()},
                               {"bounds", boundsJson(v.worldBounds())}});
   }
   if (const auto* b = scene.cutters.find<BreakawayOptions>()) {

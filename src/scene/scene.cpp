@@ -35,15 +35,24 @@ const char* volumeModeName(VolumeMode mode) {
   return "?";
 }
 
-TransferPoint SceneVolume::material(float value) const {
-  if (!labels) return transfer.at(value);
+TransferPoint SceneVolume::material(float value, float gradient) const {
+  if (!labels) return transfer.at(value, gradient);
   const float label = std::round(value);
-  for (const TransferPoint& p : transfer.points)
+  for (const TransferPoint& p : transfer.rows.front().points)
     if (p.value == label) return p;
   return {label, glm::vec3(0.0f), 0.0f, 0.0f};
 }
 
-TransferPoint TransferFunction::at(float value) const {
+bool SceneVolume::mayBeVisible(float lo, float hi) const {
+  if (!labels) return transfer.opaqueSomewhere(lo, hi);
+  if (material(lo).opacity > 0.0f || material(hi).opacity > 0.0f) return true;
+  for (const TransferPoint& p : transfer.rows.front().points)
+    if (p.value >= lo && p.value <= hi && p.opacity > 0.0f) return true;
+  return false;
+}
+
+namespace {
+TransferPoint rowAt(const std::vector<TransferPoint>& points, float value) {
   if (value <= points.front().value) return points.front();
   if (value >= points.back().value) return points.back();
   const auto hi = std::upper_bound(points.begin(), points.end(), value,
@@ -53,6 +62,32 @@ TransferPoint TransferFunction::at(float value) const {
   const float t = (value - a.value) / (b.value - a.value);
   return {value, glm::mix(a.color, b.color, t), a.opacity + (b.opacity - a.opacity) * t,
           a.importance + (b.importance - a.importance) * t};
+}
+}  // namespace
+
+TransferPoint TransferFunction::at(float value, float gradient) const {
+  if (gradient <= rows.front().gradient) return rowAt(rows.front().points, value);
+  if (gradient >= rows.back().gradient) return rowAt(rows.back().points, value);
+  const auto hi = std::upper_bound(rows.begin(), rows.end(), gradient,
+                                   [](float g, const Row& r) { return g < r.gradient; });
+  const TransferPoint a = rowAt((hi - 1)->points, value), b = rowAt(hi->points, value);
+  const float t = (gradient - (hi - 1)->gradient) / (hi->gradient - (hi - 1)->gradient);
+  return {value, glm::mix(a.color, b.color, t), a.opacity + (b.opacity - a.opacity) * t,
+          a.importance + (b.importance - a.importance) * t};
+}
+
+float TransferFunction::maxOpacity(float value) const {
+  float most = 0.0f;
+  for (const Row& r : rows) most = std::max(most, rowAt(r.points, value).opacity);
+  return most;
+}
+
+bool TransferFunction::opaqueSomewhere(float lo, float hi) const {
+  if (maxOpacity(lo) > 0.0f || maxOpacity(hi) > 0.0f) return true;
+  for (const Row& r : rows)
+    for (const TransferPoint& p : r.points)
+      if (p.value >= lo && p.value <= hi && p.opacity > 0.0f) return true;
+  return false;
 }
 
 const std::vector<ObjectParamSpec>& objectParameterSpecs() {

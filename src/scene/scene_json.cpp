@@ -501,10 +501,11 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
   objects.push_back(std::move(o));
 }
 
-// The transfer function's control points, in increasing value.
-TransferFunction transferFunction(const Context& ctx, const json& j, const std::string& ptr) {
+// A transfer function's control points, in increasing value.
+std::vector<TransferPoint> transferPoints(const Context& ctx, const json& j,
+                                          const std::string& ptr) {
   if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected an array of control points");
-  TransferFunction tf;
+  std::vector<TransferPoint> points;
   for (std::size_t i = 0; i < j.size(); ++i) {
     ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
     TransferPoint p;
@@ -514,9 +515,27 @@ TransferFunction transferFunction(const Context& ctx, const json& j, const std::
     if (const json* v = r.take("importance"))
       p.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
     r.finish();
-    if (!tf.points.empty() && !(p.value > tf.points.back().value))
+    if (!points.empty() && !(p.value > points.back().value))
       ctx.fail(r.at("value"), "control points must have increasing values");
-    tf.points.push_back(p);
+    points.push_back(p);
+  }
+  return points;
+}
+
+// A two-dimensional transfer function: rows {gradient, points} in increasing gradient magnitude.
+TransferFunction transferFunction2D(const Context& ctx, const json& j, const std::string& ptr) {
+  if (!j.is_array() || j.empty())
+    ctx.fail(ptr, "expected an array of rows {\"gradient\", \"points\"}");
+  TransferFunction tf;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
+    TransferFunction::Row row;
+    row.gradient = float(number(ctx, r.require("gradient"), r.at("gradient"), 0, 1e30));
+    row.points = transferPoints(ctx, r.require("points"), r.at("points"));
+    r.finish();
+    if (!tf.rows.empty() && !(row.gradient > tf.rows.back().gradient))
+      ctx.fail(r.at("gradient"), "rows must have increasing gradient magnitudes");
+    tf.rows.push_back(std::move(row));
   }
   return tf;
 }
@@ -539,7 +558,16 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene
     for (std::size_t i = 0; i < t->size(); ++i)
       v.cutBy->push_back(oneOf(ctx, (*t)[i], r.at("cutBy") + "/" + std::to_string(i), keys));
   }
-  v.transfer = transferFunction(ctx, r.require("transferFunction"), r.at("transferFunction"));
+  const json* oneD = r.take("transferFunction");
+  const json* twoD = r.take("transferFunction2D");
+  if (oneD && twoD)
+    ctx.fail(r.at("transferFunction2D"),
+             "give \"transferFunction\" or \"transferFunction2D\", not both");
+  if (twoD)
+    v.transfer = transferFunction2D(ctx, *twoD, r.at("transferFunction2D"));
+  else
+    v.transfer.rows = {{0.0f, transferPoints(ctx, oneD ? *oneD : r.require("transferFunction"),
+                                             r.at("transferFunction"))}};
   if (const json* t = r.take("mode")) {
     const std::string mode = oneOf(ctx, *t, r.at("mode"), {"composite", "maximum", "isosurface"});
     v.mode = mode == "maximum"      ? VolumeMode::Maximum
@@ -559,12 +587,16 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene
   if (const json* t = r.take("labels")) v.labels = boolean(ctx, *t, r.at("labels"));
   r.finish();
   if (v.labels) {
+    if (twoD)
+      ctx.fail(r.at("transferFunction2D"),
+               "a label volume's materials are per label (use \"transferFunction\")");
     // One texel per label between the first and the last (kinds/volumes' table).
-    for (std::size_t i = 0; i < v.transfer.points.size(); ++i)
-      if (v.transfer.points[i].value != std::round(v.transfer.points[i].value))
+    const std::vector<TransferPoint>& points = v.transfer.rows.front().points;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].value != std::round(points[i].value))
         ctx.fail(r.at("transferFunction") + "/" + std::to_string(i) + "/value",
                  "a label volume's points are whole label values");
-    if (v.transfer.points.back().value - v.transfer.points.front().value >= 65536)
+    if (points.back().value - points.front().value >= 65536)
       ctx.fail(r.at("transferFunction"), "labels span more than 65536 values");
     if (v.mode == VolumeMode::Isosurface)
       ctx.fail(r.at("labels"), "a label volume is drawn in the composite or maximum mode");

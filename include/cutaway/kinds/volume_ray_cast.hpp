@@ -2,7 +2,8 @@
 // that the GPU's (src/kinds/volumes/volume.frag) is checked against pixel by pixel. The same
 // rays (through pixel centres), the same samples (the same per-pixel jitter), trilinear
 // interpolation as GL's linear filter with clamped edges, the transfer function evaluated
-// exactly, opacity corrected for the step, front-to-back compositing with early termination.
+// exactly (a two-dimensional one at the interpolated gradient's magnitude), opacity corrected
+// for the step, front-to-back compositing with early termination.
 // Colours are the transfer function's (emission only: no shading, no emphasis).
 //
 //   cutaway::VolumeRay r = cutaway::castVolumeRay(scene.volumes[0], camera.view(),
@@ -30,6 +31,12 @@ struct VolumeRay {
 // Trilinear interpolation at index-space point p (voxel centres at integers), clamped to the
 // grid as GL_CLAMP_TO_EDGE clamps.
 float sampleVolume(const Volume& v, glm::vec3 p);
+
+// The central difference of the values over one voxel at voxel v (index space, clamped at the
+// edges): the gradient that the GPU stores per voxel.
+glm::vec3 voxelGradient(const Volume& v, glm::ivec3 voxel);
+// Those differences interpolated trilinearly at index-space point p, as the GPU filters them.
+glm::vec3 sampleGradient(const Volume& v, glm::vec3 p);
 
 // The per-pixel ray start offset in [0, 1) (pixel in GL window coordinates: x right, y up).
 float volumeJitter(glm::uvec2 pixel);

@@ -116,9 +116,24 @@ struct TransferPoint {
   float opacity = 0.0f;     // per unit of `SceneVolume::opacityDistance`
   float importance = 0.5f;  // in [0, 1]
 };
+// Two-dimensional over value × gradient magnitude (Kniss, Kindlmann, Hansen 2002): rows of
+// control points at increasing gradient magnitudes (value units per world unit), interpolated
+// linearly between the rows and held beyond the first and last, so that material boundaries
+// (large gradients) and the inside of materials (small ones) of equal value are told apart.
+// One row: a function of the value alone.
 struct TransferFunction {
-  std::vector<TransferPoint> points;  // increasing values, at least one
-  TransferPoint at(float value) const;
+  struct Row {
+    float gradient = 0.0f;
+    std::vector<TransferPoint> points;  // increasing values, at least one
+  };
+  std::vector<Row> rows;  // increasing gradients, at least one
+  TransferPoint at(float value, float gradient = 0.0f) const;
+  bool twoDimensional() const { return rows.size() > 1; }
+  // The largest opacity of `value` at any gradient magnitude (at a row: the rows mix convexly).
+  float maxOpacity(float value) const;
+  // Whether some value in [lo, hi] has opacity at some gradient magnitude: the rows' opacities
+  // are largest at the interval's ends or at a control point inside it.
+  bool opaqueSomewhere(float lo, float hi) const;
 };
 
 enum class VolumeMode {
@@ -150,8 +165,14 @@ struct SceneVolume {
   // each transfer-function point one label's material; labels it does not list are clear.
   bool labels = false;
 
-  // The material of a value: the transfer function's, or the label's.
-  TransferPoint material(float value) const;
+  // The material of a value at a gradient magnitude: the transfer function's, or the label's.
+  TransferPoint material(float value, float gradient = 0.0f) const;
+  // Whether any sample of `value`, or of a value in [lo, hi], can have opacity (at any
+  // gradient magnitude; a label volume: a listed label's).
+  bool mayBeVisible(float value) const {
+    return labels ? material(value).opacity > 0.0f : transfer.maxOpacity(value) > 0.0f;
+  }
+  bool mayBeVisible(float lo, float hi) const;
 
   glm::mat4 indexToWorld() const { return transform * volume->indexToWorld; }
   Bounds worldBounds() const { return volume->indexBounds().transformed(indexToWorld()); }

@@ -149,10 +149,11 @@ bool AdaptiveCutaway::reductionIsOcclusion() const {
   // A volume's materials carry importances of their own (its transfer function's).
   for (std::size_t i = 0; i < setup_.scene.volumes.size(); ++i) {
     if (!cutsVolume(i)) continue;
-    for (const TransferPoint& p : setup_.scene.volumes[i].transfer.points) {
-      if (first && *first != p.importance) return false;
-      first = p.importance;
-    }
+    for (const TransferFunction::Row& row : setup_.scene.volumes[i].transfer.rows)
+      for (const TransferPoint& p : row.points) {
+        if (first && *first != p.importance) return false;
+        first = p.importance;
+      }
   }
   return true;
 }

@@ -21,7 +21,7 @@ std::vector<glm::vec3> volumeHullPoints(const SceneVolume& v) {
     for (int j = 0; j < vol.dims.y; ++j) {
       int first = -1, last = -1;
       for (int i = 0; i < vol.dims.x; ++i)
-        if (v.material(vol.at({i, j, k})).opacity > 0.0f) {
+        if (v.mayBeVisible(vol.at({i, j, k}))) {
           if (first < 0) first = i;
           last = i;
         }

@@ -39,7 +39,6 @@ layout(location = 7) uniform int uShading;           // 1: gradient normals shad
 layout(location = 8) uniform int uJitter;
 layout(location = 9) uniform int uCutBy;             // bit k: the cutter of slot k cuts it
 layout(location = 10) uniform int uInterest;         // 1: of interest (emphasis as I = 1)
-layout(location = 11) uniform mat3 uGradientToWorld; // transpose of the inverse linear part
 layout(location = 14) uniform float uVoxel;          // the smallest spacing, world units
 
 layout(location = 0) out vec4 outColor;  // premultiplied, blended over the final colour
@@ -64,7 +63,7 @@ float pixelJitter(uvec2 p) {
 // The unit normal at a sample, against the gradient of the values (zero where they are
 // flat). The gradient is precomputed per voxel (central differences) and interpolated.
 vec3 normalAt(vec3 index) {
-  vec3 g = uGradientToWorld * texture(uGradient, (index + 0.5) / uDims).xyz;
+  vec3 g = gradientAt(index);
   return dot(g, g) > 1e-20 ? -normalize(g) : vec3(0.0);
 }
 
@@ -153,7 +152,7 @@ void main() {
       }
     }
     float value = valueAt(index);
-    float u = transferCoordinate(value);
+    vec2 u = transferCoordinates(value, index);
     vec4 c = texture(uTransfer, u);
     // Empty space costs no cutter and no shading (composite: no opacity; isosurface: below
     // the isovalue, where only the previous value matters).
@@ -185,7 +184,7 @@ void main() {
         float tHit = t;
         if (previousKept) tHit = t - uStep * (value - uIsoValue) / (value - previousValue);
         vec3 q = origin + tHit * direction;
-        float iso = transferCoordinate(uIsoValue);
+        vec2 iso = transferCoordinates(uIsoValue, o + tHit * d);
         float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, iso).r;
         vec3 n = onCut ? faceNormal : normalAt(o + tHit * d);
         sum = vec4(shadeSample(q, texture(uTransfer, iso).rgb, importance, n), 1.0);
@@ -208,7 +207,7 @@ void main() {
     previousValue = value;
   }
   if (uMode == 1 && maxValue > -1e30) {
-    float u = transferCoordinate(maxValue);
+    vec2 u = transferCoordinates(maxValue, o + maxT * d);
     vec4 c = texture(uTransfer, u);
     float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
     sum = vec4(emphasize(c.rgb, c.rgb, importance) * c.a, c.a);

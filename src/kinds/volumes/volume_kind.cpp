@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/kinds/volume_ray_cast.hpp"
 
 namespace cutaway {
 
@@ -14,33 +15,27 @@ namespace {
 // Uniform locations of kinds/volumes/volume.frag.
 constexpr GLint kWorldToIndex = 0, kDims = 1, kStep = 2, kOpacityExponent = 3, kTransferRange = 4,
                 kMode = 5, kIsoValue = 6, kShading = 7, kJitter = 8, kCutBy = 9, kInterest = 10,
-                kGradientToWorld = 11, kVoxel = 14, kStepRearHull = 2, kTheta = 16, kPassSize = 17;
-constexpr int kTransferSize = 1024;  // texels of a continuous transfer function's table
+                kGradientToWorld = 11, kVoxel = 14, kStepRearHull = 2, kTheta = 16, kPassSize = 17,
+                kGradientRange = 18;
+// Texels of a continuous transfer function's table along the value and, for a two-dimensional
+// one, along the gradient magnitude.
+constexpr int kTransferSize = 1024, kGradientSize = 256;
 
 // Central differences over one voxel in index space, clamped at the edges, per voxel: the
 // shading's gradient, interpolated by the GPU (one fetch per sample instead of six). A label
 // volume's is the gradient of its materials' opacity: labels have no order to differentiate.
 std::vector<glm::vec4> voxelGradients(const SceneVolume& sv) {
-  const Volume& v = *sv.volume;
-  std::vector<float> field;
-  if (sv.labels)
-    for (float value : v.values) field.push_back(sv.material(value).opacity);
-  const std::vector<float>& f = sv.labels ? field : v.values;
-  std::vector<glm::vec4> out(v.voxelCount());
-  const glm::ivec3 hi = v.dims - 1;
-  std::size_t n = 0;
+  Volume opacity;
+  if (sv.labels) {
+    opacity.dims = sv.volume->dims;
+    for (float value : sv.volume->values) opacity.values.push_back(sv.material(value).opacity);
+  }
+  const Volume& v = sv.labels ? opacity : *sv.volume;
+  std::vector<glm::vec4> out;
+  out.reserve(v.voxelCount());
   for (int k = 0; k < v.dims.z; ++k)
     for (int j = 0; j < v.dims.y; ++j)
-      for (int i = 0; i < v.dims.x; ++i, ++n) {
-        const auto at = [&](int x, int y, int z) {
-          const glm::ivec3 c = glm::clamp(glm::ivec3(x, y, z), glm::ivec3(0), hi);
-          return f[std::size_t(c.x) +
-                   std::size_t(v.dims.x) * (std::size_t(c.y) + std::size_t(v.dims.y) * c.z)];
-        };
-        out[n] = glm::vec4(0.5f * (at(i + 1, j, k) - at(i - 1, j, k)),
-                           0.5f * (at(i, j + 1, k) - at(i, j - 1, k)),
-                           0.5f * (at(i, j, k + 1) - at(i, j, k - 1)), 0.0f);
-      }
+      for (int i = 0; i < v.dims.x; ++i) out.emplace_back(voxelGradient(v, {i, j, k}), 0.0f);
   return out;
 }
 
@@ -48,7 +43,8 @@ std::vector<glm::vec4> voxelGradients(const SceneVolume& sv) {
 // have opacity. A sample interpolates the voxels of its block and at most one beyond, so a
 // block's values are bounded by the least and largest over its block and the 26 around it;
 // the transfer function's opacity over that interval is largest at its ends or at a control
-// point inside, so the flag is conservative.
+// point inside (at some gradient magnitude: SceneVolume::mayBeVisible), so the flag is
+// conservative.
 constexpr int kBlock = 8;  // volume.frag's kBlock
 
 std::vector<std::uint8_t> occupancy(const SceneVolume& sv, glm::ivec3& grid) {
@@ -81,10 +77,7 @@ std::vector<std::uint8_t> occupancy(const SceneVolume& sv, glm::ivec3& grid) {
               a = std::min(a, lo[block(q)]), b = std::max(b, hi[block(q)]);
             }
         // NaN voxels make no interval: their blocks are kept.
-        bool visible = !(a <= b) || sv.material(a).opacity > 0.0f || sv.material(b).opacity > 0.0f;
-        for (const TransferPoint& p : sv.transfer.points)
-          visible = visible || (p.value >= a && p.value <= b && p.opacity > 0.0f);
-        out[block({x, y, z})] = visible;
+        out[block({x, y, z})] = !(a <= b) || sv.mayBeVisible(a, b);
       }
   return out;
 }
@@ -102,13 +95,15 @@ gl::Texture texture3D(GLenum format, glm::ivec3 dims, GLenum components, const v
   return t;
 }
 
-gl::Texture texture1D(GLenum format, int size, const void* data, GLenum filter) {
-  gl::Texture t = gl::Texture::create(GL_TEXTURE_1D);
-  glTextureStorage1D(t.id(), 1, format, size);
-  glTextureSubImage1D(t.id(), 0, 0, size, format == GL_RGBA32F ? GL_RGBA : GL_RED, GL_FLOAT, data);
+gl::Texture texture2D(GLenum format, glm::ivec2 size, const void* data, GLenum filter) {
+  gl::Texture t = gl::Texture::create(GL_TEXTURE_2D);
+  glTextureStorage2D(t.id(), 1, format, size.x, size.y);
+  glTextureSubImage2D(t.id(), 0, 0, 0, size.x, size.y, format == GL_RGBA32F ? GL_RGBA : GL_RED,
+                      GL_FLOAT, data);
   glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
   glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
   glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   return t;
 }
 
@@ -122,19 +117,29 @@ float smallestSpacing(const SceneVolume& v) {
 TransferTable transferTable(const SceneVolume& v) {
   const TransferFunction& tf = v.transfer;
   TransferTable table;
-  table.first = tf.points.front().value;
-  // One control point: a constant, over any range.
-  table.last = tf.points.size() > 1 ? tf.points.back().value : table.first + 1.0f;
+  // The value range over every row's points; one control point in all: a constant, over any range.
+  table.first = std::numeric_limits<float>::infinity(), table.last = -table.first;
+  for (const TransferFunction::Row& row : tf.rows) {
+    table.first = std::min(table.first, row.points.front().value);
+    table.last = std::max(table.last, row.points.back().value);
+  }
+  if (table.last == table.first) table.last = table.first + 1.0f;
   // Labels: one texel per label, and a clear one beyond each end, which the lookup's clamping
   // gives every label outside the listed range.
-  if (v.labels)
-    table.first = tf.points.front().value - 1.0f, table.last = tf.points.back().value + 1.0f;
-  const int size = v.labels ? int(table.last - table.first) + 1 : kTransferSize;
-  for (int i = 0; i < size; ++i) {
-    const float t = float(i) / float(size - 1);
-    const TransferPoint p = v.material(table.first + t * (table.last - table.first));
-    table.colorOpacity.emplace_back(p.color, p.opacity);
-    table.importance.push_back(p.importance);
+  const std::vector<TransferPoint>& points = tf.rows.front().points;
+  if (v.labels) table.first = points.front().value - 1.0f, table.last = points.back().value + 1.0f;
+  table.width = v.labels ? int(table.last - table.first) + 1 : kTransferSize;
+  table.height = tf.twoDimensional() ? kGradientSize : 1;
+  table.firstGradient = tf.rows.front().gradient, table.lastGradient = tf.rows.back().gradient;
+  for (int j = 0; j < table.height; ++j) {
+    const float g = table.height > 1 ? float(j) / float(table.height - 1) : 0.0f;
+    const float gradient = table.firstGradient + g * (table.lastGradient - table.firstGradient);
+    for (int i = 0; i < table.width; ++i) {
+      const float t = float(i) / float(table.width - 1);
+      const TransferPoint p = v.material(table.first + t * (table.last - table.first), gradient);
+      table.colorOpacity.emplace_back(p.color, p.opacity);
+      table.importance.push_back(p.importance);
+    }
   }
   return table;
 }
@@ -173,10 +178,11 @@ VolumeKind::VolumeKind(FrameSetup& setup)
     glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     const TransferTable table = transferTable(v);
-    const int size = int(table.importance.size());
-    gpu.transfer = texture1D(GL_RGBA32F, size, table.colorOpacity.data(), filter);
-    gpu.importance = texture1D(GL_R32F, size, table.importance.data(), filter);
+    const glm::ivec2 size(table.width, table.height);
+    gpu.transfer = texture2D(GL_RGBA32F, size, table.colorOpacity.data(), filter);
+    gpu.importance = texture2D(GL_R32F, size, table.importance.data(), filter);
     gpu.transferRange = {table.first, table.last};
+    gpu.gradientRange = {table.firstGradient, table.lastGradient};
     volumes_.push_back(std::move(gpu));
   }
   const auto aov = [&](const char* name, const char* meaning) {
@@ -251,7 +257,6 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
       glCopyImageSubData(frame.texture(aov).id(), GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0,
                          0, 0, 0, w, h, 1);
     bindVolume(program, i);
-    const glm::mat3 gradientToWorld = glm::transpose(glm::mat3(glm::inverse(v.indexToWorld())));
     const float spacing = smallestSpacing(v);
     glProgramUniform1f(program, kStep, v.sampleDistance * spacing);
     glProgramUniform1f(program, kVoxel, spacing);
@@ -262,7 +267,6 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
     glProgramUniform1i(program, kJitter, v.jitter);
     glProgramUniform1i(program, kCutBy, cutBy);
     glProgramUniform1i(program, kInterest, v.role == Role::Interest);
-    glProgramUniformMatrix3fv(program, kGradientToWorld, 1, GL_FALSE, &gradientToWorld[0][0]);
     glBindTextureUnit(occupancyUnit_, volumes_[i].occupancy.id());
     glBindTextureUnit(5, previousHit_.id());
     glBindTextureUnit(6, previousEntry_.id());
@@ -277,9 +281,12 @@ void VolumeKind::bindVolume(GLuint program, std::size_t i) const {
   const VolumeGpu& gpu = volumes_[i];
   const glm::mat4 worldToIndex = glm::inverse(v.indexToWorld());
   const glm::vec3 dims(v.volume->dims);
+  const glm::mat3 gradientToWorld = glm::transpose(glm::mat3(worldToIndex));
   glProgramUniformMatrix4fv(program, kWorldToIndex, 1, GL_FALSE, &worldToIndex[0][0]);
   glProgramUniform3fv(program, kDims, 1, &dims[0]);
   glProgramUniform2fv(program, kTransferRange, 1, &gpu.transferRange[0]);
+  glProgramUniform2fv(program, kGradientRange, 1, &gpu.gradientRange[0]);
+  glProgramUniformMatrix3fv(program, kGradientToWorld, 1, GL_FALSE, &gradientToWorld[0][0]);
   glBindTextureUnit(1, gpu.values.id());
   glBindTextureUnit(2, gpu.transfer.id());
   glBindTextureUnit(3, gpu.importance.id());

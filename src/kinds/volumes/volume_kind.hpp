@@ -18,11 +18,14 @@
 
 namespace cutaway {
 
-// The transfer function as the table the GPU reads, from the first control point's value to
-// the last's (colour and opacity, and importance), exact at the texels: 1024 texels, or one
-// per label of a label volume.
+// The transfer function as the table the GPU reads (colour and opacity, and importance), exact
+// at the texels: along the value from the first control point's to the last's, 1024 texels
+// (one per label of a label volume); along the gradient magnitude from the first row's to the
+// last's, 256 texels (one for a one-dimensional function). Row by row, value fastest.
 struct TransferTable {
   float first = 0.0f, last = 1.0f;
+  float firstGradient = 0.0f, lastGradient = 0.0f;
+  int width = 0, height = 0;
   std::vector<glm::vec4> colorOpacity;
   std::vector<float> importance;
 };
@@ -42,7 +45,7 @@ class VolumeKind : public GeometryKind {
  private:
   struct VolumeGpu {
     gl::Texture values, gradient, transfer, importance, occupancy;
-    glm::vec2 transferRange;
+    glm::vec2 transferRange, gradientRange;
   };
   void draw(const std::vector<ActiveCutter>& cutters) const;
   // Binds volume i's textures and sets the uniforms every volume program shares.

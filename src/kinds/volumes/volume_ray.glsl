@@ -2,12 +2,16 @@
 // volumes of interest): the volume, its transfer function, and the view ray's span through its
 // box. Mirrored by volume_ray_cast.cpp. Needs frame_uniforms.glsl.
 layout(binding = 1) uniform sampler3D uVolume;  // the values; nearest filter for labels
-layout(binding = 2) uniform sampler1D uTransfer;  // colour, opacity over uTransferRange
-layout(binding = 3) uniform sampler1D uMaterialImportance;  // importance over uTransferRange
+// The transfer function's table: value along s over uTransferRange, gradient magnitude along t
+// over uGradientRange (one row: a function of the value alone).
+layout(binding = 2) uniform sampler2D uTransfer;  // colour, opacity
+layout(binding = 3) uniform sampler2D uMaterialImportance;
 layout(binding = 4) uniform sampler3D uGradient;  // index-space central differences
 layout(location = 0) uniform mat4 uWorldToIndex;
 layout(location = 1) uniform vec3 uDims;
 layout(location = 4) uniform vec2 uTransferRange;  // values of the table's first and last texel
+layout(location = 11) uniform mat3 uGradientToWorld;  // transpose of the inverse linear part
+layout(location = 18) uniform vec2 uGradientRange;   // gradient magnitudes of its first, last row
 
 vec3 worldAtWindow(vec2 uv, float depth) {
   vec4 h = uInverseView * (uInverseProjection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0));
@@ -18,10 +22,22 @@ float valueAt(vec3 index) {
   return texture(uVolume, (index + 0.5) / uDims).r;
 }
 
-float transferCoordinate(float value) {
-  float n = float(textureSize(uTransfer, 0));
-  float t = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
-  return (t * (n - 1.0) + 0.5) / n;  // texel centres at the ends
+// The world gradient of the values at an index-space point (value units per world unit): the
+// voxels' central differences, interpolated.
+vec3 gradientAt(vec3 index) {
+  return uGradientToWorld * texture(uGradient, (index + 0.5) / uDims).xyz;
+}
+
+// The table coordinates of a value with the gradient magnitude at `index` (fetched only for a
+// two-dimensional function), texel centres at the ends.
+vec2 transferCoordinates(float value, vec3 index) {
+  vec2 n = vec2(textureSize(uTransfer, 0));
+  float s = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
+  float t = 0.0;
+  if (uGradientRange.y > uGradientRange.x)
+    t = clamp((length(gradientAt(index)) - uGradientRange.x) / (uGradientRange.y - uGradientRange.x),
+              0.0, 1.0);
+  return (vec2(s, t) * (n - 1.0) + 0.5) / n;
 }
 
 // The view ray through uv (window coordinates over the drawn viewport, in [0, 1]): world

@@ -11,21 +11,37 @@ glm::vec3 worldAtWindow(const glm::mat4& inverseViewProjection, glm::vec2 uv, fl
       inverseViewProjection * glm::vec4(uv * 2.0f - 1.0f, depth * 2.0f - 1.0f, 1.0f);
   return glm::vec3(h) / h.w;
 }
+
+// Trilinear interpolation of per-voxel quantities `at` at index-space point p, with
+// GL_CLAMP_TO_EDGE and texel centres at integers: beyond the last centre, the edge value.
+template <class T, class At>
+T trilinear(const Volume& v, glm::vec3 p, At at) {
+  const glm::vec3 hi = glm::vec3(v.dims - 1);
+  p = glm::clamp(p, glm::vec3(-0.5f), glm::vec3(v.dims) - 0.5f);
+  const glm::vec3 base = glm::floor(p), f = p - base;
+  T sum(0.0f);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    const glm::vec3 w = glm::mix(1.0f - f, f, glm::vec3(o));
+    sum += w.x * w.y * w.z * at(glm::ivec3(glm::clamp(base + glm::vec3(o), glm::vec3(0.0f), hi)));
+  }
+  return sum;
+}
 }  // namespace
 
 float sampleVolume(const Volume& v, glm::vec3 p) {
-  const glm::vec3 hi = glm::vec3(v.dims - 1);
-  // GL_CLAMP_TO_EDGE with texel centres at integers: beyond the last centre, the edge value.
-  p = glm::clamp(p, glm::vec3(-0.5f), glm::vec3(v.dims) - 0.5f);
-  const glm::vec3 base = glm::floor(p), f = p - base;
-  float sum = 0.0f;
-  for (int corner = 0; corner < 8; ++corner) {
-    const glm::ivec3 o(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    const glm::ivec3 at = glm::ivec3(glm::clamp(base + glm::vec3(o), glm::vec3(0.0f), hi));
-    const glm::vec3 w = glm::mix(1.0f - f, f, glm::vec3(o));
-    sum += w.x * w.y * w.z * v.at(at);
-  }
-  return sum;
+  return trilinear<float>(v, p, [&](glm::ivec3 c) { return v.at(c); });
+}
+
+glm::vec3 voxelGradient(const Volume& v, glm::ivec3 c) {
+  const auto at = [&](glm::ivec3 q) { return v.at(glm::clamp(q, glm::ivec3(0), v.dims - 1)); };
+  return 0.5f * glm::vec3(at(c + glm::ivec3(1, 0, 0)) - at(c - glm::ivec3(1, 0, 0)),
+                          at(c + glm::ivec3(0, 1, 0)) - at(c - glm::ivec3(0, 1, 0)),
+                          at(c + glm::ivec3(0, 0, 1)) - at(c - glm::ivec3(0, 0, 1)));
+}
+
+glm::vec3 sampleGradient(const Volume& v, glm::vec3 p) {
+  return trilinear<glm::vec3>(v, p, [&](glm::ivec3 c) { return voxelGradient(v, c); });
 }
 
 float volumeJitter(glm::uvec2 p) {
@@ -64,6 +80,13 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
   const float exponent = sv.sampleDistance / sv.opacityDistance;
   const float offset = sv.jitter ? volumeJitter(glm::uvec2(pixel)) : 0.5f;
   const auto viewDepth = [&](const glm::vec3& p) { return -(view * glm::vec4(p, 1.0f)).z; };
+  // A two-dimensional transfer function's material at an index-space point: the value's at the
+  // magnitude of the world gradient there (value units per world unit).
+  const glm::mat3 gradientToWorld = glm::transpose(glm::mat3(worldToIndex));
+  const auto material = [&](float value, glm::vec3 index) {
+    if (!sv.transfer.twoDimensional()) return sv.material(value);
+    return sv.material(value, glm::length(gradientToWorld * sampleGradient(volume, index)));
+  };
   float maxValue = -1e30f, maxT = 0.0f, previousValue = 0.0f;
   bool previousKept = false;
   const float t0 = tIn + offset * step;
@@ -75,7 +98,7 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
     const float value = sv.labels ? volume.at(glm::clamp(glm::ivec3(glm::floor(index + 0.5f)),
                                                          glm::ivec3(0), volume.dims - 1))
                                   : sampleVolume(volume, index);
-    const TransferPoint c = sv.material(value);
+    const TransferPoint c = material(value, index);
     // Samples of no opacity are no material: the cutters are not asked (as on the GPU).
     if (sv.mode == VolumeMode::Composite && c.opacity == 0.0f) {
       previousKept = false;
@@ -92,7 +115,7 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
       if (value >= sv.isoValue) {
         float tHit = t;
         if (previousKept) tHit = t - step * (value - sv.isoValue) / (value - previousValue);
-        ray.color = sv.material(sv.isoValue).color;
+        ray.color = material(sv.isoValue, o + tHit * d).color;
         ray.opacity = 1.0f;
         ray.hitDepth = viewDepth(origin + tHit * direction);
         break;
@@ -110,7 +133,7 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
     previousValue = value;
   }
   if (sv.mode == VolumeMode::Maximum && maxValue > -1e30f) {
-    const TransferPoint c = sv.material(maxValue);
+    const TransferPoint c = material(maxValue, o + maxT * d);
     ray.color = c.color * c.opacity;
     ray.opacity = c.opacity;
     ray.hitDepth = viewDepth(origin + maxT * direction);

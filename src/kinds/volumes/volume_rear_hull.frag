@@ -15,7 +15,8 @@ void main() {
   if (!(r.tIn < r.tOut)) discard;
   // Back to front from the box's far side: the first sample of material is the rear.
   for (float t = r.tOut - 0.5 * uStep; t > r.tIn; t -= uStep) {
-    if (texture(uTransfer, transferCoordinate(valueAt(r.o + t * r.d))).a <= 0.0) continue;
+    vec3 index = r.o + t * r.d;
+    if (texture(uTransfer, transferCoordinates(valueAt(index), index)).a <= 0.0) continue;
     vec4 clip = uViewProjection * vec4(r.origin + t * r.direction, 1.0);
     float depth = clamp(clip.z / clip.w * 0.5 + 0.5, 0.0, 1.0);  // the default depth range
     gl_FragDepth = depth;
