@@ -9,15 +9,16 @@
 
 #include "camera_controller.hpp"
 #include "colormap.hpp"
+#include "cutaway/core/error.hpp"
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/cutters/breakaway.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
 #include "cutaway/cutters/cutout.hpp"
 #include "cutaway/render/techniques.hpp"
-#include "cutaway/core/error.hpp"
-#include "parameters.hpp"
 #include "cutaway/scene/scene_writer.hpp"
+#include "parameters.hpp"
 #include "script.hpp"
+#include "transfer_edit.hpp"
 #include "viewer_state.hpp"
 
 namespace fs = std::filesystem;
@@ -555,8 +556,8 @@ TEST(ViewerSave, NetworkOptionsReadBack) {
   EXPECT_EQ(saved.networks[0].pipes.size(), original.networks[0].pipes.size());
 }
 
-// The volumes' edited options saved into their entries; the files and transfer functions
-// stay as written.
+// The volumes' edited options saved into their entries; the files and the transfer functions
+// left alone stay as written.
 TEST(ViewerSave, VolumeOptionsReadBack) {
   const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
   const Scene original = loadScene(examples / "mri-head-box-cut.json");
@@ -577,6 +578,68 @@ TEST(ViewerSave, VolumeOptionsReadBack) {
   EXPECT_EQ(saved.volumes[0].transfer.rows.front().points.size(),
             original.volumes[0].transfer.rows.front().points.size());
   EXPECT_EQ(saved.volumes[0].source, original.volumes[0].source);
+}
+
+// The transfer-function editor's edits keep the scene file's rules.
+TEST(ViewerTransfer, EditsKeepValuesIncreasingAndRowsOrdered) {
+  std::vector<TransferPoint> row{{0.0f, {0, 0, 0}, 0.0f, 0.0f}, {10.0f, {1, 1, 1}, 1.0f, 1.0f}};
+  EXPECT_EQ(insertTransferPoint(row, 2.5f, 0.7f), 1);
+  EXPECT_FLOAT_EQ(row[1].color.r, 0.25f);  // colour and importance as the row had them there
+  EXPECT_FLOAT_EQ(row[1].importance, 0.25f);
+  EXPECT_FLOAT_EQ(row[1].opacity, 0.7f);
+  EXPECT_EQ(insertTransferPoint(row, 2.5f, 0.1f), -1);  // a point has that value already
+  moveTransferPoint(row, 1, 50.0f, 2.0f);  // past its neighbour: just below it; opacity ≤ 1
+  EXPECT_LT(row[1].value, 10.0f);
+  EXPECT_GT(row[1].value, 9.99f);
+  EXPECT_EQ(row[1].opacity, 1.0f);
+  moveTransferPoint(row, 0, -3.0f, -1.0f);
+  EXPECT_EQ(row[0].value, -3.0f);
+  EXPECT_EQ(row[0].opacity, 0.0f);
+  EXPECT_TRUE(removeTransferPoint(row, 1));
+  EXPECT_TRUE(removeTransferPoint(row, 1));
+  EXPECT_FALSE(removeTransferPoint(row, 0));  // the last point stays
+  // Labels: whole values, one apart at least.
+  std::vector<TransferPoint> labels{
+      {1.0f, {1, 0, 0}, 1.0f, 1.0f}, {2.0f, {0, 1, 0}, 1.0f, 1.0f}, {5.0f, {0, 0, 1}, 1.0f, 1.0f}};
+  moveTransferPoint(labels, 1, 3.4f, 1.0f, true);
+  EXPECT_EQ(labels[1].value, 3.0f);
+  moveTransferPoint(labels, 1, 9.0f, 1.0f, true);
+  EXPECT_EQ(labels[1].value, 4.0f);
+  EXPECT_EQ(insertTransferPoint(labels, 2.2f, 1.0f, true), 1);
+  EXPECT_EQ(labels[1].value, 2.0f);
+  // Rows: a one-dimensional function turns two-dimensional and back.
+  TransferFunction tf{{{0.0f, {{0.0f, {1, 1, 1}, 0.5f, 0.5f}}}}};
+  EXPECT_EQ(insertTransferRow(tf, 40.0f), 1);
+  EXPECT_TRUE(tf.twoDimensional());
+  EXPECT_EQ(tf.rows[1].points, tf.rows[0].points);
+  EXPECT_EQ(insertTransferRow(tf, 40.0f), -1);
+  setTransferRowGradient(tf, 0, 100.0f);
+  EXPECT_LT(tf.rows[0].gradient, 40.0f);
+  setTransferRowGradient(tf, 1, -5.0f);
+  EXPECT_GT(tf.rows[1].gradient, tf.rows[0].gradient);
+  EXPECT_TRUE(removeTransferRow(tf, 0));
+  EXPECT_FALSE(removeTransferRow(tf, 0));
+  EXPECT_FALSE(tf.twoDimensional());
+}
+
+// An edited transfer function is saved under its key and reads back; one turned
+// two-dimensional replaces the one-dimensional key.
+TEST(ViewerSave, EditedTransferFunctionsReadBack) {
+  const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
+  const Scene original = loadScene(examples / "mri-head-box-cut.json");
+  Scene current = original;
+  current.camera = original.resolvedCamera();
+  current.camera.fit = false;
+  std::vector<TransferPoint>& row = current.volumes[0].transfer.rows.front().points;
+  insertTransferPoint(row, 0.5f * (row[0].value + row[1].value), 0.3f);
+  row.back().color = {0.1f, 0.2f, 0.3f};
+  const fs::path target = scratch("mri-head-tf.json");
+  SceneDocument::load(examples / "mri-head-box-cut.json").save(original, current, target);
+  EXPECT_EQ(loadScene(target).volumes[0].transfer, current.volumes[0].transfer);
+  insertTransferRow(current.volumes[0].transfer, 25.0f);
+  current.volumes[0].transfer.rows[1].points.front().opacity = 0.9f;
+  SceneDocument::load(examples / "mri-head-box-cut.json").save(original, current, target);
+  EXPECT_EQ(loadScene(target).volumes[0].transfer, current.volumes[0].transfer);
 }
 
 // The Diepstraten03 and Trapp13 cutters' parameters saved: each edited value reads back, the

@@ -308,6 +308,27 @@ TEST_F(VolumeTest, ATwoDimensionalTransferFunctionCastsAsTheCpuReference) {
   EXPECT_GT(largest, 0.2f);
 }
 
+// The viewer edits a transfer function between frames: the next frame of the same renderer
+// draws what a renderer made for the edited scene draws (table, empty-space blocks, the
+// volume of interest's seed, a label volume's gradient).
+TEST_F(VolumeTest, AnEditedTransferFunctionIsDrawnByTheNextFrame) {
+  const fs::path file = volume("blob", 32, 1.0f, blob);
+  Scene s = scene(R"({"name": "blob", "file": ")" + file.string() + R"(", )" + kRamp + "}");
+  Renderer live(s, test::glContext().info());
+  live.render();
+  const Rgba8Image before = live.readColor();
+  std::vector<TransferPoint>& points = s.volumes[0].transfer.rows.front().points;
+  points[1].opacity = 0.0f;  // the middle values turn clear: blocks of them empty
+  points[2].color = {0.1f, 0.9f, 0.2f};
+  points.push_back({1.2f, {1.0f, 0.0f, 0.0f}, 0.5f, 1.0f});
+  live.render();
+  const Rgba8Image edited = live.readColor();
+  Renderer fresh(s, test::glContext().info());
+  fresh.render();
+  EXPECT_EQ(edited.pixels, fresh.readColor().pixels);
+  EXPECT_NE(edited.pixels, before.pixels);
+}
+
 // A mesh inside the volume stops the rays: in front of it the volume is cast up to its depth,
 // exactly as the CPU reference casts it with that depth.
 TEST_F(VolumeTest, AMeshInsideTheVolumeStopsTheRays) {

@@ -44,6 +44,11 @@ struct ViewerState {
   double renderMs = 0;  // wall time of the last render, timer queries included
   std::string rendererName, computePath;
 
+  // The transfer-function editor: the volume, its gradient row and point being edited (-1:
+  // none).
+  std::size_t transferVolume = 0, transferRow = 0;
+  int transferPoint = -1;
+
   // Files.
   std::string savePath, screenshotPath;
   std::string status;  // last outcome ("saved …", or an error), shown in the UI

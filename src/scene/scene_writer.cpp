@@ -174,14 +174,32 @@ json networkJson(const PipeNetwork& n) {
           {"waterColors", {vec(n.waterLow), vec(n.waterHigh)}}};
 }
 
-// The volume options the viewer edits (apps/cutaway-view/parameters/volumes.cpp).
+json transferPointsJson(const std::vector<TransferPoint>& points) {
+  json out = json::array();
+  for (const TransferPoint& p : points)
+    out.push_back({{"value", exact(p.value)},
+                   {"color", vec(p.color)},
+                   {"opacity", exact(p.opacity)},
+                   {"importance", exact(p.importance)}});
+  return out;
+}
+
+// The volume options the viewer edits (apps/cutaway-view/parameters/volumes.cpp and its
+// transfer-function editor), the transfer function under the key it was read from.
 json volumeJson(const SceneVolume& v) {
-  return {{"mode", volumeModeName(v.mode)},
-          {"sampleDistance", exact(v.sampleDistance)},
-          {"opacityDistance", exact(v.opacityDistance)},
-          {"isoValue", exact(v.isoValue)},
-          {"shading", v.shading},
-          {"jitter", v.jitter}};
+  json out = {{"mode", volumeModeName(v.mode)},
+              {"sampleDistance", exact(v.sampleDistance)},
+              {"opacityDistance", exact(v.opacityDistance)},
+              {"isoValue", exact(v.isoValue)},
+              {"shading", v.shading},
+              {"jitter", v.jitter}};
+  if (v.transfer.twoDimensional())
+    for (const TransferFunction::Row& row : v.transfer.rows)
+      out["transferFunction2D"].push_back(
+          {{"gradient", exact(row.gradient)}, {"points", transferPointsJson(row.points)}});
+  else
+    out["transferFunction"] = transferPointsJson(v.transfer.rows.front().points);
+  return out;
 }
 
 // `edited` merged into `into` key by key: objects recursively, arrays element by element,
@@ -280,10 +298,15 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
     if (const json edited = networkJson(current.networks[i]);
         edited != networkJson(original.networks[i]))
       for (auto& [key, value] : edited.items()) doc["networks"][i][key] = value;
-  for (std::size_t i = 0; i < current.volumes.size() && i < original.volumes.size(); ++i)
-    if (const json edited = volumeJson(current.volumes[i]);
-        edited != volumeJson(original.volumes[i]))
-      for (auto& [key, value] : edited.items()) doc["volumes"][i][key] = value;
+  // Only the keys edited: a transfer function left alone stays as its author wrote it.
+  for (std::size_t i = 0; i < current.volumes.size() && i < original.volumes.size(); ++i) {
+    const json edited = volumeJson(current.volumes[i]), before = volumeJson(original.volumes[i]);
+    for (auto& [key, value] : edited.items())
+      if (!before.contains(key) || before.at(key) != value) doc["volumes"][i][key] = value;
+    // A transfer function turned from one to two dimensions (or back) leaves its old key.
+    for (const char* key : {"transferFunction", "transferFunction2D"})
+      if (!edited.contains(key) && before.contains(key)) doc["volumes"][i].erase(key);
+  }
   const fs::path from = fs::weakly_canonical(fs::absolute(path_)).parent_path();
   const fs::path to = fs::weakly_canonical(fs::absolute(target)).parent_path();
   if (from != to) makePathsAbsolute(doc, path_.parent_path());

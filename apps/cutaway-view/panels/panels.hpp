@@ -25,6 +25,8 @@ void filePanel(ViewerState& state);    // save scene, screenshot
 // A technique's parameter group and its notes (counts of the objects it works on, where its
 // work runs).
 void techniquePanel(const ParameterGroup& group, ViewerState& state);
+// The volumes' transfer-function editor (under the volumes' parameters).
+void transferPanel(ViewerState& state);
 void aovPanel(ViewerState& state);     // AOV inspector: buffer, colour map, range, value
 void timingsPanel(const ViewerState& state, float framesPerSecond);
 

@@ -58,6 +58,7 @@ void techniquePanel(const ParameterGroup& group, ViewerState& state) {
   }
   parameterTable(group.parameters, state);
   notes(group.name, state);
+  if (group.name == "volumes") transferPanel(state);
 }
 
 }  // namespace cutaway::view

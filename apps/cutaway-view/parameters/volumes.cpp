@@ -1,7 +1,8 @@
 // The volumes' ray-casting options (src/kinds/volumes; cutaway::SceneVolume) as viewer
 // parameters. They apply to every volume of the scene at once (the first one's value is
 // shown) and are read by the renderer every frame: a change redraws without a new renderer.
-// The files and transfer functions come from the scene file.
+// The files come from the scene file; the transfer functions have their own editor
+// (panels/transfer_panel.cpp).
 #include "../parameters.hpp"
 
 namespace cutaway::view {

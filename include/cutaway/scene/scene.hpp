@@ -115,6 +115,7 @@ struct TransferPoint {
   glm::vec3 color{1.0f};
   float opacity = 0.0f;     // per unit of `SceneVolume::opacityDistance`
   float importance = 0.5f;  // in [0, 1]
+  bool operator==(const TransferPoint&) const = default;
 };
 // Two-dimensional over value × gradient magnitude (Kniss, Kindlmann, Hansen 2002): rows of
 // control points at increasing gradient magnitudes (value units per world unit), interpolated
@@ -125,6 +126,7 @@ struct TransferFunction {
   struct Row {
     float gradient = 0.0f;
     std::vector<TransferPoint> points;  // increasing values, at least one
+    bool operator==(const Row&) const = default;
   };
   std::vector<Row> rows;  // increasing gradients, at least one
   TransferPoint at(float value, float gradient = 0.0f) const;
@@ -134,6 +136,7 @@ struct TransferFunction {
   // Whether some value in [lo, hi] has opacity at some gradient magnitude: the rows' opacities
   // are largest at the interval's ends or at a control point inside it.
   bool opaqueSomewhere(float lo, float hi) const;
+  bool operator==(const TransferFunction&) const = default;
 };
 
 enum class VolumeMode {

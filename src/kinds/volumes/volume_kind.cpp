@@ -159,31 +159,16 @@ VolumeKind::VolumeKind(FrameSetup& setup)
                       " voxels exceeds the GPU's 3-D texture size of " + std::to_string(maxSize));
     VolumeGpu gpu;
     // Labels are sampled at the nearest voxel: interpolating between two would invent a third.
-    const GLenum filter = v.labels ? GL_NEAREST : GL_LINEAR;
-    gpu.values = texture3D(GL_R32F, data.dims, GL_RED, data.values.data(), filter);
-    gpu.gradient = texture3D(GL_RGBA16F, data.dims, GL_RGBA, voxelGradients(v).data(), GL_LINEAR);
+    gpu.values = texture3D(GL_R32F, data.dims, GL_RED, data.values.data(),
+                           v.labels ? GL_NEAREST : GL_LINEAR);
+    if (!v.labels)
+      gpu.gradient = texture3D(GL_RGBA16F, data.dims, GL_RGBA, voxelGradients(v).data(), GL_LINEAR);
+    volumes_.push_back(std::move(gpu));
+    uploadTransfer(volumes_.size() - 1);
     if (glGetError() == GL_OUT_OF_MEMORY)
       throw Error(v.source, "",
                   "volume of " + std::to_string(data.voxelCount() * 12 / (1 << 20)) +
                       " MiB (values and gradients) does not fit in the GPU's memory");
-    glm::ivec3 grid;
-    const std::vector<std::uint8_t> blocks = occupancy(v, grid);
-    gpu.occupancy = gl::Texture::create(GL_TEXTURE_3D);
-    glTextureStorage3D(gpu.occupancy.id(), 1, GL_R8UI, grid.x, grid.y, grid.z);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage3D(gpu.occupancy.id(), 0, 0, 0, 0, grid.x, grid.y, grid.z, GL_RED_INTEGER,
-                        GL_UNSIGNED_BYTE, blocks.data());
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    // An integer texture is complete only without mipmap filtering.
-    glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    const TransferTable table = transferTable(v);
-    const glm::ivec2 size(table.width, table.height);
-    gpu.transfer = texture2D(GL_RGBA32F, size, table.colorOpacity.data(), filter);
-    gpu.importance = texture2D(GL_R32F, size, table.importance.data(), filter);
-    gpu.transferRange = {table.first, table.last};
-    gpu.gradientRange = {table.firstGradient, table.lastGradient};
-    volumes_.push_back(std::move(gpu));
   }
   const auto aov = [&](const char* name, const char* meaning) {
     return setup.frame.declare(name, {.format = GL_R32F, .meaning = meaning});
@@ -197,6 +182,39 @@ VolumeKind::VolumeKind(FrameSetup& setup)
                   "(composite), of the isosurface (isosurface) or of the maximum (maximum); NaN "
                   "where none");
   opacity_ = aov("volumeOpacity", "accumulated opacity of the volumes' rays in [0, 1]");
+}
+
+void VolumeKind::uploadTransfer(std::size_t i) const {
+  const SceneVolume& v = setup_.scene.volumes[i];
+  VolumeGpu& gpu = volumes_[i];
+  // A label volume's gradient is that of its materials' opacity.
+  if (v.labels)
+    gpu.gradient =
+        texture3D(GL_RGBA16F, v.volume->dims, GL_RGBA, voxelGradients(v).data(), GL_LINEAR);
+  glm::ivec3 grid;
+  const std::vector<std::uint8_t> blocks = occupancy(v, grid);
+  gpu.occupancy = gl::Texture::create(GL_TEXTURE_3D);
+  glTextureStorage3D(gpu.occupancy.id(), 1, GL_R8UI, grid.x, grid.y, grid.z);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage3D(gpu.occupancy.id(), 0, 0, 0, 0, grid.x, grid.y, grid.z, GL_RED_INTEGER,
+                      GL_UNSIGNED_BYTE, blocks.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  // An integer texture is complete only without mipmap filtering.
+  glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  const TransferTable table = transferTable(v);
+  const glm::ivec2 size(table.width, table.height);
+  const GLenum filter = v.labels ? GL_NEAREST : GL_LINEAR;
+  gpu.transfer = texture2D(GL_RGBA32F, size, table.colorOpacity.data(), filter);
+  gpu.importance = texture2D(GL_R32F, size, table.importance.data(), filter);
+  gpu.transferRange = {table.first, table.last};
+  gpu.gradientRange = {table.firstGradient, table.lastGradient};
+  gpu.uploaded = v.transfer;
+}
+
+void VolumeKind::updateTransfers() const {
+  for (std::size_t i = 0; i < volumes_.size(); ++i)
+    if (!(volumes_[i].uploaded == setup_.scene.volumes[i].transfer)) uploadTransfer(i);
 }
 
 void VolumeKind::prepare(const std::vector<ActiveCutter>& cutters) {
@@ -221,6 +239,7 @@ void VolumeKind::addPassesAfterComposite(Frame& frame) {
 }
 
 void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
+  updateTransfers();
   const Frame& frame = setup_.frame;
   const float nan = std::numeric_limits<float>::quiet_NaN(), zero = 0.0f;
   glClearTexImage(frame.texture(entryDepth_).id(), 0, GL_RED, GL_FLOAT, &nan);
@@ -294,6 +313,7 @@ void VolumeKind::bindVolume(GLuint program, std::size_t i) const {
 }
 
 void VolumeKind::drawInterestRearHulls(const RearHullRequest& request) const {
+  updateTransfers();
   const GLuint program = rearHullProgram_.id();
   GLint viewport[4];
   glGetIntegerv(GL_VIEWPORT, viewport);

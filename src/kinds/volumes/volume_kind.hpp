@@ -45,15 +45,21 @@ class VolumeKind : public GeometryKind {
  private:
   struct VolumeGpu {
     gl::Texture values, gradient, transfer, importance, occupancy;
-    glm::vec2 transferRange, gradientRange;
+    glm::vec2 transferRange{0.0f}, gradientRange{0.0f};
+    TransferFunction uploaded;  // what transfer, importance and occupancy were made from
   };
+  // Remakes what depends on a volume's transfer function where the scene's has changed since
+  // (the viewer's editor changes it between frames): the table, the empty-space blocks, and a
+  // label volume's gradient. A cache of the scene: const, its members mutable.
+  void updateTransfers() const;
+  void uploadTransfer(std::size_t i) const;
   void draw(const std::vector<ActiveCutter>& cutters) const;
   // Binds volume i's textures and sets the uniforms every volume program shares.
   void bindVolume(GLuint program, std::size_t i) const;
 
   FrameSetup& setup_;
   const std::vector<ActiveCutter>* cutters_ = nullptr;
-  std::vector<VolumeGpu> volumes_;
+  mutable std::vector<VolumeGpu> volumes_;
   gl::Program program_, rearHullProgram_;
   FullscreenTriangle fullscreen_;
   Target entryDepth_, hitDepth_, opacity_;
