@@ -329,6 +329,81 @@ TEST_F(VolumeTest, AnEditedTransferFunctionIsDrawnByTheNextFrame) {
   EXPECT_NE(edited.pixels, before.pixels);
 }
 
+// Shadows of a volume's material (Beer–Lambert towards the key light): a translucent slab
+// over a block, lit and seen from straight above. At each pixel's hit on the block, the
+// volumeLightTransmittance AOV against the transmittance integrated finely along the vertical
+// through the interpolated field, exactly per the transfer function; the GPU's shadow ray
+// takes a step of one voxel, so the tolerance is one step's absorption of the slab. Where a
+// box cut removes the slab, the light falls into the cut.
+TEST_F(VolumeTest, AVolumesShadowIsTheBeerLambertTransmittanceTowardsTheLight) {
+  const float slab = 0.5f, block = 1.0f, alpha = 0.12f;
+  const fs::path file = volume("shelf", 40, 1.0f, [&](glm::vec3 p) {
+    if (p.y < -0.3f) return block;
+    return std::abs(p.x) < 0.6f && std::abs(p.z) < 0.6f && p.y > 0.2f && p.y < 0.45f ? slab : 0.0f;
+  });
+  const std::string tf = R"("transferFunction": [{"value": 0, "opacity": 0},
+      {"value": 0.5, "opacity": )" +
+                         std::to_string(alpha) + R"(}, {"value": 1, "opacity": 0.6}])";
+  const std::string rest = R"(, "lights": [{"type": "directional", "direction": [0, -1, 0],
+      "space": "world"}])";
+  for (const bool cut : {false, true}) {
+    SCOPED_TRACE(cut ? "slab cut open for x < 0" : "whole slab");
+    Scene s = scene(R"({"name": "shelf", "file": ")" + file.string() +
+                        R"(", "shadows": true, "jitter": false, )" + tf + "}",
+                    rest + (cut ? R"(, "cutters": {"boxCut": {"center": [-1, 0.3, 0],
+                                     "size": [2, 0.6, 3]}})"
+                                : ""));
+    s.camera.fit = false;
+    s.camera.projection = Projection::Orthographic;
+    s.camera.eye = {0.0f, 4.0f, 0.0f};
+    s.camera.target = {0.0f, 0.0f, 0.0f};
+    s.camera.up = {0.0f, 0.0f, -1.0f};
+    s.camera.height = 2.4f;
+    const auto aovs = renderAovs(s);
+    const FloatImage &light = aov(aovs, "volumeLightTransmittance"),
+                     &hit = aov(aovs, "volumeHitDepth");
+    const Camera c = s.resolvedCamera();
+    const glm::mat4 inverse =
+        glm::inverse(c.projectionMatrix(float(s.width) / s.height) * c.view());
+    const SceneVolume& v = s.volumes[0];
+    const glm::mat4 worldToIndex = glm::inverse(v.indexToWorld());
+    const float voxel = 2.0f / 39.0f;
+    const auto removed = [&](glm::vec3 p) { return cut && p.x < 0.0f && p.y > 0.0f; };
+    int shadowed = 0, lit = 0;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        const float depth = hit.at(x, y)[0];
+        if (std::isnan(depth)) continue;
+        const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
+        const glm::vec4 near = inverse * glm::vec4(uv * 2.0f - 1.0f, -1.0f, 1.0f);
+        glm::vec3 p = glm::vec3(near) / near.w;
+        p.y = 4.0f - depth;
+        // Away from the slab's and the cut's edges, where a voxel decides.
+        if (std::abs(std::abs(p.x) - 0.6f) < 2 * voxel ||
+            std::abs(std::abs(p.z) - 0.6f) < 2 * voxel || (cut && std::abs(p.x) < 2 * voxel) ||
+            std::abs(p.x) > 0.9f || std::abs(p.z) > 0.9f)
+          continue;
+        double opticalDepth = 0.0;  // in units of the opacity distance (one voxel)
+        const float dt = 0.01f * voxel;
+        // The GPU's first sample, one voxel up, stands for the voxel around it.
+        for (float t = 0.5f * voxel; p.y + t < 1.0f + 0.5f * voxel; t += dt) {
+          const glm::vec3 q = p + glm::vec3(0.0f, t, 0.0f);
+          if (removed(q)) continue;
+          const float value = sampleVolume(*v.volume, glm::vec3(worldToIndex * glm::vec4(q, 1.0f)));
+          opticalDepth -= std::log(1.0 - v.material(value).opacity) * dt / voxel;
+        }
+        const double expected = std::exp(-opticalDepth);
+        const double tolerance = -std::log(1.0 - alpha) * 1.0 + 0.02;  // one step of the slab
+        EXPECT_NEAR(std::log(light.at(x, y)[0]), std::log(expected), tolerance)
+            << x << "," << y << " at " << p.x << ", " << p.z;
+        (std::abs(p.x) < 0.6f && std::abs(p.z) < 0.6f && !removed({p.x, 0.3f, p.z}) ? shadowed
+                                                                                    : lit)++;
+      }
+    EXPECT_GT(shadowed, cut ? 100 : 200);
+    EXPECT_GT(lit, 200);
+  }
+}
+
 // A mesh inside the volume stops the rays: in front of it the volume is cast up to its depth,
 // exactly as the CPU reference casts it with that depth.
 TEST_F(VolumeTest, AMeshInsideTheVolumeStopsTheRays) {

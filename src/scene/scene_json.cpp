@@ -584,6 +584,7 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene
     v.opacityDistance = float(number(ctx, *t, r.at("opacityDistance"), 0.05, 1000));
   if (const json* t = r.take("shading")) v.shading = boolean(ctx, *t, r.at("shading"));
   if (const json* t = r.take("jitter")) v.jitter = boolean(ctx, *t, r.at("jitter"));
+  if (const json* t = r.take("shadows")) v.shadows = boolean(ctx, *t, r.at("shadows"));
   if (const json* t = r.take("labels")) v.labels = boolean(ctx, *t, r.at("labels"));
   r.finish();
   if (v.labels) {

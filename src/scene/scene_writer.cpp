@@ -192,7 +192,8 @@ json volumeJson(const SceneVolume& v) {
               {"opacityDistance", exact(v.opacityDistance)},
               {"isoValue", exact(v.isoValue)},
               {"shading", v.shading},
-              {"jitter", v.jitter}};
+              {"jitter", v.jitter},
+              {"shadows", v.shadows}};
   if (v.transfer.twoDimensional())
     for (const TransferFunction::Row& row : v.transfer.rows)
       out["transferFunction2D"].push_back(

@@ -78,6 +78,9 @@ std::vector<Parameter> volumeParameters() {
                              "Gradient normals shaded by the style; off: emission only."));
   out.push_back(volumeMember("jitter", "jitter", Type::Bool, &V::jitter,
                              "Ray starts offset per pixel against wood-grain bands."));
+  out.push_back(volumeMember("shadows", "shadows", Type::Bool, &V::shadows,
+                             "The material shadows the key light: a shadow ray per shaded "
+                             "sample (slow on a software rasteriser)."));
   return out;
 }
 

@@ -164,6 +164,8 @@ struct SceneVolume {
   float opacityDistance = 1.0f;
   bool shading = true;  // gradient normals shaded by the style; false: emission only
   bool jitter = true;   // ray starts offset per pixel (against wood-grain artefacts)
+  // Its material shadows the key light for its own shaded samples (a shadow ray per sample).
+  bool shadows = false;
   // A label volume (an atlas, a segmentation): integer values sampled at the nearest voxel,
   // each transfer-function point one label's material; labels it does not list are clear.
   bool labels = false;

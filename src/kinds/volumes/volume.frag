@@ -28,6 +28,7 @@ layout(binding = 0) uniform sampler2DMS uOpaqueDepth;
 layout(binding = 5) uniform sampler2D uPreviousHit;
 layout(binding = 6) uniform sampler2D uPreviousEntry;
 layout(binding = 7) uniform sampler2D uPreviousOpacity;
+layout(binding = UNIT_VOLUME_PREVIOUS_TRANSMITTANCE) uniform sampler2D uPreviousTransmittance;
 // Per block of kBlock³ voxels: 0 where every value its samples can interpolate is clear.
 layout(binding = UNIT_VOLUME_OCCUPANCY) uniform usampler3D uOccupancy;
 const float kBlock = 8.0;  // VolumeKind's kBlock
@@ -40,11 +41,13 @@ layout(location = 8) uniform int uJitter;
 layout(location = 9) uniform int uCutBy;             // bit k: the cutter of slot k cuts it
 layout(location = 10) uniform int uInterest;         // 1: of interest (emphasis as I = 1)
 layout(location = 14) uniform float uVoxel;          // the smallest spacing, world units
+layout(location = 19) uniform int uShadows;          // 1: its material shadows the key light
 
 layout(location = 0) out vec4 outColor;  // premultiplied, blended over the final colour
 layout(location = 1) out float outEntryDepth;
 layout(location = 2) out float outHitDepth;
 layout(location = 3) out float outOpacity;
+layout(location = 4) out float outLightTransmittance;
 
 const float kNaN = uintBitsToFloat(0x7fc00000u);
 
@@ -67,21 +70,59 @@ vec3 normalAt(vec3 index) {
   return dot(g, g) > 1e-20 ? -normalize(g) : vec3(0.0);
 }
 
-// The cutters' fate of the sample at world position p, asked as a front face, or as a back
-// face for the cut's normal: a sample just behind removed material stands where a back face
-// would show the cut surface (Burns11 §5.2.4.1).
-int sampleFate(vec3 p, bool frontFacing, out vec3 cutNormal) {
+// The cutters' fate of the sample at world position p seen at window position `window`
+// (pixels), asked as a front face, or as a back face for the cut's normal: a sample just
+// behind removed material stands where a back face would show the cut surface (Burns11
+// §5.2.4.1).
+int fateAt(vec3 p, vec2 window, bool frontFacing, out vec3 cutNormal) {
   vec4 clip = uViewProjection * vec4(p, 1.0);
-  gSampleCoord = vec4(gl_FragCoord.xy, clip.z / clip.w * 0.5 + 0.5, 1.0);
+  gSampleCoord = vec4(window, clip.z / clip.w * 0.5 + 0.5, 1.0);
   vec3 cutPosition;
   int cutter;
   return cutFragment(uCutBy, CutFragment(p, vec3(0.0), frontFacing), cutPosition, cutNormal,
                      cutter);
 }
+int sampleFate(vec3 p, bool frontFacing, out vec3 cutNormal) {
+  return fateAt(p, gl_FragCoord.xy, frontFacing, cutNormal);
+}
+
+// The fraction of the key light that reaches p through this volume's material (Beer–Lambert
+// along the ray towards the light, up to a point light): every second step, the transfer
+// function's opacity corrected for that length. Material the cutters remove casts no shadow,
+// so light falls into the cut; a sample off screen or behind the eye, where the cutters have
+// no buffers, is kept.
+float volumeTransmittance(vec3 p) {
+  vec3 l = towardsLight(0, p);
+  vec3 o = (uWorldToIndex * vec4(p, 1.0)).xyz, d = mat3(uWorldToIndex) * l;
+  vec3 a = (vec3(-0.5) - o) / d, b = (uDims - 0.5 - o) / d;
+  float tExit = min(min(max(a.x, b.x), max(a.y, b.y)), max(a.z, b.z));
+  if (uLightVector[0].w != 0.0) tExit = min(tExit, distance(p, uLightVector[0].xyz));
+  float step = 2.0 * uStep, exponent = 2.0 * uOpacityExponent, transmittance = 1.0;
+  for (float t = step; t < tExit && transmittance > 0.004; t += step) {
+    vec3 index = o + t * d;
+    vec2 u = transferCoordinates(valueAt(index), index);
+    float alpha = texture(uTransfer, u).a;
+    if (alpha == 0.0) continue;
+    vec3 q = p + t * l;
+    if (uCutBy != 0) {
+      vec4 clip = uViewProjection * vec4(q, 1.0);
+      vec2 ndc = clip.xy / clip.w;
+      gSampleImportance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
+      vec3 cutNormal;
+      if (clip.w > 0.0 && all(lessThanEqual(abs(ndc), vec2(1.0))) &&
+          fateAt(q, (ndc * 0.5 + 0.5) * uViewport.xy, true, cutNormal) == kDiscard)
+        continue;
+    }
+    transmittance *= pow(1.0 - alpha, exponent);
+  }
+  return transmittance;
+}
+float gTransmittance;  // the last shaded sample's key-light transmittance
 
 // The sample's colour: the transfer function's, shaded with the normal `n` (zero: unshaded),
 // emphasised by its importance (Burns11 eqs. 3.1–3.4).
 vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
+  gTransmittance = 1.0;
   if (uShading == 0 || n == vec3(0.0)) return emphasize(base, base, importance);
   SurfacePoint s;
   s.position = p;
@@ -90,7 +131,10 @@ vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
   s.baseColor = base;
   s.specular = 0.2;
   s.shininess = 32.0;
-  s.keyLightVisibility = keyLightVisibility(p);
+  float sampleImportance = gSampleImportance;  // the shadow ray's samples set their own
+  gTransmittance = uShadows != 0 ? volumeTransmittance(p) : 1.0;
+  gSampleImportance = sampleImportance;
+  s.keyLightVisibility = keyLightVisibility(p) * gTransmittance;
   return emphasize(base, shadeSurface(s), importance);
 }
 
@@ -106,10 +150,12 @@ void main() {
   float previousHit = texelFetch(uPreviousHit, pixel, 0).r;
   float previousEntry = texelFetch(uPreviousEntry, pixel, 0).r;
   float previousOpacity = texelFetch(uPreviousOpacity, pixel, 0).r;
+  float previousTransmittance = texelFetch(uPreviousTransmittance, pixel, 0).r;
   outColor = vec4(0.0);
   outEntryDepth = previousEntry;
   outHitDepth = previousHit;
   outOpacity = previousOpacity;
+  outLightTransmittance = previousTransmittance;
   vec2 uv = gl_FragCoord.xy * uViewport.zw;
   VolumeRay ray = volumeRay(uv);
   vec3 origin = ray.origin, direction = ray.direction, o = ray.o, d = ray.d;
@@ -119,7 +165,7 @@ void main() {
   if (opaque < 1.0) tOut = min(tOut, distance(origin, worldAtWindow(uv, opaque)));
   if (!isnan(previousHit)) tOut = min(tOut, distanceAtViewDepth(origin, direction, previousHit));
   if (!(tIn < tOut)) discard;
-  float entry = kNaN, hit = kNaN;
+  float entry = kNaN, hit = kNaN, hitTransmittance = kNaN;
   float offset = uJitter != 0 ? pixelJitter(uvec2(gl_FragCoord.xy)) : 0.5;
   vec4 sum = vec4(0.0);  // premultiplied colour, opacity
   float maxValue = -1e30, maxT = 0.0;
@@ -189,6 +235,7 @@ void main() {
         vec3 n = onCut ? faceNormal : normalAt(o + tHit * d);
         sum = vec4(shadeSample(q, texture(uTransfer, iso).rgb, importance, n), 1.0);
         hit = -(uView * vec4(q, 1.0)).z;
+        hitTransmittance = gTransmittance;
         break;
       }
     } else {
@@ -200,7 +247,7 @@ void main() {
       alpha *= cutOpacity(uCutBy, CutFragment(p, n, true), n, toEye).x;
       vec3 color = shadeSample(p, c.rgb, gSampleImportance, n);
       sum += (1.0 - sum.a) * vec4(clamp(color, 0.0, 1.0) * alpha, alpha);
-      if (isnan(hit) && sum.a >= 0.5) hit = depth;
+      if (isnan(hit) && sum.a >= 0.5) hit = depth, hitTransmittance = gTransmittance;
       if (sum.a > 0.995) break;  // early ray termination
     }
     previousKept = true;
@@ -218,4 +265,6 @@ void main() {
   outEntryDepth = isnan(previousEntry) ? entry : isnan(entry) ? previousEntry : min(entry, previousEntry);
   outHitDepth = isnan(previousHit) ? hit : isnan(hit) ? previousHit : min(hit, previousHit);
   outOpacity = 1.0 - (1.0 - previousOpacity) * (1.0 - sum.a);
+  // This ray stopped at the earlier volumes' hit: a hit of its own is the nearer.
+  outLightTransmittance = isnan(hit) ? previousTransmittance : hitTransmittance;
 }

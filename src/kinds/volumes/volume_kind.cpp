@@ -16,7 +16,7 @@ namespace {
 constexpr GLint kWorldToIndex = 0, kDims = 1, kStep = 2, kOpacityExponent = 3, kTransferRange = 4,
                 kMode = 5, kIsoValue = 6, kShading = 7, kJitter = 8, kCutBy = 9, kInterest = 10,
                 kGradientToWorld = 11, kVoxel = 14, kStepRearHull = 2, kTheta = 16, kPassSize = 17,
-                kGradientRange = 18;
+                kGradientRange = 18, kShadows = 19;
 // Texels of a continuous transfer function's table along the value and, for a two-dimensional
 // one, along the gradient magnitude.
 constexpr int kTransferSize = 1024, kGradientSize = 256;
@@ -145,7 +145,9 @@ TransferTable transferTable(const SceneVolume& v) {
 }
 
 VolumeKind::VolumeKind(FrameSetup& setup)
-    : setup_(setup), occupancyUnit_(setup.bindings.textureUnit("VOLUME_OCCUPANCY")) {
+    : setup_(setup),
+      occupancyUnit_(setup.bindings.textureUnit("VOLUME_OCCUPANCY")),
+      previousTransmittanceUnit_(setup.bindings.textureUnit("VOLUME_PREVIOUS_TRANSMITTANCE")) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
   while (glGetError() != GL_NO_ERROR) {
@@ -182,6 +184,10 @@ VolumeKind::VolumeKind(FrameSetup& setup)
                   "(composite), of the isosurface (isosurface) or of the maximum (maximum); NaN "
                   "where none");
   opacity_ = aov("volumeOpacity", "accumulated opacity of the volumes' rays in [0, 1]");
+  transmittance_ = aov("volumeLightTransmittance",
+                       "the fraction of the key light that reaches the sample of volumeHitDepth "
+                       "through the volume's material (volumes with \"shadows\"; 1 without, "
+                       "unshaded samples included); NaN where no hit");
 }
 
 void VolumeKind::uploadTransfer(std::size_t i) const {
@@ -226,16 +232,18 @@ void VolumeKind::prepare(const std::vector<ActiveCutter>& cutters) {
   previousEntry_ = gl::Texture::create2D(GL_R32F, w, h);
   previousHit_ = gl::Texture::create2D(GL_R32F, w, h);
   previousOpacity_ = gl::Texture::create2D(GL_R32F, w, h);
+  previousTransmittance_ = gl::Texture::create2D(GL_R32F, w, h);
   program_ =
       gl::buildProgram(setup_.geometryProgram({{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                                                {GL_FRAGMENT_SHADER, "kinds/volumes/volume.frag"}}));
 }
 
 void VolumeKind::addPassesAfterComposite(Frame& frame) {
-  frame.addPass({.name = "volumes",
-                 .reads = {setup_.gbuffer.depth()},
-                 .writes = {setup_.gbuffer.finalColor(), entryDepth_, hitDepth_, opacity_},
-                 .run = [this](const PassContext&) { draw(*cutters_); }});
+  frame.addPass(
+      {.name = "volumes",
+       .reads = {setup_.gbuffer.depth()},
+       .writes = {setup_.gbuffer.finalColor(), entryDepth_, hitDepth_, opacity_, transmittance_},
+       .run = [this](const PassContext&) { draw(*cutters_); }});
 }
 
 void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
@@ -245,6 +253,7 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
   glClearTexImage(frame.texture(entryDepth_).id(), 0, GL_RED, GL_FLOAT, &nan);
   glClearTexImage(frame.texture(hitDepth_).id(), 0, GL_RED, GL_FLOAT, &nan);
   glClearTexImage(frame.texture(opacity_).id(), 0, GL_RED, GL_FLOAT, &zero);
+  glClearTexImage(frame.texture(transmittance_).id(), 0, GL_RED, GL_FLOAT, &nan);
   const GLuint program = program_.id();
   glUseProgram(program);
   // The cutters' textures and images stay bound from the geometry pass (units from 8 up are
@@ -272,7 +281,8 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
       }
     for (const auto& [aov, copy] :
          {std::pair{entryDepth_, previousEntry_.id()}, std::pair{hitDepth_, previousHit_.id()},
-          std::pair{opacity_, previousOpacity_.id()}})
+          std::pair{opacity_, previousOpacity_.id()},
+          std::pair{transmittance_, previousTransmittance_.id()}})
       glCopyImageSubData(frame.texture(aov).id(), GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0,
                          0, 0, 0, w, h, 1);
     bindVolume(program, i);
@@ -284,12 +294,14 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
     glProgramUniform1f(program, kIsoValue, v.isoValue);
     glProgramUniform1i(program, kShading, v.shading);
     glProgramUniform1i(program, kJitter, v.jitter);
+    glProgramUniform1i(program, kShadows, v.shadows);
     glProgramUniform1i(program, kCutBy, cutBy);
     glProgramUniform1i(program, kInterest, v.role == Role::Interest);
     glBindTextureUnit(occupancyUnit_, volumes_[i].occupancy.id());
     glBindTextureUnit(5, previousHit_.id());
     glBindTextureUnit(6, previousEntry_.id());
     glBindTextureUnit(7, previousOpacity_.id());
+    glBindTextureUnit(previousTransmittanceUnit_, previousTransmittance_.id());
     fullscreen_.draw();
   }
   glDisablei(GL_BLEND, 0);

@@ -7,7 +7,8 @@
 // ch. 2, eqs. 7.1–7.3 with the importance of the sample's material). The frame's pass:
 //   volumes   every volume, those of interest first, blended over the final colour, each
 //             ray stopping where the volumes before it hid the rest; the AOVs
-//             volumeEntryDepth, volumeHitDepth and volumeOpacity over all of them
+//             volumeEntryDepth, volumeHitDepth, volumeOpacity and
+//             volumeLightTransmittance over all of them
 #pragma once
 
 #include <vector>
@@ -62,10 +63,10 @@ class VolumeKind : public GeometryKind {
   mutable std::vector<VolumeGpu> volumes_;
   gl::Program program_, rearHullProgram_;
   FullscreenTriangle fullscreen_;
-  Target entryDepth_, hitDepth_, opacity_;
-  GLuint occupancyUnit_;
+  Target entryDepth_, hitDepth_, opacity_, transmittance_;
+  GLuint occupancyUnit_, previousTransmittanceUnit_;
   // The AOVs as the volumes drawn so far left them, read by the next (volume.frag).
-  gl::Texture previousEntry_, previousHit_, previousOpacity_;
+  gl::Texture previousEntry_, previousHit_, previousOpacity_, previousTransmittance_;
 };
 
 }  // namespace cutaway
