@@ -11,6 +11,13 @@
 // returning kKeep, kDiscard or kCutSurface (cutters/fate.glsl), and for each G-buffer channel
 // its constructor adds (GBuffer::addChannel), `float <name>Channel<k>(CutFragment f)` (k: 0,
 // 1, … in the order added), the channel's value on the fragments of the objects it cuts.
+// Optionally, for the volumes' rays, a span of a view ray in which it removes every point, so
+// that the ray skips it instead of asking per sample (Burns11 §5.2.5: rays start at the
+// cutaway surface): `#define <NAME>_REMOVED_SPAN` and
+//   vec2 <name>RemovedSpan(vec3 origin, vec3 direction, vec2 window);
+// (distances along the unit direction from the origin; empty where x ≥ y; `window`: the ray's
+// pixel, as gl_FragCoord.xy), conservative: every point inside is one <name>Fragment discards
+// as a front face.
 //
 // Adding a cutter: its folder (options, this interface, GLSL, README citing the equations) and
 // one line in registry.cpp (docs/architecture.md).

@@ -99,7 +99,19 @@ std::string cutterComposition(const std::vector<ActiveCutter>& active) {
     if (c.cutter->translucentLayers() > 0)
       glsl += "  if ((cutBy & (1 << " + std::to_string(c.slot) +
               ")) != 0) opacity = min(opacity, " + c.type->name + "Opacity(f, normal, toEye));\n";
-  glsl += "  return opacity;\n}\nvoid writeCutterChannels(int cutBy, CutFragment f) {\n";
+  // The spans of a volume's ray that cutters remove whole (cutter.hpp), one per active cutter.
+  glsl += "  return opacity;\n}\n#define REMOVED_SPANS " +
+          std::to_string(std::max<std::size_t>(active.size(), 1)) +
+          "\nvoid removedSpans(int cutBy, vec3 origin, vec3 direction, vec2 window,\n"
+          "                  out vec2 spans[REMOVED_SPANS]) {\n"
+          "  for (int i = 0; i < REMOVED_SPANS; ++i) spans[i] = vec2(1e30, -1e30);\n";
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    const ActiveCutter& c = active[i];
+    glsl += "#ifdef " + upper(c.type->name) + "_REMOVED_SPAN\n  if ((cutBy & (1 << " +
+            std::to_string(c.slot) + ")) != 0) spans[" + std::to_string(i) + "] = " + c.type->name +
+            "RemovedSpan(origin, direction, window);\n#endif\n";
+  }
+  glsl += "}\nvoid writeCutterChannels(int cutBy, CutFragment f) {\n";
   for (const ActiveCutter& c : active)
     for (std::size_t k = 0; k < c.channels.size(); ++k)
       glsl += "  outChannel" + std::to_string(c.channels[k]) + " = (cutBy & (1 << " +

@@ -159,6 +159,22 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
 #endif
 }
 
+#ifndef UNIT_CUTAWAY_DEPTH_C2
+// Burns11 §5.2.5: a volume's ray starts at the cutaway surface. Along the ray through `window`
+// the window depth grows, so every point in front of the depth C there is removed (eq. 5.4):
+// the span up to C's point, shrunk by a hair so that the samples at C are decided per sample.
+// (The contextual structure keeps important samples in front of C: no such span.)
+#define ADAPTIVE_REMOVED_SPAN
+vec2 adaptiveRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+  vec2 uv = window * uViewport.zw;
+  float c = texture(uCutawayDepth, uv).r;
+  if (c <= 0.0) return vec2(1e30, -1e30);
+  vec4 h = uInverseView * (uInverseProjection * vec4(uv * 2.0 - 1.0, c * 2.0 - 1.0, 1.0));
+  float t = dot(h.xyz / h.w - origin, direction);
+  return vec2(-1e30, t * (1.0 - 1e-4));
+}
+#endif
+
 // Burns08 §4.3: how strongly a removed fragment shows as a ghost line: 1 at the cutaway
 // surface, fading to 0 at `distance` (world units) in front of it; 0 for kept fragments.
 float ghostFade(vec3 worldPosition, float distance) {

@@ -41,3 +41,17 @@ int boxCutFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   cutNormal = (v[outAxis] > 0.0 ? -1.0 : 1.0) * uBoxCutAxes[outAxis];
   return kCutSurface;
 }
+
+// The span of a view ray inside the box, which it removes whole (cutters/cutter.hpp), shrunk
+// by a hair so that samples on its faces are decided by boxCutFragment.
+#define BOXCUT_REMOVED_SPAN
+vec2 boxCutRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+  vec3 from = boxCutLocal(origin);
+  vec3 v = vec3(dot(direction, uBoxCutAxes[0]), dot(direction, uBoxCutAxes[1]),
+                dot(direction, uBoxCutAxes[2]));
+  vec3 a = (-uBoxCutHalf - from) / v, b = (uBoxCutHalf - from) / v;
+  float tIn = max(max(min(a.x, b.x), min(a.y, b.y)), min(a.z, b.z));
+  float tOut = min(min(max(a.x, b.x), max(a.y, b.y)), max(a.z, b.z));
+  float hair = 1e-4 * (tOut - tIn);
+  return vec2(tIn + hair, tOut - hair);
+}

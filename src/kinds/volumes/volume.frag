@@ -4,7 +4,8 @@
 // leaves it or meets the opaque surfaces (sample 0 of the G-buffer's depth), sampled every
 // uStep world units from a per-pixel jittered start. Each sample is decided by the cutters
 // that cut the volume, like a fragment at its position (cutters/cutter.hpp), and classified by
-// the transfer function. Mirrored on the CPU by volume_ray_cast.cpp.
+// the transfer function. Mirrored on the CPU by volume_ray_cast.cpp. Variants (defines):
+// TRANSFER_2D, a transfer function of value × gradient magnitude; SHADOWS, the shadow ray.
 #include "frame/frame_uniforms.glsl"
 #include "styles/surface.glsl"
 #include "style.glsl"
@@ -41,7 +42,6 @@ layout(location = 8) uniform int uJitter;
 layout(location = 9) uniform int uCutBy;             // bit k: the cutter of slot k cuts it
 layout(location = 10) uniform int uInterest;         // 1: of interest (emphasis as I = 1)
 layout(location = 14) uniform float uVoxel;          // the smallest spacing, world units
-layout(location = 19) uniform int uShadows;          // 1: its material shadows the key light
 
 layout(location = 0) out vec4 outColor;  // premultiplied, blended over the final colour
 layout(location = 1) out float outEntryDepth;
@@ -91,6 +91,7 @@ int sampleFate(vec3 p, bool frontFacing, out vec3 cutNormal) {
 // function's opacity corrected for that length. Material the cutters remove casts no shadow,
 // so light falls into the cut; a sample off screen or behind the eye, where the cutters have
 // no buffers, is kept.
+#ifdef SHADOWS
 float volumeTransmittance(vec3 p) {
   vec3 l = towardsLight(0, p);
   vec3 o = (uWorldToIndex * vec4(p, 1.0)).xyz, d = mat3(uWorldToIndex) * l;
@@ -117,6 +118,7 @@ float volumeTransmittance(vec3 p) {
   }
   return transmittance;
 }
+#endif
 float gTransmittance;  // the last shaded sample's key-light transmittance
 
 // The sample's colour: the transfer function's, shaded with the normal `n` (zero: unshaded),
@@ -131,9 +133,11 @@ vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
   s.baseColor = base;
   s.specular = 0.2;
   s.shininess = 32.0;
+#ifdef SHADOWS
   float sampleImportance = gSampleImportance;  // the shadow ray's samples set their own
-  gTransmittance = uShadows != 0 ? volumeTransmittance(p) : 1.0;
+  gTransmittance = volumeTransmittance(p);
   gSampleImportance = sampleImportance;
+#endif
   s.keyLightVisibility = keyLightVisibility(p) * gTransmittance;
   return emphasize(base, shadeSurface(s), importance);
 }
@@ -176,10 +180,25 @@ void main() {
   // voxels: the gradient's reach).
   float cutSkin = 1.5 * uVoxel, tCut = -1e30;
   vec3 faceNormal = vec3(0.0);
-  // The samples lie on the lattice t₀ + k·step, so skipping empty blocks changes none of them.
+  // Where the cutters remove the ray whole (the cutaway surface's near side, a box cut's
+  // inside), it skips ahead instead of asking them per sample (Burns11 §5.2.5).
+  vec2 spans[REMOVED_SPANS];
+  removedSpans(uCutBy, origin, direction, gl_FragCoord.xy, spans);
+  // The samples lie on the lattice t₀ + k·step, so skipping removed spans and empty blocks
+  // changes none of them.
   float t0 = tIn + offset * uStep;
   for (int k = 0; t0 + float(k) * uStep < tOut; ++k) {
     float t = t0 + float(k) * uStep;
+    bool removed = false;
+    for (int i = 0; i < REMOVED_SPANS; ++i)
+      if (t > spans[i].x && t < spans[i].y) {
+        k = max(k, int(ceil((spans[i].y - t0) / uStep)) - 1);
+        removed = true;
+      }
+    if (removed) {
+      previousKept = false;
+      continue;
+    }
     vec3 p = origin + t * direction;
     vec3 index = o + t * d;
     // Composite: a block whose values the transfer function makes all clear is skipped to

@@ -223,19 +223,48 @@ void VolumeKind::updateTransfers() const {
     if (!(volumes_[i].uploaded == setup_.scene.volumes[i].transfer)) uploadTransfer(i);
 }
 
+namespace {
+// The defines of a volume's program variant.
+std::map<std::string, std::string> variantDefines(bool twoDimensional, bool shadows) {
+  std::map<std::string, std::string> defines{{"TRANSFER_2D", twoDimensional ? "1" : "0"},
+                                             {"SHADOWS", shadows ? "1" : "0"}};
+  std::erase_if(defines, [](const auto& d) { return d.second == "0"; });
+  return defines;
+}
+}  // namespace
+
+GLuint VolumeKind::castProgram(const SceneVolume& v) const {
+  const bool twoD = v.transfer.twoDimensional();
+  gl::Program& p = castPrograms_[int(twoD) | int(v.shadows) << 1];
+  if (!p.id())
+    p = gl::buildProgram(setup_.geometryProgram({{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                                                 {GL_FRAGMENT_SHADER, "kinds/volumes/volume.frag"}},
+                                                variantDefines(twoD, v.shadows)));
+  return p.id();
+}
+
+GLuint VolumeKind::rearHullProgram(const SceneVolume& v) const {
+  const bool twoD = v.transfer.twoDimensional();
+  gl::Program& p = rearHullPrograms_[int(twoD)];
+  if (!p.id())
+    p = setup_.bindings.build(
+        {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                    {GL_FRAGMENT_SHADER, "kinds/volumes/volume_rear_hull.frag"}},
+         .defines = variantDefines(twoD, false)});
+  return p.id();
+}
+
 void VolumeKind::prepare(const std::vector<ActiveCutter>& cutters) {
   cutters_ = &cutters;
-  rearHullProgram_ = setup_.bindings.build(
-      {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
-                  {GL_FRAGMENT_SHADER, "kinds/volumes/volume_rear_hull.frag"}}});
+  for (const SceneVolume& v : setup_.scene.volumes) {
+    castProgram(v);
+    if (v.role == Role::Interest) rearHullProgram(v);
+  }
   const int w = setup_.frame.width(), h = setup_.frame.height();
   previousEntry_ = gl::Texture::create2D(GL_R32F, w, h);
   previousHit_ = gl::Texture::create2D(GL_R32F, w, h);
   previousOpacity_ = gl::Texture::create2D(GL_R32F, w, h);
   previousTransmittance_ = gl::Texture::create2D(GL_R32F, w, h);
-  program_ =
-      gl::buildProgram(setup_.geometryProgram({{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
-                                               {GL_FRAGMENT_SHADER, "kinds/volumes/volume.frag"}}));
 }
 
 void VolumeKind::addPassesAfterComposite(Frame& frame) {
@@ -254,12 +283,9 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
   glClearTexImage(frame.texture(hitDepth_).id(), 0, GL_RED, GL_FLOAT, &nan);
   glClearTexImage(frame.texture(opacity_).id(), 0, GL_RED, GL_FLOAT, &zero);
   glClearTexImage(frame.texture(transmittance_).id(), 0, GL_RED, GL_FLOAT, &nan);
-  const GLuint program = program_.id();
-  glUseProgram(program);
   // The cutters' textures and images stay bound from the geometry pass (units from 8 up are
   // theirs for the whole frame: frame/bindings.hpp); the style's are bound again.
   setup_.bindShading();
-  for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
   glBindTextureUnit(0, frame.texture(setup_.gbuffer.depth()).id());
   glDisable(GL_DEPTH_TEST);
   glEnablei(GL_BLEND, 0);  // "over" the final colour; the AOVs are written as they are
@@ -273,6 +299,9 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
   const int w = frame.width(), h = frame.height();
   for (const std::size_t i : order) {
     const SceneVolume& v = setup_.scene.volumes[i];
+    const GLuint program = castProgram(v);
+    glUseProgram(program);
+    for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
     int cutBy = 0;
     for (const ActiveCutter& c : cutters)
       if (c.cutter->cutsVolume(i)) {
@@ -294,7 +323,6 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
     glProgramUniform1f(program, kIsoValue, v.isoValue);
     glProgramUniform1i(program, kShading, v.shading);
     glProgramUniform1i(program, kJitter, v.jitter);
-    glProgramUniform1i(program, kShadows, v.shadows);
     glProgramUniform1i(program, kCutBy, cutBy);
     glProgramUniform1i(program, kInterest, v.role == Role::Interest);
     glBindTextureUnit(occupancyUnit_, volumes_[i].occupancy.id());
@@ -326,15 +354,15 @@ void VolumeKind::bindVolume(GLuint program, std::size_t i) const {
 
 void VolumeKind::drawInterestRearHulls(const RearHullRequest& request) const {
   updateTransfers();
-  const GLuint program = rearHullProgram_.id();
   GLint viewport[4];
   glGetIntegerv(GL_VIEWPORT, viewport);
-  glUseProgram(program);
-  glProgramUniform2f(program, kPassSize, float(viewport[2]), float(viewport[3]));
-  glProgramUniform1f(program, kTheta, request.theta(nullptr));
   for (std::size_t i = 0; i < volumes_.size(); ++i) {
     const SceneVolume& v = setup_.scene.volumes[i];
     if (v.role != Role::Interest) continue;
+    const GLuint program = rearHullProgram(v);
+    glUseProgram(program);
+    glProgramUniform2f(program, kPassSize, float(viewport[2]), float(viewport[3]));
+    glProgramUniform1f(program, kTheta, request.theta(nullptr));
     bindVolume(program, i);
     glProgramUniform1f(program, kStepRearHull, v.sampleDistance * smallestSpacing(v));
     fullscreen_.draw();

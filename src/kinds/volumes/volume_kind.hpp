@@ -11,6 +11,7 @@
 //             volumeLightTransmittance over all of them
 #pragma once
 
+#include <map>
 #include <vector>
 
 #include "cutaway/gl/objects.hpp"
@@ -61,7 +62,12 @@ class VolumeKind : public GeometryKind {
   FrameSetup& setup_;
   const std::vector<ActiveCutter>* cutters_ = nullptr;
   mutable std::vector<VolumeGpu> volumes_;
-  gl::Program program_, rearHullProgram_;
+  // The programs of a volume's variant (volume.frag's TRANSFER_2D and SHADOWS), built for the
+  // scene's volumes at set-up and for others on first use (the viewer's edits): llvmpipe runs
+  // both sides of a branch, so what a volume does not use is compiled out.
+  GLuint castProgram(const SceneVolume& v) const;
+  GLuint rearHullProgram(const SceneVolume& v) const;
+  mutable std::map<int, gl::Program> castPrograms_, rearHullPrograms_;
   FullscreenTriangle fullscreen_;
   Target entryDepth_, hitDepth_, opacity_, transmittance_;
   GLuint occupancyUnit_, previousTransmittanceUnit_;

@@ -29,14 +29,15 @@ vec3 gradientAt(vec3 index) {
 }
 
 // The table coordinates of a value with the gradient magnitude at `index` (fetched only for a
-// two-dimensional function), texel centres at the ends.
+// two-dimensional function: TRANSFER_2D), texel centres at the ends.
 vec2 transferCoordinates(float value, vec3 index) {
   vec2 n = vec2(textureSize(uTransfer, 0));
   float s = clamp((value - uTransferRange.x) / (uTransferRange.y - uTransferRange.x), 0.0, 1.0);
   float t = 0.0;
-  if (uGradientRange.y > uGradientRange.x)
-    t = clamp((length(gradientAt(index)) - uGradientRange.x) / (uGradientRange.y - uGradientRange.x),
-              0.0, 1.0);
+#ifdef TRANSFER_2D
+  t = clamp((length(gradientAt(index)) - uGradientRange.x) / (uGradientRange.y - uGradientRange.x),
+            0.0, 1.0);
+#endif
   return (vec2(s, t) * (n - 1.0) + 0.5) / n;
 }
 
