@@ -1,6 +1,13 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
 
 #include "cutaway/geometry/mesh.hpp"
+#include "cutaway/io/mesh_import.hpp"
+#include "expect_error.hpp"
 
 using namespace cutaway;
 
@@ -15,4 +22,45 @@ TEST(Mesh, BoxIsWatertightWithOutwardNormals) {
         (box.positions[t.x] + box.positions[t.y] + box.positions[t.z]) / 3.0f;
     EXPECT_GT(glm::dot(c, centroid - glm::vec3(0.5f, 1.0f, 1.5f)), 0.0f);
   }
+}
+
+namespace {
+
+// A PLY file in the temporary folder with the given text; its path.
+std::filesystem::path plyFile(const std::string& name, const std::string& text) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() /
+                                     ("cutaway-mesh-" + std::to_string(::getpid()) + "-" + name);
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+const std::string kPlyHeader =
+    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n";
+
+}  // namespace
+
+// Issue 16's crashes and hangs in Assimp's PLY path: each a one-line error naming the file.
+TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
+  const auto refuse = [](const std::string& name, const std::string& text,
+                         std::initializer_list<std::string> parts) {
+    const std::filesystem::path file = plyFile(name, text);
+    test::expectError([&] { importMeshNodes(file); }, parts);
+    std::filesystem::remove(file);
+  };
+  // A face index beyond the vertices (crashed in Assimp's post-processing and in our normals).
+  refuse("index.ply", kPlyHeader + "3 0 1 100000\n", {"index.ply"});
+  // The first two header lines alone (Assimp's reader looped forever).
+  refuse("header.ply", "ply\nformat ascii 1.0\n", {"header.ply", "end_header"});
+  // A count no file of this size can hold (Assimp allocated it).
+  refuse("count.ply",
+         "ply\nformat binary_little_endian 1.0\nelement vertex 2147483648\nproperty float x\n"
+         "end_header\n",
+         {"count.ply", "header line 3", "2147483648"});
+  refuse("magic.ply", "solid x\nendsolid x\n", {"magic.ply", "not a PLY"});
+  // The good file still loads.
+  const std::filesystem::path good = plyFile("good.ply", kPlyHeader + "3 0 1 2\n");
+  EXPECT_EQ(importMeshNodes(good).front().mesh.triangles.size(), 1u);
+  std::filesystem::remove(good);
 }

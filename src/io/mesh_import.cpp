@@ -5,9 +5,15 @@
 #include <assimp/scene.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <sstream>
 
 #include "cutaway/core/error.hpp"
 
@@ -35,17 +41,55 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
                                   m.c4, m.d1, m.d2, m.d3, m.d4));
 }
 
+// A PLY file's header, checked before Assimp reads it: Assimp's reader loops forever on a header
+// without "end_header" and allocates what an element count claims. Each element takes at least
+// one byte of the file, so a count beyond its size is a lie.
+void checkPlyHeader(const std::filesystem::path& file, const char* data, std::size_t size) {
+  const std::string head(data, std::min<std::size_t>(size, 1 << 16));
+  if (head.rfind("ply", 0) != 0) throw Error(file.string(), "", "not a PLY file (no \"ply\" line)");
+  const std::size_t end = head.find("end_header");
+  if (end == std::string::npos)
+    throw Error(file.string(), "header", "the PLY header has no end_header (truncated?)");
+  std::istringstream lines(head.substr(0, end));
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    std::istringstream words(line);
+    std::string keyword, name;
+    double count = 0.0;
+    if (!(words >> keyword) || keyword != "element") continue;
+    if (!(words >> name >> count) || !(count >= 0.0))
+      throw Error(file.string(), "header line " + std::to_string(number),
+                  "an element needs a name and a count");
+    if (count > double(size))
+      throw Error(file.string(), "header line " + std::to_string(number),
+                  "claims " + std::to_string(std::uint64_t(count)) + " " + name +
+                      " elements in a file of " + std::to_string(size) + " bytes");
+  }
+}
+
+std::vector<char> readFile(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in && !in.eof()) throw Error(file.string(), "", "cannot read");
+  return data;
+}
+
 // One aiMesh as a cutaway Mesh: triangles only (points and lines were sorted out), normals
-// recomputed when missing or invalid.
-Mesh convert(const aiMesh& in, bool& normalsComputed) {
+// recomputed when missing or invalid. Indices are checked: an importer's output is untrusted.
+Mesh convert(const std::filesystem::path& file, const aiMesh& in, bool& normalsComputed) {
   Mesh m;
   m.positions.reserve(in.mNumVertices);
   for (unsigned i = 0; i < in.mNumVertices; ++i)
     m.positions.emplace_back(in.mVertices[i].x, in.mVertices[i].y, in.mVertices[i].z);
   for (unsigned f = 0; f < in.mNumFaces; ++f) {
     const aiFace& face = in.mFaces[f];
-    if (face.mNumIndices == 3)
-      m.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
+    if (face.mNumIndices != 3) continue;
+    for (unsigned k = 0; k < 3; ++k)
+      if (face.mIndices[k] >= in.mNumVertices)
+        throw Error(file.string(), "face " + std::to_string(f),
+                    "vertex index " + std::to_string(face.mIndices[k]) + " out of range (" +
+                        std::to_string(in.mNumVertices) + " vertices)");
+    m.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
   }
   bool valid = in.HasNormals();
   if (valid) {
@@ -74,14 +118,20 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
   // Points and lines carry no surface: drop them rather than fail.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const unsigned flags =
-      aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_JoinIdenticalVertices;
+  // Validation first: the later steps index vertices the file claims without checking.
+  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+                         aiProcess_SortByPType | aiProcess_JoinIdenticalVertices;
   const aiScene* scene = nullptr;
-  if (file.extension() == ".gz") {
-    const std::vector<char> data = readGzip(file);
-    const std::string hint = file.stem().extension().string();  // "room.stl.gz" → ".stl"
-    scene = importer.ReadFileFromMemory(data.data(), data.size(), flags,
-                                        hint.empty() ? "" : hint.c_str() + 1);
+  const bool gzip = file.extension() == ".gz";
+  // "room.stl.gz" → "stl"
+  std::string format = (gzip ? file.stem().extension() : file.extension()).string();
+  if (!format.empty()) format.erase(0, 1);
+  std::transform(format.begin(), format.end(), format.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (gzip || format == "ply") {
+    const std::vector<char> data = gzip ? readGzip(file) : readFile(file);
+    if (format == "ply") checkPlyHeader(file, data.data(), data.size());
+    scene = importer.ReadFileFromMemory(data.data(), data.size(), flags, format.c_str());
   } else {
     scene = importer.ReadFile(file.string(), flags);
   }
@@ -101,7 +151,7 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
       for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-        out.mesh.append(convert(*mesh, normalsComputed), transform);
+        out.mesh.append(convert(file, *mesh, normalsComputed), transform);
         if (!out.color && mesh->mMaterialIndex < scene->mNumMaterials) {
           aiColor4D c;
           const aiMaterial* material = scene->mMaterials[mesh->mMaterialIndex];
