@@ -174,6 +174,35 @@ TEST(Cli, UnwritableOutputFailsWithoutPartialFiles) {
   EXPECT_NE(r.err.find("/nonexistent-dir/out.png"), std::string::npos) << r.err;
 }
 
+// Issue 16: outputs and camera values the CLI used to accept; each a one-line error, a
+// non-zero exit, and no file left behind.
+TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
+  const std::string scene = kData + "/render/plane-facing.json";
+  const fs::path dir =
+      fs::temp_directory_path() / ("cutaway-cli-outputs-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string png = (dir / "out.png").string(), file = (dir / "a-file").string();
+  std::ofstream(file) << "x";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"-o " + (dir / "out.jpg").string(), "only PNG"},
+      {"-o ''", "empty"},
+      {"-o " + dir.string(), "directory"},
+      {"-o " + png + " --aov " + file, "needs a directory"},
+      {"-o " + png + " --up 0,0,0", "zero vector"},
+      {"-o " + png + " --time nan", "finite"},
+      {"-o " + png + " --eye 1,1e39,2", "x,y,z"}};
+  for (const auto& [arguments, reason] : cases) {
+    const Result r = run("render " + scene + " " + arguments);
+    EXPECT_NE(r.exitCode, 0) << arguments;
+    EXPECT_EQ(lines(r.err), 1) << arguments << ": " << r.err;
+    EXPECT_NE(r.err.find(reason), std::string::npos) << arguments << ": " << r.err;
+    std::size_t left = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) left += entry.path() != file;
+    EXPECT_EQ(left, 0u) << arguments << " left a file";
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, UsageErrors) {
   EXPECT_EQ(run("").exitCode, 2);
   EXPECT_EQ(run("frobnicate").exitCode, 2);

@@ -1,7 +1,9 @@
 #include "commands.hpp"
 
-#include <charconv>
 #include <unistd.h>
+
+#include <cctype>
+#include <charconv>
 
 #include <algorithm>
 #include <chrono>
@@ -70,6 +72,7 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     }
     c.projection = to;
   }
+  if (glm::length(c.up) < 1e-9f) throw Error("--up", "", "up must not be the zero vector");
   if (glm::length(c.eye - c.target) < 1e-9f) throw Error("--eye", "", "eye and target coincide");
   if (glm::length(glm::cross(glm::normalize(c.eye - c.target), glm::normalize(c.up))) < 1e-6f)
     throw Error("--up", "", "up is parallel to the viewing direction");
@@ -206,7 +209,33 @@ void warnAboutFarCoordinates(const Scene& scene) {
                double(std::nextafter(reach, 2 * reach) - reach), at.x, at.y);
 }
 
+// The outputs checked before anything is rendered, so that a bad one leaves no file behind:
+// a PNG name (no other format is written), an AOV folder that is one or can be made.
+void checkOutputs(const RenderOptions& options) {
+  const std::filesystem::path out(options.output);
+  if (options.output.empty()) throw Error("--output", "", "the file name is empty");
+  std::error_code ec;
+  if (std::filesystem::is_directory(out, ec))
+    throw Error(options.output, "", "is a directory, not a file name");
+  std::string ext = out.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png")
+    throw Error(options.output, "", "only PNG is written: give the output a .png name");
+  if (options.aovDir.empty()) return;
+  const std::filesystem::path dir(options.aovDir);
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw Error(options.aovDir, "", "--aov needs a directory; this is a file");
+  const bool made = !std::filesystem::exists(dir, ec);
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(options.aovDir, "", "cannot create the AOV directory: " + ec.message());
+  if (::access(dir.c_str(), W_OK) != 0) {
+    if (made) std::filesystem::remove(dir, ec);
+    throw Error(options.aovDir, "", "the AOV directory is not writable");
+  }
+}
+
 int render(const RenderOptions& options) {
+  checkOutputs(options);
   Scene scene = sceneOrCity(options.scene, options.city, "render");
   applyOverrides(scene, options.overrides);
   warnAboutFarCoordinates(scene);

@@ -6,6 +6,7 @@
 //   cutaway info /usr/share/plplot5.15.0/ss/ss64ne_Building_Area.shp
 //   cutaway dem --extent 265000 145000 270000 150000 --crs EPSG:27700 -o dem.tif
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -24,6 +25,16 @@ std::string parseVec3(const std::string& text, glm::vec3& out) {
     return "expected three comma-separated numbers x,y,z";
   return "";
 }
+
+// CLI11's ranges let NaN through (every comparison with it is false).
+const CLI::Validator kFinite(
+    [](std::string& text) {
+      double v = 0.0;
+      std::istringstream in(text);
+      in >> v;
+      return in && std::isfinite(v) ? std::string() : "not a finite number: " + text;
+    },
+    "FINITE");
 
 void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
   command->add_option("--size", o.size, "Image size WxH, e.g. 1024x768 (overrides the scene)");
@@ -102,7 +113,7 @@ int main(int argc, char** argv) {
                                   "frame number is appended to its stem")
                      ->check(CLI::Range(1, 100000));
   render->add_option("--time", renderOptions.time, "Render the single instant T (seconds)")
-      ->check(CLI::Range(0.0f, 1e6f))
+      ->check(kFinite & CLI::Range(0.0f, 1e6f))
       ->excludes(frames);
   addSceneOverrides(render, renderOptions.overrides);
 
@@ -125,8 +136,11 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   dem->add_option("--relief", demOptions.relief, "Height range above the base")
-      ->capture_default_str();
-  dem->add_option("--base", demOptions.base, "Lowest height")->capture_default_str();
+      ->capture_default_str()
+      ->check(kFinite);
+  dem->add_option("--base", demOptions.base, "Lowest height")
+      ->capture_default_str()
+      ->check(kFinite);
   dem->add_option("--wavelength", demOptions.wavelength, "Size of the largest hills")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
