@@ -191,6 +191,10 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
       {"-o " + png + " --up 0,0,0", "zero vector"},
       {"-o " + png + " --time nan", "finite"},
       {"-o " + png + " --eye 1,1e39,2", "x,y,z"}};
+  // A device as the scene: refused, not read until memory runs out.
+  const Result zero = run("render /dev/zero -o " + png);
+  EXPECT_EQ(zero.exitCode, 1);
+  EXPECT_NE(zero.err.find("/dev/zero: not a regular file"), std::string::npos) << zero.err;
   for (const auto& [arguments, reason] : cases) {
     const Result r = run("render " + scene + " " + arguments);
     EXPECT_NE(r.exitCode, 0) << arguments;

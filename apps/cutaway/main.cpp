@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <new>
 #include <sstream>
 
 #include "commands.hpp"
@@ -190,6 +191,16 @@ int main(int argc, char** argv) {
     if (*options) return cutaway::cli::listOptions(optionsJson);
   } catch (const cutaway::Error& e) {
     std::fprintf(stderr, "cutaway: error: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    // What an input claims (a count, a size) outgrew the memory; name what was being read.
+    std::string input = *render  ? renderOptions.scene
+                        : *info  ? infoScene
+                        : *bench ? benchOptions.scene
+                                 : demOptions.output;
+    if (input.empty()) input = "the benchmark city";
+    std::fprintf(stderr, "cutaway: error: %s: out of memory while loading or rendering it\n",
+                 input.c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cutaway: internal error: %s\n", e.what());

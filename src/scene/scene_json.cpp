@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <any>
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -852,6 +854,15 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
 }
 
 Scene loadScene(const std::filesystem::path& path) {
+  // A device or FIFO given as the scene (/dev/zero) would be read without end.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw Error(path.string(), "", "not a regular file");
+  constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t(1) << 30;
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      !ec && size > kMaxSceneBytes)
+    throw Error(path.string(), "",
+                "scene file of " + std::to_string(size >> 20) + " MiB (the limit is 1 GiB)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string(), "", "cannot open scene file");
   std::stringstream text;
