@@ -41,7 +41,8 @@ const std::string kPlyHeader =
 
 }  // namespace
 
-// Issue 16's crashes and hangs in Assimp's PLY path: each a one-line error naming the file.
+// Issue 16's crashes and hangs in Assimp's PLY path and its gzip messages: each a one-line
+// error naming the file.
 TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
   const auto refuse = [](const std::string& name, const std::string& text,
                          std::initializer_list<std::string> parts) {
@@ -59,6 +60,15 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
          "end_header\n",
          {"count.ply", "header line 3", "2147483648"});
   refuse("magic.ply", "solid x\nendsolid x\n", {"magic.ply", "not a PLY"});
+  // .gz files that are not gzip, or hold nothing (Assimp said "Invalid parameters passed to
+  // ReadFileFromMemory()").
+  refuse("plain.stl.gz", "solid x\nendsolid x\n", {"plain.stl.gz", "not a gzip file"});
+  refuse("empty.stl.gz",
+         std::string("\x1f\x8b\x08\x00\x00\x00\x00\x00\x00\x03\x03\x00"
+                     "\x00\x00\x00\x00\x00\x00\x00\x00",
+                     20),
+         {"empty.stl.gz", "empty after gzip"});
+  refuse("cut.stl.gz", "\x1f\x8b\x08\x00\x00\x00", {"cut.stl.gz", "gzip"});
   // The good file still loads.
   const std::filesystem::path good = plyFile("good.ply", kPlyHeader + "3 0 1 2\n");
   EXPECT_EQ(importMeshNodes(good).front().mesh.triangles.size(), 1u);

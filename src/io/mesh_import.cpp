@@ -5,6 +5,7 @@
 #include <assimp/scene.h>
 #include <zlib.h>
 
+#include <assimp/MemoryIOWrapper.h>
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
@@ -22,6 +23,10 @@ namespace cutaway {
 namespace {
 
 std::vector<char> readGzip(const std::filesystem::path& file) {
+  // zlib passes data without gzip's magic bytes through unchanged: not what a .gz promises.
+  unsigned char magic[2] = {0, 0};
+  std::ifstream(file, std::ios::binary).read(reinterpret_cast<char*>(magic), 2);
+  if (magic[0] != 0x1f || magic[1] != 0x8b) throw Error(file.string(), "", "not a gzip file");
   gzFile gz = gzopen(file.c_str(), "rb");
   if (!gz) throw Error(file.string(), "", "cannot open");
   std::vector<char> data;
@@ -31,7 +36,8 @@ std::vector<char> readGzip(const std::filesystem::path& file) {
   int errnum = 0;
   const std::string message = n < 0 ? gzerror(gz, &errnum) : "";
   gzclose(gz);
-  if (n < 0) throw Error(file.string(), "", "gzip decompression failed: " + message);
+  if (n < 0) throw Error(file.string(), "", "corrupt gzip: " + message);
+  if (data.empty()) throw Error(file.string(), "", "empty after gzip decompression");
   return data;
 }
 
@@ -135,8 +141,14 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
   } else {
     scene = importer.ReadFile(file.string(), flags);
   }
-  if (!scene || !scene->mRootNode)
-    throw Error(file.string(), "", std::string("cannot import mesh: ") + importer.GetErrorString());
+  if (!scene || !scene->mRootNode) {
+    // A file read from memory goes by Assimp's stand-in name: give the user's back.
+    std::string reason = importer.GetErrorString();
+    const std::string standIn = std::string(AI_MEMORYIO_MAGIC_FILENAME) + "." + format;
+    for (std::size_t at; (at = reason.find(standIn)) != std::string::npos;)
+      reason.replace(at, standIn.size(), file.filename().string());
+    throw Error(file.string(), "", "cannot import mesh: " + reason);
+  }
 
   std::vector<ImportedNode> nodes;
   std::map<std::string, int> nameCount;
