@@ -36,6 +36,14 @@ fs::path scratch(const std::string& name) {
   return dir / name;
 }
 
+// The scene as the viewer holds it after loading: its camera resolved, fit off.
+Scene viewerCopy(const Scene& original) {
+  Scene current = original;
+  current.camera = original.resolvedCamera();
+  current.camera.fit = false;
+  return current;
+}
+
 std::string scriptError(const std::string& text) {
   try {
     parseScript(text, "s.txt");
@@ -519,9 +527,7 @@ TEST(ViewerSave, RelativeMeshPathsFollowTheFileElsewhere) {
   fs::copy_file(kData + "/meshes/cube.obj", dir / "cube.obj", fs::copy_options::overwrite_existing);
   std::ofstream(dir / "scene.json") << R"({"objects": [{"name": "cube", "file": "cube.obj"}]})";
   const Scene original = loadScene(dir / "scene.json");
-  Scene current = original;
-  current.camera = original.resolvedCamera();
-  current.camera.fit = false;
+  Scene current = viewerCopy(original);
   SceneDocument::load(dir / "scene.json").save(original, current, dir / "sub" / "saved.json");
   EXPECT_EQ(loadScene(dir / "sub" / "saved.json").objects.size(), 1u);
   // Same folder: the path stays relative.
@@ -539,9 +545,7 @@ TEST(ViewerSave, EscapedNamesMatchThemselvesOnly) {
 TEST(ViewerSave, NetworkOptionsReadBack) {
   const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
   const Scene original = loadScene(examples / "pipes-street.json");
-  Scene current = original;
-  current.camera = original.resolvedCamera();
-  current.camera.fit = false;
+  Scene current = viewerCopy(original);
   findParameter("networks.radiusScale")->assign(current, 2.0);
   findParameter("networks.shaftOpening")->assign(current, -0.25);
   findParameter("networks.waterHigh")->assign(current, glm::vec3(0.0f, 0.1f, 0.4f));
@@ -561,9 +565,7 @@ TEST(ViewerSave, NetworkOptionsReadBack) {
 TEST(ViewerSave, VolumeOptionsReadBack) {
   const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
   const Scene original = loadScene(examples / "mri-head-box-cut.json");
-  Scene current = original;
-  current.camera = original.resolvedCamera();
-  current.camera.fit = false;
+  Scene current = viewerCopy(original);
   findParameter("volumes.sampleDistance")->assign(current, 0.25);
   findParameter("volumes.mode")->assign(current, std::string("maximum"));
   findParameter("volumes.shading")->assign(current, false);
@@ -627,9 +629,7 @@ TEST(ViewerTransfer, EditsKeepValuesIncreasingAndRowsOrdered) {
 TEST(ViewerSave, EditedTransferFunctionsReadBack) {
   const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
   const Scene original = loadScene(examples / "mri-head-box-cut.json");
-  Scene current = original;
-  current.camera = original.resolvedCamera();
-  current.camera.fit = false;
+  Scene current = viewerCopy(original);
   std::vector<TransferPoint>& row = current.volumes[0].transfer.rows.front().points;
   insertTransferPoint(row, 0.5f * (row[0].value + row[1].value), 0.3f);
   row.back().color = {0.1f, 0.2f, 0.3f};
@@ -657,9 +657,7 @@ TEST(ViewerSave, CutoutBreakawayAndClipSurfaceChangesReadBack) {
                 "clipSurfaces": {"surfaces": [{"origin": [-1, -1, 0.5], "u": [3, 0, 0], "v": [0, 3, 0],
                                                "offsetMap": {"pattern": "ridged", "seed": 3}}]}}})";
   const Scene original = loadScene(dir / "scene.json");
-  Scene current = original;
-  current.camera = original.resolvedCamera();
-  current.camera.fit = false;
+  Scene current = viewerCopy(original);
   findParameter("cutters.cutout.angle")->assign(current, 120.0);
   findParameter("cutters.cutout.facingCamera")->assign(current, false);
   findParameter("cutters.cutout.rotation")->assign(current, 30.0);
