@@ -278,6 +278,7 @@ void main() {
     float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
     sum = vec4(emphasize(c.rgb, c.rgb, importance) * c.a, c.a);
     hit = -(uView * vec4(origin + maxT * direction, 1.0)).z;
+    hitTransmittance = 1.0;  // unshaded
   }
   outColor = sum;
   // Over the volumes before: the nearest entry and hit, the opacity accumulated.
