@@ -52,16 +52,19 @@ bool SceneVolume::mayBeVisible(float lo, float hi) const {
 }
 
 namespace {
+// The material a fraction t of the way from a to b, at `value`.
+TransferPoint mixPoints(const TransferPoint& a, const TransferPoint& b, float t, float value) {
+  return {value, glm::mix(a.color, b.color, t), a.opacity + (b.opacity - a.opacity) * t,
+          a.importance + (b.importance - a.importance) * t};
+}
+
 TransferPoint rowAt(const std::vector<TransferPoint>& points, float value) {
   if (value <= points.front().value) return points.front();
   if (value >= points.back().value) return points.back();
   const auto hi = std::upper_bound(points.begin(), points.end(), value,
                                    [](float v, const TransferPoint& p) { return v < p.value; });
-  const TransferPoint& b = *hi;
   const TransferPoint& a = *(hi - 1);
-  const float t = (value - a.value) / (b.value - a.value);
-  return {value, glm::mix(a.color, b.color, t), a.opacity + (b.opacity - a.opacity) * t,
-          a.importance + (b.importance - a.importance) * t};
+  return mixPoints(a, *hi, (value - a.value) / (hi->value - a.value), value);
 }
 }  // namespace
 
@@ -70,10 +73,8 @@ TransferPoint TransferFunction::at(float value, float gradient) const {
   if (gradient >= rows.back().gradient) return rowAt(rows.back().points, value);
   const auto hi = std::upper_bound(rows.begin(), rows.end(), gradient,
                                    [](float g, const Row& r) { return g < r.gradient; });
-  const TransferPoint a = rowAt((hi - 1)->points, value), b = rowAt(hi->points, value);
   const float t = (gradient - (hi - 1)->gradient) / (hi->gradient - (hi - 1)->gradient);
-  return {value, glm::mix(a.color, b.color, t), a.opacity + (b.opacity - a.opacity) * t,
-          a.importance + (b.importance - a.importance) * t};
+  return mixPoints(rowAt((hi - 1)->points, value), rowAt(hi->points, value), t, value);
 }
 
 float TransferFunction::maxOpacity(float value) const {
