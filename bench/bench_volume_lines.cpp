@@ -1,7 +1,8 @@
-// Burns11 Fig. 2.8–2.9 on a real volume: over a camera orbit with a changing isovalue, the
-// fraction of the brute-force contour segments that each seeding strategy finds per frame, and
-// its cost against brute force (wall time and cells read). Every strategy starts from a
-// brute-force first frame, as in the paper.
+// Burns11 Fig. 2.8–2.9 on a real volume. Fig. 2.8: over a camera orbit with a changing
+// isovalue, the fraction of the brute-force contour segments that each seeding strategy finds
+// per frame, and its cost against brute force (wall time and cells read); every strategy
+// starts from a brute-force first frame, as in the paper. Fig. 2.9: a still view, random
+// probes alone from nothing, the found part growing over frames.
 //   previous  the previous frame's cells as seeds (§2.4.1.3)
 //   random    eq. 2.5 probes from random cells only (§2.4.1.4)
 //   both      previous cells, probes from them and random probes
@@ -11,6 +12,7 @@
 //       [--iso LO HI] [--svg plot.svg] [--csv table.csv]
 // Defaults: examples/ct-stent-boundaries.json's CT, 60 frames over a quarter orbit, the
 // isovalue swinging over [200, 400] HU, K = n random probes per frame (n³ ≈ the voxel count).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +31,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct Strategy {
+  Strategy(const char* n, cutaway::VolumeLineSeeding s, std::uint64_t randomSeed)
+      : name(n), seeding(s), tracker(randomSeed) {}
   const char* name;
   cutaway::VolumeLineSeeding seeding;
   cutaway::VolumeLineTracker tracker;
@@ -92,12 +96,14 @@ int run(int argc, char** argv) {
   const cutaway::Camera camera = scene.resolvedCamera();
 
   std::vector<Strategy> strategies;
-  strategies.push_back({"previous", {.previousCells = true}, cutaway::VolumeLineTracker(1)});
-  strategies.push_back(
-      {"random", {.previousCells = false, .randomProbes = probes}, cutaway::VolumeLineTracker(2)});
-  strategies.push_back({"both",
-                        {.previousCells = true, .probesFromPrevious = probes / 4, .randomProbes = probes},
-                        cutaway::VolumeLineTracker(3)});
+  strategies.emplace_back("previous", cutaway::VolumeLineSeeding{.previousCells = true}, 1);
+  strategies.emplace_back(
+      "random", cutaway::VolumeLineSeeding{.previousCells = false, .randomProbes = probes}, 2);
+  strategies.emplace_back(
+      "both",
+      cutaway::VolumeLineSeeding{
+          .previousCells = true, .probesFromPrevious = probes / 4, .randomProbes = probes},
+      3);
   std::ofstream table;
   if (!csv.empty()) {
     table.open(csv);
@@ -152,6 +158,31 @@ int run(int argc, char** argv) {
                 100 * s.cells / bruteCells);
   }
   if (!svg.empty()) writeSvg(svg, strategies, frames - 1);
+
+  // Fig. 2.9: a still view and threshold, no brute-force start; random probes alone (k·n per
+  // frame), the cells found kept as the next frame's seeds, so the found part grows.
+  const cutaway::VolumeLineField still(volume, sv.indexToWorld(),
+                                       cutaway::VolumeLineView::of(camera), {.isoValue = isoLo});
+  const cutaway::VolumeLineSet reference = cutaway::extractVolumeLinesBruteForce(still);
+  std::printf("\nstill view, isovalue %g: %zu segments; found after frame", double(isoLo),
+              reference.segmentCount());
+  const int stills[] = {1, 2, 5, 10, 20};
+  for (int f : stills) std::printf(" %6d", f);
+  std::printf("\n");
+  for (int k : {1, 4, 16}) {
+    cutaway::VolumeLineTracker tracker(7);
+    std::printf("%5d·n probes per frame                 ", k);
+    for (int frame = 1; frame <= 20; ++frame) {
+      const cutaway::VolumeLineSet set =
+          tracker.extract(still, {.randomProbes = k * probes, .bruteForceFirstFrame = false});
+      if (std::find(std::begin(stills), std::end(stills), frame) == std::end(stills)) continue;
+      std::size_t common = 0;
+      for (std::uint64_t key : reference.segments) common += set.segments.count(key);
+      std::printf(" %5.1f%%", 100.0 * double(common) /
+                                  double(std::max<std::size_t>(1, reference.segmentCount())));
+    }
+    std::printf("\n");
+  }
   return 0;
 }
 

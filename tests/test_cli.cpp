@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "cutaway/core/image.hpp"
@@ -136,6 +137,32 @@ TEST(Cli, VolumeSceneInfoAndRenderWithAovs) {
   EXPECT_GE(entered, opaque);
 }
 
+// A volume's lines end to end: the PNG, the SVG beside it, and the coverage AOV agree on where
+// lines are drawn.
+TEST(Cli, VolumeLinesRenderWithTheirSvgAndCoverage) {
+  const std::string scene = kSource + "/examples/ct-stent-lines.json";
+  const fs::path dir = scratch("lines-aovs"), out = scratch("lines.png"),
+                 svg = scratch("lines.svg");
+  const Result r = run("render " + scene + " -o " + out.string() + " --size 120x150 --aov " +
+                       dir.string() + " --svg " + svg.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out));
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.rfind("<?xml", 0), 0u);
+  EXPECT_NE(text.find("viewBox='0 0 120 150'"), std::string::npos);
+  std::size_t polylines = 0;
+  for (std::size_t at = text.find("<polyline class='line"); at != std::string::npos;
+       at = text.find("<polyline class='line", at + 1))
+    ++polylines;
+  EXPECT_GT(polylines, 20u);
+  const FloatImage coverage = readPfm(dir / "volumeLineCoverage.pfm");
+  int covered = 0;
+  for (int y = 0; y < coverage.height; ++y)
+    for (int x = 0; x < coverage.width; ++x) covered += coverage.at(x, y)[0] > 0.5f;
+  EXPECT_GT(covered, 200);
+}
+
 TEST(Cli, BenchPrintsJsonAndTable) {
   const std::string scene = kData + "/render/plane-facing.json";
   const Result json = run("bench " + scene + " --frames 3 --json");
@@ -190,7 +217,9 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
       {"-o " + png + " --aov " + file, "needs a directory"},
       {"-o " + png + " --up 0,0,0", "zero vector"},
       {"-o " + png + " --time nan", "finite"},
-      {"-o " + png + " --eye 1,1e39,2", "x,y,z"}};
+      {"-o " + png + " --eye 1,1e39,2", "x,y,z"},
+      {"-o " + png + " --svg " + (dir / "lines.txt").string(), "give it a .svg name"},
+      {"-o " + png + " --svg " + (dir / "lines.svg").string(), "no volume of"}};
   // A device as the scene: refused, not read until memory runs out.
   const Result zero = run("render /dev/zero -o " + png);
   EXPECT_EQ(zero.exitCode, 1);

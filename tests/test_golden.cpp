@@ -75,6 +75,12 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"mri-head-cutout", "mri-head-cutout.json", "", 240, 240},
         GoldenCase{"ct-stent-contextual", "ct-stent-contextual.json", "", 200, 250},
         GoldenCase{"ct-stent-boundaries", "ct-stent-boundaries.json", "", 200, 250},
+        // Line drawings of the MRI head (Burns11 §2.4): skin and brain contours, a cutting
+        // plane's rings, hidden lines removed, the box cut opening the skin onto the brain.
+        GoldenCase{"mri-head-lines", "mri-head-lines.json", "", 320, 320},
+        // The CT's contrast-filled aorta, stent and kidneys as contours over a faint
+        // rendering, the hidden ones dimmed.
+        GoldenCase{"ct-stent-lines", "ct-stent-lines.json", "", 240, 300},
         GoldenCase{"house-cutaway", "house-cutaway.json", "", 320, 240},
         GoldenCase{"fan-room-cutaway", "fan-room-cutaway.json", "", 320, 240},
         // Diepstraten03 cutout and breakaway, each in two styles.

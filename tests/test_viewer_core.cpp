@@ -194,6 +194,9 @@ TEST(ViewerParameters, EveryParameterReadsBackWhatWasSet) {
   scene.cutters.enable<ClipSurfaceOptions>() = clip;
   scene.networks.resize(2);  // likewise the pipe networks and the volumes
   scene.volumes.resize(2);
+  for (SceneVolume& v : scene.volumes)  // with as many isovalues and planes as there can be
+    v.lines = VolumeLineStyle{.isoValues = std::vector<VolumeLineIso>(8),
+                              .planes = std::vector<VolumeLinePlane>(4)};
   for (const auto& group : parameterGroups())
     for (const auto& p : group.parameters) {
       SCOPED_TRACE(p.key);

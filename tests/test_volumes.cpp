@@ -11,6 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -18,8 +21,10 @@
 #include "cutaway/cutters/clip_surfaces.hpp"
 #include "cutaway/cutters/cutout.hpp"
 #include "cutaway/kinds/volume_ray_cast.hpp"
+#include "cutaway/render/renderer.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "expect_error.hpp"
+#include "gl_test_context.hpp"
 #include "render_aovs.hpp"
 
 namespace fs = std::filesystem;
@@ -654,6 +659,149 @@ TEST_F(VolumeTest, AVolumeOfInterestSeedsTheCutawayWithItsRear) {
       EXPECT_NEAR(glm::distance(glm::vec3(q) / q.w, o), far, 2.0f * voxel) << x << "," << y;
     }
   EXPECT_GT(seeded, 100);
+}
+
+// Line drawings (Burns11 §2.4, kinds/volumes/volume_lines_pass.hpp): a ball A in front of a
+// ball B that it hides entirely, as signed distances. Every drawn contour point's view ray
+// grazes the ball it belongs to (its distance from the centre is the radius); B's contour is
+// hidden behind A, drawn faint when dimmed, and seen again when a box cut removes A.
+struct Ball {
+  glm::vec3 centre;
+  float radius;
+};
+constexpr Ball kFront{{0.0f, 0.0f, 0.5f}, 0.45f}, kBack{{0.0f, 0.0f, -0.45f}, 0.5f};
+
+struct GrazedLines {
+  int front = 0, back = 0, other = 0;  // drawn points grazing A, grazing B, neither
+  int hidden = 0;                      // of them, in hidden lines
+};
+
+GrazedLines graze(const Scene& s, const VolumeLineDrawing& d) {
+  const Camera c = s.resolvedCamera();
+  const glm::mat4 inverse =
+      glm::inverse(c.projectionMatrix(float(s.width) / float(s.height)) * c.view());
+  const float pixel = 2.0f * 4.0f * std::tan(glm::radians(20.0f)) / float(s.height);
+  GrazedLines g;
+  for (const DrawnVolumeLine& line : d.lines)
+    for (const glm::vec2& p : line.points) {
+      const PixelRay r = pixelRay(inverse, {p.x / float(d.width), 1.0f - p.y / float(d.height)});
+      const auto off = [&](const Ball& b) {
+        return std::abs(glm::length(glm::cross(b.centre - r.o, r.d)) - b.radius);
+      };
+      const float tolerance = 1.5f * pixel;
+      (off(kFront) < tolerance ? g.front : off(kBack) < tolerance ? g.back : g.other) += 1;
+      g.hidden += line.hidden;
+    }
+  return g;
+}
+
+TEST_F(VolumeTest, LinesAreDrawnWhereTheyGrazeTheSurfaceAndHiddenBehindNearerOnes) {
+  const fs::path file = volume("balls", 48, 1.0f, [](glm::vec3 p) {
+    return std::max(kFront.radius - glm::distance(p, kFront.centre),
+                    kBack.radius - glm::distance(p, kBack.centre));
+  });
+  const auto lines = [&](const std::string& style, const std::string& rest = "") {
+    Scene s = scene(R"({"name": "balls", "file": ")" + file.string() + R"(", )" + kRamp +
+                        R"(, "lines": {"isoValues": [{"value": 0}], "only": true, "halo": 0, )" +
+                        style + "}}",
+                    rest);
+    s.camera.eye = {0.0f, 0.0f, 4.0f};
+    s.width = s.height = 160;
+    Renderer renderer(s, test::glContext().info());
+    renderer.render();
+    const VolumeLineDrawing d = renderer.volumeLineDrawing();
+    // The coverage AOV holds the drawn lines: every covered pixel lies within a line's
+    // half width (and its antialiasing) of a drawn segment.
+    const FloatImage coverage = aov(renderer.readAovs(), "volumeLineCoverage");
+    int covered = 0, stray = 0;
+    for (int y = 0; y < coverage.height; ++y)
+      for (int x = 0; x < coverage.width; ++x) {
+        if (!(coverage.at(x, y)[0] > 0.5f)) continue;
+        ++covered;
+        const glm::vec2 c(float(x) + 0.5f, float(y) + 0.5f);
+        float nearest = 1e9f;
+        for (const DrawnVolumeLine& l : d.lines)
+          for (std::size_t i = 0; i + 1 < l.points.size(); ++i) {
+            const glm::vec2 a = l.points[i], ab = l.points[i + 1] - a;
+            const float t =
+                glm::clamp(glm::dot(c - a, ab) / std::max(glm::dot(ab, ab), 1e-9f), 0.0f, 1.0f);
+            nearest = std::min(nearest, glm::distance(c, a + t * ab));
+          }
+        stray += nearest > 2.5f;
+      }
+    EXPECT_EQ(stray, 0) << "of " << covered << " covered pixels, away from every drawn segment";
+    return std::pair{graze(s, d), covered};
+  };
+  {
+    const auto [g, covered] = lines(R"("hidden": "removed")");
+    EXPECT_GT(g.front, 50);
+    EXPECT_EQ(g.back, 0) << "B's contour lies behind A";
+    EXPECT_LT(g.other, g.front / 50);
+    EXPECT_GT(covered, 150);
+  }
+  {
+    const auto [g, covered] = lines(R"("hidden": "dimmed")");
+    EXPECT_GT(g.front, 50);
+    EXPECT_GT(g.back, 50) << "B's contour drawn faint";
+    EXPECT_GE(g.hidden, g.back);
+  }
+  {
+    // Cut away A: B's contour shows through the cut, A's is gone where the box removes it.
+    const auto [g, covered] =
+        lines(R"("hidden": "removed")",
+              R"(, "cutters": {"boxCut": {"center": [0, 0, 0.5], "size": [1.2, 1.2, 1.0]}})");
+    EXPECT_EQ(g.front, 0);
+    EXPECT_GT(g.back, 50);
+    EXPECT_EQ(g.hidden, 0);
+  }
+}
+
+// The SVG holds the drawing: its polylines, read back, are the drawn runs point for point.
+TEST_F(VolumeTest, TheLinesSvgHoldsTheDrawnPolylines) {
+  const fs::path file = volume("ball", 32, 1.0f, [](glm::vec3 p) { return 0.6f - glm::length(p); });
+  Scene s =
+      scene(R"({"name": "ball", "file": ")" + file.string() + R"(", )" + kRamp +
+            R"(, "lines": {"isoValues": [{"value": 0, "color": [0.8, 0.1, 0.1], "width": 2.5}],
+                                 "planes": [{"normal": [0, 1, 0], "distance": 0.2}], "halo": 1.5}})");
+  Renderer renderer(s, test::glContext().info());
+  renderer.render();
+  const VolumeLineDrawing d = renderer.volumeLineDrawing();
+  ASSERT_FALSE(d.lines.empty());
+  const std::string svg = volumeLineSvg(d);
+  // Each line's polyline (after its halo's), in the drawing's far-to-near order.
+  std::vector<const DrawnVolumeLine*> order;
+  for (const auto& l : d.lines) order.push_back(&l);
+  std::stable_sort(order.begin(), order.end(),
+                   [](auto* a, auto* b) { return a->depth > b->depth; });
+  const std::regex polyline(
+      R"(<polyline class='(halo|line)[^']*' fill='none' stroke='(#[0-9a-f]{6})' stroke-width='([0-9.]+)'[^>]*points='([^']*)'/>)");
+  std::size_t next = 0, halos = 0;
+  std::set<std::string> colours;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), polyline);
+       it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    if (m[1] == "halo") {
+      ++halos;
+      continue;
+    }
+    ASSERT_LT(next, order.size());
+    const DrawnVolumeLine& l = *order[next++];
+    colours.insert(m[2]);
+    EXPECT_FLOAT_EQ(std::stof(m[3]), l.width);
+    std::istringstream points(m[4]);
+    std::size_t i = 0;
+    for (std::string xy; points >> xy; ++i) {
+      ASSERT_LT(i, l.points.size());
+      const auto comma = xy.find(',');
+      EXPECT_NEAR(std::stof(xy.substr(0, comma)), l.points[i].x, 0.006f);
+      EXPECT_NEAR(std::stof(xy.substr(comma + 1)), l.points[i].y, 0.006f);
+    }
+    EXPECT_EQ(i, l.points.size());
+  }
+  EXPECT_EQ(next, d.lines.size());
+  EXPECT_EQ(halos, d.lines.size());  // none hidden here
+  EXPECT_TRUE(colours.count("#cc1a1a")) << "the contour's pen";
+  EXPECT_TRUE(colours.count("#1a4db3")) << "the plane cut's pen";
 }
 
 TEST_F(VolumeTest, BadVolumeEntriesAreRejectedWithTheirPlace) {

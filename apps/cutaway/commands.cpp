@@ -221,6 +221,13 @@ void checkOutputs(const RenderOptions& options) {
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".png")
     throw Error(options.output, "", "only PNG is written: give the output a .png name");
+  if (!options.svg.empty()) {
+    std::string svgExt = std::filesystem::path(options.svg).extension().string();
+    for (char& c : svgExt) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (svgExt != ".svg") throw Error(options.svg, "", "--svg writes SVG: give it a .svg name");
+    if (std::filesystem::is_directory(options.svg, ec))
+      throw Error(options.svg, "", "is a directory, not a file name");
+  }
   if (options.aovDir.empty()) return;
   const std::filesystem::path dir(options.aovDir);
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
@@ -246,19 +253,28 @@ int render(const RenderOptions& options) {
     if (!std::regex_match(options.output, patternRe))
       throw Error("--output", "", "a frame pattern may hold one %d (e.g. frame_%04d.png)");
   }
+  if (!options.svg.empty() &&
+      std::none_of(scene.volumes.begin(), scene.volumes.end(),
+                   [](const SceneVolume& v) { return v.lines.has_value(); }))
+    throw Error(options.svg, "",
+                "--svg writes the volumes' lines, and no volume of " + scene.file.string() +
+                    " has \"lines\"");
   const auto context = gl::HeadlessContext::create();
   Renderer renderer(scene, context->info());
   const float aspect = float(scene.width) / float(scene.height);
-  auto renderOne = [&](float time, const std::string& out, const std::string& aovDir) {
+  auto renderOne = [&](float time, const std::string& out, const std::string& aovDir,
+                       const std::string& svg) {
     const Camera camera = scene.resolvedCamera(time);
     renderer.render(camera, time);
     writePng(out, renderer.readColor());
     if (!aovDir.empty()) writeAovs(aovDir, renderer.readAovs(), camera, aspect);
+    if (!svg.empty()) writeVolumeLineSvg(svg, renderer.volumeLineDrawing());
   };
   if (options.frames == 0) {
-    renderOne(options.time, options.output, options.aovDir);
+    renderOne(options.time, options.output, options.aovDir, options.svg);
     std::printf("wrote %s (%dx%d, %s, %s)\n", options.output.c_str(), scene.width, scene.height,
                 scene.style.name.c_str(), context->info().renderer.c_str());
+    if (!options.svg.empty()) std::printf("wrote %s\n", options.svg.c_str());
     if (!options.aovDir.empty())
       std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
     return 0;
@@ -273,7 +289,8 @@ int render(const RenderOptions& options) {
       std::snprintf(number, sizeof number, "%04d", i + 1);
       aovDir = (std::filesystem::path(options.aovDir) / number).string();
     }
-    renderOne(time, framePath(options.output, i + 1), aovDir);
+    renderOne(time, framePath(options.output, i + 1), aovDir,
+              options.svg.empty() ? "" : framePath(options.svg, i + 1));
     if (progress) {
       const int width = 30, done = (i + 1) * width / options.frames;
       std::fprintf(

@@ -27,6 +27,7 @@ struct SceneOverrides {
 
 struct RenderOptions {
   std::string scene, output, aovDir;
+  std::string svg;    // the volumes' lines as SVG beside the PNG
   int city = 0;       // > 0: Konev18's generated benchmark city at this scale instead of a scene
   int frames = 0;     // > 0: an animation sequence of that many frames
   float time = 0.0f;  // the instant of a single frame, seconds

@@ -107,6 +107,10 @@ int main(int argc, char** argv) {
   render->add_option("--aov", renderOptions.aovDir,
                      "Directory for the frame's intermediate buffers (PFM + aovs.json); with "
                      "--frames, one sub-directory per frame");
+  render->add_option("--svg", renderOptions.svg,
+                     "The volumes' lines (a volume's \"lines\") as SVG, visible ones and, when "
+                     "dimmed or shown, hidden ones, with their halos; with --frames, numbered "
+                     "as the PNGs");
   auto* frames = render
                      ->add_option("--frames", renderOptions.frames,
                                   "Render an animation of N frames spanning the scene's duration; "

@@ -15,6 +15,7 @@
 #include "cutaway/frame/aov.hpp"
 #include "cutters/cutter.hpp"
 #include "frame/frame_setup.hpp"
+#include "frame/frame_uniforms.hpp"
 
 namespace cutaway {
 
@@ -40,6 +41,8 @@ class GeometryKind {
   // Its passes after the composite, over the final colour, in front of the opaque depth
   // (volumes ray cast up to the meshes).
   virtual void addPassesAfterComposite(Frame&) {}
+  // Before the frame's passes run, with its camera (work on the CPU that depends on the view).
+  virtual void beginFrame(const FrameState&) {}
   // Into the bound shadow-map target, the light's frame uniforms bound (styles/shadows).
   virtual void drawShadowCasters() const {}
   // Into the bound seed targets (frame/frame_setup.hpp: RearHullRequest).

@@ -41,6 +41,7 @@ struct Renderer::Impl {
   gl::Buffer frameUniforms;
   std::vector<ActiveCutter> cutters;
   std::vector<std::unique_ptr<GeometryKind>> kinds;
+  const VolumeKind* volumes = nullptr;  // among the kinds, for its line drawing
   std::unique_ptr<ShadingStyle> style;
   std::unique_ptr<ShadowMap> shadowMap;
   std::unique_ptr<Emphasis> emphasis;
@@ -76,7 +77,11 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   }
   g.kinds.push_back(std::make_unique<MeshKind>(setup));
   if (PipeKind::present(scene)) g.kinds.push_back(std::make_unique<PipeKind>(setup));
-  if (VolumeKind::present(scene)) g.kinds.push_back(std::make_unique<VolumeKind>(setup));
+  if (VolumeKind::present(scene)) {
+    auto volumes = std::make_unique<VolumeKind>(setup);
+    g.volumes = volumes.get();
+    g.kinds.push_back(std::move(volumes));
+  }
 
   // The G-buffer with the channels the cutters added, then every geometry program's shading.
   const bool stencil = std::any_of(g.kinds.begin(), g.kinds.end(),
@@ -324,7 +329,13 @@ void Renderer::render(const Camera& camera, float time) {
   g.style->beginFrame(state);
   g.emphasis->beginFrame();
   for (ActiveCutter& c : g.cutters) c.cutter->beginFrame(state);
+  for (const auto& k : g.kinds) k->beginFrame(state);
   g.frame.execute();
+}
+
+VolumeLineDrawing Renderer::volumeLineDrawing() const {
+  return impl_->volumes ? impl_->volumes->lineDrawing()
+                        : VolumeLineDrawing{scene_.width, scene_.height, {}};
 }
 
 GLuint Renderer::colorTexture() const {

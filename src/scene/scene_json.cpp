@@ -542,6 +542,9 @@ TransferFunction transferFunction2D(const Context& ctx, const json& j, const std
   return tf;
 }
 
+std::any techniqueOptions(const Context& ctx, const OptionsSchema& schema, const json& j,
+                          const std::string& ptr, bool trueMeansDefaults);
+
 void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene& scene) {
   ObjectReader r(ctx, j, ptr);
   SceneVolume v;
@@ -588,6 +591,9 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene
   if (const json* t = r.take("jitter")) v.jitter = boolean(ctx, *t, r.at("jitter"));
   if (const json* t = r.take("shadows")) v.shadows = boolean(ctx, *t, r.at("shadows"));
   if (const json* t = r.take("labels")) v.labels = boolean(ctx, *t, r.at("labels"));
+  if (const json* t = r.take("lines"))
+    v.lines = std::any_cast<VolumeLineStyle>(
+        techniqueOptions(ctx, volumeLineStyleSchema(), *t, r.at("lines"), false));
   r.finish();
   if (v.labels) {
     if (twoD)
@@ -603,6 +609,7 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene
       ctx.fail(r.at("transferFunction"), "labels span more than 65536 values");
     if (v.mode == VolumeMode::Isosurface)
       ctx.fail(r.at("labels"), "a label volume is drawn in the composite or maximum mode");
+    if (v.lines) ctx.fail(r.at("lines"), "a label volume has no isosurfaces to draw lines of");
   }
   try {
     v.volume = std::make_shared<const Volume>(importVolume(file));

@@ -200,6 +200,7 @@ json volumeJson(const SceneVolume& v) {
           {{"gradient", exact(row.gradient)}, {"points", transferPointsJson(row.points)}});
   else
     out["transferFunction"] = transferPointsJson(v.transfer.rows.front().points);
+  if (v.lines) out["lines"] = volumeLineStyleSchema().write(&*v.lines);
   return out;
 }
 

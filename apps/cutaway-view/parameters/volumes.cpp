@@ -1,8 +1,8 @@
-// The volumes' ray-casting options (src/kinds/volumes; cutaway::SceneVolume) as viewer
-// parameters. They apply to every volume of the scene at once (the first one's value is
-// shown) and are read by the renderer every frame: a change redraws without a new renderer.
-// The files come from the scene file; the transfer functions have their own editor
-// (panels/transfer_panel.cpp).
+// The volumes' ray-casting options (src/kinds/volumes; cutaway::SceneVolume) and their lines'
+// (src/styles/volume_lines) as viewer parameters. They apply to every volume of the scene at once
+// (the first one's value is shown) and are read by the renderer every frame: a change redraws
+// without a new renderer. The files come from the scene file; the transfer functions have their own
+// editor (panels/transfer_panel.cpp).
 #include "../parameters.hpp"
 
 namespace cutaway::view {
@@ -81,6 +81,33 @@ std::vector<Parameter> volumeParameters() {
   out.push_back(volumeMember("shadows", "shadows", Type::Bool, &V::shadows,
                              "The material shadows the key light: a shadow ray per shaded "
                              "sample (slow on a software rasteriser)."));
+  // The volumes' lines (Burns11 §2.4), by their schema: each option of every volume that has
+  // lines (the first one's shown), live.
+  for (const OptionSpec& spec : volumeLineStyleSchema().flatten()) {
+    Parameter p;
+    static_cast<OptionSpec&>(p) = spec;
+    p.key = "volumes.lines." + spec.key;
+    if (spec.key.ends_with(".value")) p.sliderMax = 4000;  // an isovalue, as the mode's
+    const auto first = [](const Scene& s) -> const VolumeLineStyle* {
+      for (const SceneVolume& v : s.volumes)
+        if (v.lines) return &*v.lines;
+      return nullptr;
+    };
+    p.get = [spec, first](const void* scene) {
+      const VolumeLineStyle* lines = first(*static_cast<const Scene*>(scene));
+      const VolumeLineStyle defaults;
+      return spec.get(lines ? lines : &defaults);
+    };
+    p.set = [spec](void* scene, const ParameterValue& value) {
+      for (SceneVolume& v : static_cast<Scene*>(scene)->volumes)
+        if (v.lines) spec.set(&*v.lines, value);
+    };
+    p.applies = [spec, first](const void* scene) {
+      const VolumeLineStyle* lines = first(*static_cast<const Scene*>(scene));
+      return lines && (!spec.applies || spec.applies(lines));
+    };
+    out.push_back(std::move(p));
+  }
   return out;
 }
 

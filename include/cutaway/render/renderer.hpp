@@ -6,12 +6,10 @@
 // bracketed group runs where the scene asks for it (tests/test_pass_graph.cpp matches the
 // frame of every example against these lines):
 //
-//   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth) cutawayDilate]
-//   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2) cutawayDilateC2]
-//   [breakawayClip breakawayInnerClip]
-//   [clipSurfaceSprites]
-//   [shadowMap]
-//   geometry
+//   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth)
+//   cutawayDilate]
+//   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2)
+//   cutawayDilateC2] [breakawayClip breakawayInnerClip] [clipSurfaceSprites] [shadowMap] geometry
 //   [pipeOwners pipes pipeAovs]
 //   [ghostGeometry]
 //   [capMask]
@@ -21,6 +19,7 @@
 //   composite
 //   [channels]
 //   [volumes]
+//   [volumeLineSurfaces volumeLines]
 //   [translucentComposite]
 //
 // - cutawaySeed … cutawayDilate: the adaptive cutter (Burns08 §5): the region of interest's
@@ -48,6 +47,8 @@
 //   contextual structure's Ω and R).
 // - volumes: the scene's volumes ray cast over the final colour up to the opaque depth, each
 //   sample decided by the cutters (src/kinds/volumes).
+// - volumeLineSurfaces, volumeLines: the volumes' line drawings (Burns11 §2.4): what hides a
+//   line, then the lines with their halos over the final colour, clipped by the cutters.
 //
 //   auto context = cutaway::gl::HeadlessContext::create();
 //   cutaway::Scene scene = cutaway::loadScene("examples/engine.json");
@@ -93,6 +94,9 @@ class Renderer {
   const Frame& frame() const;
   // The final colour texture (single sample, RGBA8), e.g. for a window's blit.
   GLuint colorTexture() const;
+  // The last frame's volume lines (a volume's "lines") as drawn, each run of segments the
+  // cutters keep, visible or hidden, for vector output (writeVolumeLineSvg).
+  VolumeLineDrawing volumeLineDrawing() const;
   // Where the adaptive cutter's jump flooding runs ("gpu" or "cpu"), or null without it.
   const char* cutawayComputePath() const;
 

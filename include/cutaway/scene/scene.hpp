@@ -31,6 +31,7 @@
 #include "cutaway/styles/emphasis.hpp"
 #include "cutaway/styles/lines.hpp"
 #include "cutaway/styles/shadows.hpp"
+#include "cutaway/styles/volume_lines.hpp"
 
 namespace cutaway {
 
@@ -169,6 +170,8 @@ struct SceneVolume {
   // A label volume (an atlas, a segmentation): integer values sampled at the nearest voxel,
   // each transfer-function point one label's material; labels it does not list are clear.
   bool labels = false;
+  // Line drawings of its isosurfaces (Burns11 §2.4); nullopt: none.
+  std::optional<VolumeLineStyle> lines;
 
   // The material of a value at a gradient magnitude: the transfer function's, or the label's.
   TransferPoint material(float value, float gradient = 0.0f) const;

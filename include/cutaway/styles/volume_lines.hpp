@@ -24,15 +24,59 @@
 #include <cstddef>
 #include <cstdint>
 #include <random>
+#include <string>
 #include <unordered_set>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "cutaway/core/options.hpp"
 #include "cutaway/geometry/volume.hpp"
 #include "cutaway/scene/camera.hpp"
 
 namespace cutaway {
+
+// How a scene volume's lines are drawn (its "lines" in the scene file): polylines over the
+// final colour, after the volume, hidden lines removed against the nearest isosurface of the
+// ones drawn (and the opaque surfaces), white halos (Appel et al. 1979) for depth, clipped by
+// the cutters that cut the volume (kinds/volumes/volume_lines_pass.hpp).
+struct VolumeLinePen {
+  glm::vec3 color{0.0f};
+  float width = 1.5f;  // pixels
+  friend bool operator==(const VolumeLinePen&, const VolumeLinePen&) = default;
+};
+struct VolumeLineIso {
+  float value = 0.0f;     // τ, in the volume's units
+  glm::vec3 color{0.0f};  // its exterior contours'
+  float width = 1.5f;
+  friend bool operator==(const VolumeLineIso&, const VolumeLineIso&) = default;
+};
+struct VolumeLinePlane {  // eq. 2.8: normal·x − distance = 0, world coordinates
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  float distance = 0.0f;
+  friend bool operator==(const VolumeLinePlane&, const VolumeLinePlane&) = default;
+};
+enum class HiddenLines { Removed, Dimmed, Shown };
+struct VolumeLineStyle {
+  std::vector<VolumeLineIso> isoValues;
+  bool contours = true;     // eq. 2.4, exterior and interior (eq. 2.6)
+  bool suggestive = false;  // eq. 2.7
+  float epsilon = 0.002f;   // VolumeLineQuery::epsilon
+  std::vector<VolumeLinePlane> planes;
+  HiddenLines hidden = HiddenLines::Removed;
+  float dimmedOpacity = 0.3f;
+  float halo = 2.0f;  // pixels on each side; 0: none
+  glm::vec3 haloColor{1.0f};
+  bool only = false;  // the lines alone: the volume's material is not drawn
+  VolumeLinePen interiorContour{{0.45f, 0.45f, 0.45f}, 1.0f};
+  VolumeLinePen suggestiveContour{{0.15f, 0.15f, 0.15f}, 1.0f};
+  VolumeLinePen planeCut{{0.1f, 0.3f, 0.7f}, 1.5f};
+  // Every frame walks from the previous frame's cells with eq. 2.5 probes (§2.4.1.3–2.4.1.4);
+  // off, every frame is extracted by brute force.
+  bool walk = true;
+  friend bool operator==(const VolumeLineStyle&, const VolumeLineStyle&) = default;
+};
+const OptionsSchema& volumeLineStyleSchema();
 
 enum class VolumeLineFamily { Contour, Suggestive, Plane };
 // What a drawn run of segments is; each is styled apart.
@@ -63,6 +107,8 @@ struct CellSegment {
   glm::vec3 entry{0.0f}, exit{0.0f};
   std::uint64_t entryId = 0, exitId = 0;
   std::int8_t entryFace = 0, exitFace = 0;  // 0..5: −i, +i, −j, +j, −k, +k
+  // The VolumeLineKind it is drawn as, or −1: not drawn (a suggestive contour failing D_s).
+  std::int8_t kind = -1;
 };
 
 // φ and the second function on the lattice, for one view: Marching Lines per cell.
@@ -84,11 +130,9 @@ class VolumeLineField {
   bool mayHoldSurface(glm::ivec3 cell) const;
   // The curve's segments in the cell: the intersections of f = 0 and g = 0 on each face
   // (marching squares on both, then the crossings of the two), oriented along ∇f × ∇g so that
-  // a segment's exit is the next cell's entry, and paired entry to exit within the cell.
+  // a segment's exit is the next cell's entry, and paired entry to exit within the cell; each
+  // with the kind it is drawn as (eqs. 2.6, 2.7).
   std::vector<CellSegment> segments(glm::ivec3 cell) const;
-
-  // The kind a segment is drawn as, or nothing (a suggestive contour failing D_s, eq. 2.7).
-  bool classify(glm::ivec3 cell, const CellSegment& segment, VolumeLineKind& kind) const;
 
   // Eq. 2.5's linear walk from index-space point p towards f = 0 (step = 0) or g = 0 (step = 1),
   // on the trilinear interpolants of the cell that holds p.
@@ -106,6 +150,7 @@ class VolumeLineField {
   glm::vec3 worldGradient(glm::ivec3 node) const;  // ∇φ in world units
   float facing(glm::ivec3 node) const;               // n̂·v̂
   void corners(glm::ivec3 cell, float fv[8], float gv[8]) const;
+  std::int8_t kindOf(glm::ivec3 cell, const CellSegment& segment, const float gv[8]) const;
 
   const Volume& volume_;
   glm::mat4 indexToWorld_;
@@ -146,7 +191,8 @@ struct VolumeLineSeeding {
 // Walks loops from seed cells, remembering this frame's cells as the next frame's seeds.
 class VolumeLineTracker {
  public:
-  explicit VolumeLineTracker(std::uint64_t randomSeed = 1) : random_(randomSeed) {}
+  VolumeLineTracker() : VolumeLineTracker(1) {}
+  explicit VolumeLineTracker(std::uint64_t randomSeed) : random_(randomSeed) {}
   VolumeLineSet extract(const VolumeLineField& field, const VolumeLineSeeding& seeding = {});
   bool hasHistory() const { return !previous_.empty(); }
   void reset() { previous_.clear(); }
@@ -159,5 +205,29 @@ class VolumeLineTracker {
 // Walks every loop through the given seed cells (the core of the tracker; also used by tests).
 void walkVolumeLines(const VolumeLineField& field, const std::vector<glm::ivec3>& seeds,
                      VolumeLineSet& into);
+
+// A frame's lines as drawn (Renderer::volumeLineDrawing), in window pixels with y down, as
+// in the image: each run of segments that the cutters keep, visible or hidden.
+struct DrawnVolumeLine {
+  VolumeLineKind kind = VolumeLineKind::Contour;
+  glm::vec3 color{0.0f};
+  float width = 1.0f;    // pixels
+  float opacity = 1.0f;  // below 1: a hidden line, dimmed
+  bool hidden = false;   // behind the nearest drawn isosurface or an opaque surface
+  float halo = 0.0f;     // pixels on each side
+  glm::vec3 haloColor{1.0f};
+  float depth = 0.0f;  // mean view depth: drawn far to near
+  std::vector<glm::vec2> points;
+};
+struct VolumeLineDrawing {
+  int width = 0, height = 0;
+  std::vector<DrawnVolumeLine> lines;
+};
+
+// The drawing as SVG: far lines first, each with its halo under it (so that a nearer line's
+// halo breaks the lines behind it), round joins; the viewBox is the image's.
+std::string volumeLineSvg(const VolumeLineDrawing& drawing);
+// Writes it atomically (a temporary file renamed); throws cutaway::Error naming the path.
+void writeVolumeLineSvg(const std::string& path, const VolumeLineDrawing& drawing);
 
 }  // namespace cutaway

@@ -11,16 +11,8 @@
 #include "style.glsl"
 #include "styles/shadows/shadow_lookup.glsl"
 #include "styles/emphasis/emphasis.glsl"
-// The sample the cutters decide: its window position and its material's importance.
-vec4 gSampleCoord;
-float gSampleImportance;
-#define CUT_FRAG_COORD gSampleCoord
-#define CUT_IMPORTANCE gSampleImportance
-// Cutters that cover their cuts by geometry of their own (Trapp13's caps) give a volume's
-// samples the cut's normal instead.
-#define CUT_VOLUME_SAMPLE
-#include "frame/gbuffer_channels.glsl"
-#include "cutters/composition.glsl"
+layout(location = 9) uniform int uCutBy;  // bit k: the cutter of slot k cuts it
+#include "kinds/volumes/volume_sample_cut.glsl"
 #include "kinds/volumes/volume_ray.glsl"
 
 layout(binding = 0) uniform sampler2DMS uOpaqueDepth;
@@ -39,7 +31,6 @@ layout(location = 5) uniform int uMode;              // 0 composite, 1 maximum, 
 layout(location = 6) uniform float uIsoValue;
 layout(location = 7) uniform int uShading;           // 1: gradient normals shaded by the style
 layout(location = 8) uniform int uJitter;
-layout(location = 9) uniform int uCutBy;             // bit k: the cutter of slot k cuts it
 layout(location = 10) uniform int uInterest;         // 1: of interest (emphasis as I = 1)
 layout(location = 14) uniform float uVoxel;          // the smallest spacing, world units
 
@@ -70,18 +61,6 @@ vec3 normalAt(vec3 index) {
   return dot(g, g) > 1e-20 ? -normalize(g) : vec3(0.0);
 }
 
-// The cutters' fate of the sample at world position p seen at window position `window`
-// (pixels), asked as a front face, or as a back face for the cut's normal: a sample just
-// behind removed material stands where a back face would show the cut surface (Burns11
-// §5.2.4.1).
-int fateAt(vec3 p, vec2 window, bool frontFacing, out vec3 cutNormal) {
-  vec4 clip = uViewProjection * vec4(p, 1.0);
-  gSampleCoord = vec4(window, clip.z / clip.w * 0.5 + 0.5, 1.0);
-  vec3 cutPosition;
-  int cutter;
-  return cutFragment(uCutBy, CutFragment(p, vec3(0.0), frontFacing), cutPosition, cutNormal,
-                     cutter);
-}
 int sampleFate(vec3 p, bool frontFacing, out vec3 cutNormal) {
   return fateAt(p, gl_FragCoord.xy, frontFacing, cutNormal);
 }

@@ -188,6 +188,9 @@ VolumeKind::VolumeKind(FrameSetup& setup)
                        "the fraction of the key light that reaches the sample of volumeHitDepth "
                        "through the volume's material (volumes with \"shadows\"; 1 without, "
                        "unshaded samples included); NaN where no hit");
+  if (VolumeLinesPass::present(setup.scene))
+    lines_ = std::make_unique<VolumeLinesPass>(
+        setup, [this](GLuint program, std::size_t i) { bindVolume(program, i); });
 }
 
 void VolumeKind::uploadTransfer(std::size_t i) const {
@@ -260,6 +263,7 @@ void VolumeKind::prepare(const std::vector<ActiveCutter>& cutters) {
     castProgram(v);
     if (v.role == Role::Interest) rearHullProgram(v);
   }
+  if (lines_) lines_->prepare(cutters);
   const int w = setup_.frame.width(), h = setup_.frame.height();
   previousEntry_ = gl::Texture::create2D(GL_R32F, w, h);
   previousHit_ = gl::Texture::create2D(GL_R32F, w, h);
@@ -273,6 +277,16 @@ void VolumeKind::addPassesAfterComposite(Frame& frame) {
        .reads = {setup_.gbuffer.depth()},
        .writes = {setup_.gbuffer.finalColor(), entryDepth_, hitDepth_, opacity_, transmittance_},
        .run = [this](const PassContext&) { draw(*cutters_); }});
+  if (lines_) lines_->addPasses(frame);
+}
+
+void VolumeKind::beginFrame(const FrameState& state) {
+  if (lines_) lines_->beginFrame(state);
+}
+
+VolumeLineDrawing VolumeKind::lineDrawing() const {
+  return lines_ ? lines_->drawing()
+                : VolumeLineDrawing{setup_.frame.width(), setup_.frame.height(), {}};
 }
 
 void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
@@ -299,6 +313,7 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
   const int w = frame.width(), h = frame.height();
   for (const std::size_t i : order) {
     const SceneVolume& v = setup_.scene.volumes[i];
+    if (v.lines && v.lines->only) continue;  // its lines alone
     const GLuint program = castProgram(v);
     glUseProgram(program);
     for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);

@@ -9,14 +9,17 @@
 //             ray stopping where the volumes before it hid the rest; the AOVs
 //             volumeEntryDepth, volumeHitDepth, volumeOpacity and
 //             volumeLightTransmittance over all of them
+//   volumeLineSurfaces, volumeLines   the volumes' line drawings (volume_lines_pass.hpp)
 #pragma once
 
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "cutaway/gl/objects.hpp"
 #include "frame/fullscreen.hpp"
 #include "kinds/kind.hpp"
+#include "kinds/volumes/volume_lines_pass.hpp"
 
 namespace cutaway {
 
@@ -40,6 +43,9 @@ class VolumeKind : public GeometryKind {
   static bool present(const Scene& scene) { return !scene.volumes.empty(); }
   void prepare(const std::vector<ActiveCutter>& cutters) override;
   void addPassesAfterComposite(Frame& frame) override;
+  void beginFrame(const FrameState& state) override;
+  // The last frame's volume lines as drawn (volume_lines_pass.hpp); none without.
+  VolumeLineDrawing lineDrawing() const;
   // A volume of interest seeds the cutaway with the rear of its material: along each ray, the
   // farthest sample its transfer function makes visible (volume_rear_hull.frag).
   void drawInterestRearHulls(const RearHullRequest& request) const override;
@@ -70,6 +76,7 @@ class VolumeKind : public GeometryKind {
   mutable std::map<int, gl::Program> castPrograms_, rearHullPrograms_;
   FullscreenTriangle fullscreen_;
   Target entryDepth_, hitDepth_, opacity_, transmittance_;
+  std::unique_ptr<VolumeLinesPass> lines_;  // when a volume has lines
   GLuint occupancyUnit_, previousTransmittanceUnit_;
   // The AOVs as the volumes drawn so far left them, read by the next (volume.frag).
   gl::Texture previousEntry_, previousHit_, previousOpacity_, previousTransmittance_;

@@ -128,10 +128,9 @@ class Walker {
   void emit(std::vector<Link> chain, bool closed) {
     std::vector<std::optional<VolumeLineKind>> kinds;
     kinds.reserve(chain.size());
-    for (const Link& l : chain) {
-      VolumeLineKind k;
-      kinds.push_back(field_.classify(l.cell, l.segment, k) ? std::optional(k) : std::nullopt);
-    }
+    for (const Link& l : chain)
+      kinds.push_back(l.segment.kind < 0 ? std::nullopt
+                                         : std::optional(VolumeLineKind(l.segment.kind)));
     if (closed) {
       // Start a loop where its kind changes, so that no run is cut at an arbitrary seed.
       const auto change = std::find_if(kinds.begin() + 1, kinds.end(),

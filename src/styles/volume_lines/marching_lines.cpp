@@ -266,44 +266,45 @@ std::vector<CellSegment> VolumeLineField::segments(glm::ivec3 cell) const {
     const FacePoint& to = points[std::size_t(best)];
     out.push_back({in.at, to.at, in.id, to.id, std::int8_t(in.face), std::int8_t(to.face)});
   }
+  for (CellSegment& segment : out) segment.kind = kindOf(cell, segment, gv);
   return out;
 }
 
-bool VolumeLineField::classify(glm::ivec3 cell, const CellSegment& segment,
-                               VolumeLineKind& kind) const {
+std::int8_t VolumeLineField::kindOf(glm::ivec3 cell, const CellSegment& segment,
+                                    const float gv[8]) const {
   const glm::vec3 t = 0.5f * (segment.entry + segment.exit) - glm::vec3(cell);
+  const glm::vec3 p = glm::vec3(cell) + t;
   switch (query_.family) {
-    case VolumeLineFamily::Plane: kind = VolumeLineKind::PlaneCut; return true;
+    case VolumeLineFamily::Plane:
+      return std::int8_t(VolumeLineKind::PlaneCut);
     case VolumeLineFamily::Contour: {
-      float sv[8];
-      for (int k = 0; k < 8; ++k) sv[k] = s(cell + cornerOffset(k));
-      // Eq. 2.6: s has the sign of the radial curvature, negative on interior contours.
-      kind = trilinear(sv, t) < 0.0f ? VolumeLineKind::InteriorContour : VolumeLineKind::Contour;
-      return true;
+      // Eq. 2.6: s has the sign of the radial curvature, negative on interior contours; here
+      // the derivative along v̂ of the cell's trilinear interpolant of n̂·v̂.
+      float q[8];
+      for (int k = 0; k < 8; ++k) q[k] = facing(cell + cornerOffset(k));
+      const float s = glm::dot(gradientToWorld_ * trilinearGradient(q, t), view_.at(toWorld(p)));
+      return std::int8_t(s < 0.0f ? VolumeLineKind::InteriorContour : VolumeLineKind::Contour);
     }
     case VolumeLineFamily::Suggestive: {
       // s reads n̂·v̂ a node away, and n̂ a node further: nearer the border than that, the
       // clamped differences make zeros of s that are not the surface's.
       if (glm::any(glm::lessThan(cell, glm::ivec3(2))) ||
           glm::any(glm::greaterThan(cell + 1, volume_.dims - 3)))
-        return false;
-      float fv[8], sv[8];
-      corners(cell, fv, sv);
-      const glm::vec3 p = glm::vec3(cell) + t;
+        return -1;
       const glm::vec3 gradient = gradientToWorld_ * sampleGradient(volume_, p);
-      if (glm::dot(gradient, gradient) == 0.0f) return false;
+      if (glm::dot(gradient, gradient) == 0.0f) return -1;
       const glm::vec3 n = -glm::normalize(gradient), v = view_.at(toWorld(p));
       // D_s: the derivative of s along the view vector's projection onto the tangent plane
       // (DeCarlo et al. 2003's w), negated on back faces (eq. 2.7).
       glm::vec3 w = v - glm::dot(n, v) * n;
-      if (glm::dot(w, w) < 1e-12f) return false;
+      if (glm::dot(w, w) < 1e-12f) return -1;
       w = glm::normalize(w);
-      const float ds = glm::dot(gradientToWorld_ * trilinearGradient(sv, t), w);
-      kind = VolumeLineKind::SuggestiveContour;
-      return glm::dot(n, v) >= 0.0f ? ds > epsilonWorld_ : ds < -epsilonWorld_;
+      const float ds = glm::dot(gradientToWorld_ * trilinearGradient(gv, t), w);
+      const bool kept = glm::dot(n, v) >= 0.0f ? ds > epsilonWorld_ : ds < -epsilonWorld_;
+      return kept ? std::int8_t(VolumeLineKind::SuggestiveContour) : std::int8_t(-1);
     }
   }
-  return false;
+  return -1;
 }
 
 glm::vec3 VolumeLineField::walkTowardsZero(glm::vec3 p, int function) const {
