@@ -8,6 +8,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/kinds/volume_ray_cast.hpp"
+#include "kinds/volumes/volume_blocks.hpp"
 
 namespace cutaway {
 
@@ -39,46 +40,19 @@ std::vector<glm::vec4> voxelGradients(const SceneVolume& sv) {
   return out;
 }
 
-// Empty-space skipping (volume.frag): per block of kBlock³ voxels, 1 where a sample in it can
-// have opacity. A sample interpolates the voxels of its block and at most one beyond, so a
-// block's values are bounded by the least and largest over its block and the 26 around it;
-// the transfer function's opacity over that interval is largest at its ends or at a control
-// point inside (at some gradient magnitude: SceneVolume::mayBeVisible), so the flag is
-// conservative.
-constexpr int kBlock = 8;  // volume.frag's kBlock
-
+// Empty-space skipping (volume.frag): per block of kVolumeBlock³ voxels, 1 where a sample in
+// it can have opacity. The transfer function's opacity over a block's range (volume_blocks.hpp)
+// is largest at its ends or at a control point inside (at some gradient magnitude:
+// SceneVolume::mayBeVisible), so the flag is conservative.
 std::vector<std::uint8_t> occupancy(const SceneVolume& sv, glm::ivec3& grid) {
-  const Volume& v = *sv.volume;
-  grid = (v.dims + kBlock - 1) / kBlock;
-  const auto block = [&](glm::ivec3 b) {
-    return std::size_t(b.x) + std::size_t(grid.x) * (std::size_t(b.y) + std::size_t(grid.y) * b.z);
-  };
-  const std::size_t blocks = std::size_t(grid.x) * grid.y * grid.z;
-  std::vector<float> lo(blocks, std::numeric_limits<float>::infinity()), hi(blocks, -lo[0]);
-  std::size_t n = 0;
-  for (int k = 0; k < v.dims.z; ++k)
-    for (int j = 0; j < v.dims.y; ++j)
-      for (int i = 0; i < v.dims.x; ++i, ++n) {
-        const std::size_t b = block(glm::ivec3(i, j, k) / kBlock);
-        lo[b] = std::min(lo[b], v.values[n]), hi[b] = std::max(hi[b], v.values[n]);
-      }
-  std::vector<std::uint8_t> out(blocks, 0);
-  for (int z = 0; z < grid.z; ++z)
-    for (int y = 0; y < grid.y; ++y)
-      for (int x = 0; x < grid.x; ++x) {
-        float a = std::numeric_limits<float>::infinity(), b = -a;
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              const glm::ivec3 q(x + dx, y + dy, z + dz);
-              if (glm::any(glm::lessThan(q, glm::ivec3(0))) ||
-                  glm::any(glm::greaterThanEqual(q, grid)))
-                continue;
-              a = std::min(a, lo[block(q)]), b = std::max(b, hi[block(q)]);
-            }
-        // NaN voxels make no interval: their blocks are kept.
-        out[block({x, y, z})] = !(a <= b) || sv.mayBeVisible(a, b);
-      }
+  const BlockRanges blocks = blockRanges(*sv.volume);
+  grid = blocks.grid;
+  std::vector<std::uint8_t> out(blocks.range.size(), 0);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const glm::vec2 r = blocks.range[i];
+    // NaN voxels make no interval: their blocks are kept.
+    out[i] = !(r.x <= r.y) || sv.mayBeVisible(r.x, r.y);
+  }
   return out;
 }
 

@@ -3,13 +3,10 @@
 #include "frame/frame_uniforms.glsl"
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec4 aPen;         // colour, width in pixels
-layout(location = 2) in float aImportance;  // the material's at the line's isovalue
 out vec3 vgWorld;
 out vec4 vgPen;
-out float vgImportance;
 void main() {
   vgWorld = aPosition;
   vgPen = aPen;
-  vgImportance = aImportance;
   gl_Position = uViewProjection * vec4(aPosition, 1.0);
 }

@@ -1,6 +1,7 @@
 #version 450 core
-// The fate of each segment's middle (volume_line_fate.glsl) into texel i of a target
-// `uFateWidth` texels wide, for the lines' vector output (volume_lines_pass.hpp).
+// The fate of each segment's middle (volume_line_segment_fate.frag) into texel i of a target
+// `uFateWidth` texels wide, read by the lines' geometry shader and by their vector output
+// (volume_lines_pass.hpp).
 layout(location = 0) in vec3 aMiddle;
 layout(location = 2) in float aImportance;
 layout(location = 32) uniform int uFateWidth;

@@ -4,13 +4,15 @@
 #include <cmath>
 #include <cstddef>
 
+#include "kinds/volumes/volume_blocks.hpp"
+
 namespace cutaway {
 
 namespace {
 // Uniform locations of volume_line_surfaces.frag, volume_line.* and volume_line_segment_fate.*.
 constexpr GLint kStep = 2, kCutBy = 9, kInterest = 10, kIsoCount = 20, kIsoValues = 21,
                 kTolerance = 22, kHalo = 23, kHaloColor = 24, kHidden = 25, kDimmedOpacity = 26,
-                kExtra = 30, kDepthPush = 31, kFateWidth = 32, kFateSize = 33;
+                kExtra = 30, kDepthPush = 31, kFateWidth = 32, kFateSize = 33, kFirstSegment = 34;
 constexpr int kFateTexels = 1024;  // the fate target's width
 
 float smallestSpacing(const SceneVolume& v) {
@@ -28,8 +30,17 @@ bool sameFamilies(const VolumeLineStyle& a, const VolumeLineStyle& b) {
 VolumeLinesPass::VolumeLinesPass(FrameSetup& setup,
                                  std::function<void(GLuint, std::size_t)> bindVolume)
     : setup_(setup), bindVolume_(std::move(bindVolume)) {
-  for (std::size_t i = 0; i < setup.scene.volumes.size(); ++i)
-    if (setup.scene.volumes[i].lines) lines_.push_back({.volume = i});
+  for (std::size_t i = 0; i < setup.scene.volumes.size(); ++i) {
+    if (!setup.scene.volumes[i].lines) continue;
+    lines_.push_back({.volume = i});
+    const BlockRanges blocks = blockRanges(*setup.scene.volumes[i].volume);
+    gl::Texture& t = lines_.back().blocks = gl::Texture::create(GL_TEXTURE_3D);
+    glTextureStorage3D(t.id(), 1, GL_RG32F, blocks.grid.x, blocks.grid.y, blocks.grid.z);
+    glTextureSubImage3D(t.id(), 0, 0, 0, 0, blocks.grid.x, blocks.grid.y, blocks.grid.z, GL_RG,
+                        GL_FLOAT, blocks.range.data());
+    glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
   surfaces_ = setup.frame.declare(
       "volumeLineSurfaceDepth",
       {.format = GL_R32F,
@@ -51,8 +62,9 @@ GLuint VolumeLinesPass::surfaceProgram(const SceneVolume& v) const {
   const bool twoD = v.transfer.twoDimensional();
   gl::Program& p = surfacePrograms_[int(twoD)];
   if (!p.id()) {
-    std::map<std::string, std::string> defines;
-    if (twoD) defines["TRANSFER_2D"] = "1";
+    const std::map<std::string, std::string> defines =
+        twoD ? std::map<std::string, std::string>{{"TRANSFER_2D", "1"}}
+             : std::map<std::string, std::string>{};
     p = gl::buildProgram(
         setup_.geometryProgram({{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                                 {GL_FRAGMENT_SHADER, "kinds/volumes/volume_line_surfaces.frag"}},
@@ -64,10 +76,10 @@ GLuint VolumeLinesPass::surfaceProgram(const SceneVolume& v) const {
 void VolumeLinesPass::prepare(const std::vector<ActiveCutter>& cutters) {
   cutters_ = &cutters;
   for (const Lines& l : lines_) surfaceProgram(setup_.scene.volumes[l.volume]);
-  lineProgram_ = gl::buildProgram(
-      setup_.geometryProgram({{GL_VERTEX_SHADER, "kinds/volumes/volume_line.vert"},
-                              {GL_GEOMETRY_SHADER, "kinds/volumes/volume_line.geom"},
-                              {GL_FRAGMENT_SHADER, "kinds/volumes/volume_line.frag"}}));
+  lineProgram_ =
+      setup_.bindings.build({.stages = {{GL_VERTEX_SHADER, "kinds/volumes/volume_line.vert"},
+                                        {GL_GEOMETRY_SHADER, "kinds/volumes/volume_line.geom"},
+                                        {GL_FRAGMENT_SHADER, "kinds/volumes/volume_line.frag"}}});
   fateProgram_ = gl::buildProgram(setup_.geometryProgram(
       {{GL_VERTEX_SHADER, "kinds/volumes/volume_line_segment_fate.vert"},
        {GL_FRAGMENT_SHADER, "kinds/volumes/volume_line_segment_fate.frag"}}));
@@ -78,6 +90,12 @@ void VolumeLinesPass::prepare(const std::vector<ActiveCutter>& cutters) {
   glVertexArrayAttribFormat(vao, 2, 1, GL_FLOAT, GL_FALSE, offsetof(Segment, importance));
   for (GLuint a = 0; a < 3; ++a)
     glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
+  middleArray_ = gl::VertexArray::create();
+  const GLuint middles = middleArray_.id();
+  glVertexArrayAttribFormat(middles, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Segment, position));
+  glVertexArrayAttribFormat(middles, 2, 1, GL_FLOAT, GL_FALSE, offsetof(Segment, importance));
+  for (GLuint a : {0u, 2u})
+    glEnableVertexArrayAttrib(middles, a), glVertexArrayAttribBinding(middles, a, 0);
 }
 
 void VolumeLinesPass::addPasses(Frame& frame) {
@@ -88,7 +106,7 @@ void VolumeLinesPass::addPasses(Frame& frame) {
   frame.addPass({.name = "volumeLines",
                  .reads = {surfaces_},
                  .writes = {setup_.gbuffer.finalColor(), coverage_, depth_},
-                 .run = [this](const PassContext&) { drawLines(); }});
+                 .run = [this](const PassContext& pass) { drawLines(pass); }});
 }
 
 glm::vec4 VolumeLinesPass::pen(const Lines& lines, const Family& f, VolumeLineKind kind) const {
@@ -164,13 +182,31 @@ void VolumeLinesPass::extract(const Camera& camera) {
       }
     }
   }
+  // The segments, and their middles (where each is decided).
+  std::vector<Segment> middles(segments_.size() / 2);
+  for (std::size_t i = 0; i < middles.size(); ++i)
+    middles[i] = {0.5f * (segments_[2 * i].position + segments_[2 * i + 1].position),
+                  segments_[2 * i].pen, segments_[2 * i].importance};
   const std::size_t bytes = segments_.size() * sizeof(Segment);
   if (bytes > vertexCapacity_) {
     vertexCapacity_ = std::max<std::size_t>(bytes * 2, 1 << 16);
     vertices_ = gl::Buffer::create(GLsizeiptr(vertexCapacity_), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    middles_ = gl::Buffer::create(GLsizeiptr(vertexCapacity_ / 2), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glVertexArrayVertexBuffer(vertexArray_.id(), 0, vertices_.id(), 0, sizeof(Segment));
+    glVertexArrayVertexBuffer(middleArray_.id(), 0, middles_.id(), 0, sizeof(Segment));
   }
-  if (bytes) glNamedBufferSubData(vertices_.id(), 0, GLsizeiptr(bytes), segments_.data());
+  if (bytes) {
+    glNamedBufferSubData(vertices_.id(), 0, GLsizeiptr(bytes), segments_.data());
+    glNamedBufferSubData(middles_.id(), 0, GLsizeiptr(bytes / 2), middles.data());
+  }
+}
+
+std::pair<std::size_t, std::size_t> VolumeLinesPass::segmentRange(std::size_t volume) const {
+  // A volume's runs are consecutive (extract): one draw for all its segments.
+  std::size_t first = segments_.size() / 2, last = first;
+  for (const Run& r : runs_)
+    if (r.volume == volume) first = std::min(first, r.first), last = r.first + r.count;
+  return {first, last > first ? last - first : 0};
 }
 
 void VolumeLinesPass::beginFrame(const FrameState& state) {
@@ -211,29 +247,49 @@ void VolumeLinesPass::drawSurfaces() const {
     for (const VolumeLineIso& i : v.lines->isoValues) iso.push_back(i.value);
     glProgramUniform1i(program, kIsoCount, GLint(iso.size()));
     glProgramUniform1fv(program, kIsoValues, GLsizei(iso.size()), iso.data());
+    glBindTextureUnit(7, l.blocks.id());
     fullscreen_.draw();
   }
   glBlendEquationi(0, GL_FUNC_ADD);
   glDisablei(GL_BLEND, 0);
 }
 
-void VolumeLinesPass::setLineUniforms(GLuint program, std::size_t volume) const {
-  const SceneVolume& v = setup_.scene.volumes[volume];
-  const VolumeLineStyle& s = *v.lines;
-  setCommonUniforms(program, volume);
-  glProgramUniform1f(program, kTolerance, 2.0f * smallestSpacing(v));
-  glProgramUniform1i(program, kHidden, int(s.hidden));
-  glProgramUniform1f(program, kDimmedOpacity, s.dimmedOpacity);
-  glProgramUniform3fv(program, kHaloColor, 1, &s.haloColor[0]);
-  glBindTextureUnit(5, setup_.frame.texture(surfaces_).id());
+// Each segment's fate, decided once at its middle, into fates_ (a texel per segment).
+void VolumeLinesPass::decideSegments(const PassContext& pass) const {
+  const std::size_t count = segments_.size() / 2;
+  const int rows = int((count + kFateTexels - 1) / kFateTexels);
+  if (rows > fateRows_) {
+    fateRows_ = std::max(rows, 2 * fateRows_);
+    fates_ = gl::Texture::create2D(GL_R32F, kFateTexels, fateRows_);
+    fateFramebuffer_ = gl::Framebuffer::create();
+    glNamedFramebufferTexture(fateFramebuffer_.id(), GL_COLOR_ATTACHMENT0, fates_.id(), 0);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, fateFramebuffer_.id());
+  glViewport(0, 0, kFateTexels, fateRows_);
+  glBindVertexArray(middleArray_.id());
+  const GLuint program = fateProgram_.id();
+  for (const Lines& l : lines_) {
+    const auto [first, n] = segmentRange(l.volume);
+    if (n == 0) continue;
+    const SceneVolume& v = setup_.scene.volumes[l.volume];
+    setCommonUniforms(program, l.volume);
+    glProgramUniform1f(program, kTolerance, 2.0f * smallestSpacing(v));
+    glProgramUniform1i(program, kFateWidth, kFateTexels);
+    glProgramUniform2f(program, kFateSize, float(kFateTexels), float(fateRows_));
+    glDrawArrays(GL_POINTS, GLint(first), GLsizei(n));
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer);
+  glViewport(0, 0, pass.width, pass.height);
 }
 
-void VolumeLinesPass::drawLines() const {
+void VolumeLinesPass::drawLines(const PassContext& pass) const {
   const float zero = 0.0f, far = 1.0f;
   glClearTexImage(setup_.frame.texture(coverage_).id(), 0, GL_RED, GL_FLOAT, &zero);
   glClearTexImage(setup_.frame.texture(depth_).id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far);
   if (runs_.empty()) return;
   setup_.bindShading();
+  glBindTextureUnit(5, setup_.frame.texture(surfaces_).id());
+  decideSegments(pass);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
   glEnablei(GL_BLEND, 0);
@@ -241,7 +297,10 @@ void VolumeLinesPass::drawLines() const {
   glEnablei(GL_BLEND, 1);
   glBlendEquationi(1, GL_MAX);
   glBindVertexArray(vertexArray_.id());
+  glBindTextureUnit(6, fates_.id());
   const GLuint program = lineProgram_.id();
+  glUseProgram(program);
+  glProgramUniform1i(program, kFateWidth, kFateTexels);
   // All halos first, pushed back by eight voxels, then all lines: a line passing behind a
   // nearer one fails the depth test where the nearer one's halo lies (Appel et al. 1979).
   for (const bool halo : {true, false}) {
@@ -252,18 +311,23 @@ void VolumeLinesPass::drawLines() const {
       glDisable(GL_POLYGON_OFFSET_FILL);
     for (const Lines& l : lines_) {
       const SceneVolume& v = setup_.scene.volumes[l.volume];
-      if (halo && !(v.lines->halo > 0.0f)) continue;
-      setLineUniforms(program, l.volume);
+      const VolumeLineStyle& s = *v.lines;
+      if (halo && !(s.halo > 0.0f)) continue;
+      glProgramUniform1i(program, kHidden, int(s.hidden));
+      glProgramUniform1f(program, kDimmedOpacity, s.dimmedOpacity);
+      glProgramUniform3fv(program, kHaloColor, 1, &s.haloColor[0]);
       glProgramUniform1i(program, kHalo, halo);
-      glProgramUniform1f(program, kExtra, halo ? v.lines->halo : 0.0f);
+      glProgramUniform1f(program, kExtra, halo ? s.halo : 0.0f);
       glProgramUniform1f(program, kDepthPush, halo ? 8.0f * smallestSpacing(v) : 0.0f);
       // A line running into the view changes depth fast along itself: pushed back by its depth
       // slope over the halo's reach too, a halo does not break its own line.
-      if (halo) glPolygonOffset(v.lines->halo + 4.0f, 0.0f);
-      for (const Run& r : runs_)
-        if (r.volume == l.volume) glDrawArrays(GL_LINES, GLint(2 * r.first), GLsizei(2 * r.count));
+      if (halo) glPolygonOffset(s.halo + 4.0f, 0.0f);
+      const auto [first, count] = segmentRange(l.volume);
+      glProgramUniform1i(program, kFirstSegment, GLint(first));
+      glDrawArrays(GL_LINES, GLint(2 * first), GLsizei(2 * count));
     }
   }
+  glDisable(GL_POLYGON_OFFSET_FILL);
   glBlendEquationi(1, GL_FUNC_ADD);
   glDisablei(GL_BLEND, 1);
   glDisablei(GL_BLEND, 0);
@@ -274,47 +338,10 @@ VolumeLineDrawing VolumeLinesPass::drawing() const {
   VolumeLineDrawing out{setup_.frame.width(), setup_.frame.height(), {}};
   const std::size_t count = segments_.size() / 2;
   if (count == 0) return out;
-  // Each segment's middle decided as its fragments are (volume_line_fate.glsl).
-  std::vector<Segment> middles(count);
-  for (std::size_t i = 0; i < count; ++i)
-    middles[i] = {0.5f * (segments_[2 * i].position + segments_[2 * i + 1].position),
-                  segments_[2 * i].pen, segments_[2 * i].importance};
-  const gl::Buffer buffer = gl::Buffer::create(GLsizeiptr(count * sizeof(Segment)), middles.data());
-  const gl::VertexArray vao = gl::VertexArray::create();
-  glVertexArrayVertexBuffer(vao.id(), 0, buffer.id(), 0, sizeof(Segment));
-  glVertexArrayAttribFormat(vao.id(), 0, 3, GL_FLOAT, GL_FALSE, offsetof(Segment, position));
-  glVertexArrayAttribFormat(vao.id(), 2, 1, GL_FLOAT, GL_FALSE, offsetof(Segment, importance));
-  for (GLuint a : {0u, 2u})
-    glEnableVertexArrayAttrib(vao.id(), a), glVertexArrayAttribBinding(vao.id(), a, 0);
-  const int rows = int((count + kFateTexels - 1) / kFateTexels);
-  const gl::Texture fates = gl::Texture::create2D(GL_R32F, kFateTexels, rows);
-  const gl::Framebuffer fbo = gl::Framebuffer::create();
-  glNamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, fates.id(), 0);
-  GLint previousFbo = 0, viewport[4];
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previousFbo);
-  glGetIntegerv(GL_VIEWPORT, viewport);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo.id());
-  glViewport(0, 0, kFateTexels, rows);
-  setup_.bindShading();
-  std::vector<float> fate(std::size_t(kFateTexels) * rows, 0.0f);
-  const GLuint program = fateProgram_.id();
-  for (const Lines& l : lines_) {
-    // The runs of one volume are consecutive: one draw each with its uniforms.
-    std::size_t first = count, last = 0;
-    for (const Run& r : runs_)
-      if (r.volume == l.volume)
-        first = std::min(first, r.first), last = std::max(last, r.first + r.count);
-    if (first >= last) continue;
-    setLineUniforms(program, l.volume);
-    glProgramUniform1i(program, kFateWidth, kFateTexels);
-    glProgramUniform2f(program, kFateSize, float(kFateTexels), float(rows));
-    glBindVertexArray(vao.id());
-    glDrawArrays(GL_POINTS, GLint(first), GLsizei(last - first));
-  }
-  glGetTextureImage(fates.id(), 0, GL_RED, GL_FLOAT, GLsizei(fate.size() * sizeof(float)),
+  // The fates the last frame decided (decideSegments), a texel per segment.
+  std::vector<float> fate(std::size_t(kFateTexels) * std::size_t(fateRows_));
+  glGetTextureImage(fates_.id(), 0, GL_RED, GL_FLOAT, GLsizei(fate.size() * sizeof(float)),
                     fate.data());
-  glBindFramebuffer(GL_FRAMEBUFFER, GLuint(previousFbo));
-  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 
   const auto window = [&](const glm::vec3& p) {
     const glm::vec4 c = viewProjection_ * glm::vec4(p, 1.0f);

@@ -4,14 +4,15 @@
 //   volumeLineSurfaces  per pixel, the view depth of the nearest crossing of a drawn isovalue
 //                       among the samples the cutters keep, or of the opaque surfaces (AOV
 //                       volumeLineSurfaceDepth): what hides a line
-//   volumeLines         the halos, then the lines, over the final colour: each fragment's point
-//                       decided by the cutters that cut the volume and tested against that
-//                       depth (AOV volumeLineCoverage)
+//   volumeLines         each segment decided at its middle by the cutters that cut the volume
+//                       and tested against that depth (a texel per segment), then the halos and
+//                       the lines over the final colour (AOV volumeLineCoverage)
 // A volume whose lines are "only" is not ray cast (VolumeKind skips it).
 #pragma once
 
 #include <functional>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "cutaway/gl/objects.hpp"
@@ -31,7 +32,7 @@ class VolumeLinesPass {
   void prepare(const std::vector<ActiveCutter>& cutters);
   void addPasses(Frame& frame);
   void beginFrame(const FrameState& state);
-  // The last frame's lines with each segment's fate (a pass run on demand).
+  // The last frame's lines, each run of segments split by the fates the frame drew them with.
   VolumeLineDrawing drawing() const;
 
  private:
@@ -44,7 +45,7 @@ class VolumeLinesPass {
     std::size_t volume = 0;
     VolumeLineStyle style;  // what the families were made for
     std::vector<Family> families;
-    std::vector<VolumeLineSet> sets;  // this frame's, one per family
+    gl::Texture blocks;  // the value range per block (volume_blocks.hpp), RG32F
   };
   struct Segment {  // the vertex layout: two per segment
     glm::vec3 position;
@@ -58,9 +59,11 @@ class VolumeLinesPass {
   };
   void extract(const Camera& camera);
   void drawSurfaces() const;
-  void drawLines() const;
+  void decideSegments(const PassContext& pass) const;
+  void drawLines(const PassContext& pass) const;
   void setCommonUniforms(GLuint program, std::size_t volume) const;
-  void setLineUniforms(GLuint program, std::size_t volume) const;
+  // The first segment and the count of a volume's lines.
+  std::pair<std::size_t, std::size_t> segmentRange(std::size_t volume) const;
   GLuint surfaceProgram(const SceneVolume& v) const;
   // The pen and importance of a line of family f of `lines`.
   glm::vec4 pen(const Lines& lines, const Family& f, VolumeLineKind kind) const;
@@ -72,13 +75,17 @@ class VolumeLinesPass {
   std::vector<Lines> lines_;
   mutable std::map<int, gl::Program> surfacePrograms_;
   gl::Program lineProgram_, fateProgram_;
-  gl::VertexArray vertexArray_;
-  gl::Buffer vertices_;
+  gl::VertexArray vertexArray_, middleArray_;
+  gl::Buffer vertices_, middles_;
   std::size_t vertexCapacity_ = 0;
   std::vector<Segment> segments_;  // this frame's, two vertices per segment
   std::vector<Run> runs_;
   FullscreenTriangle fullscreen_;
   Target surfaces_, coverage_, depth_;
+  // The last frame's fate of each segment (volume_line_segment_fate.frag), a texel each.
+  mutable gl::Texture fates_;
+  mutable gl::Framebuffer fateFramebuffer_;
+  mutable int fateRows_ = 0;
   glm::mat4 viewProjection_{1.0f}, view_{1.0f};
 };
 
