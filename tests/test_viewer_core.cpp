@@ -585,6 +585,26 @@ TEST(ViewerSave, VolumeOptionsReadBack) {
   EXPECT_EQ(saved.volumes[0].source, original.volumes[0].source);
 }
 
+// A volume's lines edited in the viewer are saved under its "lines" and read back.
+TEST(ViewerSave, VolumeLinesReadBack) {
+  const fs::path examples = fs::path(CUTAWAY_SOURCE_DIR) / "examples";
+  const Scene original = loadScene(examples / "mri-head-lines.json");
+  Scene current = viewerCopy(original);
+  findParameter("volumes.lines.isoValues.1.value")->assign(current, 80.0);
+  findParameter("volumes.lines.suggestive")->assign(current, true);
+  findParameter("volumes.lines.hidden")->assign(current, std::string("dimmed"));
+  findParameter("volumes.lines.planes.0.distance")->assign(current, -10.0);
+  const fs::path target = scratch("mri-head-lines.json");
+  SceneDocument::load(examples / "mri-head-lines.json").save(original, current, target);
+  const Scene saved = loadScene(target);
+  ASSERT_EQ(saved.volumes.size(), 1u);
+  ASSERT_TRUE(saved.volumes[0].lines);
+  EXPECT_EQ(*saved.volumes[0].lines, *current.volumes[0].lines);
+  EXPECT_EQ(saved.volumes[0].lines->isoValues[1].value, 80.0f);
+  EXPECT_EQ(saved.volumes[0].lines->hidden, HiddenLines::Dimmed);
+  EXPECT_EQ(saved.volumes[0].lines->planes[0].distance, -10.0f);
+}
+
 // The transfer-function editor's edits keep the scene file's rules.
 TEST(ViewerTransfer, EditsKeepValuesIncreasingAndRowsOrdered) {
   std::vector<TransferPoint> row{{0.0f, {0, 0, 0}, 0.0f, 0.0f}, {10.0f, {1, 1, 1}, 1.0f, 1.0f}};
