@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -841,6 +842,25 @@ TEST_F(VolumeTest, BadVolumeEntriesAreRejectedWithTheirPlace) {
   expectError(
       [&] { scene("{" + f + R"("transferFunction": [{"value": 0, "opacity": 1}], "colour": 1})"); },
       {"/volumes/0", "colour"});
+  // Lines: isovalues required (one to eight), known keys, a plane's normal not zero, no labels.
+  const std::string tf = R"("transferFunction": [{"value": 0, "opacity": 1}], )";
+  // (lines, the place, a word of the reason)
+  const std::vector<std::array<std::string, 3>> badLines{
+      {R"({"contours": true})", "/volumes/0/lines", "isoValues"},
+      {R"({"isoValues": []})", "/volumes/0/lines/isoValues", ""},
+      {R"({"isoValues": [{"color": [0, 0, 0]}]})", "/volumes/0/lines/isoValues/0", "value"},
+      {R"({"isoValues": [{"value": 0}], "halos": 2})", "/volumes/0/lines", "halos"},
+      {R"({"isoValues": [{"value": 0}], "hidden": "faint"})", "/volumes/0/lines/hidden", "faint"},
+      {R"({"isoValues": [{"value": 0}], "planes": [{"normal": [0, 0, 0]}]})",
+       "/volumes/0/lines/planes/0/normal", ""},
+      {R"({"isoValues": [{"value": 0, "width": 100}]})", "/volumes/0/lines/isoValues/0/width", ""}};
+  for (const auto& [lines, place, reason] : badLines) {
+    SCOPED_TRACE(lines);
+    expectError([&] { scene("{" + f + tf + R"("lines": )" + lines + "}"); }, {place, reason});
+  }
+  expectError(
+      [&] { scene("{" + f + tf + R"("labels": true, "lines": {"isoValues": [{"value": 0}]}})"); },
+      {"/volumes/0/lines", "label volume"});
   const std::string row = R"({"gradient": 0, "points": [{"value": 0, "opacity": 1}]})";
   expectError(
       [&] {

@@ -57,7 +57,8 @@ const OptionsSchema& volumeLineStyleSchema() {
   static const OptionsSchema schema =
       OptionsBuilder<O>()
           .array("isoValues", &O::isoValues, 1, 8, isoSchema(),
-                 {.doc = "The isosurfaces whose lines are drawn, each with its contours' pen."})
+                 {.doc = "The isosurfaces whose lines are drawn, each with its contours' pen.",
+                  .required = true})
           .value("contours", &O::contours,
                  {.doc = "Contours: the isosurface meets c = −∇φ·v̂ = 0 (eq. 2.4); interior ones "
                          "(s < 0, eq. 2.6) get their own pen.",
