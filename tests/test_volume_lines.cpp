@@ -214,6 +214,36 @@ TEST(VolumeLines, EquationTwoPointFiveProbesReachTheSurfaceOfABall) {
       << p.x << " " << p.y << " " << p.z;
 }
 
+// What the data or the view can make of nothing: NaN voxels give no NaN points, an isovalue
+// outside the data finds nothing without re-scanning every frame, a flat grid has no cells.
+TEST(VolumeLines, MissingValuesEmptyFramesAndFlatGridsAreHandled) {
+  Volume v = ball(10.0f, 24);
+  for (std::size_t i = 0; i < v.values.size(); i += 7) v.values[i] = std::nanf("");
+  const VolumeLineField holes(v, v.indexToWorld, orthographic({0, 0, 1}), {.isoValue = 0});
+  for (const VolumeLine& line : extractVolumeLinesBruteForce(holes).lines)
+    for (const glm::vec3& p : line.points) EXPECT_FALSE(glm::any(glm::isnan(p)));
+
+  const Volume b = ball(10.0f, 24);
+  const VolumeLineField none(b, b.indexToWorld, orthographic({0, 0, 1}), {.isoValue = 1e6f});
+  VolumeLineTracker tracker;
+  const VolumeLineSet first = tracker.extract(none, {.randomProbes = 10});
+  EXPECT_TRUE(first.lines.empty());
+  EXPECT_EQ(first.cellsExamined, std::size_t(23 * 23 * 23));  // brute force, once
+  const VolumeLineSet second = tracker.extract(none, {.randomProbes = 10});
+  EXPECT_TRUE(second.lines.empty());
+  EXPECT_LE(second.cellsExamined, 10u * 5u);  // the probes' steps only
+
+  Volume flat;
+  flat.dims = {5, 5, 1};
+  flat.values.assign(25, 1.0f);
+  flat.updateRange();
+  const VolumeLineField field(flat, flat.indexToWorld, orthographic({0, 0, 1}), {.isoValue = 0.5f});
+  VolumeLineTracker probing;
+  EXPECT_TRUE(
+      probing.extract(field, {.randomProbes = 20, .bruteForceFirstFrame = false}).lines.empty());
+  EXPECT_TRUE(extractVolumeLinesBruteForce(field).lines.empty());
+}
+
 // A bump on a bowl, z = A·exp(−ρ²/2σ²) − Bρ², as a signed distance (positive below), seen
 // from above: its radial curvature is the profile's, zero where the profile inflects, so its
 // suggestive contour is the circle where h''(ρ) = 0.

@@ -248,10 +248,13 @@ int render(const RenderOptions& options) {
   warnAboutFarCoordinates(scene);
   warnAboutOpenExteriors(scene);
   warnAboutUncappedObjects(scene);
-  if (options.frames > 0 && options.output.find('%') != std::string::npos) {
+  // A frame pattern is a printf format: nothing but one %d in it.
+  for (const auto& [option, path] :
+       {std::pair{"--output", &options.output}, std::pair{"--svg", &options.svg}}) {
     static const std::regex patternRe(R"([^%]*%0?\d*d[^%]*)");
-    if (!std::regex_match(options.output, patternRe))
-      throw Error("--output", "", "a frame pattern may hold one %d (e.g. frame_%04d.png)");
+    if (options.frames > 0 && path->find('%') != std::string::npos &&
+        !std::regex_match(*path, patternRe))
+      throw Error(option, "", "a frame pattern may hold one %d (e.g. frame_%04d.png)");
   }
   if (!options.svg.empty() &&
       std::none_of(scene.volumes.begin(), scene.volumes.end(),

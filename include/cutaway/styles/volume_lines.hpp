@@ -185,7 +185,7 @@ struct VolumeLineSeeding {
   int probesFromPrevious = 0;      // gradient-descent probes started at previous cells
   int randomProbes = 0;            // … and at random cells of the volume
   int probeIterations = 5;         // eq. 2.5 steps per probe, alternating f and g
-  bool bruteForceFirstFrame = true;  // a tracker without history starts with brute force
+  bool bruteForceFirstFrame = true;  // a tracker's first frame is brute force
 };
 
 // Walks loops from seed cells, remembering this frame's cells as the next frame's seeds.
@@ -194,11 +194,12 @@ class VolumeLineTracker {
   VolumeLineTracker() : VolumeLineTracker(1) {}
   explicit VolumeLineTracker(std::uint64_t randomSeed) : random_(randomSeed) {}
   VolumeLineSet extract(const VolumeLineField& field, const VolumeLineSeeding& seeding = {});
-  bool hasHistory() const { return !previous_.empty(); }
-  void reset() { previous_.clear(); }
+  bool hasHistory() const { return ran_; }
+  void reset() { previous_.clear(), ran_ = false; }
 
  private:
   std::vector<std::uint64_t> previous_;
+  bool ran_ = false;  // a frame was extracted (not only one that found lines)
   std::mt19937_64 random_;
 };
 

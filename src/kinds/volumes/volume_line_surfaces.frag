@@ -81,8 +81,8 @@ void main() {
     }
     havePrevious = true;
     previous = value, tPrevious = t;
-    // A block whose values (and its neighbours') hold no isovalue has no crossing: on to the
-    // first sample past it, which lies in that range too (volume_blocks.hpp).
+    // A block whose values (and its neighbours') hold no isovalue has no crossing: on to its
+    // last sample, so that a crossing just past it is placed between neighbouring samples.
     ivec3 block = clamp(ivec3(floor((index + 0.5) / kBlock)), ivec3(0), textureSize(uIsoBlocks, 0) - 1);
     vec2 range = texelFetch(uIsoBlocks, block, 0).rg;
     bool empty = range.x <= range.y;  // a block of NaN voxels has no range: never skipped
@@ -92,7 +92,7 @@ void main() {
       vec3 lo = vec3(block) * kBlock - 0.5;
       vec3 ea = (lo - r.o) / r.d, eb = (lo + kBlock - r.o) / r.d;
       vec3 far = max(ea, eb);
-      k = max(k, int(ceil((min(far.x, min(far.y, far.z)) - t0) / uStep)) - 1);
+      k = max(k, int(ceil((min(far.x, min(far.y, far.z)) - t0) / uStep)) - 2);
     }
   }
 }

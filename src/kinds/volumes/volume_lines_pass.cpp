@@ -164,8 +164,8 @@ void VolumeLinesPass::extract(const Camera& camera) {
       }
       const VolumeLineField field(*v.volume, v.indexToWorld(), view, f.query);
       if (!style.walk) f.tracker.reset();
-      // §2.4.1.3–2.4.1.4: the previous frame's cells, probes from a quarter as many of them
-      // and n random probes (n³ ≈ the voxel count); a first frame is brute force.
+      // §2.4.1.3–2.4.1.4: the previous frame's cells, n/4 probes from them and n random
+      // probes (n³ ≈ the voxel count); a first frame is brute force.
       const VolumeLineSet set =
           f.tracker.extract(field, {.probesFromPrevious = int(n / 4), .randomProbes = int(n)});
       const float importance = this->importance(l, f);
@@ -349,12 +349,21 @@ VolumeLineDrawing VolumeLinesPass::drawing() const {
     return glm::vec2((ndc.x * 0.5f + 0.5f) * float(out.width),
                      (0.5f - ndc.y * 0.5f) * float(out.height));
   };
+  // As drawn: a segment with an end behind the eye is not (volume_line.geom).
+  const auto stateOf = [&](std::size_t k) {
+    const auto inFront = [&](const glm::vec3& p) {
+      return (viewProjection_ * glm::vec4(p, 1.0f)).w > 0.0f;
+    };
+    return inFront(segments_[2 * k].position) && inFront(segments_[2 * k + 1].position)
+               ? int(std::lround(fate[k]))
+               : 0;
+  };
   for (const Run& r : runs_) {
     const VolumeLineStyle& s = *setup_.scene.volumes[r.volume].lines;
     for (std::size_t i = r.first; i < r.first + r.count;) {
-      const int state = int(std::lround(fate[i]));
+      const int state = stateOf(i);
       std::size_t j = i;
-      while (j < r.first + r.count && int(std::lround(fate[j])) == state) ++j;
+      while (j < r.first + r.count && stateOf(j) == state) ++j;
       if (state == 2 || (state == 1 && s.hidden != HiddenLines::Removed)) {
         DrawnVolumeLine line{
             .kind = r.kind,

@@ -191,12 +191,15 @@ VolumeLineSet extractVolumeLinesBruteForce(const VolumeLineField& field) {
 
 VolumeLineSet VolumeLineTracker::extract(const VolumeLineField& field,
                                          const VolumeLineSeeding& seeding) {
-  if (previous_.empty() && seeding.bruteForceFirstFrame) {
-    VolumeLineSet set = extractVolumeLinesBruteForce(field);
+  VolumeLineSet set;
+  if (glm::any(glm::lessThanEqual(field.cells(), glm::ivec3(0)))) return set;  // no cell
+  const bool first = !ran_;
+  ran_ = true;
+  if (first && seeding.bruteForceFirstFrame) {
+    set = extractVolumeLinesBruteForce(field);
     previous_ = set.cells;
     return set;
   }
-  VolumeLineSet set;
   Walker walker(field, set);
   const std::uint64_t cellCount = field.cellIndex(field.cells() - 1) + 1;
   std::erase_if(previous_, [&](std::uint64_t c) { return c >= cellCount; });

@@ -109,7 +109,7 @@ bool intersect(const Segment2& p, const Segment2& q, glm::vec2& at) {
   if (d == 0.0f) return false;
   const glm::vec2 qp = q.a - p.a;
   const float t = (qp.x * s.y - qp.y * s.x) / d, u = (qp.x * r.y - qp.y * r.x) / d;
-  if (t < 0.0f || t > 1.0f || u < 0.0f || u > 1.0f) return false;
+  if (!(t >= 0.0f && t <= 1.0f && u >= 0.0f && u <= 1.0f)) return false;  // NaN: no point
   at = p.a + t * r;
   return true;
 }
@@ -202,7 +202,10 @@ bool VolumeLineField::mayHoldSurface(glm::ivec3 cell) const {
   float fv[8];
   corners(cell, fv, nullptr);
   bool positive = false, negative = false;
-  for (float v : fv) (v > 0 ? positive : negative) = true;
+  for (float v : fv) {
+    if (std::isnan(v)) return false;  // no surface through a missing value
+    (v > 0 ? positive : negative) = true;
+  }
   return positive && negative;
 }
 
@@ -308,6 +311,7 @@ std::int8_t VolumeLineField::kindOf(glm::ivec3 cell, const CellSegment& segment,
 }
 
 glm::vec3 VolumeLineField::walkTowardsZero(glm::vec3 p, int function) const {
+  if (glm::any(glm::lessThanEqual(cells(), glm::ivec3(0)))) return p;
   const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p)), glm::ivec3(0), cells() - 1);
   float fv[8], gv[8];
   corners(cell, fv, function == 0 ? nullptr : gv);
