@@ -89,20 +89,17 @@ class Walker {
   }
 
  private:
-  std::optional<Link> next(const Link& l) {
-    const glm::ivec3 c = across(l.cell, l.segment.exitFace);
+  // The segment the curve continues in across l's exit face (forward) or entry face.
+  std::optional<Link> neighbour(const Link& l, bool forward) {
+    const glm::ivec3 c = across(l.cell, forward ? l.segment.exitFace : l.segment.entryFace);
     if (!field_.validCell(c)) return std::nullopt;
     for (const CellSegment& s : segmentsOf(c))
-      if (s.entryId == l.segment.exitId) return Link{c, s};
+      if (forward ? s.entryId == l.segment.exitId : s.exitId == l.segment.entryId)
+        return Link{c, s};
     return std::nullopt;
   }
-  std::optional<Link> previous(const Link& l) {
-    const glm::ivec3 c = across(l.cell, l.segment.entryFace);
-    if (!field_.validCell(c)) return std::nullopt;
-    for (const CellSegment& s : segmentsOf(c))
-      if (s.exitId == l.segment.entryId) return Link{c, s};
-    return std::nullopt;
-  }
+  std::optional<Link> next(const Link& l) { return neighbour(l, true); }
+  std::optional<Link> previous(const Link& l) { return neighbour(l, false); }
 
   void walk(const Link& seed) {
     std::deque<Link> chain{seed};
