@@ -6,10 +6,13 @@
 // bracketed group runs where the scene asks for it (tests/test_pass_graph.cpp matches the
 // frame of every example against these lines):
 //
-//   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth)
-//   cutawayDilate]
-//   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2)
-//   cutawayDilateC2] [breakawayClip breakawayInnerClip] [clipSurfaceSprites] [shadowMap] geometry
+// clang-format off
+//   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth) cutawayDilate]
+//   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2) cutawayDilateC2]
+//   [breakawayClip breakawayInnerClip]
+//   [clipSurfaceSprites]
+//   [shadowMap]
+//   geometry
 //   [pipeOwners pipes pipeAovs]
 //   [ghostGeometry]
 //   [capMask]
@@ -21,6 +24,7 @@
 //   [volumes]
 //   [volumeLineSurfaces volumeLines]
 //   [translucentComposite]
+// clang-format on
 //
 // - cutawaySeed … cutawayDilate: the adaptive cutter (Burns08 §5): the region of interest's
 //   rear hulls, the cutaway surface by jump flooding on the CPU or in fragment passes (one per
