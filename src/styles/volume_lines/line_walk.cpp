@@ -24,7 +24,14 @@ struct Link {
 
 class Walker {
  public:
-  Walker(const VolumeLineField& field, VolumeLineSet& out) : field_(field), out_(out) {}
+  // `expected`: about how many cells the walk will read (the previous frame's), so that its
+  // tables grow once.
+  Walker(const VolumeLineField& field, VolumeLineSet& out, std::size_t expected = 0)
+      : field_(field), out_(out) {
+    cache_.reserve(2 * expected);
+    out_.segments.reserve(2 * expected);
+    cells_.reserve(2 * expected);
+  }
 
   // Brute force: every cell's segments, so that walking needs no further reads.
   void examineAll() {
@@ -33,7 +40,6 @@ class Walker {
       for (int y = 0; y < n.y; ++y)
         for (int x = 0; x < n.x; ++x) {
           const glm::ivec3 c(x, y, z);
-          if (!field_.mayHoldSurface(c)) continue;
           auto segments = field_.segments(c);
           if (!segments.empty()) cache_.emplace(field_.cellIndex(c), std::move(segments));
         }
@@ -54,7 +60,7 @@ class Walker {
     if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
     if (complete_) return none;
     ++out_.cellsExamined;
-    auto segments = field_.mayHoldSurface(cell) ? field_.segments(cell) : std::vector<CellSegment>{};
+    auto segments = field_.segments(cell);
     return cache_.emplace(key, std::move(segments)).first->second;
   }
 
@@ -197,7 +203,7 @@ VolumeLineSet VolumeLineTracker::extract(const VolumeLineField& field,
     previous_ = set.cells;
     return set;
   }
-  Walker walker(field, set);
+  Walker walker(field, set, previous_.size());
   const std::uint64_t cellCount = field.cellIndex(field.cells() - 1) + 1;
   std::erase_if(previous_, [&](std::uint64_t c) { return c >= cellCount; });
   if (seeding.previousCells)

@@ -211,6 +211,8 @@ bool VolumeLineField::mayHoldSurface(glm::ivec3 cell) const {
 
 std::vector<CellSegment> VolumeLineField::segments(glm::ivec3 cell) const {
   std::vector<CellSegment> out;
+  // g only where f changes sign: most cells a walk or brute force reads hold no surface.
+  if (!mayHoldSurface(cell)) return out;
   float fv[8], gv[8];
   corners(cell, fv, gv);
   std::vector<FacePoint> points;
