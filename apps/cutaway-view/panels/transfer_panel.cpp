@@ -10,6 +10,7 @@
 
 #include "../transfer_edit.hpp"
 #include "cutaway/cutters/cutout.hpp"
+#include "cutaway/kinds/volume_ray_cast.hpp"
 #include "panels.hpp"
 
 namespace cutaway::view {
@@ -133,9 +134,7 @@ void transferPanel(ViewerState& state) {
     }
     if (ImGui::SmallButton("add gradient row")) {
       // A tenth of the value range per voxel above the last row.
-      const glm::mat3 m(v.indexToWorld());
-      const float voxel =
-          std::max(std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])}), 1e-6f);
+      const float voxel = std::max(smallestVoxelSpacing(v), 1e-6f);
       const float step =
           std::max((v.volume->maxValue - v.volume->minValue) / (10.0f * voxel), 1.0f);
       const int r = insertTransferRow(tf, tf.rows.back().gradient + step);

@@ -28,6 +28,10 @@ struct VolumeRay {
   glm::vec3 color{0.0f};  // premultiplied by opacity
 };
 
+// The smallest world length of a voxel step of a scene volume (placement included): ray steps,
+// opacity distances and tolerances are set in these.
+float smallestVoxelSpacing(const SceneVolume& volume);
+
 // Trilinear interpolation at index-space point p (voxel centres at integers), clamped to the
 // grid as GL_CLAMP_TO_EDGE clamps.
 float sampleVolume(const Volume& v, glm::vec3 p);

@@ -80,12 +80,6 @@ gl::Texture texture2D(GLenum format, glm::ivec2 size, const void* data, GLenum f
   glTextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   return t;
 }
-
-// The smallest world length of a voxel step: the ray's step is set in these.
-float smallestSpacing(const SceneVolume& v) {
-  const glm::mat3 m(v.indexToWorld());
-  return std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
-}
 }  // namespace
 
 TransferTable transferTable(const SceneVolume& v) {
@@ -304,7 +298,7 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
       glCopyImageSubData(frame.texture(aov).id(), GL_TEXTURE_2D, 0, 0, 0, 0, copy, GL_TEXTURE_2D, 0,
                          0, 0, 0, w, h, 1);
     bindVolume(program, i);
-    const float spacing = smallestSpacing(v);
+    const float spacing = smallestVoxelSpacing(v);
     glProgramUniform1f(program, kStep, v.sampleDistance * spacing);
     glProgramUniform1f(program, kVoxel, spacing);
     glProgramUniform1f(program, kOpacityExponent, v.sampleDistance / v.opacityDistance);
@@ -353,7 +347,7 @@ void VolumeKind::drawInterestRearHulls(const RearHullRequest& request) const {
     glProgramUniform2f(program, kPassSize, float(viewport[2]), float(viewport[3]));
     glProgramUniform1f(program, kTheta, request.theta(nullptr));
     bindVolume(program, i);
-    glProgramUniform1f(program, kStepRearHull, v.sampleDistance * smallestSpacing(v));
+    glProgramUniform1f(program, kStepRearHull, v.sampleDistance * smallestVoxelSpacing(v));
     fullscreen_.draw();
   }
 }

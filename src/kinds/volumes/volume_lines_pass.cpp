@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "cutaway/kinds/volume_ray_cast.hpp"
 #include "kinds/volumes/volume_blocks.hpp"
 
 namespace cutaway {
@@ -14,11 +15,6 @@ constexpr GLint kStep = 2, kCutBy = 9, kInterest = 10, kIsoCount = 20, kIsoValue
                 kTolerance = 22, kHalo = 23, kHaloColor = 24, kHidden = 25, kDimmedOpacity = 26,
                 kExtra = 30, kDepthPush = 31, kFateWidth = 32, kFateSize = 33, kFirstSegment = 34;
 constexpr int kFateTexels = 1024;  // the fate target's width
-
-float smallestSpacing(const SceneVolume& v) {
-  const glm::mat3 m(v.indexToWorld());
-  return std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
-}
 
 // The families of a style: per isovalue its contours and suggestive contours, then per plane.
 bool sameFamilies(const VolumeLineStyle& a, const VolumeLineStyle& b) {
@@ -242,7 +238,7 @@ void VolumeLinesPass::drawSurfaces() const {
     const GLuint program = surfaceProgram(v);
     setCommonUniforms(program, l.volume);
     bindVolume_(program, l.volume);
-    glProgramUniform1f(program, kStep, v.sampleDistance * smallestSpacing(v));
+    glProgramUniform1f(program, kStep, v.sampleDistance * smallestVoxelSpacing(v));
     std::vector<float> iso;
     for (const VolumeLineIso& i : v.lines->isoValues) iso.push_back(i.value);
     glProgramUniform1i(program, kIsoCount, GLint(iso.size()));
@@ -273,7 +269,7 @@ void VolumeLinesPass::decideSegments(const PassContext& pass) const {
     if (n == 0) continue;
     const SceneVolume& v = setup_.scene.volumes[l.volume];
     setCommonUniforms(program, l.volume);
-    glProgramUniform1f(program, kTolerance, 2.0f * smallestSpacing(v));
+    glProgramUniform1f(program, kTolerance, 2.0f * smallestVoxelSpacing(v));
     glProgramUniform1i(program, kFateWidth, kFateTexels);
     glProgramUniform2f(program, kFateSize, float(kFateTexels), float(fateRows_));
     glDrawArrays(GL_POINTS, GLint(first), GLsizei(n));
@@ -318,7 +314,7 @@ void VolumeLinesPass::drawLines(const PassContext& pass) const {
       glProgramUniform3fv(program, kHaloColor, 1, &s.haloColor[0]);
       glProgramUniform1i(program, kHalo, halo);
       glProgramUniform1f(program, kExtra, halo ? s.halo : 0.0f);
-      glProgramUniform1f(program, kDepthPush, halo ? 8.0f * smallestSpacing(v) : 0.0f);
+      glProgramUniform1f(program, kDepthPush, halo ? 8.0f * smallestVoxelSpacing(v) : 0.0f);
       // A line running into the view changes depth fast along itself: pushed back by its depth
       // slope over the halo's reach too, a halo does not break its own line.
       if (halo) glPolygonOffset(s.halo + 4.0f, 0.0f);

@@ -33,6 +33,11 @@ float sampleVolume(const Volume& v, glm::vec3 p) {
   return trilinear<float>(v, p, [&](glm::ivec3 c) { return v.at(c); });
 }
 
+float smallestVoxelSpacing(const SceneVolume& v) {
+  const glm::mat3 m(v.indexToWorld());
+  return std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+}
+
 glm::vec3 voxelGradient(const Volume& v, glm::ivec3 c) {
   const auto at = [&](glm::ivec3 q) { return v.at(glm::clamp(q, glm::ivec3(0), v.dims - 1)); };
   return 0.5f * glm::vec3(at(c + glm::ivec3(1, 0, 0)) - at(c - glm::ivec3(1, 0, 0)),
@@ -74,9 +79,7 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
   const float tIn = std::max({lo.x, lo.y, lo.z, 0.0f});
   const float tOut = std::min({hi.x, hi.y, hi.z, tOpaque});
   if (!(tIn < tOut)) return ray;
-  const glm::mat3 m(sv.indexToWorld());
-  const float step =
-      sv.sampleDistance * std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+  const float step = sv.sampleDistance * smallestVoxelSpacing(sv);
   const float exponent = sv.sampleDistance / sv.opacityDistance;
   const float offset = sv.jitter ? volumeJitter(glm::uvec2(pixel)) : 0.5f;
   const auto viewDepth = [&](const glm::vec3& p) { return -(view * glm::vec4(p, 1.0f)).z; };

@@ -33,18 +33,23 @@ class Walker {
     cells_.reserve(2 * expected);
   }
 
-  // Brute force: every cell's segments, so that walking needs no further reads.
-  void examineAll() {
+  // Brute force: every cell's segments, so that walking needs no further reads. Returns the
+  // cells that hold some, in cell-index order (the same field gives the same polylines).
+  std::vector<glm::ivec3> examineAll() {
+    std::vector<glm::ivec3> holding;
     const glm::ivec3 n = field_.cells();
     for (int z = 0; z < n.z; ++z)
       for (int y = 0; y < n.y; ++y)
         for (int x = 0; x < n.x; ++x) {
           const glm::ivec3 c(x, y, z);
           auto segments = field_.segments(c);
-          if (!segments.empty()) cache_.emplace(field_.cellIndex(c), std::move(segments));
+          if (segments.empty()) continue;
+          cache_.emplace(field_.cellIndex(c), std::move(segments));
+          holding.push_back(c);
         }
     out_.cellsExamined += std::size_t(n.x) * n.y * n.z;
     complete_ = true;
+    return holding;
   }
 
   // The cells that hold the segments walked: the next frame's seeds.
@@ -68,13 +73,6 @@ class Walker {
   void walkFrom(glm::ivec3 cell) {
     for (const CellSegment& s : segmentsOf(cell))
       if (!out_.segments.count(s.entryId)) walk({cell, s});
-  }
-
-  // Cells whose segments are all seen: the cached ones.
-  template <class F>
-  void forEachCellWithSegments(F&& f) const {
-    for (const auto& [key, segments] : cache_)
-      if (!segments.empty()) f(field_.cellAt(key));
   }
 
   void probe(glm::vec3 p, int iterations) {
@@ -180,14 +178,7 @@ void walkVolumeLines(const VolumeLineField& field, const std::vector<glm::ivec3>
 VolumeLineSet extractVolumeLinesBruteForce(const VolumeLineField& field) {
   VolumeLineSet set;
   Walker walker(field, set);
-  walker.examineAll();
-  std::vector<glm::ivec3> cells;
-  walker.forEachCellWithSegments([&](glm::ivec3 c) { cells.push_back(c); });
-  // A fixed order, so that the same field gives the same polylines.
-  std::sort(cells.begin(), cells.end(), [&](glm::ivec3 a, glm::ivec3 b) {
-    return field.cellIndex(a) < field.cellIndex(b);
-  });
-  for (const glm::ivec3& c : cells) walker.walkFrom(c);
+  for (const glm::ivec3& c : walker.examineAll()) walker.walkFrom(c);
   set.cells = walker.walkedCells();
   return set;
 }
