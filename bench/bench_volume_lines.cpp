@@ -132,9 +132,9 @@ int run(int argc, char** argv) {
       start = Clock::now();
       const cutaway::VolumeLineSet set = s.tracker.extract(field, s.seeding);
       const double seconds = secondsSince(start);
-      std::size_t common = 0;
-      for (std::uint64_t key : brute.segments) common += set.segments.count(key);
-      const double fraction = brute.segmentCount() ? double(common) / double(brute.segmentCount()) : 1.0;
+      const double fraction = brute.segmentCount()
+                                  ? double(brute.countFoundIn(set)) / double(brute.segmentCount())
+                                  : 1.0;
       if (table.is_open()) table << "," << fraction << "," << seconds;
       if (frame == 0) continue;  // brute force for every strategy
       s.perFrame.push_back(fraction);
@@ -176,9 +176,7 @@ int run(int argc, char** argv) {
       const cutaway::VolumeLineSet set =
           tracker.extract(still, {.randomProbes = k * probes, .bruteForceFirstFrame = false});
       if (std::find(std::begin(stills), std::end(stills), frame) == std::end(stills)) continue;
-      std::size_t common = 0;
-      for (std::uint64_t key : reference.segments) common += set.segments.count(key);
-      std::printf(" %5.1f%%", 100.0 * double(common) /
+      std::printf(" %5.1f%%", 100.0 * double(reference.countFoundIn(set)) /
                                   double(std::max<std::size_t>(1, reference.segmentCount())));
     }
     std::printf("\n");

@@ -21,11 +21,11 @@
 //   cutaway::VolumeLineSet lines = tracker.extract(field);   // next frame: a new field, again
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <random>
 #include <string>
-#include <unordered_set>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -111,6 +111,19 @@ struct CellSegment {
   std::int8_t kind = -1;
 };
 
+// A cell's segments: at most two crossings of f = 0 and g = 0 per side of a face, so at most
+// 24 points on the six faces and 12 entries paired with exits.
+struct CellSegments {
+  static constexpr int kCapacity = 12;
+  std::array<CellSegment, kCapacity> items;
+  int count = 0;
+  const CellSegment* begin() const { return items.data(); }
+  const CellSegment* end() const { return items.data() + count; }
+  std::size_t size() const { return std::size_t(count); }
+  bool empty() const { return count == 0; }
+  const CellSegment& operator[](std::size_t i) const { return items[i]; }
+};
+
 // φ and the second function on the lattice, for one view: Marching Lines per cell.
 // Cell c spans the voxel centres c … c + (1, 1, 1); cells run over [0, dims − 1) per axis.
 class VolumeLineField {
@@ -132,7 +145,7 @@ class VolumeLineField {
   // (marching squares on both, then the crossings of the two), oriented along ∇f × ∇g so that
   // a segment's exit is the next cell's entry, and paired entry to exit within the cell; each
   // with the kind it is drawn as (eqs. 2.6, 2.7).
-  std::vector<CellSegment> segments(glm::ivec3 cell) const;
+  CellSegments segments(glm::ivec3 cell) const;
 
   // Eq. 2.5's linear walk from index-space point p towards f = 0 (step = 0) or g = 0 (step = 1),
   // on the trilinear interpolants of the cell that holds p.
@@ -149,8 +162,10 @@ class VolumeLineField {
  private:
   glm::vec3 worldGradient(glm::ivec3 node) const;  // ∇φ in world units
   float facing(glm::ivec3 node) const;               // n̂·v̂
-  void corners(glm::ivec3 cell, float fv[8], float gv[8]) const;
-  std::int8_t kindOf(glm::ivec3 cell, const CellSegment& segment, const float gv[8]) const;
+  // f and (where gv is given) g at a cell's corners; for contours also n̂·v̂ (in facingv).
+  void corners(glm::ivec3 cell, float fv[8], float gv[8], float facingv[8] = nullptr) const;
+  std::int8_t kindOf(glm::ivec3 cell, const CellSegment& segment, const float gv[8],
+                     const float facingv[8]) const;
 
   const Volume& volume_;
   glm::mat4 indexToWorld_;
@@ -169,11 +184,15 @@ struct VolumeLine {
 
 struct VolumeLineSet {
   std::vector<VolumeLine> lines;
-  // Every segment found, as (cell, entry id): what brute force and walking are compared by.
-  std::unordered_set<std::uint64_t> segments;
+  // Every segment found, by its entry id (unique: a face point is one cell's entry), sorted:
+  // what brute force and walking are compared by.
+  std::vector<std::uint64_t> segments;
   std::vector<std::uint64_t> cells;  // the cells that hold segments (next frame's seeds)
   std::size_t cellsExamined = 0;     // cost: cells whose corners were read
   std::size_t segmentCount() const { return segments.size(); }
+  bool contains(std::uint64_t segment) const;
+  // How many of this set's segments `other` holds too.
+  std::size_t countFoundIn(const VolumeLineSet& other) const;
 };
 
 // The reference: every cell of the volume examined.

@@ -1,9 +1,7 @@
 // Following the curves from cell to cell (Burns11 §2.4.1.2), seeded by the previous frame's
 // cells (§2.4.1.3) and by gradient-descent probes (§2.4.1.4); brute force as the reference.
 #include <algorithm>
-#include <deque>
 #include <optional>
-#include <unordered_map>
 
 #include "cutaway/styles/volume_lines.hpp"
 
@@ -17,9 +15,75 @@ glm::ivec3 across(glm::ivec3 cell, int face) {
   return cell + step;
 }
 
+// The segments of the cells read so far, by cell index: open addressing over one pool, so
+// that a walk costs no allocation per cell (a walk reads few cells, many times each).
+class CellCache {
+ public:
+  struct Span {
+    std::uint32_t first = 0;
+    std::uint8_t count = 0;
+  };
+
+  explicit CellCache(std::size_t expected) {
+    std::size_t capacity = 64;
+    while (capacity < 2 * expected) capacity *= 2;
+    keys_.assign(capacity, kEmpty);
+    spans_.resize(capacity);
+    pool_.reserve(expected);
+    drawn_.reserve(expected);
+  }
+
+  const Span* find(std::uint64_t cell) const {
+    const std::size_t i = slot(cell);
+    return keys_[i] == cell ? &spans_[i] : nullptr;
+  }
+
+  Span insert(std::uint64_t cell, const CellSegments& segments) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    const Span span{std::uint32_t(pool_.size()), std::uint8_t(segments.count)};
+    pool_.insert(pool_.end(), segments.begin(), segments.end());
+    drawn_.resize(pool_.size(), false);
+    const std::size_t i = slot(cell);
+    keys_[i] = cell, spans_[i] = span, ++size_;
+    return span;
+  }
+
+  const CellSegment& segment(std::uint32_t i) const { return pool_[i]; }
+  bool drawn(std::uint32_t i) const { return drawn_[i]; }
+  void draw(std::uint32_t i) { drawn_[i] = true; }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+
+  // The key's slot, or the empty slot where it would go (linear probing, Fibonacci hashing).
+  std::size_t slot(std::uint64_t key) const {
+    const std::size_t mask = keys_.size() - 1;
+    std::size_t i = std::size_t((key * 0x9e3779b97f4a7c15ull) >> 20) & mask;
+    while (keys_[i] != key && keys_[i] != kEmpty) i = (i + 1) & mask;
+    return i;
+  }
+
+  void grow() {
+    std::vector<std::uint64_t> keys(2 * keys_.size(), kEmpty);
+    std::vector<Span> spans(keys.size());
+    keys.swap(keys_), spans.swap(spans_);
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (keys[i] != kEmpty) {
+        const std::size_t j = slot(keys[i]);
+        keys_[j] = keys[i], spans_[j] = spans[i];
+      }
+  }
+
+  std::vector<std::uint64_t> keys_;
+  std::vector<Span> spans_;
+  std::size_t size_ = 0;
+  std::vector<CellSegment> pool_;
+  std::vector<bool> drawn_;
+};
+
 struct Link {
   glm::ivec3 cell;
-  CellSegment segment;
+  std::uint32_t segment;  // in the cache's pool
 };
 
 class Walker {
@@ -27,8 +91,7 @@ class Walker {
   // `expected`: about how many cells the walk will read (the previous frame's), so that its
   // tables grow once.
   Walker(const VolumeLineField& field, VolumeLineSet& out, std::size_t expected = 0)
-      : field_(field), out_(out) {
-    cache_.reserve(2 * expected);
+      : field_(field), out_(out), cache_(expected) {
     out_.segments.reserve(2 * expected);
     cells_.reserve(2 * expected);
   }
@@ -42,9 +105,9 @@ class Walker {
       for (int y = 0; y < n.y; ++y)
         for (int x = 0; x < n.x; ++x) {
           const glm::ivec3 c(x, y, z);
-          auto segments = field_.segments(c);
+          const CellSegments segments = field_.segments(c);
           if (segments.empty()) continue;
-          cache_.emplace(field_.cellIndex(c), std::move(segments));
+          cache_.insert(field_.cellIndex(c), segments);
           holding.push_back(c);
         }
     out_.cellsExamined += std::size_t(n.x) * n.y * n.z;
@@ -52,27 +115,27 @@ class Walker {
     return holding;
   }
 
-  // The cells that hold the segments walked: the next frame's seeds.
-  std::vector<std::uint64_t> walkedCells() {
+  // Sorts the segments found and keeps the cells that hold them (the next frame's seeds).
+  void finish() {
+    std::sort(out_.segments.begin(), out_.segments.end());
     std::sort(cells_.begin(), cells_.end());
     cells_.erase(std::unique(cells_.begin(), cells_.end()), cells_.end());
-    return std::move(cells_);
+    out_.cells = std::move(cells_);
   }
 
-  const std::vector<CellSegment>& segmentsOf(glm::ivec3 cell) {
-    static const std::vector<CellSegment> none;
+  CellCache::Span segmentsOf(glm::ivec3 cell) {
     const std::uint64_t key = field_.cellIndex(cell);
-    if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
-    if (complete_) return none;
+    if (const CellCache::Span* span = cache_.find(key)) return *span;
+    if (complete_) return {};
     ++out_.cellsExamined;
-    auto segments = field_.segments(cell);
-    return cache_.emplace(key, std::move(segments)).first->second;
+    return cache_.insert(key, field_.segments(cell));
   }
 
   // Walks the loop through every segment of `cell` not yet drawn.
   void walkFrom(glm::ivec3 cell) {
-    for (const CellSegment& s : segmentsOf(cell))
-      if (!out_.segments.count(s.entryId)) walk({cell, s});
+    const CellCache::Span span = segmentsOf(cell);
+    for (std::uint32_t i = span.first; i < span.first + span.count; ++i)
+      if (!cache_.drawn(i)) walk({cell, i});
   }
 
   void probe(glm::vec3 p, int iterations) {
@@ -85,7 +148,7 @@ class Walker {
           !glm::all(glm::lessThan(p, hi)))
         return;  // left the volume
       const glm::ivec3 cell(glm::floor(p));
-      if (!segmentsOf(cell).empty()) {
+      if (segmentsOf(cell).count > 0) {
         walkFrom(cell);
         return;
       }
@@ -95,60 +158,69 @@ class Walker {
  private:
   // The segment the curve continues in across l's exit face (forward) or entry face.
   std::optional<Link> neighbour(const Link& l, bool forward) {
-    const glm::ivec3 c = across(l.cell, forward ? l.segment.exitFace : l.segment.entryFace);
+    const CellSegment& from = cache_.segment(l.segment);
+    const glm::ivec3 c = across(l.cell, forward ? from.exitFace : from.entryFace);
     if (!field_.validCell(c)) return std::nullopt;
-    for (const CellSegment& s : segmentsOf(c))
-      if (forward ? s.entryId == l.segment.exitId : s.exitId == l.segment.entryId)
-        return Link{c, s};
+    const std::uint64_t id = forward ? from.exitId : from.entryId;
+    const CellCache::Span span = segmentsOf(c);
+    for (std::uint32_t i = span.first; i < span.first + span.count; ++i)
+      if ((forward ? cache_.segment(i).entryId : cache_.segment(i).exitId) == id) return Link{c, i};
     return std::nullopt;
   }
-  std::optional<Link> next(const Link& l) { return neighbour(l, true); }
-  std::optional<Link> previous(const Link& l) { return neighbour(l, false); }
+
+  // Marks a segment drawn; false if it already was.
+  bool draw(const Link& l) {
+    if (cache_.drawn(l.segment)) return false;
+    cache_.draw(l.segment);
+    out_.segments.push_back(cache_.segment(l.segment).entryId);
+    return true;
+  }
 
   void walk(const Link& seed) {
-    std::deque<Link> chain{seed};
-    out_.segments.insert(seed.segment.entryId);
+    // The chain is the seed's predecessors (nearest first) reversed, then the seed onwards.
+    backward_.clear(), chain_.assign(1, seed);
+    draw(seed);
     bool closed = false;
-    for (auto l = next(seed); l; l = next(*l)) {
-      if (l->segment.entryId == seed.segment.entryId) {
+    for (auto l = neighbour(seed, true); l; l = neighbour(*l, true)) {
+      if (l->segment == seed.segment) {
         closed = true;
         break;
       }
-      if (!out_.segments.insert(l->segment.entryId).second) break;
-      chain.push_back(*l);
+      if (!draw(*l)) break;
+      chain_.push_back(*l);
     }
     if (!closed)
-      for (auto l = previous(seed); l; l = previous(*l)) {
-        if (!out_.segments.insert(l->segment.entryId).second) break;
-        chain.push_front(*l);
+      for (auto l = neighbour(seed, false); l; l = neighbour(*l, false)) {
+        if (!draw(*l)) break;
+        backward_.push_back(*l);
       }
-    emit(std::vector<Link>(chain.begin(), chain.end()), closed);
+    chain_.insert(chain_.begin(), backward_.rbegin(), backward_.rend());
+    emit(closed);
   }
 
-  // Splits a chain into runs of one kind (segments that fail the suggestive test end a run).
-  void emit(std::vector<Link> chain, bool closed) {
-    std::vector<std::optional<VolumeLineKind>> kinds;
-    kinds.reserve(chain.size());
-    for (const Link& l : chain)
-      kinds.push_back(l.segment.kind < 0 ? std::nullopt
-                                         : std::optional(VolumeLineKind(l.segment.kind)));
+  // Splits the chain into runs of one kind (segments that fail the suggestive test end a run).
+  void emit(bool closed) {
+    std::vector<Link>& chain = chain_;
+    const auto kind = [&](std::size_t i) { return cache_.segment(chain[i].segment).kind; };
     if (closed) {
       // Start a loop where its kind changes, so that no run is cut at an arbitrary seed.
-      const auto change = std::find_if(kinds.begin() + 1, kinds.end(),
-                                       [&](const auto& k) { return k != kinds.front(); });
-      if (change != kinds.end()) {
-        const auto at = change - kinds.begin();
-        std::rotate(chain.begin(), chain.begin() + at, chain.end());
-        std::rotate(kinds.begin(), kinds.begin() + at, kinds.end());
+      std::size_t at = 1;
+      while (at < chain.size() && kind(at) == kind(0)) ++at;
+      if (at < chain.size()) {
+        std::rotate(chain.begin(), chain.begin() + std::ptrdiff_t(at), chain.end());
         closed = false;  // the last run ends at the first one's start
       }
     }
     for (std::size_t i = 0; i < chain.size();) {
       std::size_t j = i;
-      while (j < chain.size() && kinds[j] == kinds[i]) ++j;
-      if (kinds[i]) {
-        VolumeLine line{*kinds[i], {field_.toWorld(chain[i].segment.entry)}, closed};
-        for (std::size_t k = i; k < j; ++k) line.points.push_back(field_.toWorld(chain[k].segment.exit));
+      while (j < chain.size() && kind(j) == kind(i)) ++j;
+      if (kind(i) >= 0) {
+        VolumeLine line{VolumeLineKind(kind(i)),
+                        {field_.toWorld(cache_.segment(chain[i].segment).entry)},
+                        closed};
+        line.points.reserve(j - i + 1);
+        for (std::size_t k = i; k < j; ++k)
+          line.points.push_back(field_.toWorld(cache_.segment(chain[k].segment).exit));
         if (closed) line.points.pop_back();  // the last exit is the first entry
         out_.lines.push_back(std::move(line));
       }
@@ -157,29 +229,44 @@ class Walker {
     for (const Link& l : chain) cells_.push_back(field_.cellIndex(l.cell));
   }
 
- private:
   const VolumeLineField& field_;
   VolumeLineSet& out_;
-  std::unordered_map<std::uint64_t, std::vector<CellSegment>> cache_;
+  CellCache cache_;
   bool complete_ = false;
   std::vector<std::uint64_t> cells_;  // of the segments walked, with repeats
+  std::vector<Link> chain_, backward_;
 };
 
 }  // namespace
+
+bool VolumeLineSet::contains(std::uint64_t segment) const {
+  return std::binary_search(segments.begin(), segments.end(), segment);
+}
+
+std::size_t VolumeLineSet::countFoundIn(const VolumeLineSet& other) const {
+  std::size_t common = 0;
+  auto j = other.segments.begin();
+  for (std::uint64_t s : segments) {
+    j = std::lower_bound(j, other.segments.end(), s);
+    if (j == other.segments.end()) break;
+    common += *j == s;
+  }
+  return common;
+}
 
 void walkVolumeLines(const VolumeLineField& field, const std::vector<glm::ivec3>& seeds,
                      VolumeLineSet& into) {
   Walker walker(field, into);
   for (const glm::ivec3& c : seeds)
     if (field.validCell(c)) walker.walkFrom(c);
-  into.cells = walker.walkedCells();
+  walker.finish();
 }
 
 VolumeLineSet extractVolumeLinesBruteForce(const VolumeLineField& field) {
   VolumeLineSet set;
   Walker walker(field, set);
   for (const glm::ivec3& c : walker.examineAll()) walker.walkFrom(c);
-  set.cells = walker.walkedCells();
+  walker.finish();
   return set;
 }
 
@@ -210,7 +297,7 @@ VolumeLineSet VolumeLineTracker::extract(const VolumeLineField& field,
   for (int i = 0; i < seeding.randomProbes; ++i)
     walker.probe(glm::vec3(unit(random_), unit(random_), unit(random_)) * extent,
                  seeding.probeIterations);
-  set.cells = walker.walkedCells();
+  walker.finish();
   previous_ = set.cells;
   return set;
 }

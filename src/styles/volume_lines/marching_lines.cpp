@@ -190,11 +190,20 @@ float VolumeLineField::g(glm::ivec3 node) const {
   return 0.0f;
 }
 
-void VolumeLineField::corners(glm::ivec3 cell, float fv[8], float gv[8]) const {
+void VolumeLineField::corners(glm::ivec3 cell, float fv[8], float gv[8], float facingv[8]) const {
   for (int k = 0; k < 8; ++k) {
     const glm::ivec3 n = cell + cornerOffset(k);
     fv[k] = f(n);
-    if (gv) gv[k] = g(n);
+    if (!gv) continue;
+    if (query_.family != VolumeLineFamily::Contour || !facingv) {
+      gv[k] = g(n);
+      continue;
+    }
+    // c = −∇φ·v̂ and n̂·v̂ = c / |∇φ| from one gradient.
+    const glm::vec3 gradient = worldGradient(n);
+    const float length = glm::length(gradient);
+    gv[k] = -glm::dot(gradient, view_.at(toWorld(n)));
+    facingv[k] = length == 0.0f ? 0.0f : gv[k] / length;
   }
 }
 
@@ -209,13 +218,14 @@ bool VolumeLineField::mayHoldSurface(glm::ivec3 cell) const {
   return positive && negative;
 }
 
-std::vector<CellSegment> VolumeLineField::segments(glm::ivec3 cell) const {
-  std::vector<CellSegment> out;
+CellSegments VolumeLineField::segments(glm::ivec3 cell) const {
+  CellSegments out;
   // g only where f changes sign: most cells a walk or brute force reads hold no surface.
   if (!mayHoldSurface(cell)) return out;
-  float fv[8], gv[8];
-  corners(cell, fv, gv);
-  std::vector<FacePoint> points;
+  float fv[8], gv[8], facingv[8];
+  corners(cell, fv, gv, facingv);
+  FacePoint points[6 * kMaxFacePoints];
+  int pointCount = 0;
   for (int a = 0; a < 3; ++a) {
     const int u = (a + 1) % 3, w = (a + 2) % 3;  // e_u × e_w = e_a
     for (int side = 0; side < 2; ++side) {
@@ -249,34 +259,36 @@ std::vector<CellSegment> VolumeLineField::segments(glm::ivec3 cell) const {
           const float along = df.x * dg.y - df.y * dg.x;
           glm::vec3 at(cell);
           at[a] += float(side), at[u] += p.x, at[w] += p.y;
-          points.push_back({at, faceKey + std::uint64_t(found++), 2 * a + side,
-                            side == 1 ? along > 0.0f : along < 0.0f});
+          points[pointCount++] = {at, faceKey + std::uint64_t(found++), 2 * a + side,
+                                  side == 1 ? along > 0.0f : along < 0.0f};
         }
     }
   }
   // Pair each entry with the nearest free exit (in the face order above: consistent).
-  std::vector<bool> used(points.size(), false);
-  for (const FacePoint& in : points) {
+  bool used[6 * kMaxFacePoints] = {};
+  for (int i = 0; i < pointCount; ++i) {
+    const FacePoint& in = points[i];
     if (in.exit) continue;
     int best = -1;
     float bestDistance = 0.0f;
-    for (std::size_t j = 0; j < points.size(); ++j) {
+    for (int j = 0; j < pointCount; ++j) {
       if (!points[j].exit || used[j]) continue;
       const glm::vec3 d = points[j].at - in.at;
       const float distance = glm::dot(d, d);
-      if (best < 0 || distance < bestDistance) best = int(j), bestDistance = distance;
+      if (best < 0 || distance < bestDistance) best = j, bestDistance = distance;
     }
     if (best < 0) continue;
-    used[std::size_t(best)] = true;
-    const FacePoint& to = points[std::size_t(best)];
-    out.push_back({in.at, to.at, in.id, to.id, std::int8_t(in.face), std::int8_t(to.face)});
+    used[best] = true;
+    const FacePoint& to = points[best];
+    CellSegment& segment = out.items[std::size_t(out.count++)];
+    segment = {in.at, to.at, in.id, to.id, std::int8_t(in.face), std::int8_t(to.face)};
+    segment.kind = kindOf(cell, segment, gv, facingv);
   }
-  for (CellSegment& segment : out) segment.kind = kindOf(cell, segment, gv);
   return out;
 }
 
-std::int8_t VolumeLineField::kindOf(glm::ivec3 cell, const CellSegment& segment,
-                                    const float gv[8]) const {
+std::int8_t VolumeLineField::kindOf(glm::ivec3 cell, const CellSegment& segment, const float gv[8],
+                                    const float facingv[8]) const {
   const glm::vec3 t = 0.5f * (segment.entry + segment.exit) - glm::vec3(cell);
   const glm::vec3 p = glm::vec3(cell) + t;
   switch (query_.family) {
@@ -285,9 +297,8 @@ std::int8_t VolumeLineField::kindOf(glm::ivec3 cell, const CellSegment& segment,
     case VolumeLineFamily::Contour: {
       // Eq. 2.6: s has the sign of the radial curvature, negative on interior contours; here
       // the derivative along v̂ of the cell's trilinear interpolant of n̂·v̂.
-      float q[8];
-      for (int k = 0; k < 8; ++k) q[k] = facing(cell + cornerOffset(k));
-      const float s = glm::dot(gradientToWorld_ * trilinearGradient(q, t), view_.at(toWorld(p)));
+      const float s =
+          glm::dot(gradientToWorld_ * trilinearGradient(facingv, t), view_.at(toWorld(p)));
       return std::int8_t(s < 0.0f ? VolumeLineKind::InteriorContour : VolumeLineKind::Contour);
     }
     case VolumeLineFamily::Suggestive: {
