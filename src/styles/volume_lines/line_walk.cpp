@@ -25,10 +25,8 @@ class CellCache {
   };
 
   explicit CellCache(std::size_t expected) {
-    std::size_t capacity = 64;
-    while (capacity < 2 * expected) capacity *= 2;
-    keys_.assign(capacity, kEmpty);
-    spans_.resize(capacity);
+    keys_.assign(primeAtLeast(std::max<std::size_t>(61, 2 * expected)), kEmpty);
+    spans_.resize(keys_.size());
     pool_.reserve(expected);
     drawn_.reserve(expected);
   }
@@ -55,16 +53,28 @@ class CellCache {
  private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
 
-  // The key's slot, or the empty slot where it would go (linear probing, Fibonacci hashing).
+  // The key's slot, or the empty slot where it would go (linear probing). The cell index
+  // modulo the table's size, a prime: a walk's next cell is a neighbour along i, j or k, whose
+  // slot is near (in cache), and no lattice stride piles cells onto a few slots.
   std::size_t slot(std::uint64_t key) const {
-    const std::size_t mask = keys_.size() - 1;
-    std::size_t i = std::size_t((key * 0x9e3779b97f4a7c15ull) >> 20) & mask;
-    while (keys_[i] != key && keys_[i] != kEmpty) i = (i + 1) & mask;
+    std::size_t i = std::size_t(key % keys_.size());
+    while (keys_[i] != key && keys_[i] != kEmpty) i = i + 1 == keys_.size() ? 0 : i + 1;
     return i;
   }
 
+  static std::size_t primeAtLeast(std::size_t n) {
+    const auto prime = [](std::size_t p) {
+      for (std::size_t d = 3; d * d <= p; d += 2)
+        if (p % d == 0) return false;
+      return true;
+    };
+    n |= 1;
+    while (!prime(n)) n += 2;
+    return n;
+  }
+
   void grow() {
-    std::vector<std::uint64_t> keys(2 * keys_.size(), kEmpty);
+    std::vector<std::uint64_t> keys(primeAtLeast(2 * keys_.size()), kEmpty);
     std::vector<Span> spans(keys.size());
     keys.swap(keys_), spans.swap(spans_);
     for (std::size_t i = 0; i < keys.size(); ++i)
