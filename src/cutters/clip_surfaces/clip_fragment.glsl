@@ -43,3 +43,27 @@ int clipSurfacesFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal
   imageAtomicMax(uClipMask, ivec2(CUT_FRAG_COORD.xy), 1u);
   return kDiscard;
 }
+
+// The span of a view ray that the surfaces remove whatever their relief (cutters/cutter.hpp):
+// eq. 1 is < 0 wherever P·N − N·O + max(h·S_z) is, a half-space along the ray. Intersection:
+// the spans' common part; union: the first enabled surface's span (the others are asked per
+// sample). Shrunk by a hair so that samples on its ends are decided by clipSurfacesFragment.
+#define CLIPSURFACES_REMOVED_SPAN
+vec2 clipSurfacesRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+  vec2 span = vec2(-1e30, 1e30);
+  bool enabled = false;
+  for (int i = 0; i < uClipCount.x; ++i) {
+    if (uClipOrigin[i].w == 0.0) continue;
+    vec3 n = clipSurfaceNormal(i);
+    float a = dot(origin, n) - dot(n, uClipOrigin[i].xyz) + uClipScale[i].w;
+    float b = dot(direction, n);
+    vec2 own = b > 0.0 ? vec2(-1e30, -a / b) : b < 0.0 ? vec2(-a / b, 1e30)
+             : a < 0.0 ? vec2(-1e30, 1e30) : vec2(1e30, -1e30);
+    span = vec2(max(span.x, own.x), min(span.y, own.y));
+    enabled = true;
+    if (uClipCount.y == 0) break;
+  }
+  if (!enabled) return vec2(1e30, -1e30);
+  float hair = 1e-4 * (1.0 + min(abs(span.x), abs(span.y)));
+  return vec2(span.x + hair, span.y - hair);
+}

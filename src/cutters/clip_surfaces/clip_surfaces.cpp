@@ -1,6 +1,7 @@
 #include "cutters/clip_surfaces/clip_surfaces.hpp"
 
 #include <algorithm>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cutaway/core/error.hpp"
@@ -152,6 +153,7 @@ struct ClipSurfaceCutter::Gpu {
   gl::Buffer block;
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
   std::vector<glm::vec3> reliefScale;        // the S each relief map was derived with
+  std::vector<glm::vec2> reliefRange;        // the offset map's least and greatest h
   std::vector<CapGrid> grids;                // 2^k cells per side, k = 3 … 10
   std::vector<DepthSpriteGpu> sprites;       // one per capped object
   std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
@@ -177,6 +179,8 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
     glTextureStorage2D(t.id(), 1, GL_RGBA32F, cs.offsetMap.width, cs.offsetMap.height);
     uploadRelief(t.id(), cs);
     g.reliefScale.push_back(cs.scale);
+    const auto [low, high] = std::minmax_element(cs.offsetMap.data.begin(), cs.offsetMap.data.end());
+    g.reliefRange.emplace_back(*low, *high);
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -257,7 +261,8 @@ void ClipSurfaceCutter::beginFrame(const FrameState&) {
     block.origin[i] = glm::vec4(cs.origin, cs.enabled ? 1.0f : 0.0f);
     block.u[i] = glm::vec4(cs.u, 0.0f);
     block.v[i] = glm::vec4(cs.v, 0.0f);
-    block.scale[i] = glm::vec4(cs.scale, 0.0f);
+    const glm::vec2 h = gpu_->reliefRange[i];
+    block.scale[i] = glm::vec4(cs.scale, std::max(h.x * cs.scale.z, h.y * cs.scale.z));
   }
   const CapStyle& style = options.capStyle;
   block.count = glm::ivec4(int(options.surfaces.size()),

@@ -9,7 +9,7 @@ layout(std140, binding = BLOCK_CLIP_SURFACES) uniform ClipSurfaces {
   vec4 uClipOrigin[kMaxClipSurfaces];  // xyz: O, w: 1 if enabled
   vec4 uClipU[kMaxClipSurfaces];       // xyz: U
   vec4 uClipV[kMaxClipSurfaces];       // xyz: V
-  vec4 uClipScale[kMaxClipSurfaces];   // xyz: S
+  vec4 uClipScale[kMaxClipSurfaces];   // xyz: S, w: the relief's largest lift, max h·S_z
   ivec4 uClipCount;                    // x: surfaces, y: 1 = intersection, z: normal map on caps
   vec4 uCapStyle;                      // x: occlusion strength, y: solid texture, z: its frequency
 };

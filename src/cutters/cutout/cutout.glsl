@@ -108,6 +108,25 @@ int cutoutFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   return kCutSurface;
 }
 
+// The span of a view ray inside the wedge shrunk by the jitter's amplitude, which it removes
+// whatever the pattern (cutters/cutter.hpp): every plane's n·x + w exceeds the amplitude there.
+// Shrunk by a hair so that samples on its ends are decided by cutoutFragment.
+#define CUTOUT_REMOVED_SPAN
+vec2 cutoutRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+  if (uCutoutPlaneCount == 0) return vec2(1e30, -1e30);
+  float margin = uCutoutJitter.x == 0.0 ? 0.0 : abs(uCutoutJitter.y);
+  float tIn = -1e30, tOut = 1e30;
+  for (int i = 0; i < uCutoutPlaneCount; ++i) {
+    float d0 = dot(uCutoutPlanes[i].xyz, origin) + uCutoutPlanes[i].w - margin;
+    float dv = dot(uCutoutPlanes[i].xyz, direction);
+    if (dv > 0.0) tIn = max(tIn, -d0 / dv);
+    else if (dv < 0.0) tOut = min(tOut, -d0 / dv);
+    else if (d0 <= 0.0) return vec2(1e30, -1e30);
+  }
+  float hair = 1e-4 * (1.0 + min(abs(tIn), abs(tOut)));
+  return vec2(tIn + hair, tOut - hair);
+}
+
 // The G-buffer channel cutoutDistance: the signed distance at a fragment of an exterior object.
 float cutoutChannel0(CutFragment f) {
   return uCutoutPlaneCount > 0 ? cutoutDistance(f.position) : uintBitsToFloat(0x7fc00000u);
