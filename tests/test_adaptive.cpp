@@ -2,6 +2,7 @@
 // perspective compensation against the world-space angle, clipping and cut surfaces.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "cutaway/cutters/adaptive.hpp"
@@ -193,6 +194,42 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
   // Every cut-surface pixel belongs to the shell, never to the object of interest.
   for (std::size_t i = 0; i < mask.data.size(); ++i)
     if (mask.data[i] > 0.5f) ASSERT_EQ(id.data[i], 0.0f) << i;
+}
+
+// Burns08 §4.2: the dilated cutaway (used for back faces) is the minimum of the cutaway depth
+// over each texel's 3×3 neighbourhood, edges clamped: against a CPU minimum filter of the
+// dumped buffer, texel by texel.
+TEST(AdaptiveCutaway, DilatedDepthIsTheThreeByThreeMinimumOfTheCutawayDepth) {
+  const Scene scene = parseScene(
+      R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
+      "cutters": {"adaptive": {"angle": 35, "bufferSize": 128}},
+      "objects": [
+        {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
+        {"name": "core", "file": "meshes/cube.obj", "role": "interest",
+         "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
+      "dilate.json", kData);
+  const auto aovs = renderAovs(scene);
+  const FloatImage& c = aov(aovs, "cutawayDepth");
+  const FloatImage& d = aov(aovs, "cutawayDilated");
+  ASSERT_EQ(c.width, 128);
+  ASSERT_EQ(d.width, c.width);
+  ASSERT_EQ(d.height, c.height);
+  int narrower = 0, wrong = 0;
+  for (int y = 0; y < c.height; ++y)
+    for (int x = 0; x < c.width; ++x) {
+      float m = 1.0f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          m = std::min(m, c.at(std::clamp(x + dx, 0, c.width - 1),
+                               std::clamp(y + dy, 0, c.height - 1))[0]);
+      narrower += m < c.at(x, y)[0];
+      if (d.at(x, y)[0] != m && ++wrong <= 5)
+        ADD_FAILURE() << "texel " << x << "," << y << ": dilated " << d.at(x, y)[0]
+                      << ", 3x3 minimum " << m;
+    }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(narrower, 100);  // the cone's slopes: the filter changed something
 }
 
 // Burns08 §4.3: ghost lines show the silhouettes of removed material near the cut, fading
