@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "cutaway/cutters/adaptive.hpp"
@@ -194,6 +195,61 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
   // Every cut-surface pixel belongs to the shell, never to the object of interest.
   for (std::size_t i = 0; i < mask.data.size(); ++i)
     if (mask.data[i] > 0.5f) ASSERT_EQ(id.data[i], 0.0f) << i;
+}
+
+// Burns11 eq. 5.8: a seed's angle shrinks to zero in a border region of width r, by the
+// product of its distances from the x and y borders. Each seeded texel's slope (anchorCone's
+// mE; Burns08 §3's screen-space slope P₁₁/tan θ_e, no compensation) against the closed form at
+// the texel's centre: seeds fill the view's top-right corner (both factors) and its centre.
+TEST(AdaptiveCutaway, EdgeCompressionShrinksTheAngleAsEquationFivePointEight) {
+  const float theta = 40.0f, r = 0.2f;
+  const Scene scene = parseScene(
+      R"({"resolution": [128, 128], "samples": 1, "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 40},
+      "cutters": {"adaptive": {"angle": 40, "bufferSize": 128, "edgeCompression": 0.2, "compute": "gpu",
+                               "perspectiveCompensation": false, "ghostLines": false}},
+      "objects": [{"name": "wall", "file": "render/plane.obj", "transform": {"translate": [0, 0, -2]}}],
+      "proxies": [{"name": "corner", "box": {"min": [2, 2, -0.5], "max": [6, 6, 0]}},
+                  {"name": "centre", "box": {"min": [-1, -0.3, -0.5], "max": [1, 0.3, 0]}}]})",
+      "edge.json", kData);
+  const auto aovs = renderAovs(scene);
+  const FloatImage& cone = aov(aovs, "anchorCone");  // z (−1: not seeded), mE, mF
+  ASSERT_EQ(cone.width, 128);
+  const float p11 = 1.0f / std::tan(glm::radians(20.0f));
+  const auto factor = [&](float ndc) { return std::clamp((1.0f - std::abs(ndc)) / r, 0.0f, 1.0f); };
+  int full = 0, compressed = 0, both = 0, wrong = 0;
+  for (int y = 0; y < cone.height; ++y)
+    for (int x = 0; x < cone.width; ++x) {
+      const float* c = cone.at(x, y);
+      if (c[0] <= -1.0f) continue;
+      // |NDC| is the same whichever way the rows run.
+      const float nx = (float(x) + 0.5f) / 64.0f - 1.0f, ny = (float(y) + 0.5f) / 64.0f - 1.0f;
+      const float thetaE = glm::radians(theta) * factor(nx) * factor(ny);
+      const float expected =
+          p11 / std::tan(std::clamp(thetaE, 1e-4f, glm::half_pi<float>() - 1e-4f));
+      full += factor(nx) == 1.0f && factor(ny) == 1.0f;
+      compressed += factor(nx) < 1.0f || factor(ny) < 1.0f;
+      both += factor(nx) < 1.0f && factor(ny) < 1.0f && factor(nx) > 0.0f && factor(ny) > 0.0f;
+      if (std::abs(c[1] - expected) > 1e-4f * expected && ++wrong <= 5)
+        ADD_FAILURE() << "texel " << x << "," << y << " (NDC " << nx << ", " << ny << "): mE "
+                      << c[1] << ", eq. 5.8 gives " << expected;
+    }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(full, 100);
+  EXPECT_GT(compressed, 100);
+  EXPECT_GT(both, 50);
+  // The CPU path's cones (anchorCone) on a grid over the view, against the same closed form.
+  const AdaptiveCutawayOptions& options = *scene.cutters.find<AdaptiveCutawayOptions>();
+  const CutawayProjection projection = cutawayProjection(scene.resolvedCamera(), 1.0f);
+  for (float nx = -1.0f; nx <= 1.0f; nx += 0.05f)
+    for (float ny = -1.0f; ny <= 1.0f; ny += 0.05f) {
+      const float thetaE = glm::radians(theta) * factor(nx) * factor(ny);
+      const float expected =
+          p11 / std::tan(std::clamp(thetaE, 1e-4f, glm::half_pi<float>() - 1e-4f));
+      EXPECT_NEAR(anchorCone({nx, ny, 0.5f}, glm::radians(theta), options, projection).slopeE,
+                  expected, 1e-5f * expected)
+          << "NDC " << nx << ", " << ny;
+    }
 }
 
 // Burns08 §4.2: the dilated cutaway (used for back faces) is the minimum of the cutaway depth

@@ -82,7 +82,16 @@ void CutawaySurfacePasses::declareSurface() {
   Programs& p = *programs_;
   p.dilate = buildFullscreenProgram("cutters/adaptive/dilate.frag");
   if (cpu_) return;
-  anchorCone_ = frame.declare("anchorCone" + suffix_, {.format = GL_RGBA32F, .width = n, .height = n});
+  anchorCone_ = frame.declare(
+      "anchorCone" + suffix_,
+      {.format = GL_RGBA32F,
+       .width = n,
+       .height = n,
+       .meaning = "per seed texel (GPU path): its cone: NDC depth z (−1: not seeded), the slope "
+                  "m_E of the edge-compressed angle θ_e (Burns11 eqs. 5.7–5.8) and m_F after the "
+                  "directional constraint (eqs. 6.1–6.2)" +
+                  of + size,
+       .aovChannels = 3});
   anchorFloor_ = frame.declare("anchorFloor" + suffix_, {.format = GL_RG32F, .width = n, .height = n});
   anchorsA_ = frame.declare("anchorsA" + suffix_, {.format = GL_R32I, .width = n, .height = n});
   anchorsB_ = frame.declare("anchorsB" + suffix_, {.format = GL_R32I, .width = n, .height = n});
