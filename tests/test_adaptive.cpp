@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/render/renderer.hpp"
@@ -250,6 +253,59 @@ TEST(AdaptiveCutaway, EdgeCompressionShrinksTheAngleAsEquationFivePointEight) {
                   expected, 1e-5f * expected)
           << "NDC " << nx << ", " << ny;
     }
+}
+
+// Burns11 eqs. 6.1–6.2 worked by hand: a seed at the origin seen from an eye at elevation β
+// over a floor with normal +y. v̂ (to the eye) makes n̂·v̂ = sin β, so φ = asin(n̂·v̂) = β (eq.
+// 6.1), and θ_F = clamp(θ_e, 0, φ − 2°) + θ_e·smoothstep(0, 10°, −φ) (eq. 6.2 with the
+// documented 2° margin): θ = 40° gives 18° at β = 20°, 40° (unclamped) at β = 60°, 0 at β = 0
+// and 20° (half opened) at β = −5°. Each on the CPU path (anchorCone at the seed's NDC) and on
+// the GPU path (the seed's texels in the anchorCone AOV), as Burns08 §3's slope P₁₁/tan θ_F.
+TEST(AdaptiveCutaway, DirectionalConstraintClampsTheAngleAsEquationsSixPointOneAndTwo) {
+  const float p11 = 1.0f / std::tan(glm::radians(20.0f));
+  for (const auto& [beta, expected] : std::vector<std::pair<float, float>>{
+           {20.0f, 18.0f}, {60.0f, 40.0f}, {0.0f, 0.0f}, {-5.0f, 20.0f}}) {
+    const glm::vec3 eye = 10.0f * glm::vec3(0.0f, std::sin(glm::radians(beta)), std::cos(glm::radians(beta)));
+    char json[1200];
+    std::snprintf(json, sizeof json,
+                  R"({"resolution": [128, 128], "samples": 1, "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": [%g, %g, %g], "target": [0, 0, 0], "up": [0, 1, 0], "fov": 40},
+      "cutters": {"adaptive": {"angle": 40, "bufferSize": 128, "compute": "gpu", "edgeCompression": false,
+                               "perspectiveCompensation": false, "ghostLines": false,
+                               "floorNormal": [0, 1, 0]}},
+      "objects": [{"name": "wall", "file": "render/plane.obj", "transform": {"translate": [0, 0, -3]}}],
+      "proxies": [{"name": "seed", "box": {"min": [-0.1, -0.1, -0.1], "max": [0.1, 0.1, 0.1]}}]})",
+                  eye.x, eye.y, eye.z);
+    const Scene scene = parseScene(json, "floor.json", kData);
+    // θ_F from a slope, in degrees (θ_F = 0 is kept a sliver, 1e-4 rad, away from zero).
+    const auto angle = [&](float slope) { return glm::degrees(std::atan(p11 / slope)); };
+    const CutawayProjection projection = cutawayProjection(scene.resolvedCamera(), 1.0f);
+    const AnchorCone cpu = anchorCone({0.0f, 0.0f, 0.5f}, glm::radians(40.0f),
+                                      *scene.cutters.find<AdaptiveCutawayOptions>(), projection);
+    EXPECT_NEAR(angle(cpu.slopeF), expected, 0.01) << "β " << beta;
+    EXPECT_NEAR(angle(cpu.slopeE), 40.0, 0.01) << "β " << beta;
+    // On the GPU the seed's texels lie near the centre: the same hand-worked steps at each
+    // texel's own point (its NDC and z unprojected), where φ is within a degree of β.
+    const auto aovs = renderAovs(scene);
+    const FloatImage& cone = aov(aovs, "anchorCone");  // rows top to bottom
+    const glm::mat4 inverse = glm::inverse(projection.projection);
+    const glm::vec3 n = projection.viewRotation * glm::vec3(0.0f, 1.0f, 0.0f);
+    int seeded = 0;
+    for (int y = 0; y < cone.height; ++y)
+      for (int x = 0; x < cone.width; ++x) {
+        const float* c = cone.at(x, y);
+        if (c[0] <= -1.0f) continue;
+        ++seeded;
+        const glm::vec4 h = inverse * glm::vec4((float(x) + 0.5f) / 64.0f - 1.0f,
+                                                1.0f - (float(y) + 0.5f) / 64.0f, c[0], 1.0f);
+        const float phi = glm::degrees(std::asin(glm::dot(n, glm::normalize(-glm::vec3(h) / h.w))));
+        const float s = std::clamp(-phi / 10.0f, 0.0f, 1.0f);
+        const float thetaF = std::clamp(40.0f, 0.0f, std::max(phi - 2.0f, 0.0f)) + 40.0f * s * s * (3 - 2 * s);
+        EXPECT_NEAR(phi, beta, 1.0f) << "texel " << x << "," << y;
+        EXPECT_NEAR(angle(c[2]), thetaF, 0.02) << "β " << beta << ", texel " << x << "," << y;
+      }
+    EXPECT_GT(seeded, 0) << "β " << beta;
+  }
 }
 
 // Burns08 §4.2: the dilated cutaway (used for back faces) is the minimum of the cutaway depth
