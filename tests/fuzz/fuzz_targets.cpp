@@ -1,0 +1,83 @@
+#include "fuzz_targets.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+
+#include <unistd.h>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/core/image.hpp"
+#include "cutaway/io/gis_import.hpp"
+#include "cutaway/io/mesh_import.hpp"
+#include "cutaway/io/volume_import.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace cutaway::fuzz {
+
+const std::vector<Target>& targets() {
+  static const std::vector<Target> list = {
+      {"scene", "", "tests/data/bad/*.json tests/data/render/*.json examples/*.json"},
+      {"mesh-obj", ".obj", "tests/data/meshes/*.obj tests/data/render/*.obj"},
+      {"mesh-ply", ".ply", "tests/data/fuzz/mesh-ply/*"},
+      {"mesh-stl", ".stl", "tests/data/fuzz/mesh-stl/*"},
+      {"mesh-glb", ".glb", "tests/data/fuzz/mesh-glb/*"},
+      {"volume-nrrd", ".nrrd", "tests/data/fuzz/volume-nrrd/*"},
+      {"volume-mha", ".mha", "tests/data/fuzz/volume-mha/*"},
+      {"volume-vtk", ".vtk", "tests/data/fuzz/volume-vtk/*"},
+      {"volume-nifti", ".nii", "tests/data/fuzz/volume-nifti/*"},
+      {"geojson", ".geojson", "tests/data/networks/*.geojson"},
+      {"png", ".png", "tests/golden/bunny.png tests/data/fuzz/png/*"},
+  };
+  return list;
+}
+
+const Target* findTarget(const std::string& name) {
+  for (const Target& t : targets())
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
+namespace {
+
+// One file per process and target, rewritten for every input.
+std::filesystem::path scratchFile(const Target& target) {
+  return std::filesystem::temp_directory_path() /
+         ("cutaway-fuzz-" + std::to_string(::getpid()) + "-" + target.name + target.extension);
+}
+
+void load(const Target& target, const std::filesystem::path& file) {
+  const std::string& n = target.name;
+  if (n.starts_with("mesh-")) {
+    importMeshNodes(file);
+  } else if (n.starts_with("volume-")) {
+    importVolume(file);
+  } else if (n == "geojson") {
+    importGisLines(file);
+  } else if (n == "png") {
+    readPng(file);
+    readPngGray(file);
+  }
+}
+
+}  // namespace
+
+bool run(const Target& target, const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  try {
+    if (target.extension.empty()) {
+      // Scene text: files it names are looked up beside the tests' data.
+      parseScene(std::string(bytes), "fuzz.json", CUTAWAY_TEST_DATA);
+      return true;
+    }
+    const std::filesystem::path file = scratchFile(target);
+    std::ofstream(file, std::ios::binary | std::ios::trunc)
+        .write(bytes.data(), std::streamsize(size));
+    load(target, file);
+    return true;
+  } catch (const Error&) {
+    return false;  // refused with a message: what bad input must get
+  }
+}
+
+}  // namespace cutaway::fuzz

@@ -1,0 +1,43 @@
+// libFuzzer's entry for the fuzz targets (fuzz_targets.hpp), the target named by the
+// environment variable CUTAWAY_FUZZ_TARGET (scripts/fuzz sets it).
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "fuzz_targets.hpp"
+
+namespace {
+
+const cutaway::fuzz::Target& target() {
+  static const cutaway::fuzz::Target* t = [] {
+    const char* name = std::getenv("CUTAWAY_FUZZ_TARGET");
+    const cutaway::fuzz::Target* found = name ? cutaway::fuzz::findTarget(name) : nullptr;
+    if (!found) {
+      std::fprintf(stderr, "cutaway-fuzz: set CUTAWAY_FUZZ_TARGET to one of:");
+      for (const auto& t : cutaway::fuzz::targets()) std::fprintf(stderr, " %s", t.name.c_str());
+      std::fprintf(stderr, "\n");
+      std::exit(2);
+    }
+    return found;
+  }();
+  return *t;
+}
+
+}  // namespace
+
+// CUTAWAY_FUZZ_TARGET=list: the targets and their seeds, one per line (for scripts/fuzz).
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  const char* name = std::getenv("CUTAWAY_FUZZ_TARGET");
+  if (name && std::string(name) == "list") {
+    for (const auto& t : cutaway::fuzz::targets())
+      std::printf("%s\t%s\n", t.name.c_str(), t.seeds.c_str());
+    std::exit(0);
+  }
+  target();
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  cutaway::fuzz::run(target(), data, size);
+  return 0;
+}
