@@ -375,7 +375,7 @@ TEST(Cli, ImportanceByNameOrGroupChangesTheContextualCutaway) {
            {"pistons=1.5", "importance must lie in [0, 1]"},
            {"pistons", "expected PATTERN=V"},
            {"pistons=high", "expected PATTERN=V"},
-           {"'(=0.5'", "not a regular expression"}}) {
+           {"'(=0.5'", "invalid regular expression \"(\""}}) {
     const fs::path out = scratch("importance-bad.png");
     const Result bad = run("render " + scene + " -o " + out.string() + " --importance " + set);
     EXPECT_EQ(bad.exitCode, 1) << set;

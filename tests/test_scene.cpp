@@ -355,6 +355,39 @@ TEST(SceneBadFile, EveryFileInTheFolderIsInTheTable) {
 // ---------------------------------------------------------------------------------------------
 // Errors that need no file of their own.
 
+// std::regex compiles by recursion: a pattern thousands of groups deep, or thousands of terms
+// long, would exhaust the stack. Both are refused before compiling, in a scene file and by
+// Scene::setImportance, with the pattern cut short in the message.
+TEST(SceneErrors, NamePatternsTooDeepOrTooLongAreRefusedBeforeCompiling) {
+  const std::string deep = std::string(20000, '(') + "a" + std::string(20000, ')');
+  const std::string chained(400000, 'a');
+  for (const std::string& pattern : {deep, chained}) {
+    const std::string json =
+        R"({"objects": [{"name": "a", "file": "cube.obj", "nodes": ")" + pattern + R"("}]})";
+    try {
+      (void)parseScene(json, "pattern.json", kMeshes);
+      FAIL() << "accepted a pattern of " << pattern.size() << " characters";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.place(), "/objects/0/nodes");
+      EXPECT_LT(std::string(e.what()).size(), 200u) << e.what();
+    }
+    Scene scene =
+        parseScene(R"({"objects": [{"name": "a", "file": "cube.obj"}]})", "s.json", kMeshes);
+    try {
+      scene.setImportance(pattern, 0.5f);
+      FAIL() << "accepted a pattern of " << pattern.size() << " characters";
+    } catch (const Error& e) {
+      EXPECT_LT(std::string(e.what()).size(), 200u) << e.what();
+      EXPECT_NE(e.reason().find("regular expression"), std::string::npos) << e.what();
+    }
+  }
+  // At the limits, patterns compile and match.
+  Scene scene =
+      parseScene(R"({"objects": [{"name": "a", "file": "cube.obj"}]})", "s.json", kMeshes);
+  EXPECT_EQ(scene.setImportance(std::string(64, '(') + "a" + std::string(64, ')'), 0.5f), 1u);
+  EXPECT_EQ(scene.setImportance("a|" + std::string(1022 - 2, 'b'), 0.5f), 1u);
+}
+
 TEST(SceneErrors, MissingSceneFile) {
   const std::filesystem::path path = kData / "bad" / "no_such_scene.json";
   try {

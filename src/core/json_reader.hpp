@@ -15,6 +15,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/name_pattern.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/geo_frame.hpp"
 
@@ -137,24 +138,13 @@ inline glm::vec3 direction(const Context& ctx, const json& j, const std::string&
   return glm::normalize(v);
 }
 
-// A regular expression given as text: ECMAScript, as the format uses. std::regex compiles by
-// recursion, so a pattern nested thousands of groups deep would exhaust the stack; none
-// deeper than kMaxRegexNesting is accepted.
-constexpr int kMaxRegexNesting = 64;
+// A regular expression given as text: ECMAScript, as the format uses, limited in length and
+// nesting (core/name_pattern.hpp).
 inline std::regex regex(const Context& ctx, const std::string& pattern, const std::string& ptr) {
-  int depth = 0, deepest = 0;
-  for (std::size_t i = 0; i < pattern.size(); ++i) {
-    if (pattern[i] == '\\') ++i;  // an escaped character nests nothing
-    else if (pattern[i] == '(' || pattern[i] == '[') deepest = std::max(deepest, ++depth);
-    else if (pattern[i] == ')' || pattern[i] == ']') --depth;
-  }
-  if (deepest > kMaxRegexNesting)
-    ctx.fail(ptr, "regular expression nests deeper than " + std::to_string(kMaxRegexNesting) +
-                      " groups");
   try {
-    return std::regex(pattern, std::regex::ECMAScript);
-  } catch (const std::regex_error& e) {
-    ctx.fail(ptr, "invalid regular expression \"" + pattern + "\": " + e.what());
+    return compileNamePattern(pattern);
+  } catch (const std::invalid_argument& e) {
+    ctx.fail(ptr, e.what());
   }
 }
 

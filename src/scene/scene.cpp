@@ -5,6 +5,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <regex>
 
+#include "core/name_pattern.hpp"
 #include "cutaway/core/error.hpp"
 
 namespace cutaway {
@@ -179,18 +180,18 @@ Bounds Scene::bounds() const {
 
 std::size_t Scene::setImportance(const std::string& pattern, float importance) {
   if (!(importance >= 0.0f && importance <= 1.0f))
-    throw Error(pattern, "", "importance must lie in [0, 1]");
+    throw Error(shortNamePattern(pattern), "", "importance must lie in [0, 1]");
   std::regex re;
   try {
-    re = std::regex(pattern, std::regex::ECMAScript);
-  } catch (const std::regex_error& e) {
-    throw Error(pattern, "", std::string("not a regular expression: ") + e.what());
+    re = compileNamePattern(pattern);
+  } catch (const std::invalid_argument& e) {
+    throw Error("", "", e.what());
   }
   std::size_t n = 0;
   for (SceneObject& o : objects)
     if (std::regex_match(o.name, re) || (!o.group.empty() && std::regex_match(o.group, re)))
       o.importance = importance, ++n;
-  if (n == 0) throw Error(pattern, "", "matches no object's name or group");
+  if (n == 0) throw Error(shortNamePattern(pattern), "", "matches no object's name or group");
   return n;
 }
 

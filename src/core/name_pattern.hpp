@@ -1,0 +1,56 @@
+// Name patterns: ECMAScript regular expressions over object names and groups (a scene file's
+// "nodes" and "overrides", `--importance PATTERN=I`). std::regex compiles by recursion, one
+// level per group and per term of a sequence, so a pattern nested or chained thousands deep
+// exhausts the stack: patterns are limited in length and nesting before they are compiled.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <regex>
+#include <stdexcept>
+#include <string>
+
+namespace cutaway {
+
+constexpr std::size_t kMaxNamePatternLength = 1024;
+constexpr int kMaxNamePatternNesting = 64;
+
+// The pattern as a message shows it: cut after 60 characters; quoted.
+inline std::string shortNamePattern(const std::string& pattern) {
+  return pattern.size() > 60 ? pattern.substr(0, 60) + "…" : pattern;
+}
+inline std::string quotedNamePattern(const std::string& pattern) {
+  std::string quoted(1, '"');  // appended, not "\"" + …: GCC 12 warns on that (-Wrestrict)
+  quoted += shortNamePattern(pattern);
+  quoted += '"';
+  return quoted;
+}
+
+// The compiled pattern; throws std::invalid_argument with the reason (naming the pattern).
+inline std::regex compileNamePattern(const std::string& pattern) {
+  if (pattern.size() > kMaxNamePatternLength)
+    throw std::invalid_argument("regular expression of " + std::to_string(pattern.size()) +
+                                " characters (at most " + std::to_string(kMaxNamePatternLength) +
+                                "): " + quotedNamePattern(pattern));
+  int depth = 0, deepest = 0;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    if (pattern[i] == '\\')
+      ++i;  // an escaped character nests nothing
+    else if (pattern[i] == '(' || pattern[i] == '[')
+      deepest = std::max(deepest, ++depth);
+    else if (pattern[i] == ')' || pattern[i] == ']')
+      --depth;
+  }
+  if (deepest > kMaxNamePatternNesting)
+    throw std::invalid_argument("regular expression nests deeper than " +
+                                std::to_string(kMaxNamePatternNesting) +
+                                " groups: " + quotedNamePattern(pattern));
+  try {
+    return std::regex(pattern, std::regex::ECMAScript);
+  } catch (const std::regex_error& e) {
+    throw std::invalid_argument("invalid regular expression " + quotedNamePattern(pattern) + ": " +
+                                e.what());
+  }
+}
+
+}  // namespace cutaway
