@@ -14,10 +14,10 @@
 // Optionally, for the volumes' rays, a span of a view ray in which it removes every point, so
 // that the ray skips it instead of asking per sample (Burns11 §5.2.5: rays start at the
 // cutaway surface): `#define <NAME>_REMOVED_SPAN` and
-//   vec2 <name>RemovedSpan(vec3 origin, vec3 direction, vec2 window);
+//   vec2 <name>RemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range);
 // (distances along the unit direction from the origin; empty where x ≥ y; `window`: the ray's
-// pixel, as gl_FragCoord.xy), conservative: every point inside is one <name>Fragment discards
-// as a front face.
+// pixel, as gl_FragCoord.xy; `range`: the part of the ray the caller samples), conservative:
+// every point inside is one <name>Fragment discards as a front face.
 //
 // Adding a cutter: its folder (options, this interface, GLSL, README citing the equations) and
 // one line in registry.cpp (docs/architecture.md).

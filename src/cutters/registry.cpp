@@ -102,14 +102,14 @@ std::string cutterComposition(const std::vector<ActiveCutter>& active) {
   // The spans of a volume's ray that cutters remove whole (cutter.hpp), one per active cutter.
   glsl += "  return opacity;\n}\n#define REMOVED_SPANS " +
           std::to_string(std::max<std::size_t>(active.size(), 1)) +
-          "\nvoid removedSpans(int cutBy, vec3 origin, vec3 direction, vec2 window,\n"
+          "\nvoid removedSpans(int cutBy, vec3 origin, vec3 direction, vec2 window, vec2 range,\n"
           "                  out vec2 spans[REMOVED_SPANS]) {\n"
           "  for (int i = 0; i < REMOVED_SPANS; ++i) spans[i] = vec2(1e30, -1e30);\n";
   for (std::size_t i = 0; i < active.size(); ++i) {
     const ActiveCutter& c = active[i];
     glsl += "#ifdef " + upper(c.type->name) + "_REMOVED_SPAN\n  if ((cutBy & (1 << " +
             std::to_string(c.slot) + ")) != 0) spans[" + std::to_string(i) + "] = " + c.type->name +
-            "RemovedSpan(origin, direction, window);\n#endif\n";
+            "RemovedSpan(origin, direction, window, range);\n#endif\n";
   }
   glsl += "}\nvoid writeCutterChannels(int cutBy, CutFragment f) {\n";
   for (const ActiveCutter& c : active)

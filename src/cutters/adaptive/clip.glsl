@@ -165,7 +165,7 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
 // the span up to C's point, shrunk by a hair so that the samples at C are decided per sample.
 // (The contextual structure keeps important samples in front of C: no such span.)
 #define ADAPTIVE_REMOVED_SPAN
-vec2 adaptiveRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+vec2 adaptiveRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range) {
   vec2 uv = window * uViewport.zw;
   float c = texture(uCutawayDepth, uv).r;
   if (c <= 0.0) return vec2(1e30, -1e30);

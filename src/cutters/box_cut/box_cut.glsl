@@ -45,7 +45,7 @@ int boxCutFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
 // The span of a view ray inside the box, which it removes whole (cutters/cutter.hpp), shrunk
 // by a hair so that samples on its faces are decided by boxCutFragment.
 #define BOXCUT_REMOVED_SPAN
-vec2 boxCutRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+vec2 boxCutRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range) {
   vec3 from = boxCutLocal(origin);
   vec3 v = vec3(dot(direction, uBoxCutAxes[0]), dot(direction, uBoxCutAxes[1]),
                 dot(direction, uBoxCutAxes[2]));

@@ -47,9 +47,10 @@ int clipSurfacesFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal
 // The span of a view ray that the surfaces remove whatever their relief (cutters/cutter.hpp):
 // eq. 1 is < 0 wherever P·N − N·O + max(h·S_z) is, a half-space along the ray. Intersection:
 // the spans' common part; union: the first enabled surface's span (the others are asked per
-// sample). Shrunk by a hair so that samples on its ends are decided by clipSurfacesFragment.
+// sample). Shrunk by a hair so that samples on its ends are decided by clipSurfacesFragment;
+// where it overlaps the sampled range, the pixel's clip mask is set as those samples would.
 #define CLIPSURFACES_REMOVED_SPAN
-vec2 clipSurfacesRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+vec2 clipSurfacesRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range) {
   vec2 span = vec2(-1e30, 1e30);
   bool enabled = false;
   for (int i = 0; i < uClipCount.x; ++i) {
@@ -64,6 +65,8 @@ vec2 clipSurfacesRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
     if (uClipCount.y == 0) break;
   }
   if (!enabled) return vec2(1e30, -1e30);
-  float hair = 1e-4 * (1.0 + min(abs(span.x), abs(span.y)));
-  return vec2(span.x + hair, span.y - hair);
+  span = vec2(span.x + 1e-4 * (1.0 + abs(span.x)), span.y - 1e-4 * (1.0 + abs(span.y)));
+  if (max(span.x, range.x) < min(span.y, range.y))
+    imageAtomicMax(uClipMask, ivec2(window), 1u);
+  return span;
 }

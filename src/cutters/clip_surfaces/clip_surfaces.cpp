@@ -180,7 +180,7 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
     uploadRelief(t.id(), cs);
     g.reliefScale.push_back(cs.scale);
     const auto [low, high] = std::minmax_element(cs.offsetMap.data.begin(), cs.offsetMap.data.end());
-    g.reliefRange.emplace_back(*low, *high);
+    g.reliefRange.push_back(cs.offsetMap.data.empty() ? glm::vec2(0.0f) : glm::vec2(*low, *high));
     glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -225,7 +225,9 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
   Frame& frame = setup.frame;
   clipMask_ = frame.declare("clipMask", {.format = GL_R32UI,
                                          .meaning = "1 where a clip surface removed a fragment (at "
-                                                    "any depth), else 0 (Trapp13 eq. 1)"});
+                                                    "any depth; for a volume, where its ray "
+                                                    "crosses clipped space inside its box), else "
+                                                    "0 (Trapp13 eq. 1)"});
   capParity_ = frame.declare(
       "capParity", {.format = GL_R32UI,
                     .meaning = "volumetric parity test of the cap fragments at this pixel (Trapp13 "

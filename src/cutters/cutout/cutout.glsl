@@ -112,7 +112,7 @@ int cutoutFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
 // whatever the pattern (cutters/cutter.hpp): every plane's n·x + w exceeds the amplitude there.
 // Shrunk by a hair so that samples on its ends are decided by cutoutFragment.
 #define CUTOUT_REMOVED_SPAN
-vec2 cutoutRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
+vec2 cutoutRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range) {
   if (uCutoutPlaneCount == 0) return vec2(1e30, -1e30);
   float margin = uCutoutJitter.x == 0.0 ? 0.0 : abs(uCutoutJitter.y);
   float tIn = -1e30, tOut = 1e30;
@@ -123,8 +123,7 @@ vec2 cutoutRemovedSpan(vec3 origin, vec3 direction, vec2 window) {
     else if (dv < 0.0) tOut = min(tOut, -d0 / dv);
     else if (d0 <= 0.0) return vec2(1e30, -1e30);
   }
-  float hair = 1e-4 * (1.0 + min(abs(tIn), abs(tOut)));
-  return vec2(tIn + hair, tOut - hair);
+  return vec2(tIn + 1e-4 * (1.0 + abs(tIn)), tOut - 1e-4 * (1.0 + abs(tOut)));
 }
 
 // The G-buffer channel cutoutDistance: the signed distance at a fragment of an exterior object.

@@ -162,7 +162,7 @@ void main() {
   // Where the cutters remove the ray whole (the cutaway surface's near side, a box cut's
   // inside), it skips ahead instead of asking them per sample (Burns11 §5.2.5).
   vec2 spans[REMOVED_SPANS];
-  removedSpans(uCutBy, origin, direction, gl_FragCoord.xy, spans);
+  removedSpans(uCutBy, origin, direction, gl_FragCoord.xy, vec2(tIn, tOut), spans);
   // The samples lie on the lattice t₀ + k·step, so skipping removed spans and empty blocks
   // changes none of them.
   float t0 = tIn + offset * uStep;

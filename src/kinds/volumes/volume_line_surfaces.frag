@@ -50,7 +50,7 @@ void main() {
   // Where the cutters remove the ray whole it skips ahead (as volume.frag); elsewhere they
   // are asked only at a crossing, about the samples on both sides of it.
   vec2 spans[REMOVED_SPANS];
-  removedSpans(uCutBy, r.origin, r.direction, gl_FragCoord.xy, spans);
+  removedSpans(uCutBy, r.origin, r.direction, gl_FragCoord.xy, vec2(r.tIn, tEnd), spans);
   bool havePrevious = false;
   float previous = 0.0, tPrevious = 0.0;
   float t0 = r.tIn + 0.5 * uStep;
