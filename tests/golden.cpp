@@ -11,11 +11,11 @@ namespace cutaway::test {
 
 namespace {
 
-// Whether each colour channel of `value` lies within the [min, max] of that channel over
-// `image`'s 3×3 neighbourhood of (x, y), widened by `level`.
+// Whether each channel of `value` lies within the [min, max] of that channel over `image`'s
+// 3×3 neighbourhood of (x, y), widened by `level`.
 bool withinNeighbourhood(const Rgba8Image& image, int x, int y, const std::uint8_t* value,
                          int level) {
-  for (int c = 0; c < 3; ++c) {
+  for (int c = 0; c < 4; ++c) {
     int lo = 255, hi = 0;
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {

@@ -173,10 +173,11 @@ TEST(AdaptiveCutaway, ExposesTheObjectOfInterest) {
   EXPECT_EQ(id.at(77, 57)[0], 0.0f);
 }
 
-// Burns08 §4.1: the walls of a watertight box around the object of interest show cut
-// surfaces (back faces seen through the cut), outlined (§4.2).
-TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
-  const Scene scene = parseScene(
+namespace {
+
+// A watertight box around a small object of interest, seen from above and to the side.
+Scene shellAroundACore() {
+  return parseScene(
       R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
       "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
       "cutters": {"adaptive": {"angle": 35, "bufferSize": 128}},
@@ -185,6 +186,14 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
         {"name": "core", "file": "meshes/cube.obj", "role": "interest",
          "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
       "shell.json", kData);
+}
+
+}  // namespace
+
+// Burns08 §4.1: the walls of a watertight box around the object of interest show cut
+// surfaces (back faces seen through the cut), outlined (§4.2).
+TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
+  const Scene scene = shellAroundACore();
   const auto aovs = renderAovs(scene);
   const FloatImage& mask = aov(aovs, "cutMask");
   const FloatImage& id = aov(aovs, "objectId");
@@ -312,15 +321,7 @@ TEST(AdaptiveCutaway, DirectionalConstraintClampsTheAngleAsEquationsSixPointOneA
 // over each texel's 3×3 neighbourhood, edges clamped: against a CPU minimum filter of the
 // dumped buffer, texel by texel.
 TEST(AdaptiveCutaway, DilatedDepthIsTheThreeByThreeMinimumOfTheCutawayDepth) {
-  const Scene scene = parseScene(
-      R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
-      "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
-      "cutters": {"adaptive": {"angle": 35, "bufferSize": 128}},
-      "objects": [
-        {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
-        {"name": "core", "file": "meshes/cube.obj", "role": "interest",
-         "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
-      "dilate.json", kData);
+  const Scene scene = shellAroundACore();
   const auto aovs = renderAovs(scene);
   const FloatImage& c = aov(aovs, "cutawayDepth");
   const FloatImage& d = aov(aovs, "cutawayDilated");

@@ -2,9 +2,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string_view>
 
-#include <unistd.h>
+#include <stdlib.h>
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
@@ -40,10 +41,28 @@ const Target* findTarget(const std::string& name) {
 
 namespace {
 
-// One file per process and target, rewritten for every input.
+// A private folder per process, removed at exit: an input is written there as one file per
+// target, rewritten each time, and files that inputs name beside it do not exist.
+class ScratchFolder {
+ public:
+  ScratchFolder() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "cutaway-fuzz-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create " + pattern);
+    path_ = pattern;
+  }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
 std::filesystem::path scratchFile(const Target& target) {
-  return std::filesystem::temp_directory_path() /
-         ("cutaway-fuzz-" + std::to_string(::getpid()) + "-" + target.name + target.extension);
+  static const ScratchFolder folder;
+  return folder.path() / ("input" + target.extension);
 }
 
 void load(const Target& target, const std::filesystem::path& file) {

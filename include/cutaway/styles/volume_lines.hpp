@@ -111,8 +111,8 @@ struct CellSegment {
   std::int8_t kind = -1;
 };
 
-// A cell's segments: at most two crossings of f = 0 and g = 0 per side of a face, so at most
-// 24 points on the six faces and 12 entries paired with exits.
+// A cell's segments: on each face at most two segments of f = 0 and two of g = 0, so at most
+// four crossings per face, 24 on the six faces, and so at most 12 entries paired with exits.
 struct CellSegments {
   static constexpr int kCapacity = 12;
   std::array<CellSegment, kCapacity> items;
@@ -222,7 +222,8 @@ class VolumeLineTracker {
   std::mt19937_64 random_;
 };
 
-// Walks every loop through the given seed cells (the core of the tracker; also used by tests).
+// Walks every loop through the given seed cells (the core of the tracker; also used by tests)
+// into `into`, which starts empty (segments it already holds would be walked again).
 void walkVolumeLines(const VolumeLineField& field, const std::vector<glm::ivec3>& seeds,
                      VolumeLineSet& into);
 

@@ -1,6 +1,7 @@
 // Marching Lines (Thirion and Gourdon 1996, as Burns11 §2.4.1.1 uses it): the intersection of
 // two implicit functions, sampled at the lattice nodes, found on the faces of each cell.
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -259,8 +260,10 @@ CellSegments VolumeLineField::segments(glm::ivec3 cell) const {
           const float along = df.x * dg.y - df.y * dg.x;
           glm::vec3 at(cell);
           at[a] += float(side), at[u] += p.x, at[w] += p.y;
-          points[pointCount++] = {at, faceKey + std::uint64_t(found++), 2 * a + side,
-                                  side == 1 ? along > 0.0f : along < 0.0f};
+          // The curve leaves through the +e_a face along e_a, through the −e_a face against it;
+          // the two cells that share the face disagree even where `along` is 0 or NaN.
+          const bool exit = side == 1 ? along > 0.0f : !(along > 0.0f);
+          points[pointCount++] = {at, faceKey + std::uint64_t(found++), 2 * a + side, exit};
         }
     }
   }
@@ -280,6 +283,7 @@ CellSegments VolumeLineField::segments(glm::ivec3 cell) const {
     if (best < 0) continue;
     used[best] = true;
     const FacePoint& to = points[best];
+    assert(out.count < CellSegments::kCapacity);
     CellSegment& segment = out.items[std::size_t(out.count++)];
     segment = {in.at, to.at, in.id, to.id, std::int8_t(in.face), std::int8_t(to.face)};
     segment.kind = kindOf(cell, segment, gv, facingv);
