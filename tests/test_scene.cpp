@@ -15,15 +15,16 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cutaway/core/error.hpp"
+#include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/fields/cutaway_surface.hpp"
 #include "cutaway/render/techniques.hpp"
+#include "cutaway/scene/scene.hpp"
 #include "cutaway/styles/blinn_phong.hpp"
 #include "cutaway/styles/gooch.hpp"
 #include "cutaway/styles/hatching.hpp"
 #include "cutaway/styles/toon.hpp"
-#include "cutaway/core/error.hpp"
-#include "cutaway/cutters/adaptive.hpp"
-#include "cutaway/fields/cutaway_surface.hpp"
-#include "cutaway/scene/scene.hpp"
+#include "expect_error.hpp"
 
 // Readable failure messages for glm values (found by argument-dependent lookup).
 namespace glm {
@@ -354,6 +355,22 @@ TEST(SceneBadFile, EveryFileInTheFolderIsInTheTable) {
 
 // ---------------------------------------------------------------------------------------------
 // Errors that need no file of their own.
+
+// Issue 16: "scale": 1e30 was accepted and rendered blank (the camera turned NaN). What 32-bit
+// floats cannot render is refused, naming the object; far but renderable scenes load.
+TEST(SceneErrors, ObjectsBeyondWhatFloatsCanRenderAreRefused) {
+  for (const char* transform :
+       {R"("scale": 1e30)", R"("scale": 1e16)", R"("translate": [1e20, 0, 0])"}) {
+    const std::string json =
+        std::string(R"({"objects": [{"name": "far", "file": "cube.obj", "transform": {)") +
+        transform + "}}]}";
+    test::expectError([&] { (void)parseScene(json, "far.json", kMeshes); },
+                      {"far.json", "/objects", "\"far\" reaches", "1e15"});
+  }
+  EXPECT_NO_THROW((void)parseScene(
+      R"({"objects": [{"name": "far", "file": "cube.obj", "transform": {"scale": 1e10}}]})",
+      "far.json", kMeshes));
+}
 
 // std::regex compiles by recursion: a pattern thousands of groups deep, or thousands of terms
 // long, would exhaust the stack. Both are refused before compiling, in a scene file and by

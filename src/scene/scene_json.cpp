@@ -847,6 +847,27 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     if (!names.insert(scene.volumes[i].name).second)
       ctx.fail("/volumes/" + std::to_string(i) + "/name",
                "the name \"" + scene.volumes[i].name + "\" is taken");
+  // 32-bit floats cannot render what lies too far out: beyond this the view's squared
+  // distances overflow and the camera turns NaN (a blank image). Nearer, far coordinates
+  // render with a warning (the CLI names the farthest part).
+  constexpr float kMaxReach = 1e15f;
+  const auto checkReach = [&](const std::string& ptr, const std::string& name, const Bounds& b) {
+    if (b.empty()) return;
+    const glm::vec3 m = glm::max(glm::abs(b.min), glm::abs(b.max));
+    const float reach = std::max({m.x, m.y, m.z});
+    if (reach <= kMaxReach) return;  // NaN and infinity fail too
+    std::ostringstream message;
+    message << "\"" << name << "\" reaches " << reach
+            << " scene units from the origin; 32-bit floats cannot render beyond 1e15 (scale it "
+               "down or move it nearer)";
+    ctx.fail(ptr, message.str());
+  };
+  for (const auto& o : scene.objects)
+    if (!o.proxy) checkReach("/objects", o.name, o.worldBounds());
+  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+    checkReach("/volumes/" + std::to_string(i), scene.volumes[i].name,
+               scene.volumes[i].worldBounds());
+  for (const auto& n : scene.networks) checkReach("/networks", n.name, n.bounds());
   // The cutters' checks across the scene (the roles they need, the network to open above).
   for (const CutterType& type : cutterTypes())
     if (type.complete && scene.cutters.find(type.key))
