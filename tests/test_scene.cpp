@@ -372,6 +372,23 @@ TEST(SceneErrors, ObjectsBeyondWhatFloatsCanRenderAreRefused) {
       "far.json", kMeshes));
 }
 
+// Issue 16: a NUL inside a file name cut it ("cube.obj\u0000.png" opened cube.obj); no string
+// of a scene may hold one.
+TEST(SceneErrors, StringsWithANulCharacterAreRefused) {
+  test::expectError(
+      [] {
+        (void)parseScene(R"({"objects": [{"name": "a", "file": "cube.obj\u0000.png"}]})",
+                         "nul.json", kMeshes);
+      },
+      {"nul.json", "/objects/0/file", "NUL character (at 8)"});
+  test::expectError(
+      [] {
+        (void)parseScene(R"({"objects": [{"name": "a\u0000b", "file": "cube.obj"}]})", "nul.json",
+                         kMeshes);
+      },
+      {"/objects/0/name", "NUL"});
+}
+
 // std::regex compiles by recursion: a pattern thousands of groups deep, or thousands of terms
 // long, would exhaust the stack. Both are refused before compiling, in a scene file and by
 // Scene::setImportance, with the pattern cut short in the message.

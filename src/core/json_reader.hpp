@@ -102,9 +102,14 @@ inline bool boolean(const Context& ctx, const json& j, const std::string& ptr) {
   return j.get<bool>();
 }
 
+// A string; NUL is refused (no name, file or pattern holds one, and a file name would be cut
+// at it: "cube.obj\u0000.png" opened cube.obj).
 inline std::string string(const Context& ctx, const json& j, const std::string& ptr) {
   if (!j.is_string()) ctx.fail(ptr, "expected a string, got " + typeName(j));
-  return j.get<std::string>();
+  std::string s = j.get<std::string>();
+  if (const std::size_t at = s.find('\0'); at != std::string::npos)
+    ctx.fail(ptr, "the string holds a NUL character (at " + std::to_string(at) + ")");
+  return s;
 }
 
 inline std::string oneOf(const Context& ctx, const json& j, const std::string& ptr,

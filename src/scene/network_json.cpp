@@ -111,7 +111,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
     std::string terrainPattern;
     if (const json* v = r.take("terrain")) {
       const std::regex pattern = regex(ctx, *v, r.at("terrain"));
-      terrainPattern = v->get<std::string>();
+      terrainPattern = string(ctx, *v, r.at("terrain"));
       for (const auto& o : scene.objects)
         if (!o.proxy && std::regex_match(o.name, pattern))
           meshes.push_back(o.mesh.get()), transforms.push_back(o.transform);

@@ -23,7 +23,7 @@ FloatImage offsetMap(const Context& ctx, const json& j, const std::string& ptr, 
   if (depth > kMaxBlendDepth)
     ctx.fail(ptr, "offset-map blends nest deeper than " + std::to_string(kMaxBlendDepth) + " levels");
   if (j.is_string()) {
-    const std::filesystem::path file = ctx.baseDir / j.get<std::string>();
+    const std::filesystem::path file = ctx.baseDir / string(ctx, j, ptr);
     if (!std::filesystem::is_regular_file(file))
       ctx.fail(ptr, "no such offset map: " + file.string());
     try {
@@ -109,7 +109,7 @@ OptionsSchema surfaceSchema() {
         if (const json* v = r.take("offsetMap")) cs.offsetMap = offsetMap(ctx, *v, r.at("offsetMap"));
         if (const json* v = r.take("diffuseMap")) {
           if (!v->is_string()) ctx.fail(r.at("diffuseMap"), "expected a PNG file name");
-          const std::filesystem::path file = ctx.baseDir / v->get<std::string>();
+          const std::filesystem::path file = ctx.baseDir / string(ctx, *v, r.at("diffuseMap"));
           if (!std::filesystem::is_regular_file(file))
             ctx.fail(r.at("diffuseMap"), "no such diffuse map: " + file.string());
           try {

@@ -41,7 +41,7 @@ OptionsSchema jitterSchema() {
         const auto* x = r.take("image");
         if (!x) return;
         if (!x->is_string()) ctx.fail(r.at("image"), "expected a file name, got " + json_reader::typeName(*x));
-        j.image = ctx.baseDir / x->get<std::string>();
+        j.image = ctx.baseDir / json_reader::string(ctx, *x, r.at("image"));
         if (!std::filesystem::is_regular_file(j.image))
           ctx.fail(r.at("image"), "no such image file: " + j.image.string());
         try {
