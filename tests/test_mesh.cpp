@@ -60,6 +60,12 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
          "end_header\n",
          {"count.ply", "header line 3", "2147483648"});
   refuse("magic.ply", "solid x\nendsolid x\n", {"magic.ply", "not a PLY"});
+  // Keywords in another case, "end_header" only inside another line (Assimp hung; fuzzing).
+  refuse("case.ply",
+         "ply\nformat binary_little_endian 1.0\nelemeNt vertex 4294967294\npropend_headererty x\n",
+         {"case.ply", "header line 3", "4294967294"});
+  refuse("inline.ply", "ply\nformat ascii 1.0\ncomment end_header\n",
+         {"inline.ply", "end_header line"});
   // .gz files that are not gzip, or hold nothing (Assimp said "Invalid parameters passed to
   // ReadFileFromMemory()").
   refuse("plain.stl.gz", "solid x\nendsolid x\n", {"plain.stl.gz", "not a gzip file"});

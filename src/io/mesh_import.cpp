@@ -48,21 +48,26 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
 }
 
 // A PLY file's header, checked before Assimp reads it: Assimp's reader loops forever on a header
-// without "end_header" and allocates what an element count claims. Each element takes at least
-// one byte of the file, so a count beyond its size is a lie.
+// without an "end_header" line and allocates what an element count claims. Each element takes
+// at least one byte of the file, so a count beyond its size is a lie. Keywords are compared
+// without case, as a header Assimp still parses ("elemeNt", found by fuzzing) must be checked.
 void checkPlyHeader(const std::filesystem::path& file, const char* data, std::size_t size) {
   const std::string head(data, std::min<std::size_t>(size, 1 << 16));
   if (head.rfind("ply", 0) != 0) throw Error(file.string(), "", "not a PLY file (no \"ply\" line)");
-  const std::size_t end = head.find("end_header");
-  if (end == std::string::npos)
-    throw Error(file.string(), "header", "the PLY header has no end_header (truncated?)");
-  std::istringstream lines(head.substr(0, end));
+  const auto lower = [](std::string w) {
+    for (char& c : w) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return w;
+  };
+  std::istringstream lines(head);
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
     std::istringstream words(line);
     std::string keyword, name;
     double count = 0.0;
-    if (!(words >> keyword) || keyword != "element") continue;
+    if (!(words >> keyword)) continue;
+    keyword = lower(keyword);
+    if (keyword == "end_header" && !(words >> name)) return;
+    if (keyword != "element") continue;
     if (!(words >> name >> count) || !(count >= 0.0))
       throw Error(file.string(), "header line " + std::to_string(number),
                   "an element needs a name and a count");
@@ -71,6 +76,7 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
                   "claims " + std::to_string(std::uint64_t(count)) + " " + name +
                       " elements in a file of " + std::to_string(size) + " bytes");
   }
+  throw Error(file.string(), "header", "the PLY header has no end_header line (truncated?)");
 }
 
 std::vector<char> readFile(const std::filesystem::path& file) {
