@@ -33,6 +33,7 @@ const Aov& find(const std::vector<Aov>& aovs, const std::string& name) {
 
 // Where the driver puts sample 0 of a multisample target, in pixel units (y up).
 glm::vec2 firstSamplePosition(int samples) {
+  if (samples == 1) return glm::vec2(0.5f);  // the frame's one-sample targets are 2-D textures
   gl::Texture texture = gl::Texture::create2D(GL_RGBA8, 4, 4, samples);
   gl::Framebuffer framebuffer = gl::Framebuffer::create();
   glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, texture.id(), 0);

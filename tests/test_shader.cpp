@@ -29,7 +29,8 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                                           "frame/gbuffer_channels.glsl",
                                           "cutters/composition.glsl",
                                           "cutters/fate.glsl",
-                                          "cutters/cutout/cutout.glsl"};
+                                          "cutters/cutout/cutout.glsl",
+                                          "frame/samples.glsl"};
   EXPECT_EQ(source.files, expected);
   // Defines come right after #version, before any other line.
   EXPECT_EQ(source.text.rfind("#version 450 core\n#define ANSWER 42\n", 0), 0u)

@@ -98,20 +98,6 @@ struct Expected {
   bool translucent;  // a partly transparent square shows here
 };
 
-// Where sample 0 of a one-sample multisample framebuffer lies in its pixel (llvmpipe puts it
-// off the centre): the translucent layers are shaded per sample, there.
-glm::vec2 samplePosition() {
-  test::glContext();
-  const gl::Texture texture = gl::Texture::create2D(GL_RGBA8, 4, 4, 1);
-  const gl::Framebuffer framebuffer = gl::Framebuffer::create();
-  glNamedFramebufferTexture(framebuffer.id(), GL_COLOR_ATTACHMENT0, texture.id(), 0);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
-  GLfloat p[2] = {0.5f, 0.5f};
-  glGetMultisamplefv(GL_SAMPLE_POSITION, 0, p);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return {p[0], p[1]};
-}
-
 // A kSize² image of window depths (rows top-down) sampled bilinearly at a window position
 // (pixels, y up), as the GPU's linear filter does.
 float bilinear(const FloatImage& image, glm::vec2 window) {
@@ -136,7 +122,9 @@ std::vector<Expected> closedForm(ContextualCutawayOptions::Application apply,
   const FloatImage &c1 = test::aov(aovs, "cutawayDepth"), &c2 = test::aov(aovs, "cutawayDepthC2");
   const glm::mat4 inverse = glm::inverse(scene.resolvedCamera().projectionMatrix(1.0f));
   const float d = *scene.cutters.find<AdaptiveCutawayOptions>()->contextual->overlay;
-  const glm::vec2 sample = samplePosition();
+  // The layers are shaded per sample; at one sample the frame's targets are 2-D textures
+  // (TargetDesc::samples), whose sample is the pixel centre.
+  const glm::vec2 sample(0.5f);
   // Square k's opacity at window position w (the view spans [−5, 5]²), and its height there.
   const auto opacity = [&](int k, glm::vec2 w, float& wz) {
     const Square& s = kSquares[k];

@@ -3,12 +3,13 @@
 // the samples with the overlays (ghost lines, feature lines, cut outlines) blended over it in
 // order; the AOVs copy sample 0 (averaging ids, normals or depths across an edge would invent
 // values that exist nowhere in the scene); the techniques' channels are copied by channels.frag.
-layout(binding = 0) uniform sampler2DMS uColor;
-layout(binding = 1) uniform sampler2DMS uNormal;
-layout(binding = 2) uniform sampler2DMS uPosition;
-layout(binding = 3) uniform isampler2DMS uObjectId;
-layout(binding = 4) uniform sampler2DMS uDepth;
-layout(binding = 5) uniform sampler2DMS uCutMask;
+#include "frame/samples.glsl"
+layout(binding = 0) uniform SAMPLER_MS uColor;
+layout(binding = 1) uniform SAMPLER_MS uNormal;
+layout(binding = 2) uniform SAMPLER_MS uPosition;
+layout(binding = 3) uniform ISAMPLER_MS uObjectId;
+layout(binding = 4) uniform SAMPLER_MS uDepth;
+layout(binding = 5) uniform SAMPLER_MS uCutMask;
 layout(location = 0) uniform int uSamples;
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outNormal;

@@ -26,7 +26,8 @@ Target Frame::declare(const std::string& name, TargetDesc desc) {
   if (find(name)) throw Error("frame", name, "render target declared twice");
   if (desc.width == 0) desc.width = width_;
   if (desc.height == 0) desc.height = height_;
-  gl::Texture texture = gl::Texture::create2D(desc.format, desc.width, desc.height, desc.samples);
+  gl::Texture texture = gl::Texture::create2D(desc.format, desc.width, desc.height,
+                                              desc.samples > 1 ? desc.samples : 0);
   targets_.push_back(TargetData{name, std::move(desc), std::move(texture)});
   return Target(serial_, int(targets_.size() - 1));
 }

@@ -18,6 +18,7 @@
 #include "cutaway/scene/scene.hpp"
 #include "frame/bindings.hpp"
 #include "frame/gbuffer.hpp"
+#include "frame/samples.hpp"
 #include "frame/scene_meshes.hpp"
 
 namespace cutaway {
@@ -48,9 +49,10 @@ struct FrameSetup {
   bool translucentLayers = false;
   gl::ProgramDesc geometryProgram(std::vector<std::pair<GLenum, std::string>> stages,
                                   std::map<std::string, std::string> defines = {}) const {
-    return bindings.program(
-        {.stages = std::move(stages), .defines = std::move(defines), .aliases = shadingAliases,
-         .sources = shadingSources});
+    return bindings.program({.stages = std::move(stages),
+                             .defines = sampleDefines(scene.samples, std::move(defines)),
+                             .aliases = shadingAliases,
+                             .sources = shadingSources});
   }
 
   // Connected by the composer to every geometry kind.

@@ -2,6 +2,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
+#include "frame/samples.hpp"
 
 namespace cutaway {
 
@@ -107,10 +108,11 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
              ".a * texelFetch(uOverlay" + n + ", p, 0).r);\n";
   }
   blend += "  return c;\n}\n";
-  compositeProgram_ = gl::buildProgram(
-      {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
-                  {GL_FRAGMENT_SHADER, "frame/composite.frag"}},
-       .sources = {{"frame/composite_parts.glsl", parts + blend}}});
+  compositeProgram_ =
+      gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                                   {GL_FRAGMENT_SHADER, "frame/composite.frag"}},
+                        .defines = sampleDefines(samples_),
+                        .sources = {{"frame/composite_parts.glsl", parts + blend}}});
 
   const Target color = f.declare("color", {.format = GL_RGBA8});
   finalColor_ = color;
@@ -172,15 +174,15 @@ void GBuffer::addChannelsPass(Frame& f) {
   std::string parts, copy = "void copyChannels(ivec2 p) {\n";
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     const std::string n = std::to_string(i);
-    parts += "layout(binding = " + n + ") uniform sampler2DMS uChannel" + n + ";\n";
+    parts += "layout(binding = " + n + ") uniform SAMPLER_MS uChannel" + n + ";\n";
     parts += "layout(location = " + n + ") out float outChannel" + n + ";  // " + channels_[i].name + "\n";
     copy += "  outChannel" + n + " = texelFetch(uChannel" + n + ", p, 0).r;\n";
   }
   copy += "}\n";
-  channelsProgram_ = gl::buildProgram(
-      {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
-                  {GL_FRAGMENT_SHADER, "frame/channels.frag"}},
-       .sources = {{"frame/channel_parts.glsl", parts + copy}}});
+  channelsProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                                                  {GL_FRAGMENT_SHADER, "frame/channels.frag"}},
+                                       .defines = sampleDefines(samples_),
+                                       .sources = {{"frame/channel_parts.glsl", parts + copy}}});
   f.addPass({.name = "channels",
              .reads = channelTargets_,
              .writes = channelAovs_,

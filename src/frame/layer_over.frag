@@ -2,7 +2,8 @@
 // Translucent layers (frame/translucent_layers.hpp): the accumulation's samples averaged (the
 // resolve of premultiplied colour is its mean) and blended over the final colour
 // (GL_ONE, GL_ONE_MINUS_SRC_ALPHA).
-layout(binding = 0) uniform sampler2DMS uAccumulation;
+#include "frame/samples.glsl"
+layout(binding = 0) uniform SAMPLER_MS uAccumulation;
 layout(location = 0) uniform int uSamples;
 layout(location = 0) out vec4 outColor;
 void main() {

@@ -2,7 +2,8 @@
 // Translucent layers (frame/translucent_layers.hpp): one peeled layer's sample with its feature
 // lines over it, blended under the accumulation (GL_ONE_MINUS_DST_ALPHA, GL_ONE). Reading
 // gl_SampleID runs it per sample.
-layout(binding = 0) uniform sampler2DMS uLayer;  // premultiplied colour, coverage
+#include "frame/samples.glsl"
+layout(binding = 0) uniform SAMPLER_MS uLayer;  // premultiplied colour, coverage
 layout(binding = 1) uniform sampler2D uLines;    // the layer's line coverage, its opacity included
 layout(location = 0) uniform vec4 uLineColor;    // w: 1 with lines
 layout(location = 0) out vec4 outColor;

@@ -1,5 +1,7 @@
 #include "frame/translucent_layers.hpp"
 
+#include "frame/samples.hpp"
+
 namespace cutaway {
 
 TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBuffer& gbuffer,
@@ -11,8 +13,10 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
       layerFramebuffer_(gl::Framebuffer::create()),
       accumulationFramebuffer_(gl::Framebuffer::create()),
       linesFramebuffer_(gl::Framebuffer::create()),
-      underProgram_(buildFullscreenProgram("frame/layer_under.frag")),
-      overProgram_(buildFullscreenProgram("frame/layer_over.frag")),
+      underProgram_(
+          buildFullscreenProgram("frame/layer_under.frag", sampleDefines(gbuffer.samples()))),
+      overProgram_(
+          buildFullscreenProgram("frame/layer_over.frag", sampleDefines(gbuffer.samples()))),
       anySamples_(gl::Query::create(GL_ANY_SAMPLES_PASSED)) {
   const int samples = gbuffer.samples();
   // Premultiplied colour and coverage; half floats keep 8-bit colours exact through the
@@ -67,8 +71,8 @@ void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const L
   const auto id = [this](Target t) { return frame_.texture(t).id(); };
   const int w = frame_.width(), h = frame_.height();
   const auto copyDepth = [&](Target from, Target to) {
-    glCopyImageSubData(id(from), GL_TEXTURE_2D_MULTISAMPLE, 0, 0, 0, 0, id(to),
-                       GL_TEXTURE_2D_MULTISAMPLE, 0, 0, 0, 0, w, h, 1);
+    const GLenum target = frame_.desc(from).textureTarget();
+    glCopyImageSubData(id(from), target, 0, 0, 0, 0, id(to), target, 0, 0, 0, 0, w, h, 1);
   };
   const float zero[4] = {0, 0, 0, 0};
   const GLint noObject[4] = {-1, 0, 0, 0};

@@ -61,9 +61,9 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   const StyleType* shading = findStyle(style.name);
   if (!shading) throw Error("style", "", "unknown style \"" + style.name + "\"");
   g.style = shading->create(setup);
-  // Every geometry program includes the shadow lookup (styles/shadows/shadow_lookup.glsl),
-  // which reads nothing while shadows are off.
-  g.bindings.textureUnit("SHADOW_MAP");
+  // Every geometry program includes the shadow lookup (styles/shadows/shadow_lookup.glsl);
+  // its unit's define is there only while shadows are on, and without it the lookup compiles
+  // to 1 (a software rasteriser runs branches on uniforms both ways, loops included).
   if (style.shadows.enabled) g.shadowMap = std::make_unique<ShadowMap>(setup);
   g.emphasis = std::make_unique<Emphasis>(setup);
   const auto& types = cutterTypes();
@@ -141,17 +141,17 @@ void Renderer::Impl::buildFrame() {
   // Burns11 ch. 2: the partly reduced material, peeled front to back, each layer with its
   // feature lines (faded by their opacity, the normal's w).
   if (layers) {
-    layerLines = std::make_unique<LinePass>(false);
-    TranslucentLayers::Lines layersLines{
-        .color = [this]() -> std::optional<glm::vec3> {
-          if (!setup.scene.style.lines) return std::nullopt;
-          return setup.scene.style.lines->color;
-        },
-        .draw =
-            [this](const TranslucentLayers::Layer& layer) {
-              layerLines->draw(frame, layer.normal, layer.position, layer.objectId, std::nullopt,
-                               *setup.scene.style.lines, setup.scene.samples, true);
-            }};
+    layerLines = std::make_unique<LinePass>(false, scene.samples);
+    TranslucentLayers::Lines layersLines{.color = [this]() -> std::optional<glm::vec3> {
+                                           if (!setup.scene.style.lines) return std::nullopt;
+                                           return setup.scene.style.lines->color;
+                                         },
+                                         .draw =
+                                             [this](const TranslucentLayers::Layer& layer) {
+                                               layerLines->draw(frame, layer.normal, layer.position,
+                                                                layer.objectId, std::nullopt,
+                                                                *setup.scene.style.lines, true);
+                                             }};
     layers->addLayersPass(
         frame,
         [this](bool first) {
@@ -186,7 +186,7 @@ void Renderer::Impl::buildFrame() {
                         }});
   }
   if (featureLines || outlineColor) {
-    lines = std::make_unique<LinePass>(outlineColor.has_value());
+    lines = std::make_unique<LinePass>(outlineColor.has_value(), scene.samples);
     linesTarget = frame.declare("lines", {.format = GL_R16F,
                                           .meaning = "feature-line coverage in [0,1] (silhouettes "
                                                      "and creases, fraction of MSAA samples on a "
@@ -211,7 +211,7 @@ void Renderer::Impl::buildFrame() {
                          setup.scene.style.lines ? *setup.scene.style.lines : kDefault;
                      lines->draw(frame, gbuffer.normal(), gbuffer.position(), gbuffer.objectId(),
                                  outlines ? std::optional(gbuffer.cutMask()) : std::nullopt, l,
-                                 setup.scene.samples, featureLines);
+                                 featureLines);
                    }});
     overlays.push_back({linesTarget, lineColor});
     if (outlineColor)
@@ -223,7 +223,7 @@ void Renderer::Impl::buildFrame() {
                           }});
   }
   if (ghosts) {
-    ghostLines = std::make_unique<LinePass>(false);
+    ghostLines = std::make_unique<LinePass>(false, scene.samples);
     frame.addPass({.name = "ghostLines",
                    .reads = {ghosts->normal, ghosts->position, ghosts->objectId},
                    .writes = {ghostLinesTarget},
@@ -232,7 +232,7 @@ void Renderer::Impl::buildFrame() {
                      const LineStyle& l =
                          setup.scene.style.lines ? *setup.scene.style.lines : kDefault;
                      ghostLines->draw(frame, g.normal, g.position, g.objectId, std::nullopt, l,
-                                      setup.scene.samples, true);
+                                      true);
                    }});
   }
   // 6. The composite: the samples resolved, the overlays blended, the AOVs copied.

@@ -27,7 +27,11 @@ namespace cutaway {
 
 struct TargetDesc {
   GLenum format = GL_RGBA8;
-  int samples = 0;            // 0: a plain 2-D texture; ≥ 1: a multisample texture
+  // 0: a resolved target; ≥ 1: one of the frame's per-sample targets, a multisample texture
+  // from 2 samples up and a plain 2-D one at 1 (llvmpipe rasterises into a one-sample
+  // multisample texture about 3× slower). Programs that read them: frame/samples.hpp.
+  int samples = 0;
+  GLenum textureTarget() const { return samples > 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D; }
   int width = 0, height = 0;  // 0: the frame's size
   // For AOV dumps: what a texel means (units, conventions); empty = not an AOV.
   std::string meaning;

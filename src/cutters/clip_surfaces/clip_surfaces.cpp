@@ -7,6 +7,7 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
 #include "frame/fullscreen.hpp"
+#include "frame/samples.hpp"
 
 namespace cutaway {
 
@@ -236,7 +237,8 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
   capMask_ = frame.declare("capMask", {.format = GL_R32F,
                                        .meaning = "1 where a cap surface covers a clip surface's "
                                                   "cut (Trapp13 §5), else 0; sample 0"});
-  g.capMask = buildFullscreenProgram("cutters/clip_surfaces/cap_mask.frag");
+  g.capMask = buildFullscreenProgram("cutters/clip_surfaces/cap_mask.frag",
+                                     sampleDefines(setup_.scene.samples));
 }
 
 ClipSurfaceCutter::~ClipSurfaceCutter() = default;

@@ -26,7 +26,8 @@ layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cu
 // previous layer and in front of the opaque surfaces (the depth test). It is shaded per sample
 // (reading gl_SampleID), so that each sample peels at its own depth, the depth its depth test
 // stored (its cut too is decided at the sample's position).
-layout(binding = UNIT_PEEL_DEPTH) uniform sampler2DMS uPeelDepth;
+#include "frame/samples.glsl"
+layout(binding = UNIT_PEEL_DEPTH) uniform SAMPLER_MS uPeelDepth;
 layout(location = 17) uniform int uFirstLayer;
 #endif
 void main() {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cutaway/gl/shader.hpp"
+#include "frame/samples.hpp"
 
 namespace cutaway {
 
@@ -212,7 +213,8 @@ void PipeKind::prepare(const std::vector<ActiveCutter>&) {
       {{"PROXY_OWNER", "1"}});
   waterProgram_ = build({{GL_VERTEX_SHADER, "kinds/pipes/water_disc.vert"},
                          {GL_FRAGMENT_SHADER, "kinds/pipes/water_disc.frag"}});
-  aovProgram_ = buildFullscreenProgram("kinds/pipes/pipe_aovs.frag");
+  aovProgram_ =
+      buildFullscreenProgram("kinds/pipes/pipe_aovs.frag", sampleDefines(setup_.scene.samples));
 
   owner_ = frame.declare("pipeOwner", {.format = GL_R32I});
   ownerDepth_ = frame.declare("pipeOwnerDepth", {.format = GL_DEPTH_COMPONENT32F});
@@ -233,9 +235,12 @@ void PipeKind::prepare(const std::vector<ActiveCutter>&) {
   GLuint view = 0;
   glGenTextures(1, &view);
   const TargetDesc& depth = frame.desc(gbuffer.depth());
-  glTextureView(view, depth.samples >= 1 ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D,
-                frame.texture(gbuffer.depth()).id(), depth.format, 0, 1, 0, 1);
+  glTextureView(view, depth.textureTarget(), frame.texture(gbuffer.depth()).id(), depth.format, 0,
+                1, 0, 1);
   glTextureParameteri(view, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+  // A 2-D one (one sample) samples stencil only with nearest filtering, else it is incomplete.
+  glTextureParameteri(view, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(view, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   stencilView_ = gl::Texture(view);
 }
 

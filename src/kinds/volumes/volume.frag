@@ -6,6 +6,7 @@
 // that cut the volume, like a fragment at its position (cutters/cutter.hpp), and classified by
 // the transfer function. Mirrored on the CPU by volume_ray_cast.cpp. Variants (defines):
 // TRANSFER_2D, a transfer function of value × gradient magnitude; SHADOWS, the shadow ray.
+#include "frame/samples.glsl"
 #include "frame/frame_uniforms.glsl"
 #include "styles/surface.glsl"
 #include "style.glsl"
@@ -15,7 +16,7 @@ layout(location = 9) uniform int uCutBy;  // bit k: the cutter of slot k cuts it
 #include "kinds/volumes/volume_sample_cut.glsl"
 #include "kinds/volumes/volume_ray.glsl"
 
-layout(binding = 0) uniform sampler2DMS uOpaqueDepth;
+layout(binding = 0) uniform SAMPLER_MS uOpaqueDepth;
 // Where the volumes drawn before this one stopped the rays: their nearest hit, entry and
 // accumulated opacity (copies of the AOVs), so that overlapping volumes hide each other.
 layout(binding = 5) uniform sampler2D uPreviousHit;

@@ -7,6 +7,7 @@
 // material (at a cut) crosses nothing there, so a cut opens the view onto what lies inside.
 // Blocks whose value range holds no isovalue are skipped whole. Variant TRANSFER_2D: the
 // material's importance at the gradient magnitude too.
+#include "frame/samples.glsl"
 #include "frame/frame_uniforms.glsl"
 #include "styles/surface.glsl"
 #include "style.glsl"
@@ -15,7 +16,7 @@
 layout(location = 9) uniform int uCutBy;  // bit k: the cutter of slot k cuts it
 #include "kinds/volumes/volume_sample_cut.glsl"
 #include "kinds/volumes/volume_ray.glsl"
-layout(binding = 0) uniform sampler2DMS uOpaqueDepth;
+layout(binding = 0) uniform SAMPLER_MS uOpaqueDepth;
 // Per block of kBlock³ voxels, the least and largest value any of its samples can interpolate.
 layout(binding = 7) uniform sampler3D uIsoBlocks;
 const float kBlock = 8.0;  // volume_blocks.hpp's kVolumeBlock

@@ -3,16 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
+#include "frame/samples.hpp"
+
 namespace cutaway {
 
-LinePass::LinePass(bool outlines)
-    : program_(buildFullscreenProgram("styles/lines/lines.frag",
-                                      outlines ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
-                                               : std::map<std::string, std::string>{})) {}
+LinePass::LinePass(bool outlines, int samples)
+    : samples_(samples),
+      program_(buildFullscreenProgram(
+          "styles/lines/lines.frag",
+          sampleDefines(samples, outlines
+                                     ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
+                                     : std::map<std::string, std::string>{}))) {}
 
 void LinePass::draw(const Frame& frame, Target normal, Target position, Target objectId,
-                    std::optional<Target> cutMask, const LineStyle& l, int samples,
-                    bool featureLines) const {
+                    std::optional<Target> cutMask, const LineStyle& l, bool featureLines) const {
   const GLuint program = program_.id();
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
@@ -20,7 +24,7 @@ void LinePass::draw(const Frame& frame, Target normal, Target position, Target o
   glBindTextureUnit(1, frame.texture(position).id());
   glBindTextureUnit(2, frame.texture(objectId).id());
   if (cutMask) glBindTextureUnit(3, frame.texture(*cutMask).id());
-  glProgramUniform1i(program, 0, samples);
+  glProgramUniform1i(program, 0, samples_);
   glProgramUniform1i(program, 1, std::max(1, int(std::lround(l.width))));
   glProgramUniform1f(program, 2, std::cos(glm::radians(l.creaseAngle)));
   glProgramUniform1f(program, 3, l.depthThreshold);

@@ -8,10 +8,11 @@
 // - with CUT_OUTLINES, the outline of the cut surfaces (Burns08 §4.2): cut-mask pixels next
 //   to a pixel outside the mask.
 // A line's weight is the normal's w: 0 for objects without lines, a fade for ghost lines.
+#include "frame/samples.glsl"
 #include "frame/frame_uniforms.glsl"
-layout(binding = 0) uniform sampler2DMS uNormal;     // world normal, w: lines flag
-layout(binding = 1) uniform sampler2DMS uPosition;   // w: linear view depth
-layout(binding = 2) uniform isampler2DMS uObjectId;  // -1: background
+layout(binding = 0) uniform SAMPLER_MS uNormal;     // world normal, w: lines flag
+layout(binding = 1) uniform SAMPLER_MS uPosition;   // w: linear view depth
+layout(binding = 2) uniform ISAMPLER_MS uObjectId;  // -1: background
 layout(location = 0) uniform int uSamples;
 layout(location = 1) uniform int uRadius;            // line width in pixels
 layout(location = 2) uniform float uCreaseCos;       // cos(crease angle)
@@ -20,12 +21,12 @@ layout(location = 4) uniform int uSilhouettes;
 layout(location = 5) uniform int uCreases;
 layout(location = 0) out float outCoverage;
 #ifdef CUT_OUTLINES
-layout(binding = 3) uniform sampler2DMS uCutMask;
+layout(binding = 3) uniform SAMPLER_MS uCutMask;
 layout(location = 1) out float outOutlineCoverage;
 
 float outline(ivec2 p, int s) {
   if (texelFetch(uCutMask, p, s).r < 0.5) return 0.0;
-  ivec2 last = textureSize(uCutMask) - 1;
+  ivec2 last = sizeMS(uCutMask) - 1;
   const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
   for (int r = 1; r <= uRadius; ++r)
     for (int k = 0; k < 4; ++k)
@@ -47,7 +48,7 @@ float edge(ivec2 p, int s) {
   if (id < 0) return 0.0;
   vec4 n = texelFetch(uNormal, p, s);
   if (n.w <= 0.0) return 0.0;
-  ivec2 last = textureSize(uObjectId) - 1;
+  ivec2 last = sizeMS(uObjectId) - 1;
   const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
   for (int r = 1; r <= uRadius; ++r) {
     for (int k = 0; k < 4; ++k) {

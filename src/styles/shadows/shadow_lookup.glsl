@@ -4,6 +4,8 @@
 // around the point that lie behind it, over a (2r + 1)² grid of hardware-filtered 2×2
 // comparisons (sampler2DShadow with linear filtering), so shadow edges are soft over about
 // 2r + 2 texels instead of stair-stepped.
+// UNIT_SHADOW_MAP is defined only while shadows are on (src/render/renderer.cpp).
+#ifdef UNIT_SHADOW_MAP
 layout(binding = UNIT_SHADOW_MAP) uniform sampler2DShadow uShadowMap;
 
 // Needs surface.glsl (towardsLight).
@@ -25,3 +27,8 @@ float keyLightVisibility(vec3 position) {
       lit += texture(uShadowMap, vec3(p.xy + vec2(x, y) * uShadowParams.w, reference));
   return lit / float((2 * r + 1) * (2 * r + 1));
 }
+#else
+float keyLightVisibility(vec3 position) {
+  return 1.0;
+}
+#endif
