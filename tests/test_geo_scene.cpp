@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/scene/scene.hpp"
@@ -71,5 +72,32 @@ TEST(GeoScene, FootprintsStandOnTheRasterTerrain) {
   const Bounds flat = scene.find("flat")->mesh->bounds();
   EXPECT_EQ(flat.min, glm::vec3(50, 0, -160));
   EXPECT_EQ(flat.max.y, 3.0f);
+  fs::remove_all(dir);
+}
+
+// A GIS field mapped to a pipe's radius (docs/scene-format.md, "networks"): scaled per feature;
+// 0 (a layer's "unknown") and a missing value take the default; a value outside the radius's
+// range is refused (tests/test_scene.cpp).
+TEST(GeoScene, PipeRadiiComeFromAFieldPerFeature) {
+  const fs::path dir = fs::temp_directory_path() / ("cutaway-pipes-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "p.geojson") << R"({"type": "FeatureCollection", "features": [
+     {"type": "Feature", "properties": {"DIAM": 600}, "geometry": {"type": "LineString",
+      "coordinates": [[0, 0], [10, 0]]}},
+     {"type": "Feature", "properties": {"DIAM": 0}, "geometry": {"type": "LineString",
+      "coordinates": [[0, 5], [10, 5]]}},
+     {"type": "Feature", "properties": {"DIAM": null}, "geometry": {"type": "LineString",
+      "coordinates": [[0, 10], [10, 10]]}}]})";
+  const std::string text = R"({"objects": [],
+    "networks": [{"name": "n", "radius": {"field": "DIAM", "scale": 0.0005, "default": 0.2},
+                  "wallThickness": 0.05, "pipes": [{"file": "p.geojson"}]}]})";
+  const Scene scene = parseScene(text, "pipes.json", dir);
+  ASSERT_EQ(scene.networks.size(), 1u);
+  std::map<std::int64_t, float> radius;
+  for (const Pipe& p : scene.networks[0].pipes) radius[p.featureId] = p.radius;
+  ASSERT_EQ(radius.size(), 3u);
+  EXPECT_FLOAT_EQ(radius.begin()->second, 0.3f);             // 600 × 0.0005
+  EXPECT_FLOAT_EQ(std::next(radius.begin())->second, 0.2f);  // 0: the default
+  EXPECT_FLOAT_EQ(std::prev(radius.end())->second, 0.2f);    // null: the default
   fs::remove_all(dir);
 }

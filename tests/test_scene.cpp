@@ -236,6 +236,8 @@ const BadScene kBadScenes[] = {
     {"network_repeated_nodes.json", "/networks/0/pipes/0/lines/0", "at least two distinct nodes"},
     {"network_missing_value.json", "/networks/0/pipes/0/file",
      "feature 1 has no value for \"DIAM\""},
+    {"network_value_out_of_range.json", "/networks/0/pipes/0/file",
+     "feature 1 has \"DIAM\" = 1e+300 (× scale: 1e+297), outside [0.0001, 1000]"},
     {"network_missing_field.json", "/networks/0/pipes/0/file", "no attribute field \"WIDTH\""},
     {"network_empty_layer.json", "/networks/0/pipes/0/file", "the layer is empty"},
     {"network_shafts_both.json", "/networks/0/shafts", "exactly one of \"file\""},
@@ -302,8 +304,7 @@ const BadScene kBadScenes[] = {
      "missing required key \"transferFunction\""},
     {"volume_labels_fractional.json", "/volumes/0/transferFunction/1/value",
      "a label volume's points are whole label values"},
-    {"volume_not_a_volume.json", "/volumes/0/file",
-     "unknown volume format (expected"},
+    {"volume_not_a_volume.json", "/volumes/0/file", "unknown volume format (expected"},
     {"volume_name_taken.json", "/volumes/0/name", "the name \"head\" is taken"},
 };
 

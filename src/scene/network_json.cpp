@@ -21,11 +21,13 @@ struct Attribute {
   std::string field;  // empty: the constant
   double scale = 1.0;
   std::optional<double> fallback;
+  double lo = 0.0, hi = 0.0;  // the range a field's scaled value must lie in, as a constant's
 };
 
 Attribute attribute(const Context& ctx, const json& j, const std::string& ptr, double lo,
                     double hi) {
   Attribute a;
+  a.lo = lo, a.hi = hi;
   if (j.is_number()) {
     a.constant = number(ctx, j, ptr, lo, hi);
     return a;
@@ -39,13 +41,26 @@ Attribute attribute(const Context& ctx, const json& j, const std::string& ptr, d
 }
 
 // The attribute's value for a feature whose fields were read in `fields` order; throws with
-// the feature named when a value is missing and there is no default.
+// the feature named when a value is missing and there is no default, or lies outside the
+// attribute's range.
 double value(const Context& ctx, const Attribute& a, const std::vector<std::string>& fields,
              const std::vector<double>& values, const std::string& where, std::int64_t fid) {
   if (a.field.empty()) return a.constant;
   const auto at = std::size_t(std::find(fields.begin(), fields.end(), a.field) - fields.begin());
   const double v = values[at];
-  if (!std::isnan(v)) return v * a.scale;
+  if (!std::isnan(v)) {
+    const double scaled = v * a.scale;
+    // GIS layers write 0 (or −1) for an unknown diameter: a size takes the default there.
+    if (scaled <= 0.0 && a.lo > 0.0 && a.fallback) return *a.fallback;
+    if (!(scaled >= a.lo && scaled <= a.hi)) {
+      std::ostringstream s;
+      s << "feature " << fid << " has \"" << a.field << "\" = " << v;
+      if (a.scale != 1.0) s << " (× scale: " << scaled << ")";
+      s << ", outside [" << a.lo << ", " << a.hi << "]";
+      ctx.fail(where, s.str());
+    }
+    return scaled;
+  }
   if (a.fallback) return *a.fallback;
   ctx.fail(where, "feature " + std::to_string(fid) + " has no value for \"" + a.field +
                       "\" (give \"default\")");
