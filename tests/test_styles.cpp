@@ -3,7 +3,12 @@
 // the analytic n·l (Lake00 §3.1), and shadows against a CPU ray–box test.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <set>
 
 #include "cutaway/styles/toon.hpp"
@@ -367,3 +372,140 @@ INSTANTIATE_TEST_SUITE_P(Styles, StyleShadowTest,
                            std::replace(n.begin(), n.end(), '-', '_');
                            return n;
                          });
+
+// ---------------------------------------------------------------------------------------------
+// Gooch and Blinn-Phong tone against their formulas, pixel by pixel.
+
+namespace {
+
+// A UV sphere of radius 1 at the origin with its analytic normals, as an OBJ file.
+std::filesystem::path writeSphere() {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("cutaway-sphere-" + std::to_string(::getpid()) + ".obj");
+  std::ofstream obj(path);
+  const int rings = 48, segments = 96;
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j <= segments; ++j) {
+      const double theta = M_PI * i / rings, phi = 2.0 * M_PI * j / segments;
+      const glm::dvec3 p(std::sin(theta) * std::cos(phi), std::cos(theta),
+                         std::sin(theta) * std::sin(phi));
+      obj << "v " << p.x << " " << p.y << " " << p.z << "\nvn " << p.x << " " << p.y << " " << p.z
+          << "\n";
+    }
+  const auto v = [&](int i, int j) { return std::to_string(i * (segments + 1) + j + 1); };
+  const auto corner = [&](int i, int j) { return v(i, j) + "//" + v(i, j); };
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      // Counter-clockwise seen from outside.
+      if (i > 0)
+        obj << "f " << corner(i, j) << " " << corner(i, j + 1) << " " << corner(i + 1, j) << "\n";
+      if (i + 1 < rings)
+        obj << "f " << corner(i, j + 1) << " " << corner(i + 1, j + 1) << " " << corner(i + 1, j)
+            << "\n";
+    }
+  return path;
+}
+
+// The rendered colour at every pixel inside the sphere's image (all four neighbours on it too)
+// against `formula(normal, toEye, position)`, from the AOVs of the same frame: the normal the
+// shader used (half floats) and the position (floats). Returns the pixels compared.
+int compareTone(const std::string& styleJson, const std::string& lightsJson,
+                const std::function<glm::vec3(glm::vec3, glm::vec3, glm::vec3)>& formula) {
+  const auto sphere = writeSphere();
+  const Scene scene = parseScene(
+      R"({"resolution": [96, 96], "samples": 1, "style": )" + styleJson + R"(, "lights": )" +
+          lightsJson + R"(,
+          "camera": {"eye": [0.6, 0.8, 4], "target": [0, 0, 0], "fov": 40},
+          "objects": [{"name": "ball", "file": ")" +
+          sphere.string() + R"(", "color": [0.7, 0.35, 0.2], "specular": 0.4, "shininess": 8}]})",
+      "tone.json", kData);
+  std::filesystem::remove(sphere);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const Rgba8Image color = renderer.readColor();
+  const FloatImage &normal = findAov(aovs, "normal").image,
+                   &position = findAov(aovs, "position").image,
+                   &objectId = findAov(aovs, "objectId").image;
+  const glm::vec3 eye = scene.resolvedCamera().eye;
+  int compared = 0;
+  double worst = 0.0;
+  std::string where;
+  for (int y = 1; y + 1 < color.height; ++y)
+    for (int x = 1; x + 1 < color.width; ++x) {
+      bool inside = true;
+      for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+        inside = inside && objectId.at(x + dx, y + dy)[0] == 0.0f;
+      if (!inside) continue;
+      const float* n = normal.at(x, y);
+      const float* p = position.at(x, y);
+      const glm::vec3 point(p[0], p[1], p[2]);
+      const glm::vec3 expected = glm::clamp(
+          formula(glm::normalize(glm::vec3(n[0], n[1], n[2])), glm::normalize(eye - point), point),
+          0.0f, 1.0f);
+      for (int k = 0; k < 3; ++k) {
+        const double error = std::abs(color.at(x, y)[k] / 255.0 - expected[k]);
+        if (error > worst) {
+          worst = error;
+          where = std::to_string(x) + "," + std::to_string(y) + " channel " + std::to_string(k) +
+                  ": " + std::to_string(color.at(x, y)[k]) + " vs " +
+                  std::to_string(expected[k] * 255.0f);
+        }
+      }
+      ++compared;
+    }
+  // 8-bit rounding (½ level) plus the half-float normal's ~5e-4 through n·l and (n·h)⁸ (the
+  // worst seen is 0.56 level); an ambient of 0.11 instead of 0.1 is off by 2.3 levels.
+  EXPECT_LE(worst * 255.0, 1.0) << "worst pixel " << where;
+  return compared;
+}
+
+float blinnSpecular(glm::vec3 n, glm::vec3 l, glm::vec3 v, float shininess) {
+  if (glm::dot(n, l) <= 0.0f) return 0.0f;
+  return std::pow(std::max(glm::dot(n, glm::normalize(l + v)), 0.0f), shininess);
+}
+
+}  // namespace
+
+// Gooch et al. 1998: k_cool = k_blue + α k_d, k_warm = k_yellow + β k_d,
+// I = t k_warm + (1 − t) k_cool with t = (1 + l·n)/2, from the key light; plus the white
+// Blinn highlight of the key light.
+TEST(StyleTone, GoochIsTheCoolToWarmBlendOfItsPaper) {
+  const glm::vec3 kd(0.7f, 0.35f, 0.2f), blue(0.1f, 0.1f, 0.6f), yellow(0.5f, 0.4f, 0.0f);
+  const float alpha = 0.3f, beta = 0.6f;
+  const glm::vec3 travels = glm::normalize(glm::vec3(-0.5f, -0.7f, -0.3f));
+  const int compared = compareTone(
+      R"({"name": "gooch", "lines": false, "gooch": {"cool": [0.1, 0.1, 0.6],
+          "warm": [0.5, 0.4, 0.0], "alpha": 0.3, "beta": 0.6}})",
+      R"([{"type": "directional", "direction": [-0.5, -0.7, -0.3], "space": "world"},
+          {"type": "point", "position": [0, -5, 0], "space": "world"}])",
+      [&](glm::vec3 n, glm::vec3 v, glm::vec3) {
+        const glm::vec3 l = -travels;  // the second light does not take part
+        const float t = 0.5f * (1.0f + glm::dot(n, l));
+        return t * (yellow + beta * kd) + (1.0f - t) * (blue + alpha * kd) +
+               glm::vec3(0.4f * blinnSpecular(n, l, v, 8.0f));
+      });
+  EXPECT_GT(compared, 2000);
+}
+
+// Blinn-Phong: ambient k_d + Σ_lights colour (k_d max(n·l, 0) + k_s max(n·h, 0)^shininess),
+// with a directional and a coloured point light (no falloff).
+TEST(StyleTone, BlinnPhongSumsItsLights) {
+  const glm::vec3 kd(0.7f, 0.35f, 0.2f);
+  const glm::vec3 travels = glm::normalize(glm::vec3(-0.5f, -0.7f, -0.3f));
+  const glm::vec3 lamp(3.0f, 1.0f, 2.0f), lampColor = glm::vec3(0.2f, 0.5f, 0.9f) * 0.8f;
+  const int compared = compareTone(
+      R"({"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}})",
+      R"([{"type": "directional", "direction": [-0.5, -0.7, -0.3], "space": "world"},
+          {"type": "point", "position": [3, 1, 2], "space": "world", "color": [0.2, 0.5, 0.9],
+           "intensity": 0.8}])",
+      [&](glm::vec3 n, glm::vec3 v, glm::vec3 p) {
+        glm::vec3 c = 0.1f * kd;
+        const glm::vec3 l0 = -travels, l1 = glm::normalize(lamp - p);
+        c += kd * std::max(glm::dot(n, l0), 0.0f) + glm::vec3(0.4f * blinnSpecular(n, l0, v, 8.0f));
+        c += lampColor *
+             (kd * std::max(glm::dot(n, l1), 0.0f) + 0.4f * blinnSpecular(n, l1, v, 8.0f));
+        return c;
+      });
+  EXPECT_GT(compared, 2000);
+}
