@@ -1,0 +1,134 @@
+// The Python module's native part (`cutaway._cutaway`): scenes loaded from files or JSON text,
+// options set by their scene-file paths, renderers on a headless OpenGL context shared by all
+// of them and released with the last, frames and AOVs as NumPy arrays, cutaway::Error as
+// cutaway.Error. python/cutaway/__init__.py wraps it.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cstring>
+#include <memory>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/gl/context.hpp"
+#include "cutaway/render/renderer.hpp"
+#include "cutaway/render/techniques.hpp"
+#include "cutaway/scene/scene.hpp"
+
+namespace py = pybind11;
+using namespace cutaway;
+
+namespace {
+
+// The one headless context of the process, made when the first renderer needs it and
+// destroyed when the last renderer that holds it goes away.
+std::weak_ptr<gl::HeadlessContext> sharedContext;
+
+std::shared_ptr<gl::HeadlessContext> context() {
+  if (auto c = sharedContext.lock()) return c;
+  std::shared_ptr<gl::HeadlessContext> c = gl::HeadlessContext::create();
+  sharedContext = c;
+  return c;
+}
+
+// A renderer with its own copy of the scene (cutaway::Renderer keeps a reference to it) and
+// a share of the context. The context is declared first, so it outlives the renderer.
+class PyRenderer {
+ public:
+  explicit PyRenderer(const Scene& scene)
+      : context_(context()),
+        scene_(scene),
+        renderer_(std::make_unique<Renderer>(scene_, context_->info())) {}
+
+  py::array_t<std::uint8_t> render(float time) {
+    renderer_->renderAt(time);
+    const Rgba8Image image = renderer_->readColor();
+    py::array_t<std::uint8_t> out({image.height, image.width, 4});
+    std::memcpy(out.mutable_data(), image.pixels.data(), image.pixels.size());
+    return out;
+  }
+
+  // Every AOV of the last frame: float32 arrays, rows top to bottom, (H, W) for one channel.
+  py::dict aovs() const {
+    py::dict out;
+    for (const Aov& a : renderer_->readAovs()) out[py::str(a.name)] = toArray(a.image);
+    return out;
+  }
+
+  py::list timings() {
+    py::list out;
+    for (const PassTiming& t : renderer_->timings()) {
+      py::dict d;
+      d["name"] = t.name;
+      d["gpu_ms"] = t.gpuMs;
+      d["cpu_ms"] = t.cpuMs;
+      out.append(d);
+    }
+    return out;
+  }
+
+  const std::string& device() const { return context_->info().renderer; }
+  const Scene& scene() const { return scene_; }
+
+ private:
+  static py::array_t<float> toArray(const FloatImage& image) {
+    std::vector<py::ssize_t> shape{image.height, image.width};
+    if (image.channels > 1) shape.push_back(image.channels);
+    py::array_t<float> out(shape);
+    std::memcpy(out.mutable_data(), image.data.data(), image.data.size() * sizeof(float));
+    return out;
+  }
+
+  std::shared_ptr<gl::HeadlessContext> context_;
+  Scene scene_;
+  std::unique_ptr<Renderer> renderer_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(_cutaway, m) {
+  m.doc() = "cutaway's native part; use the cutaway package";
+  py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
+
+  py::class_<Scene>(m, "Scene")
+      .def_static("load", &loadScene, py::arg("path"), "A scene file (docs/scene-format.md)")
+      .def_static(
+          "parse",
+          [](const std::string& text, const std::string& name, const std::filesystem::path& dir) {
+            return parseScene(text, name, dir);
+          },
+          py::arg("text"), py::arg("name"), py::arg("base_dir"),
+          "Scene JSON text; relative file names resolve against base_dir")
+      .def(
+          "_set_text",
+          [](Scene& s, const std::string& path, const std::string& value) {
+            setOption(s, path, value);
+          },
+          py::arg("path"), py::arg("value"),
+          "Any technique's option by its scene-file path, the value as --set writes it")
+      .def("set_importance", &Scene::setImportance, py::arg("pattern"), py::arg("importance"),
+           "Importance in [0, 1] for the objects whose name or group the pattern matches whole; "
+           "returns how many")
+      .def_property_readonly("width", [](const Scene& s) { return s.width; })
+      .def_property_readonly("height", [](const Scene& s) { return s.height; })
+      .def_property_readonly("samples", [](const Scene& s) { return s.samples; })
+      .def_property_readonly("objects", [](const Scene& s) {
+        std::vector<std::string> names;
+        for (const SceneObject& o : s.objects) names.push_back(o.name);
+        return names;
+      });
+
+  py::class_<PyRenderer>(m, "Renderer")
+      .def(py::init<const Scene&>(), py::arg("scene"),
+           "Compiles the scene's frame on the shared headless context (the scene is copied)")
+      .def("render", &PyRenderer::render, py::arg("time") = 0.0f,
+           "One frame at `time` seconds: RGBA uint8, shape (height, width, 4), rows top down")
+      .def("aovs", &PyRenderer::aovs, "The last frame's AOVs by name (float32 arrays)")
+      .def("timings", &PyRenderer::timings, "The last frame's passes: name, gpu_ms, cpu_ms")
+      .def_property_readonly("device", &PyRenderer::device, "The OpenGL renderer string");
+
+  m.def(
+      "live_contexts", [] { return sharedContext.expired() ? 0 : 1; },
+      "1 while a renderer holds the headless context, else 0");
+}

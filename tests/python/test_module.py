@@ -1,0 +1,117 @@
+"""The Python module (python/cutaway) against the CLI on the same scenes: frames and AOVs
+equal to what `cutaway render` writes, options by their scene-file paths, errors as
+cutaway.Error with the CLI's messages, and the shared context released with the last
+renderer. Run by CTest (Python.Module) with PYTHONPATH at the build tree's python/."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+from PIL import Image as PilImage
+
+import cutaway
+
+CLI = os.environ["CUTAWAY_BINARY"]
+DATA = os.environ["CUTAWAY_TEST_DATA"]
+CUBE = os.path.join(DATA, "meshes", "cube.obj")
+
+
+def cube_scene(**extra):
+    # Two unit cubes ([0, 1]³) centred, the small one of interest inside the big one, cut by
+    # the adaptive cutaway.
+    scene = {"resolution": [80, 60], "samples": 1,
+             "camera": {"eye": [3, 2.5, 4], "target": [0, 0, 0], "fov": 40},
+             "objects": [{"name": "outer", "file": CUBE, "role": "context",
+                          "transform": {"scale": 1.5, "translate": [-0.75, -0.75, -0.75]}},
+                         {"name": "inner", "file": CUBE, "role": "interest",
+                          "transform": {"scale": 0.7, "translate": [-0.35, -0.35, -0.35]},
+                          "color": [0.9, 0.3, 0.2]}],
+             "cutters": {"adaptive": {"angle": 35}}}
+    scene.update(extra)
+    return scene
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        kind = f.readline().strip()
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    channels = 3 if kind == b"PF" else 1
+    image = data.reshape(height, width, channels)[::-1]  # PFM rows run bottom up
+    return image[:, :, 0] if channels == 1 else image
+
+
+def test_frame_and_aovs_equal_the_clis(tmp_path):
+    scene_file = tmp_path / "cubes.json"
+    scene_file.write_text(json.dumps(cube_scene()))
+    subprocess.run([CLI, "render", str(scene_file), "-o", str(tmp_path / "cli.png"),
+                    "--aov", str(tmp_path / "aovs")], check=True, capture_output=True)
+    renderer = cutaway.Renderer(cutaway.load(scene_file))
+    image = renderer.render()
+    assert image.shape == (60, 80, 4) and image.dtype == np.uint8
+    cli = np.asarray(PilImage.open(tmp_path / "cli.png").convert("RGBA"))
+    assert np.array_equal(image, cli)
+    aovs = renderer.aovs()
+    pfms = {p[:-4] for p in os.listdir(tmp_path / "aovs") if p.endswith(".pfm")}
+    assert {"depth", "normal", "position", "objectId", "cutawayDepth"} <= set(aovs)
+    assert pfms == set(aovs)
+    for name, array in aovs.items():
+        assert array.dtype == np.float32
+        np.testing.assert_array_equal(array, read_pfm(tmp_path / "aovs" / (name + ".pfm")),
+                                      err_msg=name)
+    # The AOVs are the frame's: the inner cube is seen through the cut.
+    assert (renderer.aov("objectId") == 1).sum() > 50
+
+
+def test_a_dict_scene_and_options_by_path():
+    renderer = cutaway.Renderer(cutaway.from_dict(cube_scene()))
+    narrow = renderer.render()
+    scene = cutaway.from_dict(cube_scene())
+    scene.set("cutters.adaptive.angle", 10)
+    scene.set("style.lines.color", [1, 0, 0])
+    wide = cutaway.Renderer(scene).render()
+    assert not np.array_equal(narrow, wide)
+    red = (wide[:, :, 0] == 255) & (wide[:, :, 1] == 0) & (wide[:, :, 2] == 0)
+    assert red.sum() > 20  # the feature lines, now red
+    assert scene.objects == ["outer", "inner"] and (scene.width, scene.height) == (80, 60)
+    assert scene.set_importance("in.*", 0.8) == 1
+
+
+def test_bad_input_raises_the_clis_messages(tmp_path):
+    with pytest.raises(cutaway.Error, match="no-such.json: cannot open scene file"):
+        cutaway.load(tmp_path / "no-such.json")
+    with pytest.raises(cutaway.Error, match=r"<dict>: /colour: unknown key \"colour\""):
+        cutaway.from_dict(dict(cube_scene(), colour=1))
+    scene = cutaway.from_dict(cube_scene())
+    with pytest.raises(cutaway.Error, match=r"value 95 is outside \[0, 90\]"):
+        scene.set("cutters.adaptive.angle", 95)
+    with pytest.raises(cutaway.Error, match="no such option"):
+        scene.set("cutters.adaptive.angel", 30)
+    renderer = cutaway.Renderer(scene)
+    renderer.render()
+    with pytest.raises(cutaway.Error, match="no AOV \"nope\""):
+        renderer.aov("nope")
+    assert issubclass(cutaway.Error, RuntimeError)
+
+
+def test_the_context_goes_with_the_last_renderer():
+    scene = cutaway.from_dict(cube_scene(cutters={}))
+    fds = len(os.listdir("/proc/self/fd"))
+    for _ in range(100):
+        renderer = cutaway.Renderer(scene)
+        assert cutaway.live_contexts() == 1
+        renderer.render()
+        del renderer
+        assert cutaway.live_contexts() == 0
+    assert len(os.listdir("/proc/self/fd")) <= fds + 2
+
+
+def test_the_frame_shows_itself_and_bench_reports_figures():
+    renderer = cutaway.Renderer(cutaway.from_dict(cube_scene()))
+    png = renderer.render()._repr_png_()
+    assert png.startswith(b"\x89PNG")
+    figures = renderer.bench(frames=2)
+    assert figures["frames"] == 2 and figures["frame_ms"]["median"] > 0
+    assert "geometry" in figures["passes_gpu_ms"] and figures["device"]
