@@ -7,10 +7,14 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <memory>
+#include <optional>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/geometry/mesh.hpp"
 #include "cutaway/gl/context.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/render/techniques.hpp"
@@ -85,6 +89,56 @@ class PyRenderer {
   std::unique_ptr<Renderer> renderer_;
 };
 
+// An object from arrays: `vertices` (N, 3) in object space, `faces` (M, 3) indices into them
+// (counter-clockwise seen from outside), checked as a mesh file's are; normals as the mesh
+// importer makes them.
+void addMesh(Scene& s, const std::string& name,
+             py::array_t<double, py::array::c_style | py::array::forcecast> vertices,
+             py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> faces,
+             const std::string& role, const std::optional<std::array<float, 3>>& color) {
+  const auto fail = [&](const std::string& reason) { throw Error("add_mesh", name, reason); };
+  if (name.empty()) fail("the object needs a name");
+  for (const SceneObject& o : s.objects)
+    if (o.name == name) fail("the scene already has an object named \"" + name + "\"");
+  if (vertices.ndim() != 2 || vertices.shape(1) != 3) fail("vertices must have shape (N, 3)");
+  if (faces.ndim() != 2 || faces.shape(1) != 3) fail("faces must have shape (M, 3)");
+  Mesh mesh;
+  const double* v = vertices.data();
+  for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
+    const glm::dvec3 p(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    if (!(std::abs(p.x) <= 1e15 && std::abs(p.y) <= 1e15 && std::abs(p.z) <= 1e15))
+      fail("vertex " + std::to_string(i) + " is not finite or lies beyond 1e15");
+    mesh.positions.emplace_back(p);
+  }
+  const std::int64_t* f = faces.data();
+  const auto count = std::int64_t(mesh.positions.size());
+  for (py::ssize_t i = 0; i < faces.shape(0); ++i) {
+    for (int k = 0; k < 3; ++k)
+      if (f[3 * i + k] < 0 || f[3 * i + k] >= count)
+        fail("face " + std::to_string(i) + " has vertex index " + std::to_string(f[3 * i + k]) +
+             " out of range (" + std::to_string(count) + " vertices)");
+    mesh.triangles.emplace_back(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+  }
+  dropDegenerateTriangles(mesh);
+  if (mesh.triangles.empty()) fail("no triangle of non-zero area");
+  computeVertexNormals(mesh);
+  analyzeTopology(mesh);
+  SceneObject o;
+  o.name = name;
+  o.source = "numpy";
+  if (role == "interest")
+    o.role = Role::Interest;
+  else if (role == "exterior")
+    o.role = Role::Exterior;
+  else if (role == "interior")
+    o.role = Role::Interior;
+  else if (role != "context")
+    fail("unknown role \"" + role + "\" (expected one of: context, interest, exterior, interior)");
+  if (color) o.material.color = glm::vec3((*color)[0], (*color)[1], (*color)[2]);
+  o.mesh = std::make_shared<Mesh>(std::move(mesh));
+  s.objects.push_back(std::move(o));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_cutaway, m) {
@@ -107,6 +161,9 @@ PYBIND11_MODULE(_cutaway, m) {
           },
           py::arg("path"), py::arg("value"),
           "Any technique's option by its scene-file path, the value as --set writes it")
+      .def("add_mesh", &addMesh, py::arg("name"), py::arg("vertices"), py::arg("faces"),
+           py::arg("role") = "context", py::arg("color") = py::none(),
+           "An object from arrays: vertices (N, 3), faces (M, 3) indices")
       .def("set_importance", &Scene::setImportance, py::arg("pattern"), py::arg("importance"),
            "Importance in [0, 1] for the objects whose name or group the pattern matches whole; "
            "returns how many")

@@ -115,3 +115,51 @@ def test_the_frame_shows_itself_and_bench_reports_figures():
     figures = renderer.bench(frames=2)
     assert figures["frames"] == 2 and figures["frame_ms"]["median"] > 0
     assert "geometry" in figures["passes_gpu_ms"] and figures["device"]
+
+
+CUBE_VERTICES = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                          [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], dtype=np.float64)
+# tests/data/meshes/cube.obj's faces, 0-based: counter-clockwise seen from outside.
+CUBE_FACES = np.array([[0, 3, 2], [0, 2, 1], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+                       [3, 7, 6], [3, 6, 2], [0, 4, 7], [0, 7, 3], [1, 2, 6], [1, 6, 5]])
+
+
+def test_a_numpy_mesh_is_the_same_object_as_its_file():
+    from_files = cutaway.Renderer(cutaway.from_dict(cube_scene()))
+    expected = from_files.render()
+    # The outer cube from arrays instead of cube.obj (a scene needs one object of its own).
+    base = cube_scene()
+    base["objects"] = [base["objects"][1]]
+    scene = cutaway.from_dict(base)
+    scene.add_mesh("outer", CUBE_VERTICES * 1.5 - 0.75, CUBE_FACES)
+    renderer = cutaway.Renderer(scene)
+    image = renderer.render()
+    differ = np.abs(image.astype(int) - expected.astype(int)).max(axis=2) > 2
+    assert differ.mean() < 0.005, differ.sum()
+    # Every visible point of its surface (not of its cut) lies on the cube: one coordinate at
+    # ±0.75.
+    position, ids = renderer.aov("position"), renderer.aov("objectId")
+    on = position[(ids == 1) & (renderer.aov("cutMask") == 0)]
+    assert len(on) > 200
+    assert np.all(np.abs(np.abs(on) - 0.75).min(axis=1) < 1e-4)
+    assert np.all(np.abs(on) <= 0.75 + 1e-4)
+
+
+def test_a_bad_numpy_mesh_is_refused():
+    scene = cutaway.from_dict(cube_scene())
+    with pytest.raises(cutaway.Error, match=r"add_mesh: m: face 1 has vertex index 8 out of "
+                                            r"range \(8 vertices\)"):
+        scene.add_mesh("m", CUBE_VERTICES, np.array([[0, 1, 2], [0, 2, 8]]))
+    with pytest.raises(cutaway.Error, match="vertices must have shape"):
+        scene.add_mesh("m", CUBE_VERTICES[:, :2], CUBE_FACES)
+    bad = CUBE_VERTICES.copy()
+    bad[3, 1] = np.nan
+    with pytest.raises(cutaway.Error, match="vertex 3 is not finite"):
+        scene.add_mesh("m", bad, CUBE_FACES)
+    with pytest.raises(cutaway.Error, match="already has an object named \"inner\""):
+        scene.add_mesh("inner", CUBE_VERTICES, CUBE_FACES)
+    with pytest.raises(cutaway.Error, match="unknown role \"inside\""):
+        scene.add_mesh("m", CUBE_VERTICES, CUBE_FACES, role="inside")
+    assert scene.objects == ["outer", "inner"]  # nothing half-added
+    scene.add_mesh("m", CUBE_VERTICES, CUBE_FACES, role="interest", color=[0.1, 0.8, 0.2])
+    assert scene.objects == ["outer", "inner", "m"]
