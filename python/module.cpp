@@ -73,7 +73,6 @@ class PyRenderer {
   }
 
   const std::string& device() const { return context_->info().renderer; }
-  const Scene& scene() const { return scene_; }
 
  private:
   static py::array_t<float> toArray(const FloatImage& image) {
