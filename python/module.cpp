@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -118,21 +119,20 @@ void addMesh(Scene& s, const std::string& name,
              " out of range (" + std::to_string(count) + " vertices)");
     mesh.triangles.emplace_back(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
   }
-  dropDegenerateTriangles(mesh);
+  const Role roles[] = {Role::Context, Role::Interest, Role::Exterior, Role::Interior};
+  const Role* known =
+      std::find_if(std::begin(roles), std::end(roles), [&](Role r) { return role == roleName(r); });
+  if (known == std::end(roles))
+    fail("unknown role \"" + role + "\" (expected one of: context, interest, exterior, interior)");
+  mesh.report.droppedDegenerate = dropDegenerateTriangles(mesh);
   if (mesh.triangles.empty()) fail("no triangle of non-zero area");
   computeVertexNormals(mesh);
+  mesh.report.normalsComputed = true;
   analyzeTopology(mesh);
   SceneObject o;
   o.name = name;
   o.source = "numpy";
-  if (role == "interest")
-    o.role = Role::Interest;
-  else if (role == "exterior")
-    o.role = Role::Exterior;
-  else if (role == "interior")
-    o.role = Role::Interior;
-  else if (role != "context")
-    fail("unknown role \"" + role + "\" (expected one of: context, interest, exterior, interior)");
+  o.role = *known;
   if (color) o.material.color = glm::vec3((*color)[0], (*color)[1], (*color)[2]);
   o.mesh = std::make_shared<Mesh>(std::move(mesh));
   s.objects.push_back(std::move(o));

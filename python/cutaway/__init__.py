@@ -67,6 +67,12 @@ class Renderer:
 
     def __init__(self, scene):
         self._native = _NativeRenderer(scene)
+        self._aovs = None  # the last frame's, read back once
+
+    def _frame_aovs(self):
+        if self._aovs is None:
+            self._aovs = self._native.aovs()
+        return self._aovs
 
     @property
     def device(self):
@@ -75,19 +81,20 @@ class Renderer:
 
     def render(self, time=0.0):
         """One frame at `time` seconds: RGBA uint8, shape (height, width, 4), rows top down."""
+        self._aovs = None
         return self._native.render(float(time)).view(Image)
 
     def aovs(self):
         """Every AOV of the last frame by name: float32, (height, width) or (height, width, 3),
         rows top down (the CLI's --aov PFMs, which are stored bottom up)."""
-        return self._native.aovs()
+        return {name: array.copy() for name, array in self._frame_aovs().items()}
 
     def aov(self, name):
         """One AOV of the last frame by name."""
-        aovs = self._native.aovs()
+        aovs = self._frame_aovs()
         if name not in aovs:
             raise Error("no AOV \"%s\" in this frame (it has: %s)" % (name, ", ".join(aovs)))
-        return aovs[name]
+        return aovs[name].copy()
 
     def timings(self):
         """The last frame's passes: [{"name", "gpu_ms", "cpu_ms"}]."""
@@ -98,6 +105,7 @@ class Renderer:
         frame's wall time, in milliseconds, as `cutaway bench` reports them."""
         if frames < 1:
             raise Error("bench: frames must be at least 1")
+        self._aovs = None
         self._native.render(0.0)
         walls, passes = [], {}
         for _ in range(frames):
