@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/geometry/mesh.hpp"
 #include "cutaway/gl/context.hpp"
+#include "cutaway/io/volume_import.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/scene.hpp"
@@ -89,19 +91,22 @@ class PyRenderer {
   std::unique_ptr<Renderer> renderer_;
 };
 
-// An object from arrays: `vertices` (N, 3) in object space, `faces` (M, 3) indices into them
+// A mesh from arrays: `vertices` (N, 3) in object space, `faces` (M, 3) indices into them
 // (counter-clockwise seen from outside), checked as a mesh file's are; normals as the mesh
-// importer makes them.
-void addMesh(Scene& s, const std::string& name,
-             py::array_t<double, py::array::c_style | py::array::forcecast> vertices,
-             py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> faces,
-             const std::string& role, const std::optional<std::array<float, 3>>& color) {
-  const auto fail = [&](const std::string& reason) { throw Error("add_mesh", name, reason); };
-  if (name.empty()) fail("the object needs a name");
-  for (const SceneObject& o : s.objects)
-    if (o.name == name) fail("the scene already has an object named \"" + name + "\"");
-  if (vertices.ndim() != 2 || vertices.shape(1) != 3) fail("vertices must have shape (N, 3)");
-  if (faces.ndim() != 2 || faces.shape(1) != 3) fail("faces must have shape (M, 3)");
+// importer makes them. Errors name `source` and `place`.
+std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std::string& place,
+                                           const py::handle& vertexArray,
+                                           const py::handle& faceArray) {
+  const auto fail = [&](const std::string& reason) { throw Error(source, place, reason); };
+  using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
+  using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+  const auto vertices = Vertices::ensure(vertexArray);
+  const auto faces = Faces::ensure(faceArray);
+  PyErr_Clear();  // ensure() leaves the conversion's error set when it fails
+  if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3)
+    fail("vertices must be numbers of shape (N, 3)");
+  if (!faces || faces.ndim() != 2 || faces.shape(1) != 3)
+    fail("faces must be integers of shape (M, 3)");
   Mesh mesh;
   const double* v = vertices.data();
   for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
@@ -119,22 +124,78 @@ void addMesh(Scene& s, const std::string& name,
              " out of range (" + std::to_string(count) + " vertices)");
     mesh.triangles.emplace_back(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
   }
-  const Role roles[] = {Role::Context, Role::Interest, Role::Exterior, Role::Interior};
-  const Role* known =
-      std::find_if(std::begin(roles), std::end(roles), [&](Role r) { return role == roleName(r); });
-  if (known == std::end(roles))
-    fail("unknown role \"" + role + "\" (expected one of: context, interest, exterior, interior)");
   mesh.report.droppedDegenerate = dropDegenerateTriangles(mesh);
   if (mesh.triangles.empty()) fail("no triangle of non-zero area");
   computeVertexNormals(mesh);
   mesh.report.normalsComputed = true;
   analyzeTopology(mesh);
+  return std::make_shared<const Mesh>(std::move(mesh));
+}
+
+// A volume from a 3-D array indexed values[i, j, k], any layout and byte order, and the
+// row-major 4×4 `affine` from voxel index to world (NiBabel's convention). Errors name `source`
+// and `place`.
+std::shared_ptr<const Volume> volumeFromArray(const std::string& source, const std::string& place,
+                                              const py::array& values,
+                                              const std::array<double, 16>& affine) {
+  if (values.ndim() != 3)
+    throw Error(source, place,
+                "values must be a 3-D array, got " + std::to_string(values.ndim()) + " dimensions");
+  MemoryVoxels voxels;
+  voxels.data = values.data();
+  for (int a = 0; a < 3; ++a) {
+    voxels.dims[a] = values.shape(a);
+    voxels.strides[a] = values.strides(a);
+  }
+  const py::dtype type = values.dtype();
+  voxels.kind = type.kind();
+  voxels.bytes = int(type.itemsize());
+  const char order = type.byteorder();
+  voxels.swapped = (order == '>' && std::endian::native == std::endian::little) ||
+                   (order == '<' && std::endian::native == std::endian::big);
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) voxels.indexToWorld[c][r] = affine[std::size_t(4 * r + c)];
+  return std::make_shared<const Volume>(volumeFromMemory(voxels, source, place));
+}
+
+// Meshes {key: (vertices, faces)} and volumes {key: (values, affine)} for "arrays": KEY.
+SceneArrays sceneArrays(const std::string& source, const py::dict& meshes,
+                        const py::dict& volumes) {
+  SceneArrays arrays;
+  for (const auto& [key, value] : meshes) {
+    const auto name = key.cast<std::string>();
+    const auto pair = value.cast<py::tuple>();
+    arrays.meshes[name] = meshFromArrays(source, name, pair[0], pair[1]);
+  }
+  for (const auto& [key, value] : volumes) {
+    const auto name = key.cast<std::string>();
+    const auto pair = value.cast<py::tuple>();
+    arrays.volumes[name] = volumeFromArray(source, name, pair[0].cast<py::array>(),
+                                           pair[1].cast<std::array<double, 16>>());
+  }
+  return arrays;
+}
+
+// An object from arrays, appended to the scene with a role and an optional colour.
+void addMesh(Scene& s, const std::string& name, const py::handle& vertices, const py::handle& faces,
+             const std::string& role, const std::optional<std::array<float, 3>>& color) {
+  const auto fail = [&](const std::string& reason) { throw Error("add_mesh", name, reason); };
+  if (name.empty()) fail("the object needs a name");
+  for (const SceneObject& o : s.objects)
+    if (o.name == name) fail("the scene already has an object named \"" + name + "\"");
+  for (const SceneVolume& v : s.volumes)
+    if (v.name == name) fail("the scene already has a volume named \"" + name + "\"");
+  const Role roles[] = {Role::Context, Role::Interest, Role::Exterior, Role::Interior};
+  const Role* known =
+      std::find_if(std::begin(roles), std::end(roles), [&](Role r) { return role == roleName(r); });
+  if (known == std::end(roles))
+    fail("unknown role \"" + role + "\" (expected one of: context, interest, exterior, interior)");
   SceneObject o;
   o.name = name;
   o.source = "numpy";
   o.role = *known;
   if (color) o.material.color = glm::vec3((*color)[0], (*color)[1], (*color)[2]);
-  o.mesh = std::make_shared<Mesh>(std::move(mesh));
+  o.mesh = meshFromArrays("add_mesh", name, vertices, faces);
   s.objects.push_back(std::move(o));
 }
 
@@ -148,11 +209,15 @@ PYBIND11_MODULE(_cutaway, m) {
       .def_static("load", &loadScene, py::arg("path"), "A scene file (docs/scene-format.md)")
       .def_static(
           "parse",
-          [](const std::string& text, const std::string& name, const std::filesystem::path& dir) {
-            return parseScene(text, name, dir);
+          [](const std::string& text, const std::string& name, const std::filesystem::path& dir,
+             const py::dict& meshes, const py::dict& volumes) {
+            return parseScene(text, name, dir, sceneArrays(name, meshes, volumes));
           },
-          py::arg("text"), py::arg("name"), py::arg("base_dir"),
-          "Scene JSON text; relative file names resolve against base_dir")
+          py::arg("text"), py::arg("name"), py::arg("base_dir"), py::arg("meshes") = py::dict(),
+          py::arg("volumes") = py::dict(),
+          "Scene JSON text; relative file names resolve against base_dir; entries with "
+          "\"arrays\": KEY take meshes[KEY] = (vertices, faces) or volumes[KEY] = (values, "
+          "affine)")
       .def(
           "_set_text",
           [](Scene& s, const std::string& path, const std::string& value) {
@@ -160,6 +225,17 @@ PYBIND11_MODULE(_cutaway, m) {
           },
           py::arg("path"), py::arg("value"),
           "Any technique's option by its scene-file path, the value as --set writes it")
+      .def(
+          "_add_volume",
+          [](Scene& s, const std::string& text, const std::filesystem::path& dir,
+             const std::string& key, const py::array& values,
+             const std::array<double, 16>& affine) {
+            SceneArrays arrays;
+            arrays.volumes[key] = volumeFromArray("add_volume", key, values, affine);
+            appendVolume(s, text, "add_volume", dir, arrays);
+          },
+          py::arg("text"), py::arg("base_dir"), py::arg("key"), py::arg("values"),
+          py::arg("affine"), "A \"volumes\" entry whose \"arrays\" is `key`")
       .def("add_mesh", &addMesh, py::arg("name"), py::arg("vertices"), py::arg("faces"),
            py::arg("role") = "context", py::arg("color") = py::none(),
            "An object from arrays: vertices (N, 3), faces (M, 3) indices")
@@ -169,9 +245,15 @@ PYBIND11_MODULE(_cutaway, m) {
       .def_property_readonly("width", [](const Scene& s) { return s.width; })
       .def_property_readonly("height", [](const Scene& s) { return s.height; })
       .def_property_readonly("samples", [](const Scene& s) { return s.samples; })
-      .def_property_readonly("objects", [](const Scene& s) {
+      .def_property_readonly("objects",
+                             [](const Scene& s) {
+                               std::vector<std::string> names;
+                               for (const SceneObject& o : s.objects) names.push_back(o.name);
+                               return names;
+                             })
+      .def_property_readonly("volumes", [](const Scene& s) {
         std::vector<std::string> names;
-        for (const SceneObject& o : s.objects) names.push_back(o.name);
+        for (const SceneVolume& v : s.volumes) names.push_back(v.name);
         return names;
       });
 

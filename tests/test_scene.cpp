@@ -100,7 +100,7 @@ const BadScene kBadScenes[] = {
     // Objects.
     {"unknown_object_key.json", "/objects/0/material", "unknown key \"material\""},
     {"missing_file_key.json", "/objects/0",
-     "needs exactly one of \"file\", \"raster\" or \"footprints\""},
+     "needs exactly one of \"file\", \"raster\", \"footprints\" or \"arrays\""},
     {"object_file_and_raster.json", "/objects/0", "needs exactly one of"},
     {"raster_not_found.json", "/objects/0/raster/file", "raster file not found"},
     {"raster_step_zero.json", "/objects/0/raster/step", "outside [1, "},
@@ -1283,4 +1283,74 @@ TEST(SceneStyle, ShadowShortFormsAndNames) {
   EXPECT_EQ(
       parse(R"({"style": "hatching", "objects": [{"name": "c", "file": "cube.obj"}]})").style.name,
       "hatching");
+}
+
+// Meshes and volumes given in memory (the Python module's arrays) by "arrays": KEY.
+TEST(SceneArrays, EntriesTakeTheirMeshAndVolumeByKey) {
+  SceneArrays arrays;
+  auto mesh = std::make_shared<Mesh>();
+  mesh->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh->triangles = {{0, 1, 2}};
+  arrays.meshes["tri"] = mesh;
+  auto volume = std::make_shared<Volume>();
+  volume->dims = {2, 2, 2};
+  volume->values.assign(8, 1.0f);
+  arrays.volumes["v"] = volume;
+  const Scene s = parseScene(
+      R"({"objects": [{"name": "a", "arrays": "tri", "role": "interest"}],
+          "volumes": [{"name": "b", "arrays": "v", "transferFunction": [{"value": 1, "opacity": 0.5}]}]})",
+      "<dict>", kMeshes, arrays);
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].mesh, mesh);
+  EXPECT_EQ(s.objects[0].role, Role::Interest);
+  EXPECT_EQ(s.objects[0].source, "arrays tri");
+  ASSERT_EQ(s.volumes.size(), 1u);
+  EXPECT_EQ(s.volumes[0].volume, volume);
+
+  test::expectError(
+      [&] { parseScene(R"({"objects": [{"name": "a", "arrays": "x"}]})", "s.json", kMeshes); },
+      {"s.json: /objects/0/arrays: no arrays named \"x\" were given"});
+  test::expectError(
+      [&] {
+        parseScene(R"({"objects": [{"name": "a", "arrays": "tri", "file": "cube.obj"}]})", "s.json",
+                   kMeshes, arrays);
+      },
+      {"/objects/0: an object needs exactly one of"});
+  test::expectError(
+      [&] {
+        parseScene(R"({"volumes": [{"name": "b", "arrays": "v", "file": "x.nii",
+                                    "transferFunction": [{"value": 1, "opacity": 0.5}]}]})",
+                   "s.json", kMeshes, arrays);
+      },
+      {"/volumes/0: a volume needs one of \"file\" or \"arrays\", not both"});
+}
+
+TEST(SceneArrays, AppendVolumeChecksTheEntryAndLeavesTheSceneOnError) {
+  SceneArrays arrays;
+  auto volume = std::make_shared<Volume>();
+  volume->dims = {2, 2, 2};
+  volume->values.assign(8, 1.0f);
+  arrays.volumes["v"] = volume;
+  Scene s = parseScene(R"({"objects": [{"name": "cube", "file": "cube.obj"}]})", "s", kMeshes);
+  test::expectError(
+      [&] {
+        appendVolume(
+            s,
+            R"({"name": "cube", "arrays": "v", "transferFunction": [{"value": 1, "opacity": 0.5}]})",
+            "add_volume", kMeshes, arrays);
+      },
+      {"add_volume: /volumes/0/name: the name \"cube\" is taken"});
+  test::expectError(
+      [&] {
+        appendVolume(s, R"({"name": "w", "arrays": "v", "transferFunction": [{"value": 1,
+                        "opacity": 2}]})",
+                     "add_volume", kMeshes, arrays);
+      },
+      {"add_volume: /transferFunction/0/opacity"});
+  EXPECT_TRUE(s.volumes.empty());
+  appendVolume(
+      s, R"({"name": "w", "arrays": "v", "transferFunction": [{"value": 1, "opacity": 0.5}]})",
+      "add_volume", kMeshes, arrays);
+  ASSERT_EQ(s.volumes.size(), 1u);
+  EXPECT_EQ(s.volumes[0].name, "w");
 }

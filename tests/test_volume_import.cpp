@@ -1722,3 +1722,65 @@ TEST(VolumeRange, IgnoresNanAndInfinities) {
   EXPECT_EQ(v.minValue, -2.0f);
   EXPECT_EQ(v.maxValue, 3.0f);
 }
+
+// Voxels in memory (the Python module's arrays): element (i, j, k) read through its strides in
+// any order and byte order, checked as a file's header is.
+TEST(VolumeFromMemory, ReadsThroughStridesAndByteOrder) {
+  // A 3 × 2 × 2 block stored k fastest, then j, then i (a C-order [i, j, k] array), as
+  // big-endian int16 holding 100·i + 10·j + k.
+  std::vector<std::uint16_t> stored(12);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k) {
+        const auto value = std::uint16_t(100 * i + 10 * j + k);
+        stored[std::size_t(4 * i + 2 * j + k)] = std::uint16_t(value << 8 | value >> 8);
+      }
+  MemoryVoxels m;
+  m.data = stored.data();
+  m.dims[0] = 3, m.dims[1] = 2, m.dims[2] = 2;
+  m.strides[0] = 8, m.strides[1] = 4, m.strides[2] = 2;
+  m.kind = 'i', m.bytes = 2, m.swapped = std::endian::native == std::endian::little;
+  m.indexToWorld = glm::dmat4(glm::dvec4(0.5, 0, 0, 0), glm::dvec4(0, 2, 0, 0),
+                              glm::dvec4(0, 0, 3, 0), glm::dvec4(1, 2, 3, 1));
+  const Volume v = volumeFromMemory(m, "array", "/volumes/0");
+  ASSERT_EQ(v.dims, glm::ivec3(3, 2, 2));
+  EXPECT_EQ(v.voxelType, "i16");
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 2; ++j)
+      for (int k = 0; k < 2; ++k) EXPECT_EQ(v.at({i, j, k}), float(100 * i + 10 * j + k));
+  EXPECT_EQ(v.minValue, 0.0f);
+  EXPECT_EQ(v.maxValue, 211.0f);
+  EXPECT_EQ(v.spacing(), glm::vec3(0.5f, 2.0f, 3.0f));
+  EXPECT_EQ(glm::vec3(v.indexToWorld[3]), glm::vec3(1, 2, 3));
+
+  // The same block seen backwards along i (a negative stride from its last row).
+  std::vector<float> floats(12);
+  for (int i = 0; i < 3; ++i)
+    for (int jk = 0; jk < 4; ++jk)
+      floats[std::size_t(4 * (2 - i) + jk)] = float(100 * i + 10 * (jk / 2) + jk % 2);
+  MemoryVoxels r = m;
+  r.data = floats.data() + 8;
+  r.strides[0] = -16, r.strides[1] = 8, r.strides[2] = 4;
+  r.kind = 'f', r.bytes = 4, r.swapped = false;
+  EXPECT_EQ(volumeFromMemory(r, "array", "").values, v.values);
+}
+
+TEST(VolumeFromMemory, RefusesBadTypesDimsAndPlacements) {
+  float one = 1.0f;
+  MemoryVoxels m;
+  m.data = &one;
+  m.dims[0] = m.dims[1] = m.dims[2] = 1;
+  m.kind = 'c', m.bytes = 8;
+  expectError([&] { volumeFromMemory(m, "array", "/volumes/2"); },
+              {"array: /volumes/2: unsupported voxel type 'c64'"});
+  m.kind = 'f', m.bytes = 4;
+  m.dims[1] = 0;
+  expectError([&] { volumeFromMemory(m, "array", ""); }, {"dims must be positive, got 1×0×1"});
+  m.dims[1] = std::int64_t(1) << 31;
+  expectError([&] { volumeFromMemory(m, "array", ""); }, {"exceed the limit"});
+  m.dims[1] = 1;
+  m.indexToWorld[2][2] = 0.0;
+  expectError([&] { volumeFromMemory(m, "array", ""); }, {"transform is singular"});
+  m.indexToWorld[2][2] = std::numeric_limits<double>::infinity();
+  expectError([&] { volumeFromMemory(m, "array", ""); }, {"transform is not finite"});
+}

@@ -28,10 +28,83 @@ def load(path):
     return Scene.load(os.fspath(path))
 
 
+def _json_default(value):
+    # NumPy numbers and arrays inside a dict (a transfer function built with NumPy).
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError("%s is not a number, string, list or dict" % type(value).__name__)
+
+
+def _dumps(value):
+    try:
+        return json.dumps(value, default=_json_default)
+    except (TypeError, ValueError) as e:
+        raise Error("<dict>: %s" % e) from None
+
+
+def _affine(place, spacing, origin, affine):
+    """The row-major 4×4 voxel-index-to-world matrix as 16 numbers: `affine` itself (NiBabel's
+    convention), or the diagonal of `spacing` moved to `origin`."""
+    if affine is not None:
+        if spacing is not None or origin is not None:
+            raise Error("%s: give \"affine\" or \"spacing\" and \"origin\", not both" % place)
+        matrix = np.asarray(affine, dtype=float)
+        if matrix.shape != (4, 4):
+            raise Error("%s: affine must be a 4×4 matrix, got shape %s" % (place, matrix.shape))
+        return matrix.ravel().tolist()
+    matrix = np.eye(4)
+    for key, value, row in (("spacing", spacing, None), ("origin", origin, 3)):
+        if value is None:
+            continue
+        vector = np.asarray(value, dtype=float)
+        if vector.shape != (3,):
+            raise Error("%s: %s must be 3 numbers, got shape %s" % (place, key, vector.shape))
+        if row is None:
+            matrix[:3, :3] = np.diag(vector)
+        else:
+            matrix[:3, 3] = vector
+    return matrix.ravel().tolist()
+
+
+def _object_with_arrays(entry, place, meshes):
+    # An object entry with "vertices" and "faces" becomes "arrays": its JSON pointer, the
+    # arrays going to the native parser under that key.
+    if not (isinstance(entry, dict) and ("vertices" in entry or "faces" in entry)):
+        return entry
+    entry = dict(entry)
+    if "vertices" not in entry or "faces" not in entry:
+        raise Error("<dict>: %s: an object from arrays needs \"vertices\" and \"faces\"" % place)
+    meshes[place] = (entry.pop("vertices"), entry.pop("faces"))
+    return dict(entry, arrays=place)
+
+
+def _volume_with_arrays(entry, place, volumes):
+    # A volume entry with "values" (and "spacing", "origin" or "affine") likewise.
+    if not (isinstance(entry, dict) and "values" in entry):
+        return entry
+    entry = dict(entry)
+    affine = _affine("<dict>: " + place, entry.pop("spacing", None), entry.pop("origin", None),
+                     entry.pop("affine", None))
+    volumes[place] = (np.asarray(entry.pop("values")), affine)
+    return dict(entry, arrays=place)
+
+
 def from_dict(scene, base_dir="."):
     """A scene from a dict with the scene file's schema; relative file names resolve
-    against `base_dir`."""
-    return Scene.parse(json.dumps(scene), "<dict>", os.fspath(base_dir))
+    against `base_dir`. An object entry may give NumPy `vertices` (N, 3) and `faces` (M, 3)
+    instead of a file, a volume entry `values` indexed [i, j, k] with `spacing` and `origin`
+    or a 4×4 `affine` (docs/python.md)."""
+    if not isinstance(scene, dict):
+        raise Error("<dict>: expected a dict, got %s" % type(scene).__name__)
+    scene, meshes, volumes = dict(scene), {}, {}
+    for key, with_arrays, arrays in (("objects", _object_with_arrays, meshes),
+                                     ("volumes", _volume_with_arrays, volumes)):
+        if isinstance(scene.get(key), list):
+            scene[key] = [with_arrays(entry, "/%s/%d" % (key, i), arrays)
+                          for i, entry in enumerate(scene[key])]
+    return Scene.parse(_dumps(scene), "<dict>", os.fspath(base_dir), meshes, volumes)
 
 
 def _option_text(value):
@@ -48,7 +121,21 @@ def _set(self, path, value):
     self._set_text(path, _option_text(value))
 
 
+def _add_volume(self, name, values, spacing=None, origin=None, affine=None, base_dir=".",
+                **entry):
+    """A volume from a 3-D array indexed values[i, j, k] (transpose a [z, y, x] array), placed
+    by `spacing` and `origin` or a 4×4 `affine` (voxel index to world); every other key of a
+    "volumes" entry by its JSON name: transferFunction=[…], role="interest", mode=…"""
+    if not isinstance(name, str):
+        raise Error("add_volume: the name must be a string")
+    place = "add_volume: " + name
+    entry = dict(entry, name=name, arrays=name)
+    self._add_volume(_dumps(entry), os.fspath(base_dir), name, np.asarray(values),
+                     _affine(place, spacing, origin, affine))
+
+
 Scene.set = _set
+Scene.add_volume = _add_volume
 
 
 class Image(np.ndarray):

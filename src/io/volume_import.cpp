@@ -2150,6 +2150,40 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
+Volume volumeFromMemory(const MemoryVoxels& voxels, const std::string& source,
+                        const std::string& place, const VolumeLimits& limits) {
+  const Where where{source, place};
+  const VoxelType* type = findVoxelType(voxels.kind, voxels.bytes);
+  if (!type)
+    where.fail("unsupported voxel type '" + std::string(1, voxels.kind) +
+               std::to_string(8 * voxels.bytes) +
+               "' (expected unsigned or signed integers of 8, 16 or 32 bits, or floats of 32 or "
+               "64 bits)");
+  const std::size_t count = checkDims(voxels.dims, limits, where);
+  Volume v;
+  v.indexToWorld = checkTransform(voxels.indexToWorld, where);
+  v.dims = glm::ivec3(int(voxels.dims[0]), int(voxels.dims[1]), int(voxels.dims[2]));
+  v.voxelType = type->name;
+  v.values.resize(count);
+  const auto* base = static_cast<const unsigned char*>(voxels.data);
+  const std::int64_t* s = voxels.strides;
+  const bool rows = s[0] == type->bytes;  // a row along i converts in one call
+  float* out = v.values.data();
+  for (std::int64_t k = 0; k < voxels.dims[2]; ++k)
+    for (std::int64_t j = 0; j < voxels.dims[1]; ++j) {
+      const unsigned char* row = base + j * s[1] + k * s[2];
+      if (rows) {
+        convert(*type, row, std::size_t(voxels.dims[0]), voxels.swapped, {}, out);
+        out += voxels.dims[0];
+      } else {
+        for (std::int64_t i = 0; i < voxels.dims[0]; ++i)
+          convert(*type, row + i * s[0], 1, voxels.swapped, {}, out++);
+      }
+    }
+  v.updateRange();
+  return v;
+}
+
 Volume importVolume(const std::filesystem::path& file) {
   return importVolume(file, {});
 }

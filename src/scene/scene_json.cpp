@@ -353,16 +353,31 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
   return mesh;
 }
 
+// The mesh or volume an entry's "arrays" key names among the ones given in memory.
+template <class T>
+std::shared_ptr<const T> arraysEntry(const Context& ctx, const json& j, const std::string& ptr,
+                                     const std::map<std::string, std::shared_ptr<const T>>& given) {
+  const std::string key = string(ctx, j, ptr);
+  const auto it = given.find(key);
+  if (it == given.end())
+    ctx.fail(ptr, "no arrays named \"" + key +
+                      "\" were given (arrays come from NumPy through the Python module)");
+  return it->second;
+}
+
 void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshCache& cache,
-                std::vector<SceneObject>& out) {
+                const SceneArrays& arrays, std::vector<SceneObject>& out) {
   ObjectReader r(ctx, j, ptr);
   const std::string name = string(ctx, r.require("name"), r.at("name"));
   if (name.empty()) ctx.fail(r.at("name"), "object name must not be empty");
   const json* fileKey = r.take("file");
   const json* rasterKey = r.take("raster");
   const json* footprintsKey = r.take("footprints");
-  if (int(!!fileKey) + int(!!rasterKey) + int(!!footprintsKey) != 1)
-    ctx.fail(ptr, "an object needs exactly one of \"file\", \"raster\" or \"footprints\"");
+  const json* arraysKey = r.take("arrays");
+  if (int(!!fileKey) + int(!!rasterKey) + int(!!footprintsKey) + int(!!arraysKey) != 1)
+    ctx.fail(ptr,
+             "an object needs exactly one of \"file\", \"raster\", \"footprints\" or "
+             "\"arrays\"");
   if (!fileKey)
     for (const char* k : {"split", "nodes", "overrides"})
       if (r.has(k)) ctx.fail(r.at(k), std::string("\"") + k + "\" needs a mesh \"file\"");
@@ -407,10 +422,14 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
 
   if (!fileKey) {
     SceneObject o = base;
-    auto mesh = rasterKey ? rasterMesh(ctx, *rasterKey, r.at("raster"), o.source)
-                          : footprintMesh(ctx, *footprintsKey, r.at("footprints"), out,
-                                          base.transform, o.source);
-    o.mesh = std::move(mesh);
+    if (arraysKey) {
+      o.mesh = arraysEntry(ctx, *arraysKey, r.at("arrays"), arrays.meshes);
+      o.source = "arrays " + arraysKey->get<std::string>();
+    } else {
+      o.mesh = rasterKey ? rasterMesh(ctx, *rasterKey, r.at("raster"), o.source)
+                         : footprintMesh(ctx, *footprintsKey, r.at("footprints"), out,
+                                         base.transform, o.source);
+    }
     out.push_back(std::move(o));
     return;
   }
@@ -545,14 +564,22 @@ TransferFunction transferFunction2D(const Context& ctx, const json& j, const std
 std::any techniqueOptions(const Context& ctx, const OptionsSchema& schema, const json& j,
                           const std::string& ptr, bool trueMeansDefaults);
 
-void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene& scene) {
+void readVolume(const Context& ctx, const json& j, const std::string& ptr,
+                const SceneArrays& arrays, Scene& scene) {
   ObjectReader r(ctx, j, ptr);
   SceneVolume v;
   v.name = string(ctx, r.require("name"), r.at("name"));
   if (v.name.empty()) ctx.fail(r.at("name"), "volume name must not be empty");
-  std::filesystem::path file = string(ctx, r.require("file"), r.at("file"));
-  if (file.is_relative()) file = ctx.baseDir / file;
-  v.source = file.string();
+  std::filesystem::path file;
+  if (const json* a = r.take("arrays")) {
+    if (r.has("file")) ctx.fail(ptr, "a volume needs one of \"file\" or \"arrays\", not both");
+    v.volume = arraysEntry(ctx, *a, r.at("arrays"), arrays.volumes);
+    v.source = "arrays " + a->get<std::string>();
+  } else {
+    file = string(ctx, r.require("file"), r.at("file"));
+    if (file.is_relative()) file = ctx.baseDir / file;
+    v.source = file.string();
+  }
   if (const json* t = r.take("transform")) v.transform = transform(ctx, *t, r.at("transform"));
   if (const json* t = r.take("role")) v.role = role(ctx, *t, r.at("role"));
   if (const json* t = r.take("cutBy")) {
@@ -611,10 +638,12 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr, Scene
       ctx.fail(r.at("labels"), "a label volume is drawn in the composite or maximum mode");
     if (v.lines) ctx.fail(r.at("lines"), "a label volume has no isosurfaces to draw lines of");
   }
-  try {
-    v.volume = std::make_shared<const Volume>(importVolume(file));
-  } catch (const Error& e) {
-    ctx.fail(r.at("file"), e.what());
+  if (!v.volume) {
+    try {
+      v.volume = std::make_shared<const Volume>(importVolume(file));
+    } catch (const Error& e) {
+      ctx.fail(r.at("file"), e.what());
+    }
   }
   scene.volumes.push_back(std::move(v));
 }
@@ -740,11 +769,8 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
   return s;
 }
 
-}  // namespace
-
-Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
-                 const std::filesystem::path& baseDir) {
-  Context ctx{displayName.string(), baseDir, {}};
+// The JSON text, or an error at the line and column where it fails.
+json parseJson(const Context& ctx, const std::string& text) {
   // Turn a 1-based byte offset into a line and column a person can find.
   const auto lineColumn = [&text](std::size_t byte) {
     std::size_t line = 1, column = 1;
@@ -777,6 +803,48 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
         place = lineColumn(at + (close - open - 1));
     throw Error(ctx.file, place, "invalid JSON: " + reason);
   }
+  return root;
+}
+
+// Names unique across objects and volumes, and everything within float reach.
+void checkNamesAndReach(const Context& ctx, const Scene& scene) {
+  std::set<std::string> names;
+  for (const auto& o : scene.objects)
+    if (!names.insert(o.name).second)
+      ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+    if (!names.insert(scene.volumes[i].name).second)
+      ctx.fail("/volumes/" + std::to_string(i) + "/name",
+               "the name \"" + scene.volumes[i].name + "\" is taken");
+  // 32-bit floats cannot render what lies too far out: beyond this the view's squared
+  // distances overflow and the camera turns NaN (a blank image). Nearer, far coordinates
+  // render with a warning (the CLI names the farthest part).
+  constexpr float kMaxReach = 1e15f;
+  const auto checkReach = [&](const std::string& ptr, const std::string& name, const Bounds& b) {
+    if (b.empty()) return;
+    const glm::vec3 m = glm::max(glm::abs(b.min), glm::abs(b.max));
+    const float reach = std::max({m.x, m.y, m.z});
+    if (reach <= kMaxReach) return;  // NaN and infinity fail too
+    std::ostringstream message;
+    message << "\"" << name << "\" reaches " << reach
+            << " scene units from the origin; 32-bit floats cannot render beyond 1e15 (scale it "
+               "down or move it nearer)";
+    ctx.fail(ptr, message.str());
+  };
+  for (const auto& o : scene.objects)
+    if (!o.proxy) checkReach("/objects", o.name, o.worldBounds());
+  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
+    checkReach("/volumes/" + std::to_string(i), scene.volumes[i].name,
+               scene.volumes[i].worldBounds());
+  for (const auto& n : scene.networks) checkReach("/networks", n.name, n.bounds());
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
+                 const std::filesystem::path& baseDir, const SceneArrays& arrays) {
+  Context ctx{displayName.string(), baseDir, {}};
+  const json root = parseJson(ctx, text);
   Scene scene;
   scene.file = displayName;
   ObjectReader r(ctx, root, "");
@@ -827,7 +895,7 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   if (objects.empty() && !networks && !volumes)
     ctx.fail("/objects", "a scene needs at least one object, pipe network or volume");
   for (std::size_t i = 0; i < objects.size(); ++i)
-    readObject(ctx, objects[i], "/objects/" + std::to_string(i), cache, scene.objects);
+    readObject(ctx, objects[i], "/objects/" + std::to_string(i), cache, arrays, scene.objects);
   if (const json* v = r.take("proxies")) {
     if (!v->is_array()) ctx.fail("/proxies", "expected an array, got " + typeName(*v));
     for (std::size_t i = 0; i < v->size(); ++i)
@@ -837,37 +905,9 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
   if (const json* v = r.take("volumes")) {
     if (!v->is_array() || v->empty()) ctx.fail("/volumes", "expected an array of volumes");
     for (std::size_t i = 0; i < v->size(); ++i)
-      readVolume(ctx, (*v)[i], "/volumes/" + std::to_string(i), scene);
+      readVolume(ctx, (*v)[i], "/volumes/" + std::to_string(i), arrays, scene);
   }
-  std::set<std::string> names;
-  for (const auto& o : scene.objects)
-    if (!names.insert(o.name).second)
-      ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
-  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
-    if (!names.insert(scene.volumes[i].name).second)
-      ctx.fail("/volumes/" + std::to_string(i) + "/name",
-               "the name \"" + scene.volumes[i].name + "\" is taken");
-  // 32-bit floats cannot render what lies too far out: beyond this the view's squared
-  // distances overflow and the camera turns NaN (a blank image). Nearer, far coordinates
-  // render with a warning (the CLI names the farthest part).
-  constexpr float kMaxReach = 1e15f;
-  const auto checkReach = [&](const std::string& ptr, const std::string& name, const Bounds& b) {
-    if (b.empty()) return;
-    const glm::vec3 m = glm::max(glm::abs(b.min), glm::abs(b.max));
-    const float reach = std::max({m.x, m.y, m.z});
-    if (reach <= kMaxReach) return;  // NaN and infinity fail too
-    std::ostringstream message;
-    message << "\"" << name << "\" reaches " << reach
-            << " scene units from the origin; 32-bit floats cannot render beyond 1e15 (scale it "
-               "down or move it nearer)";
-    ctx.fail(ptr, message.str());
-  };
-  for (const auto& o : scene.objects)
-    if (!o.proxy) checkReach("/objects", o.name, o.worldBounds());
-  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
-    checkReach("/volumes/" + std::to_string(i), scene.volumes[i].name,
-               scene.volumes[i].worldBounds());
-  for (const auto& n : scene.networks) checkReach("/networks", n.name, n.bounds());
+  checkNamesAndReach(ctx, scene);
   // The cutters' checks across the scene (the roles they need, the network to open above).
   for (const CutterType& type : cutterTypes())
     if (type.complete && scene.cutters.find(type.key))
@@ -879,6 +919,15 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     scene.camera.fit = true;
   r.finish();
   return scene;
+}
+
+void appendVolume(Scene& scene, const std::string& text, const std::string& displayName,
+                  const std::filesystem::path& baseDir, const SceneArrays& arrays) {
+  const Context ctx{displayName, baseDir, scene.geo};
+  Scene grown = scene;  // the scene is left as it was when the entry fails
+  readVolume(ctx, parseJson(ctx, text), "", arrays, grown);
+  checkNamesAndReach(ctx, grown);
+  scene = std::move(grown);
 }
 
 Scene loadScene(const std::filesystem::path& path) {

@@ -150,7 +150,7 @@ def test_a_bad_numpy_mesh_is_refused():
     with pytest.raises(cutaway.Error, match=r"add_mesh: m: face 1 has vertex index 8 out of "
                                             r"range \(8 vertices\)"):
         scene.add_mesh("m", CUBE_VERTICES, np.array([[0, 1, 2], [0, 2, 8]]))
-    with pytest.raises(cutaway.Error, match="vertices must have shape"):
+    with pytest.raises(cutaway.Error, match=r"vertices must be numbers of shape \(N, 3\)"):
         scene.add_mesh("m", CUBE_VERTICES[:, :2], CUBE_FACES)
     bad = CUBE_VERTICES.copy()
     bad[3, 1] = np.nan

@@ -28,7 +28,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include "cutaway/geometry/volume.hpp"
 
@@ -42,5 +44,22 @@ struct VolumeLimits {
 // Throws cutaway::Error(file, place, reason) on any bad input.
 Volume importVolume(const std::filesystem::path& file);
 Volume importVolume(const std::filesystem::path& file, const VolumeLimits& limits);
+
+// Voxels held in memory (a NumPy array seen through the Python module): element (i, j, k) lies
+// at data + i·strides[0] + j·strides[1] + k·strides[2] bytes (strides may be negative), of the
+// type `kind` ('u', 'i' or 'f') and `bytes`, byte-swapped when `swapped`.
+struct MemoryVoxels {
+  const void* data = nullptr;
+  std::int64_t dims[3] = {0, 0, 0};
+  std::int64_t strides[3] = {0, 0, 0};
+  char kind = 'f';
+  int bytes = 4;
+  bool swapped = false;
+  glm::dmat4 indexToWorld{1.0};
+};
+// Copies them into a Volume after checking the type, the dims and the transform as a file's
+// header is checked; errors name `source` and `place`.
+Volume volumeFromMemory(const MemoryVoxels& voxels, const std::string& source,
+                        const std::string& place, const VolumeLimits& limits = {});
 
 }  // namespace cutaway

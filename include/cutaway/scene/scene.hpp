@@ -259,8 +259,18 @@ SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part,
 // Loads and validates a scene file and imports its meshes; throws cutaway::Error naming the
 // file, the JSON pointer and the reason.
 Scene loadScene(const std::filesystem::path& path);
+// Meshes and volumes held in memory rather than in files (the Python module's NumPy arrays):
+// an object or volume entry names one by "arrays": KEY in place of its "file".
+struct SceneArrays {
+  std::map<std::string, std::shared_ptr<const Mesh>> meshes;
+  std::map<std::string, std::shared_ptr<const Volume>> volumes;
+};
 // Same, from JSON text; relative mesh paths resolve against `baseDir`.
 Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
-                 const std::filesystem::path& baseDir);
+                 const std::filesystem::path& baseDir, const SceneArrays& arrays = {});
+// Adds one "volumes" entry given as JSON text to `scene`, checked as in a scene file; on an
+// error the scene is unchanged.
+void appendVolume(Scene& scene, const std::string& text, const std::string& displayName,
+                  const std::filesystem::path& baseDir, const SceneArrays& arrays = {});
 
 }  // namespace cutaway
