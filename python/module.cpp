@@ -176,6 +176,15 @@ SceneArrays sceneArrays(const std::string& source, const py::dict& meshes,
   return arrays;
 }
 
+// The role of a scene file's name.
+Role roleNamed(const std::string& source, const std::string& place, const std::string& name) {
+  for (Role r : {Role::Context, Role::Interest, Role::Exterior, Role::Interior})
+    if (name == roleName(r)) return r;
+  throw Error(
+      source, place,
+      "unknown role \"" + name + "\" (expected one of: context, interest, exterior, interior)");
+}
+
 // An object from arrays, appended to the scene with a role and an optional colour.
 void addMesh(Scene& s, const std::string& name, const py::handle& vertices, const py::handle& faces,
              const std::string& role, const std::optional<std::array<float, 3>>& color) {
@@ -185,15 +194,10 @@ void addMesh(Scene& s, const std::string& name, const py::handle& vertices, cons
     if (o.name == name) fail("the scene already has an object named \"" + name + "\"");
   for (const SceneVolume& v : s.volumes)
     if (v.name == name) fail("the scene already has a volume named \"" + name + "\"");
-  const Role roles[] = {Role::Context, Role::Interest, Role::Exterior, Role::Interior};
-  const Role* known =
-      std::find_if(std::begin(roles), std::end(roles), [&](Role r) { return role == roleName(r); });
-  if (known == std::end(roles))
-    fail("unknown role \"" + role + "\" (expected one of: context, interest, exterior, interior)");
   SceneObject o;
   o.name = name;
   o.source = "numpy";
-  o.role = *known;
+  o.role = roleNamed("add_mesh", name, role);
   if (color) o.material.color = glm::vec3((*color)[0], (*color)[1], (*color)[2]);
   o.mesh = meshFromArrays("add_mesh", name, vertices, faces);
   s.objects.push_back(std::move(o));
@@ -242,6 +246,14 @@ PYBIND11_MODULE(_cutaway, m) {
       .def("set_importance", &Scene::setImportance, py::arg("pattern"), py::arg("importance"),
            "Importance in [0, 1] for the objects whose name or group the pattern matches whole; "
            "returns how many")
+      .def(
+          "set_role",
+          [](Scene& s, const std::string& pattern, const std::string& role) {
+            return s.setRole(pattern, roleNamed("set_role", pattern, role));
+          },
+          py::arg("pattern"), py::arg("role"),
+          "The role (context, interest, exterior, interior) of the objects whose name or group "
+          "and the volumes whose name the pattern matches whole; returns how many")
       .def_property_readonly("width", [](const Scene& s) { return s.width; })
       .def_property_readonly("height", [](const Scene& s) { return s.height; })
       .def_property_readonly("samples", [](const Scene& s) { return s.samples; })

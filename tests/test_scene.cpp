@@ -1354,3 +1354,29 @@ TEST(SceneArrays, AppendVolumeChecksTheEntryAndLeavesTheSceneOnError) {
   ASSERT_EQ(s.volumes.size(), 1u);
   EXPECT_EQ(s.volumes[0].name, "w");
 }
+
+TEST(SceneRoles, SetRoleGivesObjectsByNameOrGroupAndVolumesByName) {
+  SceneArrays arrays;
+  auto volume = std::make_shared<Volume>();
+  volume->dims = {2, 2, 2};
+  volume->values.assign(8, 1.0f);
+  arrays.volumes["v"] = volume;
+  Scene s = parseScene(
+      R"({"objects": [{"name": "a", "file": "cube.obj"},
+                      {"name": "b", "file": "cube.obj", "group": "walls"},
+                      {"name": "c", "file": "cube.obj"}],
+          "proxies": [{"name": "room", "hullOf": "a"}],
+          "volumes": [{"name": "wall scan", "arrays": "v",
+                       "transferFunction": [{"value": 1, "opacity": 0.5}]}]})",
+      "s", kMeshes, arrays);
+  EXPECT_EQ(s.setRole("walls|a", Role::Exterior), 2u);
+  EXPECT_EQ(s.setRole("wall scan", Role::Interest), 1u);
+  EXPECT_EQ(s.objects[0].role, Role::Exterior);
+  EXPECT_EQ(s.objects[1].role, Role::Exterior);
+  EXPECT_EQ(s.objects[2].role, Role::Context);
+  EXPECT_EQ(s.volumes[0].role, Role::Interest);
+  EXPECT_EQ(s.find("room")->role, Role::Interest);  // a proxy keeps its role
+  test::expectError([&] { s.setRole("room", Role::Context); },
+                    {"room: matches no object's name or group, nor a volume"});
+  test::expectError([&] { s.setRole("(", Role::Context); }, {"("});
+}

@@ -178,20 +178,42 @@ Bounds Scene::bounds() const {
   return b;
 }
 
-std::size_t Scene::setImportance(const std::string& pattern, float importance) {
-  if (!(importance >= 0.0f && importance <= 1.0f))
-    throw Error(shortNamePattern(pattern), "", "importance must lie in [0, 1]");
-  std::regex re;
+namespace {
+
+std::regex namePattern(const std::string& pattern) {
   try {
-    re = compileNamePattern(pattern);
+    return compileNamePattern(pattern);
   } catch (const std::invalid_argument& e) {
     throw Error("", "", e.what());
   }
+}
+
+bool matches(const SceneObject& o, const std::regex& re) {
+  return std::regex_match(o.name, re) || (!o.group.empty() && std::regex_match(o.group, re));
+}
+
+}  // namespace
+
+std::size_t Scene::setImportance(const std::string& pattern, float importance) {
+  if (!(importance >= 0.0f && importance <= 1.0f))
+    throw Error(shortNamePattern(pattern), "", "importance must lie in [0, 1]");
+  const std::regex re = namePattern(pattern);
   std::size_t n = 0;
   for (SceneObject& o : objects)
-    if (std::regex_match(o.name, re) || (!o.group.empty() && std::regex_match(o.group, re)))
-      o.importance = importance, ++n;
+    if (matches(o, re)) o.importance = importance, ++n;
   if (n == 0) throw Error(shortNamePattern(pattern), "", "matches no object's name or group");
+  return n;
+}
+
+std::size_t Scene::setRole(const std::string& pattern, Role role) {
+  const std::regex re = namePattern(pattern);
+  std::size_t n = 0;
+  for (SceneObject& o : objects)
+    if (!o.proxy && matches(o, re)) o.role = role, ++n;
+  for (SceneVolume& v : volumes)
+    if (std::regex_match(v.name, re)) v.role = role, ++n;
+  if (n == 0)
+    throw Error(shortNamePattern(pattern), "", "matches no object's name or group, nor a volume");
   return n;
 }
 

@@ -163,3 +163,19 @@ def test_a_bad_numpy_mesh_is_refused():
     assert scene.objects == ["outer", "inner"]  # nothing half-added
     scene.add_mesh("m", CUBE_VERTICES, CUBE_FACES, role="interest", color=[0.1, 0.8, 0.2])
     assert scene.objects == ["outer", "inner", "m"]
+
+
+def test_roles_by_pattern():
+    scene = cutaway.from_dict(cube_scene())
+    renderer = cutaway.Renderer(scene)
+    renderer.render()
+    assert (renderer.aov("objectId") == 1).sum() > 50  # the inner cube through the cut
+    assert scene.set_role("out.*", "interest") == 1
+    renderer = cutaway.Renderer(scene)
+    renderer.render()
+    # The outer cube, now of interest too, is not cut: it hides the inner one.
+    assert (renderer.aov("objectId") == 1).sum() == 0
+    with pytest.raises(cutaway.Error, match="unknown role \"inside\""):
+        scene.set_role("inner", "inside")
+    with pytest.raises(cutaway.Error, match="nope: matches no object's name or group, nor a"):
+        scene.set_role("nope", "context")

@@ -249,6 +249,9 @@ struct Scene {
   // regular expression `pattern` matches whole; returns how many. Throws cutaway::Error for a
   // bad pattern, a value outside [0, 1], or a pattern that matches nothing.
   std::size_t setImportance(const std::string& pattern, float importance);
+  // Gives `role` to every object (not proxy) whose name or group, and every volume whose name,
+  // `pattern` matches whole; returns how many. Throws as setImportance does.
+  std::size_t setRole(const std::string& pattern, Role role);
 };
 
 // The object a network contributes for `part` ("NAME/shafts", "NAME/shaft-insides",
