@@ -1,12 +1,17 @@
 // GPU tests of the frame and the renderer: AOV values against the camera, frame validation,
-// timer queries against the wall clock.
+// timer queries against the wall clock, the device's limits on render targets.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdint>
+#include <limits>
+#include <string>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/render/renderer.hpp"
+#include "expect_error.hpp"
 #include "gl_test_context.hpp"
 
 using namespace cutaway;
@@ -153,7 +158,7 @@ TEST(Renderer, ACameraBelowTheGroundSeesItsUnderside) {
 
 TEST(Frame, RejectsReadBeforeWrite) {
   test::glContext();
-  Frame frame(8, 8, false);
+  Frame frame(8, 8, gl::ContextInfo{});
   const Target a = frame.declare("a", {.format = GL_RGBA8});
   const Target b = frame.declare("b", {.format = GL_RGBA8});
   frame.addPass({.name = "first", .reads = {b}, .writes = {a}, .run = [](const PassContext&) {}});
@@ -173,7 +178,7 @@ TEST(Frame, RejectsReadBeforeWrite) {
 // is refused with the pass's name.
 TEST(Frame, RejectsHandlesOfAnotherFrame) {
   test::glContext();
-  Frame frame(8, 8, false), other(8, 8, false);
+  Frame frame(8, 8, gl::ContextInfo{}), other(8, 8, gl::ContextInfo{});
   const Target foreign = other.declare("a", {.format = GL_RGBA8});
   frame.addPass({.name = "p", .writes = {foreign}, .run = [](const PassContext&) {}});
   try {
@@ -183,11 +188,57 @@ TEST(Frame, RejectsHandlesOfAnotherFrame) {
     EXPECT_NE(std::string(e.what()).find("another frame"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("p"), std::string::npos) << e.what();
   }
-  Frame third(8, 8, false);
+  Frame third(8, 8, gl::ContextInfo{});
   third.addPass({.name = "q", .writes = {Target{}}, .run = [](const PassContext&) {}});
   EXPECT_THROW(third.execute(), Error);
   (void)third.declare("x", {});
   EXPECT_THROW((void)third.declare("x", {}), Error);  // declared twice
+}
+
+// Render targets beyond the device's limits are refused before they are made, naming the
+// target, the limit and what to change; the device's own out-of-memory is reported too.
+TEST(Frame, HoldsTargetsToTheDevicesLimits) {
+  gl::ContextInfo device = test::glContext().info();
+  ASSERT_GT(device.maxTextureSize, 0);
+  ASSERT_GT(device.maxColorSamples, 0);
+  device.maxTextureSize = 64;
+  device.maxColorSamples = 4, device.maxIntegerSamples = 1, device.maxDepthSamples = 2;
+  Frame frame(64, 48, device, std::uint64_t(3) << 20);
+  test::expectError([&] { (void)frame.declare("wide", {.format = GL_RGBA8, .width = 65}); },
+                    {"frame: wide: a render target of 65×48 exceeds the device's largest "
+                     "texture, 64 on a side"});
+  test::expectError([&] { (void)frame.declare("s", {.format = GL_RGBA8, .samples = 8}); },
+                    {"frame: s: 8 samples exceed the device's 4 for this render target"});
+  test::expectError([&] { (void)frame.declare("i", {.format = GL_R32I, .samples = 2}); },
+                    {"2 samples exceed the device's 1"});
+  test::expectError(
+      [&] { (void)frame.declare("d", {.format = GL_DEPTH_COMPONENT32F, .samples = 4}); },
+      {"4 samples exceed the device's 2"});
+  // 64×48×4 samples×16 bytes = 192 KiB per target: the 17th passes 3 MiB.
+  for (int i = 0; i < 16; ++i)
+    (void)frame.declare("t" + std::to_string(i), {.format = GL_RGBA32F, .samples = 4});
+  test::expectError(
+      [&] { (void)frame.declare("last", {.format = GL_RGBA32F, .samples = 4}); },
+      {"frame: last: the render targets need 4 MiB at 64×48, more than the 3 MiB the device "
+       "has available",
+       "lower the resolution or the samples"});
+  // The device's own refusal (llvmpipe: a texture beyond its per-texture memory).
+  const gl::ContextInfo real = test::glContext().info();
+  if (real.software) {
+    const int side = real.maxTextureSize;
+    Frame huge(side, side, real, std::numeric_limits<std::uint64_t>::max());
+    test::expectError([&] { (void)huge.declare("p", {.format = GL_RGBA32F, .samples = 4}); },
+                      {"frame: p: the device is out of memory for the render targets"});
+  }
+}
+
+// A scene the device cannot hold is refused with the frame's message, not a broken frame.
+TEST(Frame, TooManySamplesForTheDeviceAreRefusedByTheRenderer) {
+  const gl::ContextInfo device = test::glContext().info();
+  if (device.maxColorSamples >= 16) GTEST_SKIP() << "this device takes 16 samples";
+  const Scene scene = planeScene(16, R"({"eye": [0, 0, -5], "target": [0, 0, 0], "fov": 60})");
+  test::expectError([&] { Renderer renderer(scene, device); },
+                    {"frame: sceneColor: 16 samples exceed the device's"});
 }
 
 // On llvmpipe the GL_TIME_ELAPSED queries need a flush after glBeginQuery (gl/timer.cpp);

@@ -11,6 +11,39 @@ namespace cutaway {
 
 namespace {
 std::atomic<unsigned> nextFrameSerial{1};
+
+// Bytes per texel and sample of the formats the frame's targets use (what drivers store:
+// llvmpipe keeps a depth with stencil in 8 bytes); 16 for any other.
+std::uint64_t texelBytes(GLenum format) {
+  switch (format) {
+    case GL_R8:
+      return 1;
+    case GL_R16F:
+      return 2;
+    case GL_RGBA8:
+    case GL_R32F:
+    case GL_R32I:
+    case GL_R32UI:
+    case GL_DEPTH_COMPONENT32F:
+    case GL_DEPTH_COMPONENT24:
+    case GL_DEPTH24_STENCIL8:
+      return 4;
+    case GL_RGBA16F:
+    case GL_RG32F:
+    case GL_DEPTH32F_STENCIL8:
+      return 8;
+    default:
+      return 16;
+  }
+}
+
+bool isIntegerFormat(GLenum format) {
+  return format == GL_R32I || format == GL_R32UI;
+}
+
+std::string mebibytes(std::uint64_t bytes) {
+  return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
 }  // namespace
 
 bool isDepthFormat(GLenum format) {
@@ -19,15 +52,54 @@ bool isDepthFormat(GLenum format) {
          format == GL_DEPTH_COMPONENT16;
 }
 
-Frame::Frame(int width, int height, bool software)
-    : serial_(nextFrameSerial++), width_(width), height_(height), timer_(software) {}
+Frame::Frame(int width, int height, const gl::ContextInfo& device,
+             std::optional<std::uint64_t> memoryBudget)
+    : serial_(nextFrameSerial++),
+      width_(width),
+      height_(height),
+      device_(device),
+      // What is free before the first target; the rest of the program needs some of it too.
+      budget_(memoryBudget ? *memoryBudget : device.availableMemory() / 10 * 9),
+      timer_(device.software) {}
+
+void Frame::checkLimits(const std::string& name, const TargetDesc& d) {
+  const std::string size = std::to_string(d.width) + "×" + std::to_string(d.height);
+  if (device_.maxTextureSize > 0 && std::max(d.width, d.height) > device_.maxTextureSize)
+    throw Error("frame", name,
+                "a render target of " + size + " exceeds the device's largest texture, " +
+                    std::to_string(device_.maxTextureSize) + " on a side");
+  const int maxSamples = isDepthFormat(d.format)     ? device_.maxDepthSamples
+                         : isIntegerFormat(d.format) ? device_.maxIntegerSamples
+                                                     : device_.maxColorSamples;
+  if (d.samples > 1 && maxSamples > 0 && d.samples > maxSamples)
+    throw Error("frame", name,
+                std::to_string(d.samples) + " samples exceed the device's " +
+                    std::to_string(maxSamples) + " for this render target");
+  bytes_ += std::uint64_t(d.width) * std::uint64_t(d.height) *
+            std::uint64_t(std::max(d.samples, 1)) * texelBytes(d.format);
+  if (budget_ > 0 && bytes_ > budget_)
+    throw Error("frame", name,
+                "the render targets need " + mebibytes(bytes_) + " at " + std::to_string(width_) +
+                    "×" + std::to_string(height_) + ", more than the " + mebibytes(budget_) +
+                    " the device has available" +
+                    (device_.software ? " (a software rasteriser keeps them in main memory)" : "") +
+                    "; lower the resolution or the samples");
+}
 
 Target Frame::declare(const std::string& name, TargetDesc desc) {
   if (find(name)) throw Error("frame", name, "render target declared twice");
   if (desc.width == 0) desc.width = width_;
   if (desc.height == 0) desc.height = height_;
+  checkLimits(name, desc);
+  while (glGetError() != GL_NO_ERROR) {
+  }
   gl::Texture texture = gl::Texture::create2D(desc.format, desc.width, desc.height,
                                               desc.samples > 1 ? desc.samples : 0);
+  if (glGetError() == GL_OUT_OF_MEMORY)
+    throw Error("frame", name,
+                "the device is out of memory for the render targets (" + mebibytes(bytes_) +
+                    " at " + std::to_string(width_) + "×" + std::to_string(height_) +
+                    "); lower the resolution or the samples");
   targets_.push_back(TargetData{name, std::move(desc), std::move(texture)});
   return Target(serial_, int(targets_.size() - 1));
 }

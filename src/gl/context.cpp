@@ -4,6 +4,8 @@
 #include <epoxy/gl.h>
 
 #include <cstring>
+#include <fstream>
+#include <limits>
 #include <vector>
 
 #include "cutaway/core/error.hpp"
@@ -65,7 +67,30 @@ ContextInfo ContextInfo::query() {
   info.version = str(GL_VERSION);
   info.software = info.renderer.find("llvmpipe") != std::string::npos ||
                   info.renderer.find("softpipe") != std::string::npos;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &info.maxTextureSize);
+  glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &info.maxColorSamples);
+  glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &info.maxDepthSamples);
+  glGetIntegerv(GL_MAX_INTEGER_SAMPLES, &info.maxIntegerSamples);
   return info;
+}
+
+std::uint64_t ContextInfo::availableMemory() const {
+  if (software) {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    std::uint64_t kib = 0;
+    while (meminfo >> key >> kib) {
+      if (key == "MemAvailable:") return kib * 1024;
+      meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    return 0;
+  }
+  GLint kib[4] = {0, 0, 0, 0};
+  if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info"))
+    glGetIntegerv(GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, kib);
+  else if (epoxy_has_gl_extension("GL_ATI_meminfo"))
+    glGetIntegerv(GL_TEXTURE_FREE_MEMORY_ATI, kib);  // [0]: the total free, KiB
+  return kib[0] > 0 ? std::uint64_t(kib[0]) * 1024 : 0;
 }
 
 std::unique_ptr<HeadlessContext> HeadlessContext::create() {

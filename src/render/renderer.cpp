@@ -27,9 +27,9 @@ namespace cutaway {
 
 struct Renderer::Impl {
   Impl(const Scene& scene, const gl::ContextInfo& info)
-      : frame(scene.width, scene.height, info.software),
-        meshes(scene),
-        setup{scene, info, frame, bindings, meshes, gbuffer, scene.bounds()} {}
+      : frame(scene.width, scene.height, info), meshes(scene), setup{scene,         info,   frame,
+                                                                     bindings,      meshes, gbuffer,
+                                                                     scene.bounds()} {}
   void buildFrame();
   void drawGeometry(GLuint framebuffer) const;
 

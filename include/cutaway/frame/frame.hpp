@@ -15,11 +15,13 @@
 //   frame.execute();
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "cutaway/gl/context.hpp"
 #include "cutaway/gl/objects.hpp"
 #include "cutaway/gl/timer.hpp"
 
@@ -73,8 +75,14 @@ struct PassTiming {
 
 class Frame {
  public:
-  Frame(int width, int height, bool software);
-  // Throws cutaway::Error for a name declared twice.
+  // Its targets are held to the limits of `device` (its context's): sizes, samples, and
+  // memory: `memoryBudget` bytes for all of them, by default nine tenths of what the device
+  // has available now (no limit when it does not say).
+  Frame(int width, int height, const gl::ContextInfo& device,
+        std::optional<std::uint64_t> memoryBudget = std::nullopt);
+  // Throws cutaway::Error for a name declared twice, and for a target beyond the device's
+  // limits (its size or samples, or memory: the targets together must fit in what the
+  // device had available when the frame was made, and the device must give it).
   [[nodiscard]] Target declare(const std::string& name, TargetDesc desc);
   void addPass(PassDesc pass);
   // Runs every pass once; throws cutaway::Error for an ill-formed frame (a read before its
@@ -122,8 +130,12 @@ class Frame {
   const TargetData& target(Target t, const std::string& user) const;
   void prepare(Pass& pass);
 
+  void checkLimits(const std::string& name, const TargetDesc& desc);
+
   unsigned serial_;  // this frame's handles carry it
   int width_, height_;
+  gl::ContextInfo device_;
+  std::uint64_t budget_ = 0, bytes_ = 0;  // memory for the targets (0: unknown), and used
   gl::PassTimer timer_;
   std::vector<TargetData> targets_;  // in declaration order, indexed by Target
   std::vector<Pass> passes_;

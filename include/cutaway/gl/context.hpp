@@ -9,6 +9,7 @@
 //   std::puts(context->renderer().c_str());
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -20,7 +21,14 @@ struct ContextInfo {
   // True for Mesa's software rasterisers (llvmpipe, softpipe): timer queries need a flush
   // after glBeginQuery there, and CPU kernels may beat fragment shaders.
   bool software = false;
+  // Render target limits (0: none known): the largest texture side, and the most samples of
+  // a colour, depth or integer multisample texture.
+  int maxTextureSize = 0, maxColorSamples = 0, maxDepthSamples = 0, maxIntegerSamples = 0;
   static ContextInfo query();
+  // Bytes of memory the device can give new textures now, 0 when it does not say: a GPU's free
+  // video memory (GL_NVX_gpu_memory_info, GL_ATI_meminfo), or for a software rasteriser, whose
+  // textures live in main memory, /proc/meminfo's MemAvailable.
+  std::uint64_t availableMemory() const;
 };
 
 class HeadlessContext {

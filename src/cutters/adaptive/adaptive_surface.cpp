@@ -78,12 +78,12 @@ class SavedState {
 
 struct AdaptiveCutawaySurface::Impl {
   explicit Impl(const AdaptiveCutawayOptions& o)
-      : software(gl::ContextInfo::query().software),
+      : device(gl::ContextInfo::query()),
         options(checked(o)),
         variant(o.variant),
         compute(o.compute),
-        frame(o.bufferSize, o.bufferSize, software),
-        surface(frame, o.bufferSize, o.variant, cutawayOnCpu(o, software),
+        frame(o.bufferSize, o.bufferSize, device),
+        surface(frame, o.bufferSize, o.variant, cutawayOnCpu(o, device.software),
                 [this]() -> const AdaptiveCutawayOptions& { return options; }),
         import(buildFullscreenProgram("cutters/adaptive/seed_import.frag")) {
     frame.addPass({.name = "cutawaySeedImport",
@@ -103,7 +103,7 @@ struct AdaptiveCutawaySurface::Impl {
     frame.setTimed(false);  // the application may be timing this frame itself
   }
 
-  bool software;
+  gl::ContextInfo device;
   AdaptiveCutawayOptions options;
   const fields::JumpFloodingVariant variant;
   const AdaptiveCutawayOptions::Compute compute;
