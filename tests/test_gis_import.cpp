@@ -343,6 +343,20 @@ TEST_F(GisImportTest, ReadsOrdnanceSurveyShapefilesInBritishNationalGrid) {
   }
 }
 
+// A shapefile cut short (a copy interrupted, a disk full) is an error naming the first feature
+// GDAL could not read, not a network that silently lost its second half.
+TEST_F(GisImportTest, ATruncatedShapefileIsAnError) {
+  for (const char* suffix : {".shp", ".shx", ".dbf", ".prj"})
+    fs::copy_file(kOsData / (std::string("ss64ne_Road_Centreline") + suffix),
+                  dir_ / (std::string("roads") + suffix));
+  const std::size_t whole = importGisLines(dir_ / "roads.shp").polylines.size();
+  ASSERT_GT(whole, 100u);
+  fs::resize_file(dir_ / "roads.shp", fs::file_size(dir_ / "roads.shp") / 2);
+  expectError([&] { importGisLines(dir_ / "roads.shp"); },
+              {"roads.shp: layer roads, feature ",
+               "GDAL could not read it (the file is truncated or damaged)"});
+}
+
 TEST_F(GisImportTest, PolygonsWithHolesForFootprints) {
   const fs::path file = geojson("buildings.geojson",
                                 feature(R"({"type": "Polygon", "coordinates": [

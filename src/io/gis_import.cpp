@@ -264,10 +264,20 @@ OpenedLayer openLayer(const std::filesystem::path& file, const GisImportOptions&
 }
 
 // Calls visit(fid, geometry, attributes) for every feature with a geometry, counting them.
+// A feature GDAL failed to read (a truncated or damaged file: it then gives the feature
+// without its geometry) is an error, not a feature without geometry.
 template <class Visit>
-void forEachFeature(OGRLayer& layer, FeatureReader& reader, GisImportReport& report, bool& hasZ,
-                    Visit visit) {
+void forEachFeature(const std::filesystem::path& file, OGRLayer& layer, FeatureReader& reader,
+                    GisImportReport& report, bool& hasZ, Visit visit) {
+  const auto failed = [&](const std::string& place) {
+    if (CPLGetLastErrorType() >= CE_Failure)
+      throw Error(file.string(), place,
+                  "GDAL could not read it (the file is truncated or damaged)" +
+                      gdal::QuietErrors::lastMessage());
+  };
+  CPLErrorReset();
   for (const OGRFeatureUniquePtr& feature : layer) {
+    failed(featurePlace(layer, feature->GetFID()));
     ++report.features;
     const OGRGeometry* geometry = feature->GetGeometryRef();
     if (!geometry || geometry->IsEmpty()) {
@@ -276,7 +286,9 @@ void forEachFeature(OGRLayer& layer, FeatureReader& reader, GisImportReport& rep
     }
     hasZ = hasZ || geometry->Is3D();
     visit(feature->GetFID(), *geometry, reader.attributes(*feature));
+    CPLErrorReset();
   }
+  failed(layerPlace(layer));  // a read that failed after the last feature
 }
 
 // What the importers share: the layer opened and checked for `Single` / `Multi` geometries,
@@ -298,7 +310,7 @@ Out importParts(const std::filesystem::path& file, const GisImportOptions& optio
   FeatureReader reader(file, layer, options, out.report);
   out.crs = reader.crs();
   forEachFeature(
-      layer, reader, out.report, out.hasZ,
+      file, layer, reader, out.report, out.hasZ,
       [&](GIntBig fid, const OGRGeometry& geometry, const std::vector<double>& attributes) {
         const OGRwkbGeometryType type = wkbFlatten(geometry.getGeometryType());
         std::vector<const Single*> parts;
