@@ -1,8 +1,18 @@
 #include "frame/scene_meshes.hpp"
 
+#include <string>
+
+#include "cutaway/core/error.hpp"
+
 namespace cutaway {
 
 GpuMesh::GpuMesh(const cutaway::Mesh& mesh) {
+  // glDrawElements counts indices in a GLsizei.
+  if (mesh.triangles.size() > kMaxTriangles)
+    throw Error(std::to_string(mesh.triangles.size()) + " triangles exceed the limit of " +
+                std::to_string(kMaxTriangles) + " per mesh");
+  while (glGetError() != GL_NO_ERROR) {
+  }
   std::vector<float> interleaved;
   interleaved.reserve(mesh.positions.size() * 6);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -14,6 +24,9 @@ GpuMesh::GpuMesh(const cutaway::Mesh& mesh) {
       gl::Buffer::create(GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
   indices_ = gl::Buffer::create(GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
                                 mesh.triangles.data());
+  if (glGetError() == GL_OUT_OF_MEMORY)
+    throw Error("the device is out of memory for its " + std::to_string(mesh.triangles.size()) +
+                " triangles");
   indexCount_ = GLsizei(mesh.triangles.size() * 3);
   vertexArray_ = gl::VertexArray::create();
   const GLuint vao = vertexArray_.id();
@@ -32,7 +45,13 @@ void GpuMesh::draw() const {
 }
 
 SceneMeshes::SceneMeshes(const Scene& scene) : scene_(scene) {
-  for (const auto& object : scene.objects) meshes_.emplace_back(*object.mesh);
+  for (const auto& object : scene.objects) {
+    try {
+      meshes_.emplace_back(*object.mesh);
+    } catch (const Error& e) {
+      throw Error(object.name, "", e.reason());
+    }
+  }
 }
 
 void SceneMeshes::draw(GLuint program, const Filter& which,

@@ -23,7 +23,9 @@ constexpr GLint kModel = 0, kNormalMatrix = 4;
 class GpuMesh {
  public:
   GpuMesh() = default;
+  // Throws cutaway::Error beyond kMaxTriangles or when the device has no memory for it.
   explicit GpuMesh(const cutaway::Mesh& mesh);
+  static constexpr std::size_t kMaxTriangles = std::size_t(1) << 29;
   void draw() const;
 
  private:
