@@ -307,3 +307,52 @@ TEST(Viewer, NetworkOptionsChangeLiveAndSave) {
   std::ifstream in(saved);
   EXPECT_EQ(nlohmann::json::parse(in)["networks"][0]["radiusScale"].get<float>(), 1.8f);
 }
+
+// Reloading and opening scenes: a file that fails to load, or that the device cannot render
+// (16 samples on llvmpipe, which takes 4), leaves the last good scene on screen and says why;
+// a good one replaces it, and `reload` reads the file again keeping the view.
+TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
+  ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
+  const std::string bunny = R"({"resolution": [160, 120], "samples": 1, "objects": [
+      {"name": "bunny", "file": "/usr/share/glmark2/models/bunny.obj", "color": )";
+  const fs::path red = scratch("red.json"), blue = scratch("blue.json"),
+                 broken = scratch("broken.json"), tooMany = scratch("too-many.json"),
+                 script = scratch("reload.txt");
+  std::ofstream(red) << bunny << "[0.9, 0.1, 0.1]}]}";
+  std::ofstream(blue) << bunny << "[0.1, 0.2, 0.9]}]}";
+  std::ofstream(broken) << bunny << "[0.1, 0.2, 0.9]}";
+  std::string sixteen = bunny;
+  sixteen.replace(sixteen.find("\"samples\": 1"), 12, "\"samples\": 16");
+  std::ofstream(tooMany) << sixteen << "[0.1, 0.9, 0.1]}]}";
+  std::vector<fs::path> shots;
+  for (int i = 0; i < 5; ++i) shots.push_back(scratch("reload-" + std::to_string(i) + ".png"));
+  std::ofstream(script) << "wait 1\nscreenshot " << shots[0].string() << "\nopen "
+                        << broken.string() << "\nscreenshot " << shots[1].string() << "\nopen "
+                        << tooMany.string() << "\nscreenshot " << shots[2].string() << "\nopen "
+                        << blue.string() << "\nscreenshot " << shots[3].string()
+                        << "\nreload\nscreenshot " << shots[4].string() << "\nquit\n";
+  const Result r = runUnderXvfb(red.string() + " --size 160x120 --script " + script.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("cutaway-view: " + broken.string() + ": line "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("invalid JSON"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("16 samples exceed the device's"), std::string::npos) << r.err;
+  EXPECT_EQ(count(r.err, '\n'), 2) << r.err;
+  EXPECT_NE(r.err.find("(the last good scene stays)"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("opened " + blue.string()), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("reloaded " + blue.string()), std::string::npos) << r.out;
+  std::vector<Rgba8Image> images;
+  for (const fs::path& shot : shots) images.push_back(readPng(shot));
+  // The red bunny through both failures, then the blue one, the same after the reload.
+  EXPECT_EQ(images[1].pixels, images[0].pixels);
+  EXPECT_EQ(images[2].pixels, images[0].pixels);
+  EXPECT_NE(images[3].pixels, images[0].pixels);
+  EXPECT_EQ(images[4].pixels, images[3].pixels);
+  const auto redder = [](const Rgba8Image& image) {
+    long balance = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4)
+      balance += long(image.pixels[i]) - long(image.pixels[i + 2]);
+    return balance;
+  };
+  EXPECT_GT(redder(images[0]), 0);
+  EXPECT_LT(redder(images[3]), 0);
+}

@@ -55,6 +55,8 @@ const std::map<std::string, CommandSpec>& commands() {
       {"screenshot", {Kind::Screenshot, Args::Rest}},
       {"screenshot-window", {Kind::ScreenshotWindow, Args::Rest}},
       {"save", {Kind::Save, Args::Rest}},
+      {"reload", {Kind::Reload, Args::None}},
+      {"open", {Kind::Open, Args::Rest}},
       {"save-aovs", {Kind::SaveAovs, Args::Rest}},
       {"panels", {Kind::Panels, Args::Special}},
       {"quit", {Kind::Quit, Args::None}},

@@ -47,6 +47,8 @@ struct ScriptCommand {
     Screenshot,        // screenshot FILE
     ScreenshotWindow,  // screenshot-window FILE
     Save,              // save FILE
+    Reload,            // reload
+    Open,              // open FILE
     SaveAovs,          // save-aovs DIR
     Panels,            // panels on|off
     Quit,              // quit

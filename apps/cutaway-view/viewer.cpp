@@ -69,23 +69,8 @@ std::string formatValue(const float* v, int channels) {
 
 Viewer::Viewer(const ViewerOptions& options) : options_(options) {
   if (!options.script.empty()) script_ = loadScript(options.script);
-  original_ = loadScene(options.scene);
-  document_ = SceneDocument::load(options.scene);
-  state_.scene = original_;
-  // The viewer's camera is explicit: "fit" resolved once, a path kept aside to be edited,
-  // near/far left as the file has them (derived when absent).
-  Camera& camera = state_.scene.camera;
-  const Camera resolved = original_.resolvedCamera(0.0f);
-  state_.cameraPath = camera.path;
-  camera.path.clear();
-  camera.fit = false;
-  camera.eye = resolved.eye, camera.target = resolved.target, camera.height = resolved.height;
+  adopt(loadScene(options.scene), SceneDocument::load(options.scene), options.scene, false);
   state_.showPanels = options.panels;
-  // Bounds walk every vertex: once, for the fly speed (they cover the whole animation).
-  sceneRadius_ = std::max(original_.bounds().radius(), 1e-3f);
-  const fs::path stem = options.scene.stem();
-  state_.savePath = (options.scene.parent_path() / (stem.string() + ".view.json")).string();
-  state_.screenshotPath = stem.string() + "-view.png";
 
   const int width = options.width > 0 ? options.width : original_.width;
   const int height = options.height > 0 ? options.height : original_.height;
@@ -208,6 +193,7 @@ void Viewer::handleInput(float seconds) {
     if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) state_.showPanels = !state_.showPanels;
     if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) state_.selection.clear();
     if (ImGui::IsKeyPressed(GLFW_KEY_F12, false)) state_.screenshotRequested = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F5, false)) state_.reloadRequested = true;
     if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S, false)) state_.saveRequested = true;
     if (!io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
       camera.setProjection(camera.projection == Projection::Perspective ? Projection::Orthographic
@@ -388,6 +374,12 @@ void Viewer::execute(const ScriptCommand& c) {
     case Kind::Save:
       saveScene(c.text);
       break;
+    case Kind::Reload:
+      openScene(options_.scene, true);
+      break;
+    case Kind::Open:
+      openScene(c.text, false);
+      break;
     case Kind::SaveAovs:
       update();
       writeAovs(c.text, renderer_->readAovs(), viewCamera(state_), aspect());
@@ -404,6 +396,7 @@ void Viewer::execute(const ScriptCommand& c) {
 
 void Viewer::handleRequests() {
   if (state_.frameRequested) frameSelection(), state_.frameRequested = false;
+  if (state_.reloadRequested) openScene(options_.scene, true), state_.reloadRequested = false;
   if (state_.saveRequested) {
     state_.saveRequested = false;
     try {
@@ -434,12 +427,11 @@ void Viewer::update() {
   constexpr double kLiveRebuildMs = 150.0;
   const bool dragging = ImGui::GetCurrentContext() && ImGui::IsAnyItemActive() && !script_;
   if (state_.sceneChanged && renderer_ && dragging && rebuildMs_ > kLiveRebuildMs) return;
-  const bool rebuild = state_.sceneChanged;
-  if (rebuild) {
+  const bool rebuilding = state_.sceneChanged;
+  if (rebuilding) {
     const auto start = std::chrono::steady_clock::now();
-    // The renderer keeps a reference to the scene and builds its passes from it: a new one.
-    renderer_.reset();
-    renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
+    if (!renderedIsLive_) rebuild();
+    renderedIsLive_ = false;
     const char* path = renderer_->cutawayComputePath();
     state_.computePath = path ? path : "";
     state_.aovNames = renderer_->frame().aovNames();
@@ -464,7 +456,7 @@ void Viewer::update() {
     state_.timings = renderer_->timings();  // waits for the frame's timer queries
     state_.renderMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (rebuild) rebuildMs_ += state_.renderMs;
+    if (rebuilding) rebuildMs_ += state_.renderMs;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     readFrameBuffers();
     state_.viewChanged = false;
@@ -596,6 +588,89 @@ void Viewer::pick(int x, int y, bool add) {
     else
       state_.selection.insert(i);
   }
+}
+
+void Viewer::adopt(Scene loaded, SceneDocument document, const fs::path& path, bool keepView) {
+  const Camera view = state_.scene.camera;
+  original_ = std::move(loaded);
+  document_ = std::move(document);
+  options_.scene = path;
+  state_.scene = original_;
+  // The viewer's camera is explicit: "fit" resolved once, a path kept aside to be edited,
+  // near/far left as the file has them (derived when absent).
+  Camera& camera = state_.scene.camera;
+  const Camera resolved = original_.resolvedCamera(0.0f);
+  state_.cameraPath = camera.path;
+  camera.path.clear();
+  camera.fit = false;
+  camera.eye = resolved.eye, camera.target = resolved.target, camera.height = resolved.height;
+  if (keepView) camera = view;
+  // Indices into the scene's objects and volumes of before.
+  state_.selection.clear();
+  state_.transferVolume = state_.transferRow = 0;
+  state_.transferPoint = -1;
+  // Bounds walk every vertex: once, for the fly speed (they cover the whole animation).
+  sceneRadius_ = std::max(original_.bounds().radius(), 1e-3f);
+  const fs::path stem = path.stem();
+  state_.savePath = (path.parent_path() / (stem.string() + ".view.json")).string();
+  state_.screenshotPath = stem.string() + "-view.png";
+  state_.sceneChanged = true;
+}
+
+void Viewer::report(const std::string& message) {
+  state_.status = message;
+  std::fprintf(stderr, "cutaway-view: %s\n", message.c_str());
+}
+
+void Viewer::openScene(const fs::path& path, bool keepView) {
+  constexpr const char* kKept = " (the last good scene stays)";
+  std::optional<Scene> loaded;
+  std::optional<SceneDocument> document;
+  try {
+    loaded = loadScene(path);
+    document = SceneDocument::load(path);
+  } catch (const Error& e) {
+    report(e.what() + std::string(kKept));
+    return;
+  }
+  const Scene original = original_;
+  const std::optional<SceneDocument> previousDocument = document_;
+  const ViewerState previous = state_;
+  const fs::path previousPath = options_.scene;
+  const float previousRadius = sceneRadius_;
+  adopt(std::move(*loaded), std::move(*document), path, keepView);
+  if (!rebuild()) {
+    // The device refused it: everything as it was, the error kept in the status line.
+    const std::string status = state_.status;
+    original_ = original, document_ = previousDocument, state_ = previous;
+    options_.scene = previousPath, sceneRadius_ = previousRadius;
+    state_.status = status;
+    state_.viewChanged = true;  // the renderer made again must draw
+    return;
+  }
+  state_.status = (keepView ? "reloaded " : "opened ") + path.string();
+  std::printf("%s\n", state_.status.c_str());
+  std::fflush(stdout);
+}
+
+bool Viewer::rebuild() {
+  // The renderer keeps a reference to the scene and builds its passes from it: a new one,
+  // made after the old one is gone (two frames' targets may not fit together).
+  renderer_.reset();
+  bool made = true;
+  try {
+    renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
+  } catch (const Error& e) {
+    if (rendered_.objects.empty() && rendered_.volumes.empty() && rendered_.networks.empty())
+      throw;  // the first scene: nothing to go back to
+    report(e.what() + std::string(" (the last good scene stays)"));
+    state_.scene = rendered_;
+    renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
+    made = false;
+  }
+  rendered_ = state_.scene;
+  renderedIsLive_ = true;  // until the scene changes again
+  return made;
 }
 
 void Viewer::saveScene(const fs::path& path) {

@@ -61,6 +61,18 @@ class Viewer {
   void pick(int x, int y, bool add);
   std::string valueAt(int x, int y) const;  // of the shown buffer, framebuffer pixel, top-down
   void saveScene(const std::filesystem::path& path);
+  // Makes `loaded` (read from `path`) the viewer's scene: the file's camera, or the current
+  // view when `keepView`.
+  void adopt(Scene loaded, SceneDocument document, const std::filesystem::path& path,
+             bool keepView);
+  // Reads `path` as the viewer's scene (reload, open). A file that fails to load, or that the
+  // device cannot render, leaves the last good scene on screen, the error in the status line
+  // and on stderr.
+  void openScene(const std::filesystem::path& path, bool keepView);
+  // A new renderer for the live scene; when it cannot be made, the scene the last renderer
+  // drew comes back with it and the error is reported. Returns whether the new one was made.
+  bool rebuild();
+  void report(const std::string& message);
   void screenshot(const std::filesystem::path& path);
   void windowShot(const std::filesystem::path& path);
   void frameSelection();
@@ -68,6 +80,8 @@ class Viewer {
 
   ViewerOptions options_;
   Scene original_;  // as loaded, for saving
+  Scene rendered_;  // the live scene as the current renderer was made from it
+  bool renderedIsLive_ = false;  // the renderer was just made for the live scene
   std::optional<SceneDocument> document_;
   ViewerState state_;
   std::optional<Script> script_;

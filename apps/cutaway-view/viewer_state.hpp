@@ -58,6 +58,7 @@ struct ViewerState {
   bool viewChanged = false;   // camera or time: render again
   bool aovChanged = false;    // inspector buffer or colour map: recolour
   bool saveRequested = false, screenshotRequested = false, frameRequested = false;
+  bool reloadRequested = false;  // read the scene file again (F5, the file panel)
 };
 
 // Objects called `name`, else the objects of group `name`; empty if neither exists.

@@ -8,6 +8,11 @@
 namespace cutaway::view {
 
 void filePanel(ViewerState& state) {
+  if (ImGui::Button("Reload scene")) state.reloadRequested = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Reads the scene file again, keeping this view (F5); a file that fails to load "
+        "leaves the last good scene on screen");
   ImGui::InputText("##scene", &state.savePath);
   ImGui::SameLine();
   if (ImGui::Button("Save scene")) state.saveRequested = true;
