@@ -101,18 +101,25 @@ INSTANTIATE_TEST_SUITE_P(RandomSeeds, GpuCpuCutaway,
 namespace {
 
 // World-space angle (degrees) between the cutaway wall and the central view ray, measured on the
-// centre row, right of a small seed box at the screen centre, at camera distance `distance`.
-double wallAngle(float distance, bool compensation, float theta) {
+// centre row, right of a small seed box at the screen centre: perspective at camera distance
+// `zoom`, or orthographic with a view `zoom` high.
+double wallAngle(float zoom, bool compensation, float theta, bool orthographic = false) {
+  const float distance = orthographic ? 10.0f : zoom;
+  char view[200];
+  if (orthographic)
+    std::snprintf(view, sizeof view, R"("projection": "orthographic", "height": %g)", zoom);
+  else
+    std::snprintf(view, sizeof view, R"("fov": 40)");
   char json[1400];
   std::snprintf(
       json, sizeof json,
       R"({"resolution": [128, 128], "samples": 1, "style": {"name": "gooch", "lines": false},
-      "camera": {"eye": [0, 0, %g], "target": [0, 0, 0], "fov": 40, "near": %g, "far": %g},
+      "camera": {"eye": [0, 0, %g], "target": [0, 0, 0], %s, "near": %g, "far": %g},
       "cutters": {"adaptive": {"angle": %g, "bufferSize": 256, "perspectiveCompensation": %s,
                                "edgeCompression": false, "ghostLines": false}},
       "objects": [{"name": "wall", "file": "render/plane.obj", "transform": {"translate": [0, 0, -2]}}],
       "proxies": [{"name": "seed", "box": {"min": [-0.05, -0.05, -0.5], "max": [0.05, 0.05, -0.4]}}]})",
-      distance, distance * 0.25f, distance * 2.0f, theta, compensation ? "true" : "false");
+      distance, view, distance * 0.25f, distance * 2.0f, theta, compensation ? "true" : "false");
   const Scene scene = parseScene(json, "angle.json", kData);
   const auto aovs = renderAovs(scene);
   const FloatImage& c = aov(aovs, "cutawayDepth");  // rows top to bottom
@@ -148,6 +155,22 @@ TEST(PerspectiveCompensation, WallKeepsTheAngleAtEveryZoom) {
       const double with = wallAngle(distance, true, theta);
       EXPECT_NEAR(with, theta, 2.0) << "θ " << theta << ", camera distance " << distance;
       worstWithout = std::max(worstWithout, std::abs(wallAngle(distance, false, theta) - theta));
+    }
+    EXPECT_GT(worstWithout, 2.0) << "θ " << theta
+                                 << ": without compensation the angle should drift";
+  }
+}
+
+// Burns11 §5.2.2 for an orthographic view: the compensated slope |P₂₂|/tan θ keeps the wall
+// at θ to the (parallel) view rays whatever the view's height; the screen-space slope does not.
+TEST(PerspectiveCompensation, OrthographicWallKeepsTheAngleAtEveryHeight) {
+  for (float theta : {30.0f, 45.0f, 60.0f}) {
+    double worstWithout = 0;
+    for (float height : {1.5f, 3.0f, 6.0f}) {
+      EXPECT_NEAR(wallAngle(height, true, theta, true), theta, 2.0)
+          << "θ " << theta << ", view height " << height;
+      worstWithout =
+          std::max(worstWithout, std::abs(wallAngle(height, false, theta, true) - theta));
     }
     EXPECT_GT(worstWithout, 2.0) << "θ " << theta
                                  << ": without compensation the angle should drift";

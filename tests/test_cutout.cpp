@@ -141,6 +141,33 @@ TEST(CutoutWedge, PlanesMeetOnTheAxisAndFaceTheViewer) {
   EXPECT_LT(cutoutDistance(partial, none, a.center + towards - 2.0f * a.axes[0]), 0.0f);
 }
 
+// A set rotation turns the wedge about the main axis, whatever the viewer: its bisector lies
+// `rotation` degrees from the second principal axis towards the third, so a point at angle φ
+// about the axis (from the second axis towards the third) is removed exactly where
+// |φ − rotation| < angle / 2 (mod 360°). Worked by hand, one point per degree.
+TEST(CutoutWedge, ARotationTurnsTheWedgeAboutTheMainAxis) {
+  const PrincipalAxes a = principalAxes(boxCorners({3, 2, 1}, glm::mat3(1.0f), glm::vec3(1, 2, 3)));
+  const CutoutJitter none;
+  for (const float rotation : {0.0f, 50.0f, -120.0f, 300.0f})
+    for (const float angle : {40.0f, 90.0f, 150.0f}) {
+      const CutoutOptions options{.angle = angle, .rotation = rotation};
+      const CutoutWedge w = cutoutWedge(a, options, {0.3f, -0.8f, 0.5f});
+      int removed = 0;
+      for (int k = 0; k < 360; ++k) {
+        const float degrees = float(k) + 0.5f, phi = glm::radians(degrees);
+        const glm::vec3 p = a.center + 0.4f * a.axes[0] +
+                            0.7f * (std::cos(phi) * a.axes[1] + std::sin(phi) * a.axes[2]);
+        const float off = std::abs(std::remainder(degrees - rotation, 360.0f));
+        if (std::abs(off - angle / 2) < 1.0f) continue;  // within a degree of a plane
+        const bool expected = off < angle / 2;
+        removed += expected;
+        EXPECT_EQ(cutoutDistance(w, none, p) > 0.0f, expected)
+            << "rotation " << rotation << ", angle " << angle << ", point at " << degrees << "°";
+      }
+      EXPECT_NEAR(removed, angle - 2, 2) << "rotation " << rotation << ", angle " << angle;
+    }
+}
+
 TEST(CutoutJitter, PatternsStayInRangeAndSawtoothIsATriangleWave) {
   const PrincipalAxes a = principalAxes(boxCorners({3, 1, 1}, glm::mat3(1.0f), glm::vec3(0.0f)));
   const CutoutWedge w = cutoutWedge(a, {}, {0, 0, 1});
@@ -206,8 +233,10 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
       }
     writePng(pattern, img);
   }
+  // "rotated": no jitter, the wedge at a set rotation instead of facing the camera.
   std::string options = R"("cutout": {"angle": 100)";
-  if (jitter != "none") {
+  if (jitter == "rotated") options += R"(, "rotation": 140)";
+  if (jitter != "none" && jitter != "rotated") {
     options += R"(, "jitter": {"pattern": ")" + jitter + R"(", "amplitude": 0.06, "frequency": 5)";
     if (jitter == "image") options += R"(, "image": ")" + pattern.string() + "\"";
     options += "}";
@@ -258,7 +287,7 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Patterns, CutoutGpuCpu,
-                         ::testing::Values("none", "sawtooth", "noise", "image"));
+                         ::testing::Values("none", "sawtooth", "noise", "image", "rotated"));
 
 // Rule 5: through the wedge the cube's inside shows as its cut wall, in the wall colour, and
 // the interior object is never cut.
@@ -318,6 +347,53 @@ TEST(Breakaway, InflatedHullContainsTheOffsetBody) {
   }
 }
 
+namespace {
+
+// The nearest hit of each pixel-centre ray with `hull`: its window depth (0 where the ray
+// misses) and world point, rows top to bottom as the AOVs.
+struct HullHits {
+  FloatImage depth;
+  std::vector<glm::vec3> point;
+};
+HullHits rayCastHull(const Scene& scene, const Mesh& hull) {
+  const Camera camera = scene.resolvedCamera();
+  const glm::mat4 viewProjection =
+      camera.projectionMatrix(float(scene.width) / float(scene.height)) * camera.view();
+  const glm::mat4 inverse = glm::inverse(viewProjection);
+  HullHits hits{FloatImage(scene.width, scene.height, 1),
+                std::vector<glm::vec3>(std::size_t(scene.width) * std::size_t(scene.height))};
+  for (int y = 0; y < scene.height; ++y)
+    for (int x = 0; x < scene.width; ++x) {
+      const glm::vec2 ndc((x + 0.5f) / scene.width * 2 - 1, 1 - (y + 0.5f) / scene.height * 2);
+      const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
+      const glm::vec3 from = glm::vec3(a) / a.w, dir = glm::vec3(b) / b.w - from;
+      float nearest = 2.0f;  // in units of the segment near → far
+      for (const float t : rayHits(hull, from, dir)) nearest = std::min(nearest, t);
+      hits.depth.at(x, y)[0] = 0.0f;
+      if (nearest <= 1.0f) {
+        const glm::vec3 point = from + nearest * dir;
+        const glm::vec4 h = viewProjection * glm::vec4(point, 1.0f);
+        hits.depth.at(x, y)[0] = 0.5f * h.z / h.w + 0.5f;
+        hits.point[std::size_t(y) * std::size_t(scene.width) + std::size_t(x)] = point;
+      }
+    }
+  return hits;
+}
+
+// Pixels where `clip` differs from the ray cast's depth by more than 1e-5; `covered` counts
+// the pixels the hull covers.
+int clipDepthMismatches(const FloatImage& clip, const HullHits& hits, int& covered) {
+  int mismatched = 0;
+  covered = 0;
+  for (std::size_t i = 0; i < clip.data.size(); ++i) {
+    covered += hits.depth.data[i] > 0.0f;
+    mismatched += std::abs(clip.data[i] - hits.depth.data[i]) > 1e-5f;
+  }
+  return mismatched;
+}
+
+}  // namespace
+
 // The clip depth pass (greater-than, then less-than) against the nearest hit of a ray with
 // the outer hulls, per pixel; and exterior front faces in front of it are gone.
 TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
@@ -329,30 +405,15 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
   const FloatImage& clip = aov(aovs, "breakawayClipDepth");
   const std::vector<BreakawayCluster> clusters = breakawayClusters(scene, *scene.cutters.find<BreakawayOptions>());
   ASSERT_EQ(clusters.size(), 1u);
-  const Mesh& hull = clusters[0].outerHull;
-  const Camera camera = scene.resolvedCamera();
-  const glm::mat4 viewProjection =
-      camera.projectionMatrix(float(scene.width) / float(scene.height)) * camera.view();
-  const glm::mat4 inverse = glm::inverse(viewProjection);
-  int covered = 0, mismatched = 0, removed = 0, wrong = 0;
+  const HullHits hits = rayCastHull(scene, clusters[0].outerHull);
+  int covered = 0, removed = 0, wrong = 0;
+  const int mismatched = clipDepthMismatches(clip, hits, covered);
   const FloatImage &plainId = aov(plainAovs, "objectId"), &plainDepth = aov(plainAovs, "depth"),
                    &id = aov(aovs, "objectId"), &depth = aov(aovs, "depth");
   for (int y = 0; y < clip.height; ++y)
     for (int x = 0; x < clip.width; ++x) {
-      // Pixel centre; AOV rows run top to bottom.
-      const glm::vec2 ndc((x + 0.5f) / clip.width * 2 - 1, 1 - (y + 0.5f) / clip.height * 2);
-      const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
-      const glm::vec3 from = glm::vec3(a) / a.w, dir = glm::vec3(b) / b.w - from;
-      float nearest = 2.0f;  // in units of the segment near → far
-      for (const float t : rayHits(hull, from, dir)) nearest = std::min(nearest, t);
-      float expected = 0.0f;
-      if (nearest <= 1.0f) {
-        const glm::vec4 h = viewProjection * glm::vec4(from + nearest * dir, 1.0f);
-        expected = 0.5f * h.z / h.w + 0.5f;
-        ++covered;
-      }
-      mismatched += std::abs(clip.at(x, y)[0] - expected) > 1e-5f;
       // The cube's surface in front of the hull is removed.
+      const float expected = hits.depth.at(x, y)[0];
       if (plainId.at(x, y)[0] == 0.0f && expected > 0.0f &&
           plainDepth.at(x, y)[0] < expected - 1e-4f) {
         ++removed;
@@ -364,4 +425,63 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
   EXPECT_LE(mismatched, covered / 50) << mismatched << " of " << covered;
   EXPECT_GT(removed, 100);
   EXPECT_EQ(wrong, 0);
+}
+
+// The wall's two hulls (Diepstraten03 §5): the outer grown by the offset, the inner by the
+// offset less the wall thickness, each against the support function of the interior's points
+// (the exact offset body's, less at most a tenth: inflatedHull's bound); the GPU's inner clip
+// depth against a ray cast of the inner hull; and the wall seen through the hole lies on the
+// outer hull, where the ray meets it.
+TEST(Breakaway, TheWallLiesBetweenTheOuterAndTheInnerHull) {
+  const float offset = 0.12f, thickness = 0.08f;
+  const Scene scene = parseScene(
+      cubeScene(R"("breakaway": {"offset": 0.12, "wallThickness": 0.08})"), "cube.json", kData);
+  const std::vector<BreakawayCluster> clusters =
+      breakawayClusters(scene, *scene.cutters.find<BreakawayOptions>());
+  ASSERT_EQ(clusters.size(), 1u);
+  std::vector<glm::vec3> interior;
+  for (const std::size_t i : clusters[0].objects) {
+    const SceneObject& o = scene.objects[i];
+    for (const glm::vec3& p : o.mesh->positions)
+      interior.push_back(glm::vec3(o.transformAt(0.0f) * glm::vec4(p, 1.0f)));
+  }
+  std::mt19937 rng(5);
+  std::normal_distribution<float> n(0.0f, 1.0f);
+  for (int i = 0; i < 500; ++i) {
+    const glm::vec3 d = glm::normalize(glm::vec3(n(rng), n(rng), n(rng)));
+    float h = -1e30f, outer = -1e30f, inner = -1e30f;
+    for (const glm::vec3& p : interior) h = std::max(h, glm::dot(p, d));
+    for (const glm::vec3& p : clusters[0].outerHull.positions)
+      outer = std::max(outer, glm::dot(p, d));
+    for (const glm::vec3& p : clusters[0].innerHull.positions)
+      inner = std::max(inner, glm::dot(p, d));
+    EXPECT_GE(outer, h + 0.9f * offset - 1e-5f);
+    EXPECT_LE(outer, h + offset + 1e-5f);
+    EXPECT_GE(inner, h + 0.9f * (offset - thickness) - 1e-5f);
+    EXPECT_LE(inner, h + (offset - thickness) + 1e-5f);
+  }
+
+  const auto aovs = renderAovs(scene);
+  const HullHits innerHits = rayCastHull(scene, clusters[0].innerHull);
+  int covered = 0;
+  const int mismatched = clipDepthMismatches(aov(aovs, "breakawayInnerDepth"), innerHits, covered);
+  EXPECT_GT(covered, 100);
+  EXPECT_LE(mismatched, covered / 50) << mismatched << " of " << covered;
+  // The cut wall: the cube's inside seen through the hole, shown at the outer hull's surface.
+  const HullHits outerHits = rayCastHull(scene, clusters[0].outerHull);
+  const FloatImage &id = aov(aovs, "objectId"), &mask = aov(aovs, "cutMask"),
+                   &position = aov(aovs, "position");
+  int wall = 0, off = 0;
+  for (int y = 0; y < id.height; ++y)
+    for (int x = 0; x < id.width; ++x) {
+      if (id.at(x, y)[0] != 0.0f || mask.at(x, y)[0] < 0.5f) continue;  // cut (0.5 or more)
+      ++wall;
+      ASSERT_GT(outerHits.depth.at(x, y)[0], 0.0f)
+          << "a wall pixel off the hull at " << x << "," << y;
+      const glm::vec3 hit =
+          outerHits.point[std::size_t(y) * std::size_t(id.width) + std::size_t(x)];
+      off += glm::length(glm::make_vec3(position.at(x, y)) - hit) > 1e-3f;
+    }
+  EXPECT_GT(wall, 30);
+  EXPECT_LE(off, wall / 50) << off << " of " << wall << " wall pixels off the outer hull";
 }
