@@ -309,11 +309,12 @@ TEST(Viewer, NetworkOptionsChangeLiveAndSave) {
 }
 
 // Reloading and opening scenes: a file that fails to load, or that the device cannot render
-// (16 samples on llvmpipe, which takes 4), leaves the last good scene on screen and says why;
-// a good one replaces it, and `reload` reads the file again keeping the view.
+// (16 samples on llvmpipe, which takes 4), leaves the last good scene on screen and says why,
+// and the next edit still applies; a good one replaces it at the window's size (not the
+// file's resolution), and `reload` reads the file again keeping the view.
 TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
   ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
-  const std::string bunny = R"({"resolution": [160, 120], "samples": 1, "objects": [
+  const std::string bunny = R"({"resolution": [200, 100], "samples": 1, "objects": [
       {"name": "bunny", "file": "/usr/share/glmark2/models/bunny.obj", "color": )";
   const fs::path red = scratch("red.json"), blue = scratch("blue.json"),
                  broken = scratch("broken.json"), tooMany = scratch("too-many.json"),
@@ -325,12 +326,14 @@ TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
   sixteen.replace(sixteen.find("\"samples\": 1"), 12, "\"samples\": 16");
   std::ofstream(tooMany) << sixteen << "[0.1, 0.9, 0.1]}]}";
   std::vector<fs::path> shots;
-  for (int i = 0; i < 5; ++i) shots.push_back(scratch("reload-" + std::to_string(i) + ".png"));
-  std::ofstream(script) << "wait 1\nscreenshot " << shots[0].string() << "\nopen "
-                        << broken.string() << "\nscreenshot " << shots[1].string() << "\nopen "
-                        << tooMany.string() << "\nscreenshot " << shots[2].string() << "\nopen "
-                        << blue.string() << "\nscreenshot " << shots[3].string()
-                        << "\nreload\nscreenshot " << shots[4].string() << "\nquit\n";
+  for (int i = 0; i < 7; ++i) shots.push_back(scratch("reload-" + std::to_string(i) + ".png"));
+  std::ofstream(script) << "wait 1\nscreenshot " << shots[0].string()  // red
+                        << "\nopen " << broken.string() << "\nscreenshot " << shots[1].string()
+                        << "\nopen " << tooMany.string() << "\nscreenshot " << shots[2].string()
+                        << "\nset style.name toon\nscreenshot " << shots[3].string() << "\nopen "
+                        << blue.string() << "\norbit 40 10\nscreenshot " << shots[4].string()
+                        << "\nreload\nscreenshot " << shots[5].string() << "\nopen "
+                        << blue.string() << "\nscreenshot " << shots[6].string() << "\nquit\n";
   const Result r = runUnderXvfb(red.string() + " --size 160x120 --script " + script.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("cutaway-view: " + broken.string() + ": line "), std::string::npos) << r.err;
@@ -341,18 +344,25 @@ TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
   EXPECT_NE(r.out.find("opened " + blue.string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("reloaded " + blue.string()), std::string::npos) << r.out;
   std::vector<Rgba8Image> images;
-  for (const fs::path& shot : shots) images.push_back(readPng(shot));
-  // The red bunny through both failures, then the blue one, the same after the reload.
+  for (const fs::path& shot : shots) {
+    images.push_back(readPng(shot));
+    EXPECT_EQ(images.back().width, 160) << shot;  // the window's size, not the file's 200×100
+    EXPECT_EQ(images.back().height, 120) << shot;
+  }
+  const auto balance = [](const Rgba8Image& image, int a, int b) {
+    long sum = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4)
+      sum += long(image.pixels[i + a]) - long(image.pixels[i + b]);
+    return sum;
+  };
+  // The red bunny through both failures; the edit after them (a new style: a new renderer)
+  // applies.
   EXPECT_EQ(images[1].pixels, images[0].pixels);
   EXPECT_EQ(images[2].pixels, images[0].pixels);
   EXPECT_NE(images[3].pixels, images[0].pixels);
-  EXPECT_EQ(images[4].pixels, images[3].pixels);
-  const auto redder = [](const Rgba8Image& image) {
-    long balance = 0;
-    for (std::size_t i = 0; i < image.pixels.size(); i += 4)
-      balance += long(image.pixels[i]) - long(image.pixels[i + 2]);
-    return balance;
-  };
-  EXPECT_GT(redder(images[0]), 0);
-  EXPECT_LT(redder(images[3]), 0);
+  EXPECT_GT(balance(images[0], 0, 2), 0);
+  // The blue bunny, orbited; the reload keeps that view, opening again takes the file's.
+  EXPECT_LT(balance(images[4], 0, 2), 0);
+  EXPECT_EQ(images[5].pixels, images[4].pixels);
+  EXPECT_NE(images[6].pixels, images[4].pixels);
 }

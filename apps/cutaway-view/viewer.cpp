@@ -122,7 +122,7 @@ int Viewer::run() {
   while (!quit_ && !window_->shouldClose()) {
     const bool busy = script_ || state_.playing || state_.sceneChanged || state_.viewChanged ||
                       state_.aovChanged || state_.saveRequested || state_.screenshotRequested ||
-                      state_.frameRequested || state_.flyMode;
+                      state_.frameRequested || state_.reloadRequested || state_.flyMode;
     // Idle: sleep until an event instead of redrawing an unchanged view.
     if (busy)
       window_->pollEvents();
@@ -605,6 +605,8 @@ void Viewer::adopt(Scene loaded, SceneDocument document, const fs::path& path, b
   camera.fit = false;
   camera.eye = resolved.eye, camera.target = resolved.target, camera.height = resolved.height;
   if (keepView) camera = view;
+  // The frame keeps the window's size (resized, --size), not the file's resolution.
+  if (width_ > 0) state_.scene.width = width_, state_.scene.height = height_;
   // Indices into the scene's objects and volumes of before.
   state_.selection.clear();
   state_.transferVolume = state_.transferRow = 0;
@@ -645,9 +647,14 @@ void Viewer::openScene(const fs::path& path, bool keepView) {
     original_ = original, document_ = previousDocument, state_ = previous;
     options_.scene = previousPath, sceneRadius_ = previousRadius;
     state_.status = status;
-    state_.viewChanged = true;  // the renderer made again must draw
+    // The fallback renderer drew the last good scene; an edit that was waiting, or the next
+    // one, must make a new one.
+    state_.sceneChanged = true;
+    renderedIsLive_ = false;
     return;
   }
+  if (window_)
+    glfwSetWindowTitle(window_->window(), ("cutaway-view — " + path.filename().string()).c_str());
   state_.status = (keepView ? "reloaded " : "opened ") + path.string();
   std::printf("%s\n", state_.status.c_str());
   std::fflush(stdout);
@@ -655,16 +662,18 @@ void Viewer::openScene(const fs::path& path, bool keepView) {
 
 bool Viewer::rebuild() {
   // The renderer keeps a reference to the scene and builds its passes from it: a new one,
-  // made after the old one is gone (two frames' targets may not fit together).
+  // made after the old one is gone (two frames' targets may not fit together; glFinish lets
+  // the driver free them before the new frame reads the free memory).
   renderer_.reset();
+  glFinish();
   bool made = true;
   try {
     renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
   } catch (const Error& e) {
-    if (rendered_.objects.empty() && rendered_.volumes.empty() && rendered_.networks.empty())
-      throw;  // the first scene: nothing to go back to
+    if (!rendered_) throw;  // the first scene: nothing to go back to
     report(e.what() + std::string(" (the last good scene stays)"));
-    state_.scene = rendered_;
+    state_.scene = *rendered_;
+    // It drew before; should it fail now, the device is gone and the error ends the viewer.
     renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
     made = false;
   }

@@ -80,7 +80,7 @@ class Viewer {
 
   ViewerOptions options_;
   Scene original_;  // as loaded, for saving
-  Scene rendered_;  // the live scene as the current renderer was made from it
+  std::optional<Scene> rendered_;  // the live scene as the current renderer was made from it
   bool renderedIsLive_ = false;  // the renderer was just made for the live scene
   std::optional<SceneDocument> document_;
   ViewerState state_;
