@@ -178,11 +178,21 @@ SceneArrays sceneArrays(const std::string& source, const py::dict& meshes,
 
 // The role of a scene file's name.
 Role roleNamed(const std::string& source, const std::string& place, const std::string& name) {
-  for (Role r : {Role::Context, Role::Interest, Role::Exterior, Role::Interior})
-    if (name == roleName(r)) return r;
+  if (const std::optional<Role> r = roleFromName(name)) return *r;
   throw Error(
       source, place,
       "unknown role \"" + name + "\" (expected one of: context, interest, exterior, interior)");
+}
+
+// Applies `change` to a copy of the scene, checks the copy as a scene file is checked (the
+// names, the reach, the cutters' roles), and only then keeps it.
+template <class Change>
+auto changeChecked(Scene& s, const std::string& source, Change change) {
+  Scene changed = s;
+  auto result = change(changed);
+  checkScene(changed, source);
+  s = std::move(changed);
+  return result;
 }
 
 // An object from arrays, appended to the scene with a role and an optional colour.
@@ -190,17 +200,16 @@ void addMesh(Scene& s, const std::string& name, const py::handle& vertices, cons
              const std::string& role, const std::optional<std::array<float, 3>>& color) {
   const auto fail = [&](const std::string& reason) { throw Error("add_mesh", name, reason); };
   if (name.empty()) fail("the object needs a name");
-  for (const SceneObject& o : s.objects)
-    if (o.name == name) fail("the scene already has an object named \"" + name + "\"");
-  for (const SceneVolume& v : s.volumes)
-    if (v.name == name) fail("the scene already has a volume named \"" + name + "\"");
   SceneObject o;
   o.name = name;
   o.source = "numpy";
   o.role = roleNamed("add_mesh", name, role);
   if (color) o.material.color = glm::vec3((*color)[0], (*color)[1], (*color)[2]);
   o.mesh = meshFromArrays("add_mesh", name, vertices, faces);
-  s.objects.push_back(std::move(o));
+  changeChecked(s, "add_mesh", [&](Scene& changed) {
+    changed.objects.push_back(std::move(o));
+    return 0;
+  });
 }
 
 }  // namespace
@@ -231,15 +240,14 @@ PYBIND11_MODULE(_cutaway, m) {
           "Any technique's option by its scene-file path, the value as --set writes it")
       .def(
           "_add_volume",
-          [](Scene& s, const std::string& text, const std::filesystem::path& dir,
-             const std::string& key, const py::array& values,
+          [](Scene& s, const std::string& text, const std::string& key, const py::array& values,
              const std::array<double, 16>& affine) {
             SceneArrays arrays;
             arrays.volumes[key] = volumeFromArray("add_volume", key, values, affine);
-            appendVolume(s, text, "add_volume", dir, arrays);
+            appendVolume(s, text, "add_volume", ".", arrays);
           },
-          py::arg("text"), py::arg("base_dir"), py::arg("key"), py::arg("values"),
-          py::arg("affine"), "A \"volumes\" entry whose \"arrays\" is `key`")
+          py::arg("text"), py::arg("key"), py::arg("values"), py::arg("affine"),
+          "A \"volumes\" entry whose \"arrays\" is `key`")
       .def("add_mesh", &addMesh, py::arg("name"), py::arg("vertices"), py::arg("faces"),
            py::arg("role") = "context", py::arg("color") = py::none(),
            "An object from arrays: vertices (N, 3), faces (M, 3) indices")
@@ -249,7 +257,9 @@ PYBIND11_MODULE(_cutaway, m) {
       .def(
           "set_role",
           [](Scene& s, const std::string& pattern, const std::string& role) {
-            return s.setRole(pattern, roleNamed("set_role", pattern, role));
+            const Role r = roleNamed("set_role", pattern, role);
+            return changeChecked(s, "set_role",
+                                 [&](Scene& changed) { return changed.setRole(pattern, r); });
           },
           py::arg("pattern"), py::arg("role"),
           "The role (context, interest, exterior, interior) of the objects whose name or group "

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <fstream>
 #include <limits>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "expect_error.hpp"
+#include "frame/scene_meshes.hpp"
 #include "gl_test_context.hpp"
 
 using namespace cutaway;
@@ -230,6 +232,34 @@ TEST(Frame, HoldsTargetsToTheDevicesLimits) {
     test::expectError([&] { (void)huge.declare("p", {.format = GL_RGBA32F, .samples = 4}); },
                       {"frame: p: the device is out of memory for the render targets"});
   }
+}
+
+// What the device says it has free: for llvmpipe main memory's MemAvailable, so something and
+// no more than the machine's memory.
+TEST(Frame, TheDevicesAvailableMemoryIsPlausible) {
+  const gl::ContextInfo device = test::glContext().info();
+  const std::uint64_t available = device.availableMemory();
+  if (!device.software) GTEST_SKIP() << "a GPU's driver may not tell";
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t total = 0;
+  ASSERT_TRUE(meminfo >> key >> total);
+  ASSERT_EQ(key, "MemTotal:");
+  EXPECT_GT(available, std::uint64_t(64) << 20);
+  EXPECT_LE(available, total * 1024);
+}
+
+// A mesh beyond the triangle cap is refused before it is uploaded (a cap of 1 stands for
+// 2²⁹ here, which no test machine could hold).
+TEST(Frame, MeshesBeyondTheTriangleCapAreRefused) {
+  test::glContext();
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  mesh.normals.assign(4, {0, 0, 1});
+  mesh.triangles = {{0, 1, 2}, {1, 3, 2}};
+  test::expectError([&] { GpuMesh(mesh, 1); }, {"2 triangles exceed the limit of 1 per mesh"});
+  EXPECT_NO_THROW(GpuMesh(mesh, 2));
+  EXPECT_EQ(GpuMesh::kMaxTriangles, std::size_t(1) << 29);
 }
 
 // A scene the device cannot hold is refused with the frame's message, not a broken frame.

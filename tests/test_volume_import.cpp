@@ -1783,4 +1783,7 @@ TEST(VolumeFromMemory, RefusesBadTypesDimsAndPlacements) {
   expectError([&] { volumeFromMemory(m, "array", ""); }, {"transform is singular"});
   m.indexToWorld[2][2] = std::numeric_limits<double>::infinity();
   expectError([&] { volumeFromMemory(m, "array", ""); }, {"transform is not finite"});
+  m.indexToWorld = glm::dmat4(1.0);
+  m.indexToWorld[2][3] = 0.5;  // a projective last row
+  expectError([&] { volumeFromMemory(m, "array", ""); }, {"last row is not 0 0 0 1"});
 }

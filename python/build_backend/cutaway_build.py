@@ -3,7 +3,7 @@ Debian 12 has no scikit-build-core. It builds the `_cutaway` module with the pro
 CMake (the same build as `cmake --build`) and packs it with python/cutaway/ into a wheel
 whose metadata come from pyproject.toml.
 
-Settings (`pip install -C KEY=VALUE .`):
+Settings (`pip install --config-settings KEY=VALUE .`; Debian 12's pip 23.0 has no `-C`):
     build-dir=PATH  a CMake build folder to build in or reuse (default build/pip, kept between
                     installs so a second install only rebuilds what changed)
     jobs=N          parallel compile jobs (default: the number of CPUs)
@@ -57,8 +57,10 @@ def _metadata_files():
 def _build(settings):
     build = os.path.abspath(settings.get("build-dir") or os.path.join(ROOT, "build", "pip"))
     if not os.path.exists(os.path.join(build, "CMakeCache.txt")):
+        # The module for the interpreter pip runs, whose tag the wheel carries.
         subprocess.run(["cmake", "-S", ROOT, "-B", build, "-DCMAKE_BUILD_TYPE=Release",
-                        "-DCUTAWAY_PYTHON=ON", "-DCUTAWAY_BUILD_TESTS=OFF"], check=True,
+                        "-DCUTAWAY_PYTHON=ON", "-DCUTAWAY_BUILD_TESTS=OFF",
+                        "-DPython3_EXECUTABLE=" + sys.executable], check=True,
                        stdout=sys.stderr)
     jobs = str(settings.get("jobs") or os.cpu_count() or 1)
     subprocess.run(["cmake", "--build", build, "--target", "_cutaway", "--parallel", jobs],
@@ -87,12 +89,14 @@ def prepare_metadata_for_build_wheel(metadata_directory, config_settings=None):
 def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
     package = _build(config_settings or {})
     files = {}
-    for name in sorted(os.listdir(package)):
-        if name == "__init__.py" or (name.startswith("_cutaway.") and name.endswith(".so")):
-            with open(os.path.join(package, name), "rb") as f:
-                files["cutaway/" + name] = f.read()
-    if len(files) != 2:
-        raise RuntimeError("the build left %s without the module and __init__.py" % package)
+    # This interpreter's module only (a reused build folder may hold another Python's too).
+    for name in ("__init__.py", "_cutaway" + sysconfig.get_config_var("EXT_SUFFIX")):
+        path = os.path.join(package, name)
+        if not os.path.exists(path):
+            raise RuntimeError("the build left no %s in %s (a build folder configured for "
+                               "another Python?)" % (name, package))
+        with open(path, "rb") as f:
+            files["cutaway/" + name] = f.read()
     dist_info = _dist_info()
     for name, data in _metadata_files().items():
         files[dist_info + "/" + name] = data

@@ -121,8 +121,7 @@ def _set(self, path, value):
     self._set_text(path, _option_text(value))
 
 
-def _add_volume(self, name, values, spacing=None, origin=None, affine=None, base_dir=".",
-                **entry):
+def _add_volume(self, name, values, spacing=None, origin=None, affine=None, **entry):
     """A volume from a 3-D array indexed values[i, j, k] (transpose a [z, y, x] array), placed
     by `spacing` and `origin` or a 4×4 `affine` (voxel index to world); every other key of a
     "volumes" entry by its JSON name: transferFunction=[…], role="interest", mode=…"""
@@ -130,7 +129,7 @@ def _add_volume(self, name, values, spacing=None, origin=None, affine=None, base
         raise Error("add_volume: the name must be a string")
     place = "add_volume: " + name
     entry = dict(entry, name=name, arrays=name)
-    self._add_volume(_dumps(entry), os.fspath(base_dir), name, np.asarray(values),
+    self._add_volume(_dumps(entry), name, np.asarray(values),
                      _affine(place, spacing, origin, affine))
 
 

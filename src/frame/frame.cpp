@@ -91,11 +91,11 @@ Target Frame::declare(const std::string& name, TargetDesc desc) {
   if (desc.width == 0) desc.width = width_;
   if (desc.height == 0) desc.height = height_;
   checkLimits(name, desc);
-  while (glGetError() != GL_NO_ERROR) {
-  }
-  gl::Texture texture = gl::Texture::create2D(desc.format, desc.width, desc.height,
-                                              desc.samples > 1 ? desc.samples : 0);
-  if (glGetError() == GL_OUT_OF_MEMORY)
+  gl::Texture texture;
+  if (gl::outOfMemory([&] {
+        texture = gl::Texture::create2D(desc.format, desc.width, desc.height,
+                                        desc.samples > 1 ? desc.samples : 0);
+      }))
     throw Error("frame", name,
                 "the device is out of memory for the render targets (" + mebibytes(bytes_) +
                     " at " + std::to_string(width_) + "×" + std::to_string(height_) +

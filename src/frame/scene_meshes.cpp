@@ -6,13 +6,11 @@
 
 namespace cutaway {
 
-GpuMesh::GpuMesh(const cutaway::Mesh& mesh) {
+GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles) {
   // glDrawElements counts indices in a GLsizei.
-  if (mesh.triangles.size() > kMaxTriangles)
+  if (mesh.triangles.size() > maxTriangles)
     throw Error(std::to_string(mesh.triangles.size()) + " triangles exceed the limit of " +
-                std::to_string(kMaxTriangles) + " per mesh");
-  while (glGetError() != GL_NO_ERROR) {
-  }
+                std::to_string(maxTriangles) + " per mesh");
   std::vector<float> interleaved;
   interleaved.reserve(mesh.positions.size() * 6);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -20,11 +18,12 @@ GpuMesh::GpuMesh(const cutaway::Mesh& mesh) {
     const auto& n = mesh.normals[i];
     interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
   }
-  vertices_ =
-      gl::Buffer::create(GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
-  indices_ = gl::Buffer::create(GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
-                                mesh.triangles.data());
-  if (glGetError() == GL_OUT_OF_MEMORY)
+  if (gl::outOfMemory([&] {
+        vertices_ =
+            gl::Buffer::create(GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
+        indices_ = gl::Buffer::create(GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
+                                      mesh.triangles.data());
+      }))
     throw Error("the device is out of memory for its " + std::to_string(mesh.triangles.size()) +
                 " triangles");
   indexCount_ = GLsizei(mesh.triangles.size() * 3);

@@ -23,9 +23,9 @@ constexpr GLint kModel = 0, kNormalMatrix = 4;
 class GpuMesh {
  public:
   GpuMesh() = default;
-  // Throws cutaway::Error beyond kMaxTriangles or when the device has no memory for it.
-  explicit GpuMesh(const cutaway::Mesh& mesh);
+  // Throws cutaway::Error beyond `maxTriangles` or when the device has no memory for it.
   static constexpr std::size_t kMaxTriangles = std::size_t(1) << 29;
+  explicit GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles = kMaxTriangles);
   void draw() const;
 
  private:

@@ -2160,8 +2160,11 @@ Volume volumeFromMemory(const MemoryVoxels& voxels, const std::string& source,
                "' (expected unsigned or signed integers of 8, 16 or 32 bits, or floats of 32 or "
                "64 bits)");
   const std::size_t count = checkDims(voxels.dims, limits, where);
+  const glm::dmat4& m = voxels.indexToWorld;
+  if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+    where.fail("the voxel-to-world transform's last row is not 0 0 0 1 (an affine map)");
   Volume v;
-  v.indexToWorld = checkTransform(voxels.indexToWorld, where);
+  v.indexToWorld = checkTransform(m, where);
   v.dims = glm::ivec3(int(voxels.dims[0]), int(voxels.dims[1]), int(voxels.dims[2]));
   v.voxelType = type->name;
   v.values.resize(count);

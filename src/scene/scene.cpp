@@ -10,6 +10,12 @@
 
 namespace cutaway {
 
+std::optional<Role> roleFromName(const std::string& name) {
+  for (const Role r : kRoles)
+    if (name == roleName(r)) return r;
+  return std::nullopt;
+}
+
 const char* roleName(Role role) {
   switch (role) {
     case Role::Context:

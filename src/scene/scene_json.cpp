@@ -134,11 +134,9 @@ glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
 }
 
 Role role(const Context& ctx, const json& j, const std::string& ptr) {
-  const std::string v = oneOf(ctx, j, ptr, {"context", "interest", "exterior", "interior"});
-  if (v == "interest") return Role::Interest;
-  if (v == "exterior") return Role::Exterior;
-  if (v == "interior") return Role::Interior;
-  return Role::Context;
+  std::vector<std::string> names;
+  for (const Role r : kRoles) names.push_back(roleName(r));
+  return *roleFromName(oneOf(ctx, j, ptr, names));
 }
 
 ObjectParams params(const Context& ctx, const json& j, const std::string& ptr) {
@@ -839,6 +837,15 @@ void checkNamesAndReach(const Context& ctx, const Scene& scene) {
   for (const auto& n : scene.networks) checkReach("/networks", n.name, n.bounds());
 }
 
+// What a scene file gets once its parts are read: names, reach, and the cutters' checks
+// across the scene (the roles they need, the network to open above).
+void checkAcross(const Context& ctx, Scene& scene) {
+  checkNamesAndReach(ctx, scene);
+  for (const CutterType& type : cutterTypes())
+    if (type.complete && scene.cutters.find(type.key))
+      type.complete(ctx, "/cutters/" + type.key, scene);
+}
+
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
@@ -907,11 +914,7 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     for (std::size_t i = 0; i < v->size(); ++i)
       readVolume(ctx, (*v)[i], "/volumes/" + std::to_string(i), arrays, scene);
   }
-  checkNamesAndReach(ctx, scene);
-  // The cutters' checks across the scene (the roles they need, the network to open above).
-  for (const CutterType& type : cutterTypes())
-    if (type.complete && scene.cutters.find(type.key))
-      type.complete(ctx, "/cutters/" + type.key, scene);
+  checkAcross(ctx, scene);
   // The camera may "fit" to the objects, so it is read after them.
   if (const json* v = r.take("camera"))
     scene.camera = camera(ctx, *v, "/camera");
@@ -926,8 +929,12 @@ void appendVolume(Scene& scene, const std::string& text, const std::string& disp
   const Context ctx{displayName, baseDir, scene.geo};
   Scene grown = scene;  // the scene is left as it was when the entry fails
   readVolume(ctx, parseJson(ctx, text), "", arrays, grown);
-  checkNamesAndReach(ctx, grown);
+  checkAcross(ctx, grown);
   scene = std::move(grown);
+}
+
+void checkScene(Scene& scene, const std::string& displayName) {
+  checkAcross(Context{displayName, {}, scene.geo}, scene);
 }
 
 Scene loadScene(const std::filesystem::path& path) {

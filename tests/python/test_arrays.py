@@ -56,14 +56,17 @@ def check_equal(scene, expected):
     return renderer
 
 
-@pytest.mark.parametrize("layout", ["c", "fortran", "reversed", "big-endian", "float64"])
+@pytest.mark.parametrize("layout", ["c", "fortran", "reversed", "big-endian", "float64",
+                                    "fortran-big-endian"])
 def test_a_volume_from_an_array_is_the_volume_from_its_file(from_file, layout):
     values = blob()
     values = {"c": values,
               "fortran": np.asfortranarray(values),
               "reversed": values[::-1].copy()[::-1],  # negative strides along i
               "big-endian": values.astype(">i2"),
-              "float64": values.astype(np.float64)}[layout]
+              "float64": values.astype(np.float64),
+              # rows along i converted whole, each byte-swapped
+              "fortran-big-endian": np.asfortranarray(values.astype(">i2"))}[layout]
     renderer = check_equal(cutaway.from_dict(volume_scene(
         {"values": values, "spacing": SPACING, "origin": ORIGIN})), from_file)
     covered = (renderer.aov("volumeOpacity") > 0.05).mean()
@@ -86,6 +89,7 @@ def test_add_volume_is_the_dict_entry(from_file):
     expected = cutaway.Renderer(cutaway.from_dict(dict_scene))
     check_equal(scene, (expected.render(), expected.aovs()))
     assert scene.objects == ["outer", "inner"] and scene.volumes == ["blob"]
+    assert scene.set_role("blo.", "interest") == 1  # volumes by name
 
 
 def test_a_scene_of_arrays_alone_draws_as_its_files():
@@ -104,10 +108,12 @@ def test_a_scene_of_arrays_alone_draws_as_its_files():
     ({"values": np.zeros((2, 2, 2), complex)}, "/volumes/0: unsupported voxel type 'c128'"),
     ({"values": np.zeros((2, 2, 2), bool)}, "/volumes/0: unsupported voxel type 'b8'"),
     ({"values": np.zeros((0, 2, 2))}, r"/volumes/0: dims must be positive, got 0×2×2"),
-    ({"values": np.zeros((2, 2, 2)), "affine": np.zeros((4, 4))}, "transform is singular"),
+    ({"values": np.zeros((2, 2, 2)), "affine": np.diag([1, 0, 1, 1])}, "transform is singular"),
     ({"values": np.zeros((2, 2, 2)), "spacing": [1, np.inf, 1]}, "transform is not finite"),
     ({"values": np.zeros((2, 2, 2)), "spacing": [1, 2]}, "spacing must be 3 numbers"),
     ({"values": np.zeros((2, 2, 2)), "affine": np.eye(3)}, "affine must be a 4×4 matrix"),
+    ({"values": np.zeros((2, 2, 2)), "affine": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0],
+                                                [0, 0, 0.5, 1]]}, "last row is not 0 0 0 1"),
     ({"values": np.zeros((2, 2, 2)), "affine": np.eye(4), "origin": [0, 0, 0]},
      "give \"affine\" or \"spacing\" and \"origin\", not both"),
     ({"values": np.zeros((2, 2, 2)), "file": "x.nii"}, "one of \"file\" or \"arrays\", not both"),

@@ -156,7 +156,7 @@ def test_a_bad_numpy_mesh_is_refused():
     bad[3, 1] = np.nan
     with pytest.raises(cutaway.Error, match="vertex 3 is not finite"):
         scene.add_mesh("m", bad, CUBE_FACES)
-    with pytest.raises(cutaway.Error, match="already has an object named \"inner\""):
+    with pytest.raises(cutaway.Error, match="add_mesh: /objects: two objects are named \"inner\""):
         scene.add_mesh("inner", CUBE_VERTICES, CUBE_FACES)
     with pytest.raises(cutaway.Error, match="unknown role \"inside\""):
         scene.add_mesh("m", CUBE_VERTICES, CUBE_FACES, role="inside")
@@ -179,3 +179,13 @@ def test_roles_by_pattern():
         scene.set_role("inner", "inside")
     with pytest.raises(cutaway.Error, match="nope: matches no object's name or group, nor a"):
         scene.set_role("nope", "context")
+    # Checked as a scene file is: the cutout needs an exterior object.
+    cutout = cube_scene(cutters={"cutout": {}})
+    cutout["objects"][0]["role"] = "exterior"
+    cutout["objects"][1]["role"] = "interior"
+    scene = cutaway.from_dict(cutout)
+    with pytest.raises(cutaway.Error, match="set_role: /cutters/cutout: no object has role "
+                                            "\"exterior\""):
+        scene.set_role("outer", "context")
+    assert scene.objects == ["outer", "inner"]
+    assert scene.set_role("outer", "exterior") == 1

@@ -65,6 +65,18 @@ inline void deleteShader(GLuint id) {
 }
 }  // namespace detail
 
+// Whether the GL calls in `allocate` ran out of device memory (GL_OUT_OF_MEMORY); errors
+// from before it are cleared first, so that they are not taken for its own.
+template <class Allocate>
+bool outOfMemory(Allocate allocate) {
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  allocate();
+  bool out = false;
+  for (GLenum e; (e = glGetError()) != GL_NO_ERROR;) out = out || e == GL_OUT_OF_MEMORY;
+  return out;
+}
+
 class Buffer : public Object<detail::deleteBuffer> {
  public:
   using Object::Object;

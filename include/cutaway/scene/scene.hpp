@@ -37,6 +37,9 @@ namespace cutaway {
 
 enum class Role { Context, Interest, Exterior, Interior };
 const char* roleName(Role role);
+// Every role, in the order of the enum; and the role of a scene file's name (nullopt: none).
+inline constexpr Role kRoles[] = {Role::Context, Role::Interest, Role::Exterior, Role::Interior};
+std::optional<Role> roleFromName(const std::string& name);
 
 struct Material {
   glm::vec3 color{0.75f};
@@ -275,5 +278,10 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
 // error the scene is unchanged.
 void appendVolume(Scene& scene, const std::string& text, const std::string& displayName,
                   const std::filesystem::path& baseDir, const SceneArrays& arrays = {});
+// The checks a scene file gets after its parts are read, for a scene changed in memory (roles
+// set, objects added): names unique, everything within float reach, each enabled cutter's
+// needs (the roles it cuts or keeps), and what the cutters complete from the scene (a terrain
+// opening's lines from its networks). Errors name `displayName`.
+void checkScene(Scene& scene, const std::string& displayName);
 
 }  // namespace cutaway

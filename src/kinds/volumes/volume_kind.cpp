@@ -118,8 +118,6 @@ VolumeKind::VolumeKind(FrameSetup& setup)
       previousTransmittanceUnit_(setup.bindings.textureUnit("VOLUME_PREVIOUS_TRANSMITTANCE")) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
-  while (glGetError() != GL_NO_ERROR) {
-  }
   for (const SceneVolume& v : setup.scene.volumes) {
     const Volume& data = *v.volume;
     if (glm::any(glm::greaterThan(data.dims, glm::ivec3(maxSize))))
@@ -128,14 +126,18 @@ VolumeKind::VolumeKind(FrameSetup& setup)
                       "×" + std::to_string(data.dims.z) +
                       " voxels exceeds the GPU's 3-D texture size of " + std::to_string(maxSize));
     VolumeGpu gpu;
-    // Labels are sampled at the nearest voxel: interpolating between two would invent a third.
-    gpu.values = texture3D(GL_R32F, data.dims, GL_RED, data.values.data(),
-                           v.labels ? GL_NEAREST : GL_LINEAR);
-    if (!v.labels)
-      gpu.gradient = texture3D(GL_RGBA16F, data.dims, GL_RGBA, voxelGradients(v).data(), GL_LINEAR);
-    volumes_.push_back(std::move(gpu));
-    uploadTransfer(volumes_.size() - 1);
-    if (glGetError() == GL_OUT_OF_MEMORY)
+    const bool outOfMemory = gl::outOfMemory([&] {
+      // Labels are sampled at the nearest voxel: interpolating between two would invent a
+      // third.
+      gpu.values = texture3D(GL_R32F, data.dims, GL_RED, data.values.data(),
+                             v.labels ? GL_NEAREST : GL_LINEAR);
+      if (!v.labels)
+        gpu.gradient =
+            texture3D(GL_RGBA16F, data.dims, GL_RGBA, voxelGradients(v).data(), GL_LINEAR);
+      volumes_.push_back(std::move(gpu));
+      uploadTransfer(volumes_.size() - 1);
+    });
+    if (outOfMemory)
       throw Error(v.source, "",
                   "volume of " + std::to_string(data.voxelCount() * 12 / (1 << 20)) +
                       " MiB (values and gradients) does not fit in the GPU's memory");
