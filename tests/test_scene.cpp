@@ -1285,6 +1285,18 @@ TEST(SceneStyle, ShadowShortFormsAndNames) {
       "hatching");
 }
 
+namespace {
+
+// A 2×2×2 volume of ones, as the Python module gives volumes in memory.
+std::shared_ptr<Volume> oneVolume() {
+  auto volume = std::make_shared<Volume>();
+  volume->dims = {2, 2, 2};
+  volume->values.assign(8, 1.0f);
+  return volume;
+}
+
+}  // namespace
+
 // Meshes and volumes given in memory (the Python module's arrays) by "arrays": KEY.
 TEST(SceneArrays, EntriesTakeTheirMeshAndVolumeByKey) {
   SceneArrays arrays;
@@ -1292,9 +1304,7 @@ TEST(SceneArrays, EntriesTakeTheirMeshAndVolumeByKey) {
   mesh->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   mesh->triangles = {{0, 1, 2}};
   arrays.meshes["tri"] = mesh;
-  auto volume = std::make_shared<Volume>();
-  volume->dims = {2, 2, 2};
-  volume->values.assign(8, 1.0f);
+  const auto volume = oneVolume();
   arrays.volumes["v"] = volume;
   const Scene s = parseScene(
       R"({"objects": [{"name": "a", "arrays": "tri", "role": "interest"}],
@@ -1327,9 +1337,7 @@ TEST(SceneArrays, EntriesTakeTheirMeshAndVolumeByKey) {
 
 TEST(SceneArrays, AppendVolumeChecksTheEntryAndLeavesTheSceneOnError) {
   SceneArrays arrays;
-  auto volume = std::make_shared<Volume>();
-  volume->dims = {2, 2, 2};
-  volume->values.assign(8, 1.0f);
+  const auto volume = oneVolume();
   arrays.volumes["v"] = volume;
   Scene s = parseScene(R"({"objects": [{"name": "cube", "file": "cube.obj"}]})", "s", kMeshes);
   test::expectError(
@@ -1357,9 +1365,7 @@ TEST(SceneArrays, AppendVolumeChecksTheEntryAndLeavesTheSceneOnError) {
 
 TEST(SceneRoles, SetRoleGivesObjectsByNameOrGroupAndVolumesByName) {
   SceneArrays arrays;
-  auto volume = std::make_shared<Volume>();
-  volume->dims = {2, 2, 2};
-  volume->values.assign(8, 1.0f);
+  const auto volume = oneVolume();
   arrays.volumes["v"] = volume;
   Scene s = parseScene(
       R"({"objects": [{"name": "a", "file": "cube.obj"},
