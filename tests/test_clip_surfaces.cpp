@@ -368,3 +368,65 @@ TEST(ClipSurfaceGpu, DiffuseMapTintsOnlyTheCaps) {
   // Anti-aliased cap edges blend into their neighbours; nothing farther away changes.
   EXPECT_LE(changedElsewhere, caps / 10);
 }
+
+// Trapp13's caps are shaded by the style like any surface (their normal the flat surface's,
+// turned to the eye; specular weight 0.05, shininess 16) and emphasised by the capped object's
+// importance (Burns11 eqs. 3.1–3.4), each cap pixel against the formulas written out here:
+// with importance 0 and full shading suppression the cap is its colour greyed by E_c whatever
+// the light; otherwise Blinn-Phong of one directional light, then the equations.
+TEST(ClipSurfaceGpu, CapsAreShadedByTheStyleAndEmphasisedByImportance) {
+  writeTorus();
+  const glm::vec3 kd(0.8f, 0.3f, 0.15f);
+  const glm::vec3 l = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
+  struct Case {
+    float importance, ec, es;
+  };
+  for (const Case c : {Case{0.0f, 0.5f, 1.0f}, Case{0.5f, 0.0f, 0.0f}, Case{0.25f, 0.6f, 0.5f}}) {
+    char style[300];
+    std::snprintf(style, sizeof style,
+                  R"({"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1},
+                      "emphasis": {"color": %g, "shading": %g}})",
+                  c.ec, c.es);
+    const std::string surface =
+        kFlatSurface.substr(0, kFlatSurface.size() - 1) + R"(, "capColor": [0.8, 0.3, 0.15]})";
+    const Scene scene = parseScene(
+        std::string(R"({"resolution": [128, 96], "samples": 1, "style": )") + style +
+            R"(, "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
+            "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
+            "objects": [{"name": "torus", "importance": )" +
+            std::to_string(c.importance) + R"(, "file": ")" +
+            std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
+            R"("}], "cutters": {"clipSurfaces": {"caps": true, "surfaces": [)" + surface + "]}}}",
+        "torus.json", kData);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    const Rgba8Image color = renderer.readColor();
+    const auto aovs = renderer.readAovs();
+    const FloatImage &cap = aov(aovs, "capMask"), &position = aov(aovs, "position");
+    const glm::vec3 eye = scene.resolvedCamera().eye;
+    double worst = 0.0;
+    int caps = 0;
+    for (int y = 1; y + 1 < cap.height; ++y)
+      for (int x = 1; x + 1 < cap.width; ++x) {
+        bool inside = true;  // away from the cap's anti-aliased rim
+        for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+          inside = inside && cap.at(x + dx, y + dy)[0] == 1.0f;
+        if (!inside) continue;
+        ++caps;
+        const glm::vec3 p = glm::make_vec3(position.at(x, y)), v = glm::normalize(eye - p);
+        const glm::vec3 n(0.0f, 0.0f, 1.0f);  // the surface's N is −ẑ; the cap faces the eye
+        const glm::vec3 h = glm::normalize(l + v);
+        const glm::vec3 shaded = 0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
+                                 glm::vec3(0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f));
+        const glm::vec3 suppressed = glm::mix(shaded, kd, c.es * (1.0f - c.importance));
+        const float luma = glm::dot(suppressed, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+        const glm::vec3 expected = glm::clamp(
+            glm::mix(suppressed, glm::vec3(luma), c.ec * (1.0f - c.importance)), 0.0f, 1.0f);
+        for (int k = 0; k < 3; ++k)
+          worst = std::max(worst, std::abs(color.at(x, y)[k] - 255.0 * expected[k]));
+      }
+    EXPECT_GT(caps, 1000) << "importance " << c.importance;
+    // 8-bit rounding; the half-float normal does not enter (the cap's is exact).
+    EXPECT_LE(worst, 1.0) << "importance " << c.importance << ", E_c " << c.ec << ", E_s " << c.es;
+  }
+}
