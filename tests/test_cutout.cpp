@@ -312,6 +312,54 @@ TEST(Cutout, WallsAreShownAndInteriorIsWhole) {
   for (float v : hollowMask.data) ASSERT_EQ(v, 0.0f);
 }
 
+// Rule 5's wall where the view ray leaves the wedge: each wall pixel's position is the ray's
+// exit from the intersection of the wedge's half-spaces (clipped here in the test's own
+// terms: the camera's ray through the pixel centre), its normal that exit plane's, and the
+// point lies within the cube.
+TEST(Cutout, TheWallLiesWhereTheViewRayLeavesTheWedge) {
+  const Scene cut =
+      parseScene(cubeScene(R"("cutout": {"angle": 100, "rotation": 20})"), "cube.json", kData);
+  const auto aovs = renderAovs(cut);
+  const FloatImage &id = aov(aovs, "objectId"), &mask = aov(aovs, "cutMask"),
+                   &position = aov(aovs, "position"), &normal = aov(aovs, "normal");
+  const CutoutWedge wedge = cubeWedge(cut);
+  const Camera camera = cut.resolvedCamera();
+  const glm::mat4 inverse =
+      glm::inverse(camera.projectionMatrix(float(cut.width) / float(cut.height)) * camera.view());
+  int walls = 0, off = 0, turned = 0, outside = 0;
+  for (int y = 0; y < id.height; ++y)
+    for (int x = 0; x < id.width; ++x) {
+      if (id.at(x, y)[0] != 0.0f || mask.at(x, y)[0] != 1.0f) continue;
+      ++walls;
+      const glm::vec2 ndc((x + 0.5f) / id.width * 2 - 1, 1 - (y + 0.5f) / id.height * 2);
+      const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
+      const glm::vec3 from = glm::vec3(a) / a.w, dir = glm::normalize(glm::vec3(b) / b.w - from);
+      // Where the ray leaves the last half-space it is inside (n·x + w > 0: removed side).
+      float exit = 1e30f;
+      glm::vec3 exitNormal(0.0f);
+      for (const glm::vec4& plane : wedge.planes) {
+        const glm::vec3 n(plane);
+        const float along = glm::dot(n, dir);
+        if (along >= 0.0f) continue;
+        const float t = -(glm::dot(n, from) + plane.w) / along;
+        if (t < exit) exit = t, exitNormal = n;
+      }
+      ASSERT_LT(exit, 1e29f) << "a wall pixel whose ray never leaves the wedge at " << x << ","
+                             << y;
+      const glm::vec3 p = glm::make_vec3(position.at(x, y));
+      off += glm::length(p - (from + exit * dir)) > 2e-3f;
+      turned += glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), exitNormal) < 0.999f;
+      // The cube spans [0, 1.6] × [0, 1]².
+      outside += glm::any(glm::lessThan(p, glm::vec3(-1e-3f))) ||
+                 glm::any(glm::greaterThan(p, glm::vec3(1.6f, 1.0f, 1.0f) + 1e-3f));
+    }
+  EXPECT_GT(walls, 150);
+  // Pixels whose ray grazes the wedge's edge may take the other plane.
+  EXPECT_LE(off, walls / 100) << off << " of " << walls << " wall pixels off the exit point";
+  EXPECT_LE(turned, walls / 100) << turned << " of " << walls << " wall normals off the exit plane";
+  EXPECT_EQ(outside, 0);
+}
+
 // Diepstraten03 §4.3: the exterior drawn once per plane with a hardware clip plane shows the
 // same objects as the per-fragment method (which adds only the walls' shading).
 TEST(Cutout, ClipPlanesMatchTheTextureMethod) {
