@@ -323,6 +323,48 @@ TEST(PipeRendering, BillboardsCoverWhatTheMeshedPipesCover) {
   EXPECT_GT(double(both) / either, 0.93) << both << " of " << either;
 }
 
+// Eqs. 8–11 on the GPU: a straight pipe seen orthographically (û the same at both nodes, so
+// the quad is a flat rectangle and `across` is the position's offset along û over r), cut
+// open over its middle: each outside pixel's normal is tubeNormal (N_f = (N + F_a)/|N + F_a|),
+// each inside pixel's the inverted mean (F_a − N)/|F_a − N| (§6), against the positions the
+// same frame dumped.
+TEST(PipeRendering, BillboardNormalsFollowEquations8To11) {
+  const glm::vec3 p0(-4, 0, 0), p1(4, 0, 0), eye(1, 3, 8);
+  const float r = 0.5f;
+  const Scene scene = parseScene(R"({"resolution": [200, 150], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false},
+    "camera": {"projection": "orthographic", "height": 5, "eye": [1, 3, 8], "target": [0, 0, 0]},
+    "networks": [{"name": "n", "wallThickness": 0.1, "cut": {"from": 0.3, "to": 0.7},
+                  "pipes": [{"lines": [[[-4, 0, 0], [4, 0, 0]]], "radius": 0.5}]}]})",
+                                 "normals.json", kSource);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &cls = aov(aovs, "pipeClass"), &position = aov(aovs, "position"),
+                   &normal = aov(aovs, "normal");
+  const glm::vec3 n = glm::normalize(p1 - p0);
+  const glm::vec3 u = billboardUpOrthographic({p0, p1}, glm::vec3(0) - eye)[0];
+  const glm::vec3 face = billboardFaceNormal(u, u, n);
+  int outside = 0, inside = 0, wrong = 0;
+  double worst = 0.0;
+  for (int y = 0; y < cls.height; ++y)
+    for (int x = 0; x < cls.width; ++x) {
+      const long c = std::lround(cls.at(x, y)[0] * 4.0f);  // 8-bit quarters
+      if (c != 1 && c != 2) continue;                      // the outside and the inner wall
+      const glm::vec3 p = glm::make_vec3(position.at(x, y));
+      const float along = glm::dot(p - p0, n) / glm::length(p1 - p0);
+      const float across = glm::dot(p - p0, u) / r;
+      if (along < 0.02f || along > 0.98f || std::abs(across) > 0.98f) continue;  // rims
+      const glm::vec3 expected =
+          c == 1 ? tubeNormal(u, u, along, across, face) : glm::normalize(face - across * u);
+      const double error = glm::length(glm::make_vec3(normal.at(x, y)) - expected);
+      worst = std::max(worst, error);
+      wrong += error > 2e-3;
+      (c == 1 ? outside : inside) += 1;
+    }
+  EXPECT_GT(outside, 1000);
+  EXPECT_GT(inside, 200);
+  EXPECT_EQ(wrong, 0) << "worst " << worst;  // the normal AOV holds half floats
+}
+
 TEST(PipeRendering, BillboardsCastTheOutlineOfTubesAndTroughs) {
   // The shadow map from the key light: a pipe along x, cut open over its middle half, against
   // the same pipe closed. From straight above an opened stretch (the lower half-tube) casts
