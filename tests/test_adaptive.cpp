@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/gtc/type_ptr.hpp>
+
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
@@ -230,6 +232,58 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
   // Every cut-surface pixel belongs to the shell, never to the object of interest.
   for (std::size_t i = 0; i < mask.data.size(); ++i)
     if (mask.data[i] > 0.5f) ASSERT_EQ(id.data[i], 0.0f) << i;
+}
+
+// Burns08 §4.1 / Burns11 §5.2.4.1: the cut surface is shaded with the normal of the cutaway
+// surface. Seen orthographically down −z with a point-like seed at depth −0.5, that surface is
+// the cone of half-angle θ about the view axis with its apex at the seed, whose inner normal
+// at radius ρ is (−cos θ ρ̂, sin θ); every cut pixel of a watertight shell around the seed
+// against it.
+TEST(AdaptiveCutaway, CutSurfaceNormalsAreTheConesNormal) {
+  for (const float theta : {30.0f, 45.0f}) {
+    char json[1200];
+    std::snprintf(json, sizeof json, R"({"resolution": [160, 160], "samples": 1,
+        "style": {"name": "gooch", "lines": false},
+        "camera": {"projection": "orthographic", "height": 4.4, "eye": [0, 0, 10],
+                   "target": [0, 0, 0]},
+        "cutters": {"adaptive": {"angle": %g, "bufferSize": 512, "edgeCompression": false,
+                                 "ghostLines": false}},
+        "objects": [{"name": "shell", "file": "meshes/cube.obj",
+                     "transform": {"translate": [-2, -2, -2], "scale": 4}}],
+        "proxies": [{"name": "seed", "box": {"min": [-0.01, -0.01, -0.52], "max": [0.01, 0.01, -0.5]}}]})",
+                  theta);
+    const Scene scene = parseScene(json, "cone.json", kData);
+    const auto aovs = renderAovs(scene);
+    const FloatImage &mask = aov(aovs, "cutMask"), &normal = aov(aovs, "normal"),
+                     &position = aov(aovs, "position");
+    const float t = glm::radians(theta);
+    int compared = 0;
+    double worst = 0.0;
+    for (int y = 0; y < mask.height; ++y)
+      for (int x = 0; x < mask.width; ++x) {
+        if (mask.at(x, y)[0] < 0.5f) continue;
+        const glm::vec3 p = glm::make_vec3(position.at(x, y));
+        const float rho = glm::length(glm::vec2(p));
+        // Away from the apex (the seed's own footprint) and from the shell's walls.
+        if (rho < 0.25f || std::max(std::abs(p.x), std::abs(p.y)) > 1.9f) continue;
+        const glm::vec2 out = glm::vec2(p) / rho;
+        const glm::vec3 expected(-std::cos(t) * out, std::sin(t));
+        const double angle = glm::degrees(std::acos(
+            std::clamp(double(glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), expected)),
+                       -1.0, 1.0)));
+        worst = std::max(worst, angle);
+        ++compared;
+        // The cut point lies on the cone too, at height ρ / tan θ over the apex, brought out by
+        // the seed's footprint (a 0.01 half-side) and the dilation (one of 512 texels over 4.4
+        // units): at most 0.03 in ρ.
+        EXPECT_LE(p.z, -0.5f + rho / std::tan(t) + 1e-3f) << x << "," << y;
+        EXPECT_GE(p.z, -0.5f + (rho - 0.03f) / std::tan(t) - 1e-3f) << x << "," << y;
+      }
+    EXPECT_GT(compared, 2000) << "θ " << theta;
+    // The normal comes from the cutaway-depth buffer's neighbouring texels.
+    EXPECT_LE(worst, 2.0) << "θ " << theta;
+    std::printf("θ %g: worst cut normal %.3f°\n", theta, worst);
+  }
 }
 
 // Burns11 eq. 5.8: a seed's angle shrinks to zero in a border region of width r, by the
