@@ -475,6 +475,41 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
   EXPECT_EQ(wrong, 0);
 }
 
+// Interior objects of two groups make two clusters and two hulls (Diepstraten03 §5: one hole
+// per cluster): the clip depth is the nearer of the two ray casts on every pixel.
+TEST(Breakaway, TwoGroupsOpenTwoHoles) {
+  const Scene scene = parseScene(
+      R"({"resolution": [120, 90], "samples": 1, "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": [2.2, 2.6, 3.0], "target": [0.8, 0.5, 0.5], "fov": 40},
+      "cutters": {"breakaway": {"offset": 0.08}},
+      "objects": [
+        {"name": "cube", "file": "meshes/cube.obj", "role": "exterior",
+         "transform": {"scale": [1.6, 1, 1]}},
+        {"name": "left", "file": "meshes/tetra.obj", "role": "interior", "group": "a",
+         "transform": {"translate": [0.15, 0.3, 0.3], "scale": [0.3, 0.3, 0.3]}},
+        {"name": "right", "file": "meshes/tetra.obj", "role": "interior", "group": "b",
+         "transform": {"translate": [1.1, 0.3, 0.3], "scale": [0.3, 0.3, 0.3]}}]})",
+      "groups.json", kData);
+  const std::vector<BreakawayCluster> clusters =
+      breakawayClusters(scene, *scene.cutters.find<BreakawayOptions>());
+  ASSERT_EQ(clusters.size(), 2u);
+  const HullHits a = rayCastHull(scene, clusters[0].outerHull),
+                 b = rayCastHull(scene, clusters[1].outerHull);
+  HullHits nearer = a;
+  int onlyA = 0, onlyB = 0;
+  for (std::size_t i = 0; i < nearer.depth.data.size(); ++i) {
+    const float da = a.depth.data[i], db = b.depth.data[i];
+    onlyA += da > 0.0f && db == 0.0f, onlyB += db > 0.0f && da == 0.0f;
+    if (db > 0.0f && (da == 0.0f || db < da)) nearer.depth.data[i] = db;
+  }
+  EXPECT_GT(onlyA, 100);  // two holes, apart
+  EXPECT_GT(onlyB, 100);
+  int covered = 0;
+  const int mismatched =
+      clipDepthMismatches(aov(renderAovs(scene), "breakawayClipDepth"), nearer, covered);
+  EXPECT_LE(mismatched, covered / 50) << mismatched << " of " << covered;
+}
+
 // The wall's two hulls (Diepstraten03 §5): the outer grown by the offset, the inner by the
 // offset less the wall thickness, each against the support function of the interior's points
 // (the exact offset body's, less at most a tenth: inflatedHull's bound); the GPU's inner clip
