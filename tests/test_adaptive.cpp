@@ -234,6 +234,72 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
     if (mask.data[i] > 0.5f) ASSERT_EQ(id.data[i], 0.0f) << i;
 }
 
+// Burns08 §5.1: the seed is the rear hull of the objects of interest (the greater-than depth
+// test), with each texel's local angle θ that of the object seen there (§5.3); each texel of
+// the seed buffer against a CPU ray cast through its centre: the farthest hit of any object of
+// interest, its window depth and its object's angle.
+TEST(AdaptiveCutaway, SeedIsTheRearHullOfTheObjectsOfInterest) {
+  const Scene scene = parseScene(
+      R"({"resolution": [96, 96], "samples": 1, "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": [1.5, 2, 6], "target": [0, 0, 0], "fov": 40},
+      "cutters": {"adaptive": {"angle": 30, "bufferSize": 96, "ghostLines": false}},
+      "objects": [
+        {"name": "wall", "file": "render/plane.obj", "transform": {"translate": [0, 0, 2]}},
+        {"name": "cube", "file": "meshes/cube.obj", "role": "interest",
+         "params": {"cutawayAngle": 50},
+         "transform": {"translate": [-1.2, -0.5, -0.5], "rotate": {"axis": [0, 1, 0], "degrees": 30}}},
+        {"name": "tetra", "file": "meshes/tetra.obj", "role": "interest",
+         "transform": {"translate": [0.3, -0.2, -1], "scale": 1.2}}]})",
+      "seed.json", kData);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &seed = aov(aovs, "seedDepth"), &angle = aov(aovs, "seedAngle");
+  ASSERT_EQ(seed.width, 96);
+  const Camera camera = scene.resolvedCamera();
+  const glm::mat4 viewProjection = camera.projectionMatrix(1.0f) * camera.view();
+  const glm::mat4 inverse = glm::inverse(viewProjection);
+  struct Interest {
+    Mesh world;
+    float theta;
+  };
+  std::vector<Interest> interest;
+  for (const SceneObject& o : scene.objects) {
+    if (o.role != Role::Interest) continue;
+    Mesh m = *o.mesh;
+    for (glm::vec3& p : m.positions) p = glm::vec3(o.transformAt(0.0f) * glm::vec4(p, 1.0f));
+    interest.push_back({m, o.name == "cube" ? glm::radians(50.0f) : glm::radians(30.0f)});
+  }
+  int seeded = 0, wrongDepth = 0, wrongAngle = 0, grazing = 0;
+  for (int y = 0; y < seed.height; ++y)
+    for (int x = 0; x < seed.width; ++x) {
+      const glm::vec2 ndc((x + 0.5f) / seed.width * 2 - 1, 1 - (y + 0.5f) / seed.height * 2);
+      const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
+      const glm::vec3 from = glm::vec3(a) / a.w, dir = glm::vec3(b) / b.w - from;
+      float farthest = -1.0f, theta = 0.0f;
+      for (const Interest& i : interest)
+        for (const float t : rayHits(i.world, from, dir))
+          if (t > farthest) farthest = t, theta = i.theta;
+      float expected = 0.0f;  // no seed
+      if (farthest >= 0.0f) {
+        const glm::vec4 h = viewProjection * glm::vec4(from + farthest * dir, 1.0f);
+        expected = 0.5f * h.z / h.w + 0.5f;
+      }
+      const float got = seed.at(x, y)[0];
+      seeded += got > 0.0f;
+      // A texel whose centre grazes a silhouette may round either way.
+      if ((got > 0.0f) != (expected > 0.0f)) {
+        ++grazing;
+        continue;
+      }
+      if (expected == 0.0f) continue;
+      wrongDepth += std::abs(got - expected) > 1e-5f;
+      wrongAngle += std::abs(angle.at(x, y)[0] - theta) > 1e-4f;
+    }
+  EXPECT_GT(seeded, 800);
+  EXPECT_LE(grazing, seeded / 50);
+  EXPECT_LE(wrongDepth, seeded / 100);
+  EXPECT_LE(wrongAngle, seeded / 100);
+}
+
 // Burns08 §4.1 / Burns11 §5.2.4.1: the cut surface is shaded with the normal of the cutaway
 // surface. Seen orthographically down −z with a point-like seed at depth −0.5, that surface is
 // the cone of half-angle θ about the view axis with its apex at the seed, whose inner normal
