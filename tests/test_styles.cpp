@@ -509,3 +509,85 @@ TEST(StyleTone, BlinnPhongSumsItsLights) {
       });
   EXPECT_GT(compared, 2000);
 }
+
+// Silhouettes and creases (the image-space lines of frame/lines) against a CPU classification
+// of a cube's edges seen by the same camera: an edge is drawn when a face beside it faces the
+// eye (a silhouette if the other does not, a crease of 90° > the 45° crease angle if it
+// does). Every line pixel lies within 1.5 pixels of such an edge projected, and such edges are
+// drawn along their length (away from the corners).
+TEST(LineRender, ACubesLinesAreItsVisibleEdges) {
+  const Scene scene = parseScene(
+      R"({"resolution": [128, 128], "samples": 1, "background": [1, 1, 1],
+      "style": {"name": "gooch", "lines": {"silhouettes": true, "creases": true,
+                                           "creaseAngle": 45, "width": 1}},
+      "camera": {"eye": [2.2, 1.7, 3.0], "target": [0, 0, 0], "fov": 35},
+      "objects": [{"name": "cube", "file": "meshes/cube.obj",
+                   "transform": {"translate": [-0.5, -0.5, -0.5]}}]})",
+      "lines.json", kData);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const FloatImage& lines = findAov(aovs, "lines").image;  // rows top down
+  const Camera camera = scene.resolvedCamera();
+  const glm::mat4 viewProjection = camera.projectionMatrix(1.0f) * camera.view();
+  const auto pixel = [&](glm::vec3 p) {
+    const glm::vec4 c = viewProjection * glm::vec4(p, 1.0f);
+    return glm::vec2((c.x / c.w + 1.0f) * 0.5f * lines.width,
+                     (1.0f - c.y / c.w) * 0.5f * lines.height);
+  };
+  // The cube [−½, ½]³: its twelve edges, each with the outward normals of its two faces.
+  struct Edge {
+    glm::vec2 a, b;
+  };
+  std::vector<Edge> visible;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float s : {-0.5f, 0.5f})
+      for (const float t : {-0.5f, 0.5f}) {
+        glm::vec3 a(0.0f), n1(0.0f), n2(0.0f);
+        const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+        a[i] = s, a[j] = t, n1[i] = s > 0 ? 1.0f : -1.0f, n2[j] = t > 0 ? 1.0f : -1.0f;
+        glm::vec3 b = a;
+        a[axis] = -0.5f, b[axis] = 0.5f;
+        const glm::vec3 mid = 0.5f * (a + b);
+        const bool front1 = glm::dot(n1, camera.eye - mid) > 0.0f,
+                   front2 = glm::dot(n2, camera.eye - mid) > 0.0f;
+        if (front1 || front2) visible.push_back({pixel(a), pixel(b)});
+      }
+  ASSERT_EQ(visible.size(), 9u);  // three faces seen: six silhouette and three crease edges
+  const auto distance = [](glm::vec2 p, const Edge& e) {
+    const glm::vec2 d = e.b - e.a;
+    const float t = glm::clamp(glm::dot(p - e.a, d) / glm::dot(d, d), 0.0f, 1.0f);
+    return glm::length(p - (e.a + t * d));
+  };
+  int linePixels = 0, stray = 0;
+  for (int y = 0; y < lines.height; ++y)
+    for (int x = 0; x < lines.width; ++x) {
+      if (lines.at(x, y)[0] < 0.5f) continue;
+      ++linePixels;
+      float nearest = 1e30f;
+      for (const Edge& e : visible) nearest = std::min(nearest, distance({x + 0.5f, y + 0.5f}, e));
+      if (nearest > 1.5f) {
+        ++stray;
+        ADD_FAILURE() << "line pixel " << x << "," << y << " is " << nearest
+                      << " px from the nearest visible edge";
+      }
+    }
+  int samples = 0, drawn = 0;
+  for (const Edge& e : visible) {
+    const float length = glm::length(e.b - e.a);
+    for (float s = 3.0f; s < length - 3.0f; s += 0.5f) {
+      const glm::vec2 p = e.a + (s / length) * (e.b - e.a);
+      bool near = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = int(p.x) + dx, y = int(p.y) + dy;
+          near = near || (x >= 0 && y >= 0 && x < lines.width && y < lines.height &&
+                          lines.at(x, y)[0] >= 0.5f);
+        }
+      ++samples, drawn += near;
+    }
+  }
+  EXPECT_GT(linePixels, 300);
+  EXPECT_EQ(stray, 0) << "line pixels farther than 1.5 px from every visible edge";
+  EXPECT_GE(drawn, samples * 98 / 100) << drawn << " of " << samples << " edge points drawn";
+}
