@@ -327,7 +327,7 @@ TEST(PipeRendering, BillboardsCoverWhatTheMeshedPipesCover) {
 // the quad is a flat rectangle and `across` is the position's offset along û over r), cut
 // open over its middle: each outside pixel's normal is tubeNormal (N_f = (N + F_a)/|N + F_a|),
 // each inside pixel's the inverted mean (F_a − N)/|F_a − N| (§6), against the positions the
-// same frame dumped.
+// same frame dumped; and Fig. 11's discard of the upper half along the cut.
 TEST(PipeRendering, BillboardNormalsFollowEquations8To11) {
   const glm::vec3 p0(-4, 0, 0), p1(4, 0, 0), eye(1, 3, 8);
   const float r = 0.5f;
@@ -343,7 +343,7 @@ TEST(PipeRendering, BillboardNormalsFollowEquations8To11) {
   const glm::vec3 n = glm::normalize(p1 - p0);
   const glm::vec3 u = billboardUpOrthographic({p0, p1}, glm::vec3(0) - eye)[0];
   const glm::vec3 face = billboardFaceNormal(u, u, n);
-  int outside = 0, inside = 0, wrong = 0;
+  int outside = 0, inside = 0, wrong = 0, upperOutside = 0, lowerOutside = 0, upperInside = 0;
   double worst = 0.0;
   for (int y = 0; y < cls.height; ++y)
     for (int x = 0; x < cls.width; ++x) {
@@ -359,10 +359,20 @@ TEST(PipeRendering, BillboardNormalsFollowEquations8To11) {
       worst = std::max(worst, error);
       wrong += error > 2e-3;
       (c == 1 ? outside : inside) += 1;
+      // Fig. 11: along the cut the billboard's upper half (above the axis, +y) is discarded,
+      // so the outside shows only below the axis there and the inside above it.
+      if (along > 0.33f && along < 0.67f) {
+        const bool upper = glm::dot(p - glm::mix(p0, p1, along), glm::vec3(0, 1, 0)) > 1e-3f;
+        if (c == 1) upper ? ++upperOutside : ++lowerOutside;
+        if (c == 2 && upper) ++upperInside;
+      }
     }
   EXPECT_GT(outside, 1000);
   EXPECT_GT(inside, 200);
   EXPECT_EQ(wrong, 0) << "worst " << worst;  // the normal AOV holds half floats
+  EXPECT_EQ(upperOutside, 0);
+  EXPECT_GT(lowerOutside, 100);
+  EXPECT_GT(upperInside, 100);
 }
 
 TEST(PipeRendering, BillboardsCastTheOutlineOfTubesAndTroughs) {
