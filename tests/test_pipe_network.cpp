@@ -375,6 +375,56 @@ TEST(PipeRendering, BillboardNormalsFollowEquations8To11) {
   EXPECT_GT(upperInside, 100);
 }
 
+// §6.4: the water in an opened pipe is a plane at its level over the pipe's floor, within the
+// bore's chord there, coloured by the fill ratio (depth over the inner diameter) between the
+// low and high colours and shaded by the style with an upward normal. Each water pixel
+// against those formulas: a pipe of inner radius 0.4 holding 0.3 of water (level 0.1 below
+// the axis, fill 0.375), Blinn-Phong with one light (the pipes' specular 0.35, shininess 24).
+TEST(PipeRendering, WaterLiesAtItsLevelInItsFillColour) {
+  const glm::vec3 low(0.8f, 0.9f, 1.0f), high(0.0f, 0.2f, 0.6f);
+  const float innerR = 0.4f, depth = 0.3f, level = depth - innerR;
+  const Scene scene = parseScene(R"({"resolution": [200, 150], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}},
+    "lights": [{"type": "directional", "direction": [-0.2, -1, -0.4], "space": "world"}],
+    "camera": {"projection": "orthographic", "height": 4, "eye": [1, 6, 6], "target": [0, 0, 0]},
+    "networks": [{"name": "n", "wallThickness": 0.1, "waterLevel": 0.3,
+                  "waterColors": [[0.8, 0.9, 1.0], [0.0, 0.2, 0.6]], "cut": {"from": 0.3, "to": 0.7},
+                  "pipes": [{"lines": [[[-4, 0, 0], [4, 0, 0]]], "radius": 0.5}]}]})",
+                                 "water.json", kSource);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const Rgba8Image color = renderer.readColor();
+  const FloatImage &cls = aov(aovs, "pipeClass"), &position = aov(aovs, "position");
+  const glm::vec3 kd = glm::mix(low, high, depth / (2.0f * innerR));
+  const glm::vec3 l = -glm::normalize(glm::vec3(-0.2f, -1.0f, -0.4f)), n(0, 1, 0);
+  const glm::vec3 v = glm::normalize(scene.resolvedCamera().eye);  // orthographic: −forward
+  const float specular = std::pow(std::max(glm::dot(n, glm::normalize(l + v)), 0.0f), 24.0f);
+  const glm::vec3 expected = glm::clamp(
+      0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) + glm::vec3(0.35f * specular), 0.0f, 1.0f);
+  const float halfChord = std::sqrt(innerR * innerR - level * level);
+  int water = 0, offPlane = 0, outsideBore = 0;
+  double worst = 0.0;
+  const auto isWater = [&](int x, int y) { return std::lround(cls.at(x, y)[0] * 4.0f) == 4; };
+  for (int y = 1; y + 1 < cls.height; ++y)
+    for (int x = 1; x + 1 < cls.width; ++x) {
+      if (!isWater(x, y)) continue;
+      ++water;
+      const glm::vec3 p = glm::make_vec3(position.at(x, y));
+      offPlane += std::abs(p.y - level) > 1e-4f;
+      outsideBore += std::abs(p.z) > halfChord + 1e-4f;
+      if (!isWater(x + 1, y) || !isWater(x - 1, y) || !isWater(x, y + 1) || !isWater(x, y - 1))
+        continue;  // its rim blends with the wall
+      for (int k = 0; k < 3; ++k)
+        worst = std::max(worst, std::abs(color.at(x, y)[k] - 255.0 * expected[k]));
+    }
+  EXPECT_GT(water, 500);
+  EXPECT_EQ(offPlane, 0);
+  EXPECT_EQ(outsideBore, 0);
+  EXPECT_LE(worst, 1.0) << "expected " << expected.r * 255 << ", " << expected.g * 255 << ", "
+                        << expected.b * 255;
+}
+
 TEST(PipeRendering, BillboardsCastTheOutlineOfTubesAndTroughs) {
   // The shadow map from the key light: a pipe along x, cut open over its middle half, against
   // the same pipe closed. From straight above an opened stretch (the lower half-tube) casts
