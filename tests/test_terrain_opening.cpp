@@ -80,6 +80,55 @@ TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
 
 INSTANTIATE_TEST_SUITE_P(Metrics, TerrainOpeningGpuCpu, ::testing::Values("l1", "euclidean"));
 
+// `cutBuildings`: a building over a pipe is opened by the terrain's rule (eqs. 1–3), pixel by
+// pixel as terrainFate decides for its surface points; without the flag it stays whole.
+TEST(TerrainOpening, BuildingsAreOpenedByTheTerrainsRuleOnlyWhenAsked) {
+  const auto scene = [&](bool cutBuildings) {
+    std::string text = groundScene("l1", true);
+    text.replace(text.find("\"terrain\": \"ground\""), 19,
+                 std::string(R"("terrain": "ground", "buildings": "house", "cutBuildings": )") +
+                     (cutBuildings ? "true" : "false"));
+    text.replace(text.rfind("}]"), 2,
+                 R"(}, {"name": "house", "file": ")" + kSource +
+                     R"(/tests/data/meshes/cube.obj", "transform": {"translate": [40, 0, -42],
+                     "scale": [20, 6, 14]}}])");
+    return parseScene(text, "house.json", kSource);
+  };
+  const Scene cut = scene(true), whole = scene(false);
+  Scene plain = whole;
+  plain.cutters.disable<TerrainOpeningOptions>();
+  const auto a = renderAovs(plain), b = renderAovs(cut), c = renderAovs(whole);
+  const TerrainOpeningOptions& o = *cut.cutters.find<TerrainOpeningOptions>();
+  Bounds terrain;
+  terrain.extend(cut.objects[0].worldBounds());
+  const TerrainField field = terrainField(o, terrain);
+  const Camera camera = cut.resolvedCamera();
+  const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+  const float house = 2.0f;  // its object id
+  const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
+                   &id = aov(b, "objectId"), &pos = aov(b, "position"),
+                   &wholeId = aov(c, "objectId"), &wholePos = aov(c, "position");
+  int pixels = 0, opened = 0, wrong = 0, touched = 0;
+  for (int y = 0; y < plainId.height; ++y)
+    for (int x = 0; x < plainId.width; ++x) {
+      if (plainId.at(x, y)[0] != house) continue;
+      ++pixels;
+      const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
+      const bool same =
+          id.at(x, y)[0] == house && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-3f;
+      const TerrainFate f = terrainFate(field, o, p, camera.eye, forward);
+      if (f == TerrainFate::Discard) ++opened, wrong += same;
+      if (f == TerrainFate::Terrain) wrong += !same;
+      touched += wholeId.at(x, y)[0] != house ||
+                 glm::length(glm::make_vec3(wholePos.at(x, y)) - p) >= 1e-3f;
+    }
+  EXPECT_GT(pixels, 300);
+  EXPECT_GT(opened, 50);
+  // Positions on texel borders may round to either texel.
+  EXPECT_LE(wrong, pixels / 100) << wrong << " of " << pixels;
+  EXPECT_EQ(touched, 0);
+}
+
 TEST(TerrainOpening, ThresholdFollowsEquation1) {
   TerrainOpeningOptions o;  // w = 0.015, s = 10: t = 0.15 at the camera, 0 at s² = 100
   EXPECT_FLOAT_EQ(openingThreshold(o, 0.0f), 0.15f);
