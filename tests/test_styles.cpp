@@ -11,8 +11,9 @@
 #include <functional>
 #include <set>
 
-#include "cutaway/styles/toon.hpp"
 #include "cutaway/render/renderer.hpp"
+#include "cutaway/styles/hatching.hpp"
+#include "cutaway/styles/toon.hpp"
 #include "gl_test_context.hpp"
 #include "styles/hatching/tonal_art_map.hpp"
 #include "styles/shadows/shadow_map.hpp"
@@ -590,4 +591,46 @@ TEST(LineRender, ACubesLinesAreItsVisibleEdges) {
   EXPECT_GT(linePixels, 300);
   EXPECT_EQ(stray, 0) << "line pixels farther than 1.5 px from every visible edge";
   EXPECT_GE(drawn, samples * 98 / 100) << drawn << " of " << samples << " edge points drawn";
+}
+
+// Hatching tone (Praun01 §4): the key light's Lambert lightness L gives the darkness 1 − L,
+// the tone position u = (1 − L)·tones − 1 between the two bracketing TAM tones, and the ink
+// their blend. A plane facing the camera under a light at n·l = L, seen orthographically so
+// that the view spans exactly one hatch tile at the finest mipmap level (256 pixels): the
+// image's mean ink is the blend of the two tones' mean ink in the CPU-built TAM.
+TEST(StyleTone, HatchingInkIsTheTamsBlendForTheLightness) {
+  const TonalArtMap& tam = defaultTam();  // the style's: 6 tones, seed 1
+  ASSERT_EQ(HatchingStyle{}.seed, 1u);
+  ASSERT_EQ(HatchingStyle{}.tones, tam.tones);
+  const HatchingStyle defaults;
+  for (const float lightness : {0.85f, 0.5f, 0.2f}) {
+    const glm::vec3 towardsLight(std::sqrt(1.0f - lightness * lightness), 0.0f, lightness);
+    char json[900];
+    std::snprintf(json, sizeof json,
+                  R"({"resolution": [256, 256], "samples": 1, "background": [1, 1, 1],
+                      "style": {"name": "hatching", "lines": false, "hatching": {"tint": 0}},
+                      "lights": [{"type": "directional", "direction": [%g, %g, %g], "space": "world"}],
+                      "camera": {"projection": "orthographic", "height": 8, "eye": [0, 0, 10],
+                                 "target": [0, 0, 0]},
+                      "objects": [{"name": "plane", "file": "render/plane.obj"}]})",
+                  -towardsLight.x, -towardsLight.y, -towardsLight.z);
+    Scene scene = parseScene(json, "hatch.json", kData);
+    // One tile (scale × the scene's radius) across the 8-unit view.
+    scene.style.edit<HatchingStyle>().scale = 8.0f / scene.bounds().radius();
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    const Rgba8Image color = renderer.readColor();
+    double sum = 0.0;
+    for (std::size_t i = 0; i < color.pixels.size(); i += 4) sum += color.pixels[i] / 255.0;
+    const double mean = sum / (double(color.width) * color.height);
+    const double ink = (defaults.paper.r - mean) / (defaults.paper.r - defaults.ink.r);
+    const double u = (1.0 - lightness) * tam.tones - 1.0, lower = std::floor(u), w = u - lower;
+    const double inkLower = lower < 0.0 ? 0.0 : tam.meanInk(0, int(lower));
+    const double inkUpper = tam.meanInk(0, std::min(int(lower) + 1, tam.tones - 1));
+    const double expected = (1.0 - w) * inkLower + w * inkUpper;
+    // 8-bit colours and bilinear filtering of the tile, which keeps its mean (agreement was
+    // to 1e-4 when this was written).
+    EXPECT_NEAR(ink, expected, 0.003) << "lightness " << lightness;
+    std::printf("lightness %.2f: mean ink %.4f, the TAM's blend %.4f\n", lightness, ink, expected);
+  }
 }
