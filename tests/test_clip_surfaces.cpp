@@ -284,6 +284,67 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   EXPECT_GT(visible, 500);
 }
 
+// Trapp13 §4.5, several surfaces at once on the GPU: a noisy horizontal surface and a vertical
+// plane through the torus, under union (clipped where either clips) and intersection (where
+// both do), against the C++ functions of each surface on the plain frame's positions; with
+// caps on, each cap pixel lies on its surface where the other leaves the cut open (union) or
+// clips too (intersection).
+TEST(ClipSurfaceGpu, SeveralSurfacesClipAsTheirUnionOrIntersection) {
+  writeTorus();
+  const std::string vertical =
+      R"({"origin": [0.2, -1.5, -1.5], "u": [0, 3, 0], "v": [0, 0, 3], "scale": [1, 1, 0]})";
+  for (const char* combine : {"union", "intersection"}) {
+    const auto scene = [&](bool caps) {
+      std::string text = torusScene(kNoisySurface + ", " + vertical, caps);
+      text.replace(text.find("\"caps\""), 6,
+                   std::string(R"("combine": ")") + combine + R"(", "caps")");
+      return parseScene(text, "torus.json", kData);
+    };
+    const Scene clipped = scene(false), capped = scene(true);
+    Scene plain = clipped;
+    plain.cutters.disable<ClipSurfaceOptions>();
+    const auto a = renderAovs(plain), b = renderAovs(clipped), c = renderAovs(capped);
+    const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
+                     &id = aov(b, "objectId"), &pos = aov(b, "position"), &cap = aov(c, "capMask"),
+                     &capPos = aov(c, "position");
+    const ClipSurfaceOptions& o = *clipped.cutters.find<ClipSurfaceOptions>();
+    ASSERT_EQ(o.surfaces.size(), 2u);
+    const bool both = std::string(combine) == "intersection";
+    int removed = 0, kept = 0, wrong = 0, caps = 0, wrongCaps = 0;
+    for (int y = 0; y < plainId.height; ++y)
+      for (int x = 0; x < plainId.width; ++x) {
+        if (plainId.at(x, y)[0] == 0.0f) {
+          const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
+          const float f0 = clipSurfaceFunction(o.surfaces[0], p),
+                      f1 = clipSurfaceFunction(o.surfaces[1], p);
+          if (std::abs(f0) > 1e-3f && std::abs(f1) > 1e-3f) {  // clear of both boundaries
+            const bool clip = both ? (f0 < 0.0f && f1 < 0.0f) : (f0 < 0.0f || f1 < 0.0f);
+            EXPECT_EQ(clip, clippedBySurfaces(o, p));
+            const bool same =
+                id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-5f;
+            clip ? ++removed : ++kept;
+            wrong += clip == same;
+          }
+        }
+        if (cap.at(x, y)[0] != 1.0f) continue;
+        ++caps;
+        const glm::vec3 q = glm::make_vec3(capPos.at(x, y));
+        const float g0 = clipSurfaceFunction(o.surfaces[0], q),
+                    g1 = clipSurfaceFunction(o.surfaces[1], q);
+        // On one surface (within the relief's sampling), and the other as the rule says.
+        const bool on0 = std::abs(g0) < 2e-3f, on1 = std::abs(g1) < 2e-3f;
+        const auto otherAgrees = [&](float other) { return both ? other < 2e-3f : other > -2e-3f; };
+        wrongCaps += !((on0 && otherAgrees(g1)) || (on1 && otherAgrees(g0)));
+      }
+    EXPECT_EQ(wrong, 0) << combine;
+    EXPECT_GT(removed, 150) << combine;
+    EXPECT_GT(kept, 150) << combine;
+    EXPECT_GT(caps, 200) << combine;
+    // Cap pixels on the seam of the two surfaces may belong to either.
+    EXPECT_LE(wrongCaps, caps / 100) << combine << ": " << wrongCaps << " of " << caps;
+  }
+}
+
 // Caps close the cut and nothing else: where the view ray meets the (flat) clip plane inside
 // the torus, the cap shows; every cap pixel lies inside the torus.
 TEST(ClipSurfaceGpu, CapsCoverExactlyTheCut) {
