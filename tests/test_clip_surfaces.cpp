@@ -284,6 +284,32 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   EXPECT_GT(visible, 500);
 }
 
+// Trapp13 §5.4 with a relief: the cap mesh X(s, t) = O + sU + tV − S_z h(s S_x, t S_y) N is
+// displaced by the noisy offset map, so every cap pixel's position lies on the surface of eq. 1
+// (f = 0), the map sampled bilinearly there (C++), within the cap grid's interpolation.
+TEST(ClipSurfaceGpu, CapsOnAReliefLieOnItsSurface) {
+  writeTorus();
+  const Scene scene = parseScene(torusScene(kNoisySurface, true), "torus.json", kData);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &cap = aov(aovs, "capMask"), &pos = aov(aovs, "position");
+  const ClipSurface& cs = scene.cutters.find<ClipSurfaceOptions>()->surfaces[0];
+  int caps = 0, off = 0, raised = 0;
+  double worst = 0.0;
+  for (int y = 0; y < cap.height; ++y)
+    for (int x = 0; x < cap.width; ++x) {
+      if (cap.at(x, y)[0] != 1.0f) continue;
+      ++caps;
+      const glm::vec3 q = glm::make_vec3(pos.at(x, y));
+      const double f = std::abs(clipSurfaceFunction(cs, q));
+      worst = std::max(worst, f);
+      off += f > 2e-3;
+      raised += std::abs(q.z - 0.05f) > 0.01f;  // the relief moves it off the base plane
+    }
+  EXPECT_GT(caps, 1000);
+  EXPECT_EQ(off, 0) << "worst |f| " << worst << " (S_z = 0.1)";
+  EXPECT_GT(raised, caps / 4);
+}
+
 // Trapp13 §4.5, several surfaces at once on the GPU: a noisy horizontal surface and a vertical
 // plane through the torus, under union (clipped where either clips) and intersection (where
 // both do), against the C++ functions of each surface on the plain frame's positions; with
