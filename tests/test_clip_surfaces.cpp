@@ -284,6 +284,52 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   EXPECT_GT(visible, 500);
 }
 
+// Trapp13 §3: the edge-enhancement pass runs over the caps with the clipped meshes, so a
+// cap's border with the mesh is outlined (a crease between the cap and the torus) and its flat
+// inside is not: line pixels lie along the cap's border, and almost every border pixel has
+// one beside it.
+TEST(ClipSurfaceGpu, CapBordersAreOutlinedAndTheirInsidesAreNot) {
+  writeTorus();
+  std::string text = torusScene(kFlatSurface, true);
+  text.replace(text.find(R"("lines": false)"), 14,
+               R"("lines": {"creases": true, "creaseAngle": 45})");
+  const auto aovs = renderAovs(parseScene(text, "torus.json", kData));
+  const FloatImage &cap = aov(aovs, "capMask"), &lines = aov(aovs, "lines"),
+                   &id = aov(aovs, "objectId");
+  const auto isCap = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < cap.width && y < cap.height && cap.at(x, y)[0] == 1.0f;
+  };
+  const auto lineNear = [&](int x, int y, int r) {
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx) {
+        const int u = x + dx, v = y + dy;
+        if (u >= 0 && v >= 0 && u < lines.width && v < lines.height && lines.at(u, v)[0] >= 0.5f)
+          return true;
+      }
+    return false;
+  };
+  int border = 0, outlined = 0, inside = 0, linedInside = 0;
+  for (int y = 2; y + 2 < cap.height; ++y)
+    for (int x = 2; x + 2 < cap.width; ++x) {
+      if (!isCap(x, y)) continue;
+      bool edge = false, deep = true;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const bool neighbourCap = isCap(x + dx, y + dy);
+          deep = deep && neighbourCap;
+          // A 4-neighbour of the torus (not the background): the cap's border with the mesh.
+          if (std::abs(dx) + std::abs(dy) == 1 && !neighbourCap && id.at(x + dx, y + dy)[0] == 0.0f)
+            edge = true;
+        }
+      if (edge) ++border, outlined += lineNear(x, y, 1);
+      if (deep) ++inside, linedInside += lines.at(x, y)[0] >= 0.5f;
+    }
+  EXPECT_GT(border, 100);
+  EXPECT_GT(inside, 500);
+  EXPECT_GE(outlined, border * 95 / 100) << outlined << " of " << border;
+  EXPECT_EQ(linedInside, 0);
+}
+
 // Trapp13 §5.4 with a relief: the cap mesh X(s, t) = O + sU + tV − S_z h(s S_x, t S_y) N is
 // displaced by the noisy offset map, so every cap pixel's position lies on the surface of eq. 1
 // (f = 0), the map sampled bilinearly there (C++), within the cap grid's interpolation.
