@@ -300,6 +300,43 @@ TEST(AdaptiveCutaway, SeedIsTheRearHullOfTheObjectsOfInterest) {
   EXPECT_LE(wrongAngle, seeded / 100);
 }
 
+// The composite pass (frame/composite.frag) against a CPU composition of the dumped buffers:
+// at one sample the final colour is the G-buffer's colour with the overlays blended over it
+// in order, the feature lines in their colour by their coverage, then the cut outlines in
+// theirs (Burns08 §4.2): c ← mix(c, colour, opacity · coverage).
+TEST(Renderer, TheCompositeIsTheColourWithItsOverlaysBlendedInOrder) {
+  const Scene scene = parseScene(
+      R"({"resolution": [80, 60], "samples": 1,
+      "style": {"name": "gooch", "lines": {"color": [0.2, 0.1, 0.6]}},
+      "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
+      "cutters": {"adaptive": {"angle": 35, "bufferSize": 128, "outlineColor": [0.9, 0.6, 0.1]}},
+      "objects": [
+        {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
+        {"name": "core", "file": "meshes/cube.obj", "role": "interest",
+         "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
+      "composite.json", kData);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Frame& frame = renderer.frame();
+  // Rows bottom to top, as OpenGL stores them: the same for all four.
+  const std::vector<float> color = frame.read("sceneColor", 3), lines = frame.read("lines", 1),
+                           outlines = frame.read("cutOutlines", 1), final = frame.read("color", 3);
+  const glm::vec3 lineColor(0.2f, 0.1f, 0.6f), outlineColor(0.9f, 0.6f, 0.1f);
+  int lined = 0, outlined = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    glm::vec3 c = glm::make_vec3(&color[3 * i]);
+    c = glm::mix(c, lineColor, lines[i]);
+    c = glm::mix(c, outlineColor, outlines[i]);
+    lined += lines[i] > 0.5f, outlined += outlines[i] > 0.5f;
+    for (int k = 0; k < 3; ++k) worst = std::max(worst, double(std::abs(final[3 * i + k] - c[k])));
+  }
+  EXPECT_GT(lined, 30);
+  EXPECT_GT(outlined, 10);
+  // The final colour is 8-bit: half a level, and the R16F coverages' rounding.
+  EXPECT_LE(worst * 255.0, 0.75);
+}
+
 // Burns08 §4.1 / Burns11 §5.2.4.1: the cut surface is shaded with the normal of the cutaway
 // surface. Seen orthographically down −z with a point-like seed at depth −0.5, that surface is
 // the cone of half-angle θ about the view axis with its apex at the seed, whose inner normal
