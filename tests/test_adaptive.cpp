@@ -300,6 +300,47 @@ TEST(AdaptiveCutaway, SeedIsTheRearHullOfTheObjectsOfInterest) {
   EXPECT_LE(wrongAngle, seeded / 100);
 }
 
+// Burns08 §4.3: a ghost line's weight fades with the removed surface's distance in front of
+// the cutaway surface, fade = clamp(1 − (C − z)/d, 0, 1) in view depth (C the cutaway's,
+// z the surface's, d the ghost distance); every ghost sample of a removed plate against it,
+// the cutaway depth read from its buffer at the pixel (buffer and image of one size).
+TEST(AdaptiveCutaway, GhostLinesFadeWithTheirDistanceInFrontOfTheCut) {
+  const float distance = 4.0f;
+  const Scene scene = parseScene(
+      R"({"resolution": [96, 96], "samples": 1, "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 40},
+      "cutters": {"adaptive": {"angle": 30, "bufferSize": 96, "ghostLines": {"distance": 4}}},
+      "objects": [
+        {"name": "plate", "file": "meshes/cube.obj",
+         "transform": {"translate": [-0.4, -0.4, 1.5], "rotate": {"axis": [1, 0, 0], "degrees": 25},
+                       "scale": 0.8}},
+        {"name": "cube", "file": "meshes/cube.obj", "role": "interest",
+         "transform": {"translate": [-0.5, -0.5, -0.5]}}]})",
+      "fade.json", kData);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Frame& frame = renderer.frame();
+  // Rows bottom to top, the image's and the buffer's alike.
+  const std::vector<float> normal = frame.read("ghostNormal", 4),
+                           position = frame.read("ghostPosition", 4),
+                           id = frame.read("ghostObjectId", 1), cut = frame.read("cutawayDepth", 1);
+  const glm::mat4 inverse = glm::inverse(scene.resolvedCamera().projectionMatrix(1.0f));
+  int faded = 0, partial = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < id.size(); ++i) {
+    const float fade = normal[4 * i + 3];
+    if (id[i] != 0.0f || fade <= 0.0f) continue;  // the plate's removed front faces
+    const glm::vec4 h = inverse * glm::vec4(0.0f, 0.0f, 2.0f * cut[i] - 1.0f, 1.0f);
+    const float c = -h.z / h.w, z = position[4 * i + 3];
+    const float expected = std::clamp(1.0f - (c - z) / distance, 0.0f, 1.0f);
+    worst = std::max(worst, double(std::abs(fade - expected)));
+    ++faded, partial += expected > 0.05f && expected < 0.95f;
+  }
+  EXPECT_GT(faded, 150);
+  EXPECT_GT(partial, 150);  // the tilted plate spans the fade, not its ends
+  EXPECT_LE(worst, 2e-3) << "the fade is stored as a half float";
+}
+
 // The composite pass (frame/composite.frag) against a CPU composition of the dumped buffers:
 // at one sample the final colour is the G-buffer's colour with the overlays blended over it
 // in order, the feature lines in their colour by their coverage, then the cut outlines in

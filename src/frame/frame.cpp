@@ -146,6 +146,7 @@ std::vector<float> Frame::read(Target t, int channels) const {
     return texels;
   }
   const GLenum format = isDepthFormat(d.format) ? GL_DEPTH_COMPONENT
+                        : channels == 4         ? GL_RGBA
                         : channels == 3         ? GL_RGB
                                                 : GL_RED;
   glGetTextureImage(data.texture.id(), 0, format, GL_FLOAT,

@@ -98,8 +98,8 @@ class Frame {
 
   const gl::Texture& texture(Target target) const;
   const TargetDesc& desc(Target target) const;
-  // A single-sample target's texels as floats, `channels` (1: red, 3: RGB) per texel, rows
-  // bottom to top as OpenGL stores them.
+  // A single-sample target's texels as floats, `channels` (1: red, 3: RGB, 4: RGBA) per
+  // texel, rows bottom to top as OpenGL stores them.
   std::vector<float> read(Target target, int channels) const;
 
   // Lookup by name, for tools outside the frame's passes (AOV inspectors, tests).
