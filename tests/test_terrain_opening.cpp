@@ -37,6 +37,21 @@ std::string groundScene(const std::string& metric, bool cut) {
 
 }  // namespace
 
+namespace {
+
+// D_p over the first object's (the ground's) bounds, as the renderer builds it.
+TerrainField groundField(const Scene& cut) {
+  Bounds terrain;
+  terrain.extend(cut.objects[0].worldBounds());
+  return terrainField(*cut.cutters.find<TerrainOpeningOptions>(), terrain);
+}
+
+glm::vec3 viewForward(const Camera& camera) {
+  return glm::normalize(camera.target - camera.eye);
+}
+
+}  // namespace
+
 class TerrainOpeningGpuCpu : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
@@ -44,11 +59,8 @@ TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
   const Scene plain = parseScene(groundScene(GetParam(), false), "ground.json", kSource);
   const auto a = renderAovs(plain), b = renderAovs(cut);
   const TerrainOpeningOptions& o = *cut.cutters.find<TerrainOpeningOptions>();
-  Bounds terrain;
-  terrain.extend(cut.objects[0].worldBounds());
-  const TerrainField field = terrainField(o, terrain);
+  const TerrainField field = groundField(cut);
   const Camera camera = cut.resolvedCamera();
-  const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position"), &mask = aov(b, "cutMask"),
                    &threshold = aov(b, "terrainThreshold"), &fate = aov(b, "terrainClass");
@@ -58,7 +70,7 @@ TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
       if (plainId.at(x, y)[0] != 0.0f) continue;
       ++ground;
       const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
-      const TerrainFate f = terrainFate(field, o, p, camera.eye, forward);
+      const TerrainFate f = terrainFate(field, o, p, camera.eye, viewForward(camera));
       ++counts[int(f)];
       const bool same =
           id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-3f;
@@ -99,11 +111,8 @@ TEST(TerrainOpening, BuildingsAreOpenedByTheTerrainsRuleOnlyWhenAsked) {
   plain.cutters.disable<TerrainOpeningOptions>();
   const auto a = renderAovs(plain), b = renderAovs(cut), c = renderAovs(whole);
   const TerrainOpeningOptions& o = *cut.cutters.find<TerrainOpeningOptions>();
-  Bounds terrain;
-  terrain.extend(cut.objects[0].worldBounds());
-  const TerrainField field = terrainField(o, terrain);
+  const TerrainField field = groundField(cut);
   const Camera camera = cut.resolvedCamera();
-  const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
   const float house = 2.0f;  // its object id
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position"),
@@ -116,7 +125,7 @@ TEST(TerrainOpening, BuildingsAreOpenedByTheTerrainsRuleOnlyWhenAsked) {
       const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
       const bool same =
           id.at(x, y)[0] == house && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-3f;
-      const TerrainFate f = terrainFate(field, o, p, camera.eye, forward);
+      const TerrainFate f = terrainFate(field, o, p, camera.eye, viewForward(camera));
       if (f == TerrainFate::Discard) ++opened, wrong += same;
       if (f == TerrainFate::Terrain) wrong += !same;
       touched += wholeId.at(x, y)[0] != house ||
