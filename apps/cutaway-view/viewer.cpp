@@ -65,6 +65,9 @@ std::string formatValue(const float* v, int channels) {
   return s.str();
 }
 
+// Appended to an error that a reload, an open or an option change could not survive.
+constexpr const char* kKept = " (the last good scene stays)";
+
 }  // namespace
 
 Viewer::Viewer(const ViewerOptions& options) : options_(options) {
@@ -430,23 +433,7 @@ void Viewer::update() {
   const bool rebuilding = state_.sceneChanged;
   if (rebuilding) {
     const auto start = std::chrono::steady_clock::now();
-    if (!renderedIsLive_) rebuild();
-    renderedIsLive_ = false;
-    const char* path = renderer_->cutawayComputePath();
-    state_.computePath = path ? path : "";
-    state_.aovNames = renderer_->frame().aovNames();
-    state_.aovMeanings.clear();
-    for (const auto& name : state_.aovNames)
-      state_.aovMeanings[name] = renderer_->frame().desc(name).meaning;
-    for (const Aov& extra : renderer_->extraAovs()) {
-      state_.aovNames.push_back(extra.name);
-      state_.aovMeanings[extra.name] = extra.meaning;
-    }
-    if (!state_.aov.empty() && std::find(state_.aovNames.begin(), state_.aovNames.end(),
-                                         state_.aov) == state_.aovNames.end())
-      state_.aov.clear();  // e.g. the cutter's buffers after turning it off
-    state_.sceneChanged = false;
-    state_.viewChanged = true;
+    rebuild();
     rebuildMs_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
@@ -625,7 +612,6 @@ void Viewer::report(const std::string& message) {
 }
 
 void Viewer::openScene(const fs::path& path, bool keepView) {
-  constexpr const char* kKept = " (the last good scene stays)";
   std::optional<Scene> loaded;
   std::optional<SceneDocument> document;
   try {
@@ -647,10 +633,9 @@ void Viewer::openScene(const fs::path& path, bool keepView) {
     original_ = original, document_ = previousDocument, state_ = previous;
     options_.scene = previousPath, sceneRadius_ = previousRadius;
     state_.status = status;
-    // The fallback renderer drew the last good scene; an edit that was waiting, or the next
-    // one, must make a new one.
+    // The fallback renderer was made from the last good scene; an edit that was waiting
+    // needs a new one.
     state_.sceneChanged = true;
-    renderedIsLive_ = false;
     return;
   }
   if (window_)
@@ -671,14 +656,28 @@ bool Viewer::rebuild() {
     renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
   } catch (const Error& e) {
     if (!rendered_) throw;  // the first scene: nothing to go back to
-    report(e.what() + std::string(" (the last good scene stays)"));
+    report(e.what() + std::string(kKept));
     state_.scene = *rendered_;
     // It drew before; should it fail now, the device is gone and the error ends the viewer.
     renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
     made = false;
   }
   rendered_ = state_.scene;
-  renderedIsLive_ = true;  // until the scene changes again
+  const char* path = renderer_->cutawayComputePath();
+  state_.computePath = path ? path : "";
+  state_.aovNames = renderer_->frame().aovNames();
+  state_.aovMeanings.clear();
+  for (const auto& name : state_.aovNames)
+    state_.aovMeanings[name] = renderer_->frame().desc(name).meaning;
+  for (const Aov& extra : renderer_->extraAovs()) {
+    state_.aovNames.push_back(extra.name);
+    state_.aovMeanings[extra.name] = extra.meaning;
+  }
+  if (!state_.aov.empty() && std::find(state_.aovNames.begin(), state_.aovNames.end(),
+                                       state_.aov) == state_.aovNames.end())
+    state_.aov.clear();  // e.g. the cutter's buffers after turning it off
+  state_.sceneChanged = false;
+  state_.viewChanged = true;
   return made;
 }
 

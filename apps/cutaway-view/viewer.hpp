@@ -69,8 +69,9 @@ class Viewer {
   // device cannot render, leaves the last good scene on screen, the error in the status line
   // and on stderr.
   void openScene(const std::filesystem::path& path, bool keepView);
-  // A new renderer for the live scene; when it cannot be made, the scene the last renderer
-  // drew comes back with it and the error is reported. Returns whether the new one was made.
+  // A new renderer for the live scene, and the state that follows it (AOV names, compute
+  // path, a frame to draw); when it cannot be made, the scene the last renderer drew comes
+  // back with it and the error is reported. Returns whether the new one was made.
   bool rebuild();
   void report(const std::string& message);
   void screenshot(const std::filesystem::path& path);
@@ -81,7 +82,6 @@ class Viewer {
   ViewerOptions options_;
   Scene original_;  // as loaded, for saving
   std::optional<Scene> rendered_;  // the live scene as the current renderer was made from it
-  bool renderedIsLive_ = false;  // the renderer was just made for the live scene
   std::optional<SceneDocument> document_;
   ViewerState state_;
   std::optional<Script> script_;

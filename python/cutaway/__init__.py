@@ -54,17 +54,17 @@ def _affine(place, spacing, origin, affine):
         if matrix.shape != (4, 4):
             raise Error("%s: affine must be a 4×4 matrix, got shape %s" % (place, matrix.shape))
         return matrix.ravel().tolist()
+    def vector(key, value):
+        v = np.asarray(value, dtype=float)
+        if v.shape != (3,):
+            raise Error("%s: %s must be 3 numbers, got shape %s" % (place, key, v.shape))
+        return v
+
     matrix = np.eye(4)
-    for key, value, row in (("spacing", spacing, None), ("origin", origin, 3)):
-        if value is None:
-            continue
-        vector = np.asarray(value, dtype=float)
-        if vector.shape != (3,):
-            raise Error("%s: %s must be 3 numbers, got shape %s" % (place, key, vector.shape))
-        if row is None:
-            matrix[:3, :3] = np.diag(vector)
-        else:
-            matrix[:3, 3] = vector
+    if spacing is not None:
+        matrix[:3, :3] = np.diag(vector("spacing", spacing))
+    if origin is not None:
+        matrix[:3, 3] = vector("origin", origin)
     return matrix.ravel().tolist()
 
 
