@@ -5,7 +5,13 @@
 // uStep world units from a per-pixel jittered start. Each sample is decided by the cutters
 // that cut the volume, like a fragment at its position (cutters/cutter.hpp), and classified by
 // the transfer function. Mirrored on the CPU by volume_ray_cast.cpp. Variants (defines):
-// TRANSFER_2D, a transfer function of value × gradient magnitude; SHADOWS, the shadow ray.
+// TRANSFER_2D, a transfer function of value × gradient magnitude; SHADOWS, the shadow ray;
+// MODE (0 composite, 1 maximum, 2 isosurface); SHADING, gradient normals shaded by the style;
+// CUT, some cutter cuts this volume. They are constants, not uniforms, because llvmpipe runs
+// both sides of a branch on a uniform: every sample would pay for the modes it is not in.
+#ifndef MODE
+#define MODE 0
+#endif
 #include "frame/samples.glsl"
 #include "frame/frame_uniforms.glsl"
 #include "styles/surface.glsl"
@@ -28,9 +34,18 @@ layout(binding = UNIT_VOLUME_OCCUPANCY) uniform usampler3D uOccupancy;
 const float kBlock = 8.0;  // VolumeKind's kBlock
 layout(location = 2) uniform float uStep;            // world units
 layout(location = 3) uniform float uOpacityExponent; // step / opacity distance (both in voxels)
-layout(location = 5) uniform int uMode;              // 0 composite, 1 maximum, 2 isosurface
+const int kMode = MODE;
 layout(location = 6) uniform float uIsoValue;
-layout(location = 7) uniform int uShading;           // 1: gradient normals shaded by the style
+#ifdef SHADING
+const bool kShading = true;
+#else
+const bool kShading = false;
+#endif
+#ifdef CUT
+const bool kCut = true;
+#else
+const bool kCut = false;
+#endif
 layout(location = 8) uniform int uJitter;
 layout(location = 10) uniform int uInterest;         // 1: of interest (emphasis as I = 1)
 layout(location = 14) uniform float uVoxel;          // the smallest spacing, world units
@@ -85,7 +100,7 @@ float volumeTransmittance(vec3 p) {
     float alpha = texture(uTransfer, u).a;
     if (alpha == 0.0) continue;
     vec3 q = p + t * l;
-    if (uCutBy != 0) {
+    if (kCut) {
       vec4 clip = uViewProjection * vec4(q, 1.0);
       vec2 ndc = clip.xy / clip.w;
       gSampleImportance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
@@ -105,7 +120,7 @@ float gTransmittance;  // the last shaded sample's key-light transmittance
 // emphasised by its importance (Burns11 eqs. 3.1–3.4).
 vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
   gTransmittance = 1.0;
-  if (uShading == 0 || n == vec3(0.0)) return emphasize(base, base, importance);
+  if (!kShading || n == vec3(0.0)) return emphasize(base, base, importance);
   SurfacePoint s;
   s.position = p;
   s.toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - p);
@@ -163,7 +178,8 @@ void main() {
   // Where the cutters remove the ray whole (the cutaway surface's near side, a box cut's
   // inside), it skips ahead instead of asking them per sample (Burns11 §5.2.5).
   vec2 spans[REMOVED_SPANS];
-  removedSpans(uCutBy, origin, direction, gl_FragCoord.xy, vec2(tIn, tOut), spans);
+  for (int i = 0; i < REMOVED_SPANS; ++i) spans[i] = vec2(1e30, -1e30);
+  if (kCut) removedSpans(uCutBy, origin, direction, gl_FragCoord.xy, vec2(tIn, tOut), spans);
   // The samples lie on the lattice t₀ + k·step, so skipping removed spans and empty blocks
   // changes none of them.
   float t0 = tIn + offset * uStep;
@@ -183,7 +199,7 @@ void main() {
     vec3 index = o + t * d;
     // Composite: a block whose values the transfer function makes all clear is skipped to
     // its far side (empty-space skipping; the blocks' flags are conservative).
-    if (uMode == 0) {
+    if (kMode == 0) {
       ivec3 block = clamp(ivec3(floor((index + 0.5) / kBlock)), ivec3(0),
                           textureSize(uOccupancy, 0) - 1);
       if (texelFetch(uOccupancy, block, 0).r == 0u) {
@@ -201,28 +217,28 @@ void main() {
     vec4 c = texture(uTransfer, u);
     // Empty space costs no cutter and no shading (composite: no opacity; isosurface: below
     // the isovalue, where only the previous value matters).
-    if ((uMode == 0 && c.a == 0.0) || (uMode == 2 && value < uIsoValue && uCutBy == 0)) {
-      previousKept = uMode == 2;
+    if ((kMode == 0 && c.a == 0.0) || (kMode == 2 && value < uIsoValue && !kCut)) {
+      previousKept = kMode == 2;
       previousValue = value;
       continue;
     }
     gSampleImportance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;
     vec3 cutNormal;
-    if (uCutBy != 0 && sampleFate(p, true, cutNormal) == kDiscard) {
+    if (kCut && sampleFate(p, true, cutNormal) == kDiscard) {
       previousKept = false;
       continue;
     }
     float depth = -(uView * vec4(p, 1.0)).z;
     if (isnan(entry)) entry = depth;
     // Entering kept material from removed material: the cut's face, lit by its normal.
-    if (uCutBy != 0 && !previousKept && t - uStep > tIn &&
+    if (kCut && !previousKept && t - uStep > tIn &&
         sampleFate(p - uStep * direction, true, cutNormal) == kDiscard &&
         sampleFate(p, false, cutNormal) == kCutSurface)
       tCut = t, faceNormal = cutNormal;
     bool onCut = t - tCut < cutSkin;
-    if (uMode == 1) {
+    if (kMode == 1) {
       if (value > maxValue) maxValue = value, maxT = t;
-    } else if (uMode == 2) {
+    } else if (kMode == 2) {
       // The first crossing of the isovalue, placed by linear interpolation between samples;
       // material cut open above the isovalue shows the cut's face.
       if (value >= uIsoValue) {
@@ -243,7 +259,7 @@ void main() {
       vec3 n = onCut ? faceNormal : normalAt(index);
       vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - p);
       // Burns11 ch. 2 per sample: what a grading cutter leaves of its opacity.
-      alpha *= cutOpacity(uCutBy, CutFragment(p, n, true), n, toEye).x;
+      if (kCut) alpha *= cutOpacity(uCutBy, CutFragment(p, n, true), n, toEye).x;
       vec3 color = shadeSample(p, c.rgb, gSampleImportance, n);
       sum += (1.0 - sum.a) * vec4(clamp(color, 0.0, 1.0) * alpha, alpha);
       if (isnan(hit) && sum.a >= 0.5) hit = depth, hitTransmittance = gTransmittance;
@@ -252,7 +268,7 @@ void main() {
     previousKept = true;
     previousValue = value;
   }
-  if (uMode == 1 && maxValue > -1e30) {
+  if (kMode == 1 && maxValue > -1e30) {
     vec2 u = transferCoordinates(maxValue, o + maxT * d);
     vec4 c = texture(uTransfer, u);
     float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, u).r;

@@ -15,9 +15,8 @@ namespace cutaway {
 namespace {
 // Uniform locations of kinds/volumes/volume.frag.
 constexpr GLint kWorldToIndex = 0, kDims = 1, kStep = 2, kOpacityExponent = 3, kTransferRange = 4,
-                kMode = 5, kIsoValue = 6, kShading = 7, kJitter = 8, kCutBy = 9, kInterest = 10,
-                kGradientToWorld = 11, kVoxel = 14, kStepRearHull = 2, kTheta = 16, kPassSize = 17,
-                kGradientRange = 18, kShadows = 19;
+                kIsoValue = 6, kJitter = 8, kCutBy = 9, kInterest = 10, kGradientToWorld = 11,
+                kVoxel = 14, kStepRearHull = 2, kTheta = 16, kPassSize = 17, kGradientRange = 18;
 // Texels of a continuous transfer function's table along the value and, for a two-dimensional
 // one, along the gradient magnitude.
 constexpr int kTransferSize = 1024, kGradientSize = 256;
@@ -196,41 +195,64 @@ void VolumeKind::updateTransfers() const {
     if (!(volumes_[i].uploaded == setup_.scene.volumes[i].transfer)) uploadTransfer(i);
 }
 
+int VolumeKind::cutBy(const std::vector<ActiveCutter>& cutters, std::size_t volume) {
+  int bits = 0;
+  for (const ActiveCutter& c : cutters)
+    if (c.cutter->cutsVolume(volume)) bits |= 1 << c.slot;
+  return bits;
+}
+
 namespace {
 // The defines of a volume's program variant.
-std::map<std::string, std::string> variantDefines(bool twoDimensional, bool shadows) {
-  std::map<std::string, std::string> defines{{"TRANSFER_2D", twoDimensional ? "1" : "0"},
-                                             {"SHADOWS", shadows ? "1" : "0"}};
-  std::erase_if(defines, [](const auto& d) { return d.second == "0"; });
-  return defines;
-}
+// A volume's program variant: what volume.frag compiles in (TRANSFER_2D, SHADOWS, MODE,
+// SHADING, CUT); the rear hulls' programs take only the transfer function's dimension.
+struct Variant {
+  bool twoDimensional = false, shadows = false, shading = false, cut = false;
+  int mode = 0;
+  int key() const {
+    return int(twoDimensional) | int(shadows) << 1 | int(shading) << 2 | int(cut) << 3 | mode << 4;
+  }
+  std::map<std::string, std::string> defines() const {
+    std::map<std::string, std::string> d{{"MODE", std::to_string(mode)}};
+    if (twoDimensional) d["TRANSFER_2D"] = "1";
+    if (shadows) d["SHADOWS"] = "1";
+    if (shading) d["SHADING"] = "1";
+    if (cut) d["CUT"] = "1";
+    return d;
+  }
+};
 }  // namespace
 
-GLuint VolumeKind::castProgram(const SceneVolume& v) const {
-  const bool twoD = v.transfer.twoDimensional();
-  gl::Program& p = castPrograms_[int(twoD) | int(v.shadows) << 1];
+GLuint VolumeKind::castProgram(const SceneVolume& v, bool cut) const {
+  const Variant variant{.twoDimensional = v.transfer.twoDimensional(),
+                        .shadows = v.shadows,
+                        .shading = v.shading,
+                        .cut = cut,
+                        .mode = int(v.mode)};
+  gl::Program& p = castPrograms_[variant.key()];
   if (!p.id())
     p = gl::buildProgram(setup_.geometryProgram({{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                                                  {GL_FRAGMENT_SHADER, "kinds/volumes/volume.frag"}},
-                                                variantDefines(twoD, v.shadows)));
+                                                variant.defines()));
   return p.id();
 }
 
 GLuint VolumeKind::rearHullProgram(const SceneVolume& v) const {
-  const bool twoD = v.transfer.twoDimensional();
-  gl::Program& p = rearHullPrograms_[int(twoD)];
+  const Variant variant{.twoDimensional = v.transfer.twoDimensional()};
+  gl::Program& p = rearHullPrograms_[variant.key()];
   if (!p.id())
     p = setup_.bindings.build(
         {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                     {GL_FRAGMENT_SHADER, "kinds/volumes/volume_rear_hull.frag"}},
-         .defines = variantDefines(twoD, false)});
+         .defines = variant.defines()});
   return p.id();
 }
 
 void VolumeKind::prepare(const std::vector<ActiveCutter>& cutters) {
   cutters_ = &cutters;
-  for (const SceneVolume& v : setup_.scene.volumes) {
-    castProgram(v);
+  for (std::size_t i = 0; i < setup_.scene.volumes.size(); ++i) {
+    const SceneVolume& v = setup_.scene.volumes[i];
+    castProgram(v, cutBy(cutters, i) != 0);
     if (v.role == Role::Interest) rearHullProgram(v);
   }
   if (lines_) lines_->prepare(cutters);
@@ -284,15 +306,12 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
   for (const std::size_t i : order) {
     const SceneVolume& v = setup_.scene.volumes[i];
     if (v.lines && v.lines->only) continue;  // its lines alone
-    const GLuint program = castProgram(v);
+    const int cuts = cutBy(cutters, i);
+    const GLuint program = castProgram(v, cuts != 0);
     glUseProgram(program);
     for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
-    int cutBy = 0;
     for (const ActiveCutter& c : cutters)
-      if (c.cutter->cutsVolume(i)) {
-        cutBy |= 1 << c.slot;
-        c.cutter->setVolumeUniforms(program, i);
-      }
+      if (c.cutter->cutsVolume(i)) c.cutter->setVolumeUniforms(program, i);
     for (const auto& [aov, copy] :
          {std::pair{entryDepth_, previousEntry_.id()}, std::pair{hitDepth_, previousHit_.id()},
           std::pair{opacity_, previousOpacity_.id()},
@@ -304,11 +323,9 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
     glProgramUniform1f(program, kStep, v.sampleDistance * spacing);
     glProgramUniform1f(program, kVoxel, spacing);
     glProgramUniform1f(program, kOpacityExponent, v.sampleDistance / v.opacityDistance);
-    glProgramUniform1i(program, kMode, int(v.mode));
     glProgramUniform1f(program, kIsoValue, v.isoValue);
-    glProgramUniform1i(program, kShading, v.shading);
     glProgramUniform1i(program, kJitter, v.jitter);
-    glProgramUniform1i(program, kCutBy, cutBy);
+    glProgramUniform1i(program, kCutBy, cuts);
     glProgramUniform1i(program, kInterest, v.role == Role::Interest);
     glBindTextureUnit(occupancyUnit_, volumes_[i].occupancy.id());
     glBindTextureUnit(5, previousHit_.id());

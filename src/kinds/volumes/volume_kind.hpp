@@ -64,14 +64,16 @@ class VolumeKind : public GeometryKind {
   void draw(const std::vector<ActiveCutter>& cutters) const;
   // Binds volume i's textures and sets the uniforms every volume program shares.
   void bindVolume(GLuint program, std::size_t i) const;
+  // Bit k: the cutter of slot k cuts volume i.
+  static int cutBy(const std::vector<ActiveCutter>& cutters, std::size_t volume);
 
   FrameSetup& setup_;
   const std::vector<ActiveCutter>* cutters_ = nullptr;
   mutable std::vector<VolumeGpu> volumes_;
-  // The programs of a volume's variant (volume.frag's TRANSFER_2D and SHADOWS), built for the
-  // scene's volumes at set-up and for others on first use (the viewer's edits): llvmpipe runs
-  // both sides of a branch, so what a volume does not use is compiled out.
-  GLuint castProgram(const SceneVolume& v) const;
+  // The programs of a volume's variant (volume.frag's TRANSFER_2D, SHADOWS, MODE, SHADING and
+  // CUT), built for the scene's volumes at set-up and for others on first use (the viewer's
+  // edits): llvmpipe runs both sides of a branch, so what a volume does not use is compiled out.
+  GLuint castProgram(const SceneVolume& v, bool cut) const;
   GLuint rearHullProgram(const SceneVolume& v) const;
   mutable std::map<int, gl::Program> castPrograms_, rearHullPrograms_;
   FullscreenTriangle fullscreen_;
