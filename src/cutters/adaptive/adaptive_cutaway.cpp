@@ -229,6 +229,10 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
+  // Only front faces take part (ghost.frag): culling the back faces spares llvmpipe their
+  // rasterisation and shading.
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
   bindForGeometry();
   const GLuint program = programs_->ghost.id();
   const AdaptiveCutawayOptions& o = options();
@@ -244,6 +248,7 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
         glProgramUniform1i(program, 11, int(i));
         setObjectUniforms(program, i);
       });
+  glDisable(GL_CULL_FACE);
 }
 
 }  // namespace cutaway
