@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cutaway/core/image.hpp"
 #include "cutaway/io/raster_terrain.hpp"
@@ -470,6 +472,46 @@ TEST(Cli, BenchComparesPlainCutoutAndBreakawayPerStyle) {
     for (const std::string what : {"plain", "cutout", "breakaway"})
       EXPECT_NE(std::find(labels.begin(), labels.end(), what + " " + style), labels.end())
           << what << " " << style;
+}
+
+// A volume scene: plain ray casting, each cutter alone and both, at 512² and 1024²; the text
+// summary gives each run's frame against the plain run of its own size.
+TEST(Cli, BenchOfAVolumeComparesEachCutterWithThePlainRayCastingOfItsSize) {
+  const fs::path scene = scratch("volume-bench.json");
+  std::ofstream(scene) << R"({"resolution": [64, 64], "samples": 1,
+      "volumes": [{"name": "brain", "file": "/usr/share/doc/libvolpack1-dev/examples/brainsmall.den",
+                   "role": "exterior",
+                   "transferFunction": [{"value": 30, "color": [0.9, 0.8, 0.7], "opacity": 0},
+                                        {"value": 90, "color": [0.9, 0.8, 0.7], "opacity": 0.5}]}],
+      "cutters": {"boxCut": {"center": [64, 64, 84], "size": [64, 64, 84]},
+                  "cutout": true}})";
+  const Result r = run("bench " + scene.string() + " --frames 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::size_t summary = r.out.find("\nsummary");
+  ASSERT_NE(summary, std::string::npos) << r.out;
+  std::map<std::string, std::pair<double, double>> rows;  // label: frame ms, × plain
+  std::istringstream table(r.out.substr(summary + 1));
+  std::string line;
+  std::getline(table, line);  // the header
+  while (std::getline(table, line) && !line.empty()) {
+    const std::size_t numbers = line.find_first_of("0123456789", line.find("  "));
+    std::istringstream values(line.substr(numbers));
+    double ms = 0.0, ratio = 0.0;
+    values >> ms >> ratio;
+    std::string label = line.substr(0, numbers);
+    label.erase(label.find_last_not_of(' ') + 1);
+    rows[label] = {ms, ratio};
+  }
+  for (const std::string size : {"512²", "1024²"}) {
+    const std::string plainLabel = "ray casting " + size;
+    ASSERT_TRUE(rows.count(plainLabel)) << r.out;
+    const double plain = rows[plainLabel].first;
+    for (const std::string run : {"ray casting ", "boxCut ", "cutout ", "all cutters "}) {
+      ASSERT_TRUE(rows.count(run + size)) << run + size << "\n" << r.out;
+      const auto [ms, ratio] = rows[run + size];
+      EXPECT_NEAR(ratio, ms / plain, 1e-3 + 1e-3 * ratio) << run + size << "\n" << r.out;
+    }
+  }
 }
 
 TEST(Cli, StyleNamesAndShadowsFlag) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <set>
 
 #include "cutaway/render/renderer.hpp"
@@ -409,9 +410,12 @@ std::filesystem::path writeSphere() {
 
 // The rendered colour at every pixel inside the sphere's image (all four neighbours on it too)
 // against `formula(normal, toEye, position)`, from the AOVs of the same frame: the normal the
-// shader used (half floats) and the position (floats). Returns the pixels compared.
-int compareTone(const std::string& styleJson, const std::string& lightsJson,
-                const std::function<glm::vec3(glm::vec3, glm::vec3, glm::vec3)>& formula) {
+// shader used (half floats) and the position (floats). A formula with hard edges returns
+// nothing for pixels next to one, where the half-float normal may fall either way. Returns the
+// pixels compared.
+int compareTone(
+    const std::string& styleJson, const std::string& lightsJson,
+    const std::function<std::optional<glm::vec3>(glm::vec3, glm::vec3, glm::vec3)>& formula) {
   const auto sphere = writeSphere();
   const Scene scene = parseScene(
       R"({"resolution": [96, 96], "samples": 1, "style": )" + styleJson + R"(, "lights": )" +
@@ -441,9 +445,10 @@ int compareTone(const std::string& styleJson, const std::string& lightsJson,
       const float* n = normal.at(x, y);
       const float* p = position.at(x, y);
       const glm::vec3 point(p[0], p[1], p[2]);
-      const glm::vec3 expected = glm::clamp(
-          formula(glm::normalize(glm::vec3(n[0], n[1], n[2])), glm::normalize(eye - point), point),
-          0.0f, 1.0f);
+      const std::optional<glm::vec3> tone =
+          formula(glm::normalize(glm::vec3(n[0], n[1], n[2])), glm::normalize(eye - point), point);
+      if (!tone) continue;
+      const glm::vec3 expected = glm::clamp(*tone, 0.0f, 1.0f);
       for (int k = 0; k < 3; ++k) {
         const double error = std::abs(color.at(x, y)[k] / 255.0 - expected[k]);
         if (error > worst) {
@@ -509,6 +514,44 @@ TEST(StyleTone, BlinnPhongSumsItsLights) {
         return c;
       });
   EXPECT_GT(compared, 2000);
+}
+
+// Toon (Lake00 §3.1): the ramp's tone of the key light's max(n·l, 0) (equal bands, 8-bit
+// texels) times the object colour, plus the object's specular times the highlight colour where
+// the Blinn term (n·h)^shininess passes the threshold. Pixels within 0.02 of a band edge (in
+// units of n·l) or of the threshold are left out; the highlight must cover some pixels and
+// leave others.
+TEST(StyleTone, ToonIsTheRampsBandPlusTheHardHighlight) {
+  const glm::vec3 kd(0.7f, 0.35f, 0.2f), highlight(0.9f, 0.8f, 1.0f);
+  const std::vector<glm::vec3> ramp{glm::vec3(0.2f), glm::vec3(0.5f, 0.55f, 0.6f), glm::vec3(1.0f)};
+  const float threshold = 0.6f;
+  const glm::vec3 travels = glm::normalize(glm::vec3(-0.5f, -0.7f, -0.3f));
+  int highlighted = 0, plain = 0;
+  const int compared = compareTone(
+      R"({"name": "toon", "lines": false,
+          "toon": {"ramp": [0.2, [0.5, 0.55, 0.6], 1], "highlight": true,
+                   "highlightThreshold": 0.6, "highlightColor": [0.9, 0.8, 1.0]}})",
+      R"([{"type": "directional", "direction": [-0.5, -0.7, -0.3], "space": "world"}])",
+      [&](glm::vec3 n, glm::vec3 v, glm::vec3) -> std::optional<glm::vec3> {
+        const glm::vec3 l = -travels;
+        const float nDotL = std::max(glm::dot(n, l), 0.0f), bands = float(ramp.size());
+        const float edge = std::round(nDotL * bands) / bands;
+        if (nDotL > 0.0f && edge > 0.0f && edge < 1.0f && std::abs(nDotL - edge) < 0.02f)
+          return std::nullopt;
+        const float blinn = blinnSpecular(n, l, v, 8.0f);
+        if (std::abs(blinn - threshold) < 0.02f) return std::nullopt;
+        const glm::vec3 texel =
+            glm::round(ramp[toonRampIndex(int(ramp.size()), nDotL)] * 255.0f) / 255.0f;
+        glm::vec3 c = texel * kd;
+        if (blinn > threshold)
+          c += 0.4f * highlight, ++highlighted;
+        else
+          ++plain;
+        return glm::min(c, glm::vec3(1.0f));
+      });
+  EXPECT_GT(compared, 1500);
+  EXPECT_GT(highlighted, 30);
+  EXPECT_GT(plain, 1000);
 }
 
 // Silhouettes and creases (the image-space lines of frame/lines) against a CPU classification

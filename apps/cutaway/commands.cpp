@@ -805,7 +805,6 @@ int bench(const BenchOptions& options) {
       accuracy[fields::variantName(variant)] = double(off) / double(f.depth.size());
     }
   }
-  const double plainMs = runs.front().frame.median;
   const char* autoPath = nullptr;
   if (const auto* a = scene.cutters.find<AdaptiveCutawayOptions>())
     autoPath = cutawayOnCpu(*a, info.software) ? "cpu" : "gpu";
@@ -872,24 +871,26 @@ int bench(const BenchOptions& options) {
       std::printf("%-12s %12.3f %12.3f\n",
                   runs[i].label.substr(0, runs[i].label.size() - 2).c_str(), runs[i].frame.median,
                   runs[i + half].frame.median);
-  } else if (scene.cutters.find<CutoutOptions>() || scene.cutters.find<BreakawayOptions>() ||
-             scene.cutters.find<ClipSurfaceOptions>()) {
-    std::printf("\n%-24s %12s %12s\n", "summary", "frame ms", "× plain");
-    for (const auto& m : runs)
-      std::printf("%-24s %12.3f %12.3f\n", m.label.c_str(), m.frame.median,
+  } else if (runs.size() > 1) {
+    // Each run against the plain run of its group (its style, its image size).
+    std::printf("\n%-28s %12s %12s", "summary", "frame ms", "× plain");
+    std::printf(autoPath ? " %18s\n" : "\n", "cutaway surface ms");
+    for (const auto& m : runs) {
+      std::printf("%-28s %12.3f %12.3f", m.label.c_str(), m.frame.median,
                   m.frame.median / runs[m.plain].frame.median);
+      if (autoPath) std::printf(" %18.3f", m.cutawaySurfaceMs);
+      std::printf("\n");
+    }
   }
   if (autoPath) {
-    std::printf("\n%-18s %12s %12s %18s\n", "summary", "frame ms", "× plain", "cutaway surface ms");
-    for (const auto& m : runs)
-      std::printf("%-18s %12.3f %12.3f %18.3f\n", m.label.c_str(), m.frame.median,
-                  m.frame.median / plainMs, m.cutawaySurfaceMs);
-    std::printf("compute path the scene gets here: %s\n\nCPU references (ms):\n", autoPath);
+    std::printf("compute path of the cutaway surface here: %s\n", autoPath);
+    if (!references.empty()) std::printf("\nCPU references (ms):\n");
     for (const auto& [name, ms] : references.items())
       std::printf("  %-32s %10.3f\n", name.c_str(), ms.get<double>());
-    std::printf(
-        "\nJump flooding vs brute force at %d² (pixels off by > 1e-4 of the depth range):\n",
-        kAccuracySize);
+    if (!accuracy.empty())
+      std::printf(
+          "\nJump flooding vs brute force at %d² (pixels off by > 1e-4 of the depth range):\n",
+          kAccuracySize);
     for (const auto& [name, fraction] : accuracy.items())
       std::printf("  %-8s %9.4f%%\n", name.c_str(), 100.0 * fraction.get<double>());
   }
