@@ -280,6 +280,111 @@ TEST_F(VolumeTest, IsosurfacesAreShadedByTheStyleAndEmphasisedByImportance) {
   }
 }
 
+// Analytic: a solid box [−0.8, 0.8]³ with a spherical cavity of radius 0.5 at its centre,
+// rendered as an isosurface, its front half (z > 0) removed by a box cut. Along a ray that
+// meets the plane z = 0 inside the box and outside the cavity, the surface is the cut's face on
+// that plane (the first kept sample, within a step), lit as a face with the plane's normal
+// (Burns11 §5.2.4.1 on volumes); a ray through the cavity's opening meets the cavity's far wall,
+// |q| = 0.5, placed between samples (within a tenth of a voxel) and lit by the wall's gradient
+// normal. Colours against Blinn-Phong written out here (a volume sample's specular weight 0.2,
+// shininess 32).
+TEST_F(VolumeTest, ABoxWithACavityCutOpenShowsTheCutFaceAndTheCavitysFarWall) {
+  const float half = 0.8f, radius = 0.5f;
+  const fs::path file = volume("cavity", 48, 1.0f, [&](glm::vec3 p) {
+    const glm::vec3 a = glm::abs(p);
+    return std::min(half - std::max({a.x, a.y, a.z}), glm::length(p) - radius);
+  });
+  const glm::vec3 kd(0.7f, 0.35f, 0.2f);
+  const glm::vec3 l = -glm::normalize(glm::vec3(-0.5f, -0.7f, -0.3f));
+  Scene s = scene(R"({"name": "cavity", "file": ")" + file.string() +
+                      R"(", "mode": "isosurface", "isoValue": 0, "sampleDistance": 0.5,
+                  "transferFunction": [{"value": 0, "color": [0.7, 0.35, 0.2], "opacity": 1}]})",
+                  R"(, "lights": [{"type": "directional", "direction": [-0.5, -0.7, -0.3],
+                                   "space": "world"}],
+                     "cutters": {"boxCut": {"center": [0, 0, 1], "size": [3, 3, 2]}})");
+  s.style = parseScene(R"({"style": {"name": "blinn-phong", "lines": false,
+                                     "blinnPhong": {"ambient": 0.1}},
+                           "objects": [{"name": "c", "file": "meshes/cube.obj"}]})",
+                       "style.json", kData)
+                .style;
+  Renderer renderer(s, test::glContext().info());
+  renderer.render();
+  const Rgba8Image color = renderer.readColor();  // rows top to bottom
+  const auto aovs = renderer.readAovs();
+  const FloatImage& hit = aov(aovs, "volumeHitDepth");
+  const Camera camera = s.resolvedCamera();
+  const glm::mat4 inverse =
+      glm::inverse(camera.projectionMatrix(float(s.width) / float(s.height)) * camera.view());
+  const float voxel = 2.0f / 47.0f, step = 0.5f * voxel;
+  const auto shade = [&](glm::vec3 n, glm::vec3 q) {
+    const glm::vec3 v = glm::normalize(camera.eye - q);
+    if (glm::dot(n, v) < 0.0f) n = -n;
+    return glm::clamp(0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
+                          glm::vec3(0.2f * blinnSpecular(n, l, v, 32.0f)),
+                      0.0f, 1.0f);
+  };
+  int face = 0, wall = 0;
+  double worst = 0.0;
+  std::string where;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
+      const auto [o, d] = pixelRay(inverse, uv);
+      const glm::vec3 onPlane = o - o.z / d.z * d;
+      const glm::vec2 a = glm::abs(glm::vec2(onPlane));
+      const float r = glm::length(glm::vec2(onPlane));
+      const float depth = hit.at(x, y)[0];
+      glm::vec3 expected;
+      if (std::max(a.x, a.y) < half - 2.0f * voxel && r > radius + 2.0f * voxel) {
+        const float planeDepth = -(camera.view() * glm::vec4(onPlane, 1.0f)).z;
+        ASSERT_FALSE(std::isnan(depth)) << x << "," << y;
+        EXPECT_GE(depth, planeDepth - 0.1f * voxel) << x << "," << y;
+        EXPECT_LE(depth, planeDepth + step + 0.1f * voxel) << x << "," << y;
+        expected = shade({0.0f, 0.0f, 1.0f}, onPlane);
+        ++face;
+      } else if (r < radius - 3.0f * voxel) {
+        const float b = glm::dot(o, d), c = glm::dot(o, o) - radius * radius;
+        const glm::vec3 q = o + (-b + std::sqrt(b * b - c)) * d;  // the far root: from inside
+        ASSERT_FALSE(std::isnan(depth)) << x << "," << y;
+        EXPECT_NEAR(depth, -(camera.view() * glm::vec4(q, 1.0f)).z, 0.1f * voxel) << x << "," << y;
+        expected = shade(-glm::normalize(q), q);
+        ++wall;
+      } else {
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        const double error = std::abs(color.at(x, y)[k] / 255.0 - expected[k]) * 255.0;
+        if (error > worst)
+          worst = error, where = std::to_string(x) + "," + std::to_string(y) + " channel " +
+                                 std::to_string(k) + ": " + std::to_string(color.at(x, y)[k]) +
+                                 " vs " + std::to_string(expected[k] * 255.0f);
+      }
+    }
+  // As the sphere's isosurface: central differences and half floats against the analytic
+  // normal; the face's normal is exact.
+  EXPECT_LE(worst, 3.0) << "worst pixel " << where;
+  EXPECT_GT(face, 300);
+  EXPECT_GT(wall, 150);
+}
+
+// A volume larger than the GPU's 3-D textures on one axis is refused when the renderer is
+// made, naming the file and the limit.
+TEST_F(VolumeTest, AVolumeBeyondTheGpusTextureSizeIsRefused) {
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+  ASSERT_GT(maxSize, 0);
+  const int n = maxSize + 1;
+  std::ofstream(dir_ / "long.raw", std::ios::binary)
+      .write(std::vector<char>(std::size_t(n) * 4, 0).data(), std::streamsize(n) * 4);
+  std::ofstream(dir_ / "long.json")
+      << R"({"file": "long.raw", "dims": [)" << n << R"(, 1, 1], "type": "f32"})";
+  const Scene s = scene(R"({"name": "long", "file": ")" + (dir_ / "long.json").string() +
+                        R"(", "transferFunction": [{"value": 0, "opacity": 1}]})");
+  expectError(
+      [&] { Renderer renderer(s, test::glContext().info()); },
+      {"long.json", std::to_string(n) + "×1×1", "3-D texture size of " + std::to_string(maxSize)});
+}
+
 namespace {
 
 // The volume AOVs and the colour (emission only over black) of scene `s` as the CPU reference
