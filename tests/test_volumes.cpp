@@ -793,6 +793,67 @@ TEST_F(VolumeTest, RaysStartAtTheAdaptiveCutawaySurface) {
   EXPECT_GT(opened, 300);
 }
 
+// Burns11 §7.1: the contextual structure decides each ray sample by the importance of the
+// sample's material (eqs. 7.1–7.3 with eq. 5.6's Ω). A block of one material around a cube of
+// interest: the first kept sample along each ray lies where R(I, Ω) falls to ½, worked out here
+// from the dumped C₁ and C₂: Ω* = (max(2I − 1, 0) + I)/2, at z₂ − 2Ω*(z₂ − z₁) when Ω* ≤ ½
+// (transition region), at z₁ − (2Ω* − 1)d in front of C₁ when Ω* > ½ (overlay). Less important
+// material (I = 0.3) is trimmed behind C₁, important material (I = 0.9) reaches into the
+// overlay; within one step along the ray.
+TEST_F(VolumeTest, TheContextualStructureTrimsEachMaterialWhereItsImportanceSays) {
+  const fs::path file = volume("block", 24, 1.0f, [](glm::vec3) { return 0.6f; });
+  const float overlay = 0.3f, step = 0.5f * 2.0f / 23.0f;
+  for (const float importance : {0.3f, 0.9f}) {
+    SCOPED_TRACE(importance);
+    Scene s = scene(R"({"name": "block", "file": ")" + file.string() +
+                        R"(", "shading": false, "jitter": false,
+                    "transferFunction": [{"value": 0.6, "color": [0.8, 0.7, 0.6], "opacity": 0.3,
+                                          "importance": )" +
+                        std::to_string(importance) + "}]}",
+                    R"(, "objects": [{"name": "probe", "file": ")" + kData +
+                        R"(/meshes/cube.obj", "role": "interest",
+                          "transform": {"translate": [-0.25, -0.25, -0.25], "scale": 0.5}}],
+                    "cutters": {"adaptive": {"angle": 30, "bufferSize": 128,
+                      "contextual": {"transitionAngle": 55, "overlay": 0.3,
+                                     "reduction": "importance"}}})");
+    s.width = s.height = 128;  // a pixel centre is a texel centre of C₁ and C₂
+    const auto aovs = renderAovs(s);
+    const FloatImage &entry = aov(aovs, "volumeEntryDepth"), &c1 = aov(aovs, "cutawayDepth"),
+                     &c2 = aov(aovs, "cutawayDepthC2");
+    const Camera c = s.resolvedCamera();
+    const glm::mat4 projection = c.projectionMatrix(1.0f);
+    const glm::mat4 inverseProjection = glm::inverse(projection);
+    const auto distance = [&](float windowDepth) {
+      const glm::vec4 h =
+          inverseProjection * glm::vec4(0.0f, 0.0f, 2.0f * windowDepth - 1.0f, 1.0f);
+      return -h.z / h.w;
+    };
+    const float omega = 0.5f * (std::max(2.0f * importance - 1.0f, 0.0f) + importance);
+    int trimmed = 0, inOverlay = 0;
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        const float e = entry.at(x, y)[0];
+        if (std::isnan(e) || !(c1.at(x, y)[0] > 0.0f)) continue;
+        const float z1 = distance(c1.at(x, y)[0]);
+        const float z2 = std::max(distance(c2.at(x, y)[0]), z1);
+        const float cut =
+            omega <= 0.5f ? z2 - 2.0f * omega * (z2 - z1) : z1 - (2.0f * omega - 1.0f) * overlay;
+        const VolumeRay whole = castVolumeRay(s.volumes[0], c.view(), projection,
+                                              {s.width, s.height}, {x, s.height - 1 - y});
+        EXPECT_GE(e, std::max(whole.entryDepth, cut) - 1e-3f) << x << "," << y;
+        if (!(whole.entryDepth < cut)) continue;  // the volume begins behind the cut here
+        EXPECT_LE(e, cut + step + 1e-3f) << x << "," << y;
+        ++trimmed;
+        inOverlay += cut < z1 - 0.05f;
+      }
+    EXPECT_GT(trimmed, 500);
+    if (importance > 0.5f)
+      EXPECT_GT(inOverlay, 300) << "important material stands in front of C₁";
+    else
+      EXPECT_EQ(inOverlay, 0);
+  }
+}
+
 // A label volume: sampled at the nearest voxel, each listed label its own material, the rest
 // clear; the GPU as the CPU reference.
 TEST_F(VolumeTest, ALabelVolumeShowsItsListedLabelsAsTheCpuReference) {
