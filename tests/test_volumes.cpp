@@ -854,6 +854,80 @@ TEST_F(VolumeTest, TheContextualStructureTrimsEachMaterialWhereItsImportanceSays
   }
 }
 
+// Diepstraten03 §5 on an exterior volume: the breakaway removes the samples in front of the
+// interior objects' convex hull. Two small cubes at opposite corners of a block (offset 0: the
+// hull is exactly the convex hull, the sweep of a cube along the segment between their
+// centres). The hull's front along each ray is found here by sweeping the cube in 2000 steps;
+// rays that meet the hull between the cubes enter the volume at the hull's front (within a
+// step), rays that miss it enter as if uncut.
+TEST_F(VolumeTest, TheBreakawayRemovesTheSamplesInFrontOfTheInteriorsHull) {
+  const fs::path file = volume("block", 24, 1.0f, [](glm::vec3) { return 0.6f; });
+  const std::string cube = kData + "/meshes/cube.obj";
+  Scene s = scene(R"({"name": "block", "file": ")" + file.string() +
+                      R"(", "shading": false, "jitter": false, "role": "exterior", )" + kRamp + "}",
+                  R"(, "objects": [
+          {"name": "a", "file": ")" +
+                      cube + R"(", "role": "interior",
+           "transform": {"translate": [-0.5, -0.5, -0.5], "scale": 0.2}},
+          {"name": "b", "file": ")" +
+                      cube + R"(", "role": "interior",
+           "transform": {"translate": [0.3, 0.3, 0.3], "scale": 0.2}}],
+        "cutters": {"breakaway": {"offset": 0}})");
+  s.width = 160, s.height = 120;
+  const auto aovs = renderAovs(s);
+  const FloatImage& entry = aov(aovs, "volumeEntryDepth");
+  const Camera c = s.resolvedCamera();
+  const float aspect = float(s.width) / float(s.height);
+  const glm::mat4 view = c.view(), projection = c.projectionMatrix(aspect);
+  const glm::mat4 inverse = glm::inverse(projection * view);
+  const glm::vec3 a(-0.4f), span(0.8f);
+  // The nearest t at which the ray meets the cube of half-size h centred at a + s·span for
+  // some s in [s0, s1]; infinity where it meets none.
+  const auto sweep = [&](glm::vec3 o, glm::vec3 d, float h, float s0, float s1) {
+    float nearest = INFINITY;
+    for (int k = 0; k <= 2000; ++k) {
+      const glm::vec3 centre = a + glm::mix(s0, s1, k / 2000.0f) * span;
+      float lo = -INFINITY, hi = INFINITY;
+      for (int i = 0; i < 3; ++i) {
+        const float t0 = (centre[i] - h - o[i]) / d[i], t1 = (centre[i] + h - o[i]) / d[i];
+        lo = std::max(lo, std::min(t0, t1)), hi = std::min(hi, std::max(t0, t1));
+      }
+      if (lo <= hi) nearest = std::min(nearest, lo);
+    }
+    return nearest;
+  };
+  const float step = 0.5f * 2.0f / 23.0f;
+  int opened = 0, missed = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
+      const auto [o, d] = pixelRay(inverse, uv);
+      const float e = entry.at(x, y)[0];
+      // Away from the hull's and the cubes' outlines by 0.02 world units.
+      const bool inHull = std::isfinite(sweep(o, d, 0.08f, 0.0f, 1.0f));
+      if (inHull != std::isfinite(sweep(o, d, 0.12f, 0.0f, 1.0f))) continue;
+      if (!inHull) {
+        const VolumeRay whole = castVolumeRay(s.volumes[0], view, projection, {s.width, s.height},
+                                              {x, s.height - 1 - y});
+        EXPECT_EQ(std::isnan(e), std::isnan(whole.entryDepth)) << x << "," << y;
+        if (std::isnan(e)) continue;
+        EXPECT_NEAR(e, whole.entryDepth, 1e-3f) << x << "," << y;
+        ++missed;
+        continue;
+      }
+      if (std::isfinite(sweep(o, d, 0.12f, 0.0f, 0.0f)) ||
+          std::isfinite(sweep(o, d, 0.12f, 1.0f, 1.0f)))
+        continue;  // the cubes stop the ray
+      const float front = -(view * glm::vec4(o + sweep(o, d, 0.1f, 0.0f, 1.0f) * d, 1.0f)).z;
+      ASSERT_FALSE(std::isnan(e)) << x << "," << y;
+      EXPECT_GE(e, front - 1e-3f) << x << "," << y;
+      EXPECT_LE(e, front + step + 1e-3f) << x << "," << y;
+      ++opened;
+    }
+  EXPECT_GT(opened, 200);
+  EXPECT_GT(missed, 5000);
+}
+
 // A label volume: sampled at the nearest voxel, each listed label its own material, the rest
 // clear; the GPU as the CPU reference.
 TEST_F(VolumeTest, ALabelVolumeShowsItsListedLabelsAsTheCpuReference) {

@@ -145,6 +145,17 @@ inline void requireRole(const json_reader::Context& ctx, const std::string& poin
   ctx.fail(pointer, "no object has role \"" + std::string(roleName(role)) + "\": " + why);
 }
 
+// Diepstraten03 rule 1 for the cutters that cut exterior objects and exterior volumes (the
+// cutout, the breakaway): fails unless one of either has that role.
+inline void requireExterior(const json_reader::Context& ctx, const std::string& pointer,
+                            const Scene& scene) {
+  for (const SceneVolume& v : scene.volumes)
+    if (v.role == Role::Exterior) return;
+  requireRole(ctx, pointer, scene, Role::Exterior,
+              "nothing to cut (give the outside objects or volumes that role, or match objects "
+              "by name with \"overrides\")");
+}
+
 // How the active cutters cut one mesh object: the uniforms of the geometry programs'
 // composition (kinds/meshes/mesh.frag; the caps read the bits alone).
 struct ObjectCut {

@@ -84,12 +84,12 @@ CutterType breakawayCutterType() {
           .name = "breakaway",
           .schema = &breakawaySchema(),
           // Diepstraten03 rule 1: the cutters need the inside/outside classification.
-          .complete = [](const json_reader::Context& ctx, const std::string& pointer, Scene& s) {
-            requireRole(ctx, pointer, s, Role::Exterior,
-                        "nothing to cut (give the outside objects that role, or match them by "
-                        "name with \"overrides\")");
-            requireRole(ctx, pointer, s, Role::Interior, "the breakaway hull is built around them");
-          },
+          .complete =
+              [](const json_reader::Context& ctx, const std::string& pointer, Scene& s) {
+                requireExterior(ctx, pointer, s);
+                requireRole(ctx, pointer, s, Role::Interior,
+                            "the breakaway hull is built around them");
+              },
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<Breakaway>(setup);
           }};

@@ -32,15 +32,6 @@ std::vector<glm::vec3> volumeHullPoints(const SceneVolume& v) {
   return points;
 }
 
-// Diepstraten03 rule 1: the cutters need the inside/outside classification.
-void requireExterior(const json_reader::Context& ctx, const std::string& pointer, Scene& s) {
-  for (const SceneVolume& v : s.volumes)
-    if (v.role == Role::Exterior) return;
-  requireRole(ctx, pointer, s, Role::Exterior,
-              "nothing to cut (give the outside objects or volumes that role, or match objects "
-              "by name with \"overrides\")");
-}
-
 }  // namespace
 
 std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
@@ -87,7 +78,9 @@ CutterType cutoutCutterType() {
           .glsl = "cutters/cutout/cutout.glsl",
           .name = "cutout",
           .schema = &cutoutSchema(),
-          .complete = requireExterior,
+          // Diepstraten03 rule 1: the cutters need the inside/outside classification.
+          .complete = [](const json_reader::Context& ctx, const std::string& pointer,
+                         Scene& s) { requireExterior(ctx, pointer, s); },
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<Cutout>(setup);
           }};
