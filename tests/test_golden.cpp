@@ -129,6 +129,7 @@ INSTANTIATE_TEST_SUITE_P(
         GoldenCase{"mri-head-atlas-cutaway", "mri-head-atlas-cutaway.json", "", 240, 240},
         GoldenCase{"mri-head-clip", "mri-head-clip.json", "", 240, 240},
         GoldenCase{"mri-head-cutout", "mri-head-cutout.json", "", 240, 240},
+        GoldenCase{"mri-head-needle", "mri-head-needle.json", "", 240, 240},
         GoldenCase{"ct-stent-contextual", "ct-stent-contextual.json", "", 200, 250},
         GoldenCase{"ct-stent-boundaries", "ct-stent-boundaries.json", "", 200, 250},
         // Line drawings of the MRI head (Burns11 §2.4): skin and brain contours, a cutting
