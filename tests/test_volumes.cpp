@@ -854,6 +854,82 @@ TEST_F(VolumeTest, TheContextualStructureTrimsEachMaterialWhereItsImportanceSays
   }
 }
 
+// Burns11 ch. 2 per volume sample: under the contextual structure applied as translucency
+// (eq. 2.1) a sample's opacity is multiplied by 1 − R(I, Ω) instead of removing it. The block
+// of one material (I = 0.3) around the cube of interest, jitter off: each pixel's accumulated
+// opacity against the emission–absorption sum written out here over the same samples, each
+// step's opacity 1 − (1 − α)^(Δs/d) times 1 − R, with Ω by eq. 5.6 from the dumped C₁, C₂ and
+// R by eq. 7.3.
+TEST_F(VolumeTest, AsTranslucencyRScalesEachSamplesOpacity) {
+  const int n = 24;
+  const fs::path file = volume("block", n, 1.0f, [](glm::vec3) { return 0.6f; });
+  const float overlay = 0.3f, importance = 0.3f, voxel = 2.0f / float(n - 1), step = 0.5f * voxel;
+  Scene s = scene(R"({"name": "block", "file": ")" + file.string() +
+                      R"(", "shading": false, "jitter": false,
+                  "transferFunction": [{"value": 0.6, "color": [0.8, 0.7, 0.6], "opacity": 0.3,
+                                        "importance": 0.3}]})",
+                  R"(, "objects": [{"name": "probe", "file": ")" + kData +
+                      R"(/meshes/cube.obj", "role": "interest",
+                        "transform": {"translate": [-0.25, -0.25, -0.25], "scale": 0.5}}],
+                  "cutters": {"adaptive": {"angle": 30, "bufferSize": 128,
+                    "contextual": {"transitionAngle": 55, "overlay": 0.3,
+                                   "reduction": "importance", "apply": "translucency"}}})");
+  s.width = s.height = 128;  // a pixel centre is a texel centre of C₁ and C₂
+  const auto aovs = renderAovs(s);
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &c1 = aov(aovs, "cutawayDepth"),
+                   &c2 = aov(aovs, "cutawayDepthC2");
+  const Camera c = s.resolvedCamera();
+  const glm::mat4 view = c.view(), projection = c.projectionMatrix(1.0f);
+  const glm::mat4 inverseProjection = glm::inverse(projection);
+  const glm::mat4 inverse = glm::inverse(projection * view);
+  const auto distance = [&](float windowDepth) {
+    const glm::vec4 h = inverseProjection * glm::vec4(0.0f, 0.0f, 2.0f * windowDepth - 1.0f, 1.0f);
+    return -h.z / h.w;
+  };
+  const auto ramp = [](float a, float b, float x) {
+    return a < b ? std::clamp((x - a) / (b - a), 0.0f, 1.0f) : x > a ? 1.0f : 0.0f;
+  };
+  // The ray's span through an axis-aligned box of half-size h about the origin.
+  const auto span = [](glm::vec3 o, glm::vec3 d, float h) {
+    const glm::vec3 a = (glm::vec3(-h) - o) / d, b = (glm::vec3(h) - o) / d;
+    const glm::vec3 lo = glm::min(a, b), hi = glm::max(a, b);
+    return glm::vec2(std::max({lo.x, lo.y, lo.z, 0.0f}), std::min({hi.x, hi.y, hi.z}));
+  };
+  const float alpha = 1.0f - std::pow(1.0f - 0.3f, 0.5f);
+  int compared = 0, reduced = 0;
+  double worst = 0.0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
+      const auto [o, d] = pixelRay(inverse, uv);
+      const glm::vec2 box = span(o, d, 1.0f + 0.5f * voxel);
+      const glm::vec2 probe = span(o, d, 0.25f + 0.02f);
+      if (!(box.x < box.y) || probe.x < probe.y + 0.04f) continue;  // no volume, or at the cube
+      // A sample that falls on the box's far side within rounding may be taken or not.
+      const float last = (box.y - box.x) / step - 0.5f;
+      if (std::abs(last - std::round(last)) < 0.01f) continue;
+      const float z1 = distance(c1.at(x, y)[0]);
+      const float z2 = std::max(distance(c2.at(x, y)[0]), z1);
+      float sum = 0.0f;
+      bool anyReduced = false;
+      for (float t = box.x + 0.5f * step; t < box.y && sum <= 0.995f; t += step) {
+        const float z = -(view * glm::vec4(o + t * d, 1.0f)).z;
+        const float omega = 0.5f * ramp(-z2, -z1, -z) + 0.5f * ramp(-z1, -z1 + overlay, -z);
+        const float r = ramp(std::max(2.0f * importance - 1.0f, 0.0f), importance, omega);
+        anyReduced = anyReduced || r > 0.0f;
+        sum += (1.0f - sum) * alpha * (1.0f - r);
+      }
+      const double error = std::abs(opacity.at(x, y)[0] - sum);
+      worst = std::max(worst, error);
+      EXPECT_NEAR(opacity.at(x, y)[0], sum, 1e-3f) << x << "," << y;
+      ++compared;
+      reduced += anyReduced && sum < 0.99f;
+    }
+  std::printf("worst opacity difference %.4f over %d pixels\n", worst, compared);
+  EXPECT_GT(compared, 5000);
+  EXPECT_GT(reduced, 500) << "R makes material in front of the cube translucent";
+}
+
 // Diepstraten03 §5 on an exterior volume: the breakaway removes the samples in front of the
 // interior objects' convex hull. Two small cubes at opposite corners of a block (offset 0: the
 // hull is exactly the convex hull, the sweep of a cube along the segment between their
