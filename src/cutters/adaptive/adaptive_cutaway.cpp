@@ -1,5 +1,7 @@
 #include "cutters/adaptive/adaptive_cutaway.hpp"
 
+#include "frame/fullscreen.hpp"
+
 namespace cutaway {
 
 CutterType adaptiveCutterType() {
@@ -14,7 +16,8 @@ CutterType adaptiveCutterType() {
 }
 
 struct AdaptiveCutaway::Programs {
-  gl::Program seed, ghost;
+  gl::Program seed, ghost, cutSurface;
+  FullscreenTriangle fullscreen;
 };
 
 AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
@@ -47,6 +50,11 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
                                          "eqs. 7.1–7.3 from its importance, or R = Ω), in [0, 1]; "
                                          "visible surfaces have R < 0.5 (R ≥ 0.5 is removed); "
                                          "NaN as for occlusion; sample 0"});
+  } else {
+    cutPositionUnit_ = setup.bindings.textureUnit("CUTAWAY_CUT_POSITION");
+    cutNormalUnit_ = setup.bindings.textureUnit("CUTAWAY_CUT_NORMAL");
+    cutPosition_ = frame.declare("cutawayCutPosition", {.format = GL_RGBA32F});
+    cutNormal_ = frame.declare("cutawayCutNormal", {.format = GL_RGBA32F});
   }
   const int n = surface_.bufferSize();
   seedDepthTest_ =
@@ -61,6 +69,10 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
   Programs& p = *programs_;
   p.seed = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                         {GL_FRAGMENT_SHADER, "cutters/adaptive/seed.frag"}}});
+  if (cutPosition_.valid())
+    p.cutSurface = setup.bindings.build(
+        {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                    {GL_FRAGMENT_SHADER, "cutters/adaptive/cut_surface.frag"}}});
   if (options().ghostLines)
     p.ghost = setup.bindings.build({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                                {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
@@ -119,12 +131,17 @@ void AdaptiveCutaway::beginFrame(const FrameState& state) {
 std::vector<Target> AdaptiveCutaway::geometryInputs() const {
   std::vector<Target> inputs{surface_.cutawayDepth(), surface_.cutawayDilated()};
   if (transition_) inputs.insert(inputs.end(), {transition_->cutawayDepth(), transition_->cutawayDilated()});
+  if (cutPosition_.valid()) inputs.insert(inputs.end(), {cutPosition_, cutNormal_});
   return inputs;
 }
 
 void AdaptiveCutaway::bindForGeometry() const {
   glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
   glBindTextureUnit(dilatedUnit_, setup_.frame.texture(surface_.cutawayDilated()).id());
+  if (cutPosition_.valid()) {
+    glBindTextureUnit(cutPositionUnit_, setup_.frame.texture(cutPosition_).id());
+    glBindTextureUnit(cutNormalUnit_, setup_.frame.texture(cutNormal_).id());
+  }
   if (!transition_) return;
   glBindTextureUnit(transitionDepthUnit_, setup_.frame.texture(transition_->cutawayDepth()).id());
   glBindTextureUnit(transitionDilatedUnit_, setup_.frame.texture(transition_->cutawayDilated()).id());
@@ -209,6 +226,18 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
                  }});
   surface_.addPasses();
   if (transition_) transition_->addPasses();
+  if (cutPosition_.valid())
+    frame.addPass({.name = "cutawayCutSurface",
+                   .reads = {surface_.cutawayDepth()},
+                   .writes = {cutPosition_, cutNormal_},
+                   .run = [this](const PassContext&) { drawCutSurface(); }});
+}
+
+void AdaptiveCutaway::drawCutSurface() const {
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(programs_->cutSurface.id());
+  glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
+  programs_->fullscreen.draw();
 }
 
 void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {

@@ -46,6 +46,7 @@ class AdaptiveCutaway : public Cutter {
     return *setup_.scene.cutters.find<AdaptiveCutawayOptions>();
   }
   void drawGhostGeometry(GLuint framebuffer) const;
+  void drawCutSurface() const;
   // Burns11 §7.2: whether R = Ω (the objects it cuts are not ranked by importance).
   bool reductionIsOcclusion() const;
 
@@ -56,6 +57,10 @@ class AdaptiveCutaway : public Cutter {
   std::unique_ptr<CutawaySurfacePasses> transition_;
   GLuint depthUnit_, dilatedUnit_;
   GLuint transitionDepthUnit_ = 0, transitionDilatedUnit_ = 0;
+  // The simple structure's cut surface per pixel (clip.glsl's cutawaySurfaceAt at each pixel
+  // centre), read by back faces seen through the cut instead of working it out per fragment.
+  Target cutPosition_, cutNormal_;
+  GLuint cutPositionUnit_ = 0, cutNormalUnit_ = 0;
   GLint contextualLocation_ = -1, importanceLocation_ = -1, applyLocation_ = -1;
   bool graded_ = false;
   Target seedDepthTest_;

@@ -26,6 +26,20 @@ void cutSurfaceAt(vec3 center, vec3 dx, vec3 dy, out vec3 cutPosition, out vec3 
   cutPosition = (uInverseView * vec4(center, 1.0)).xyz;
 }
 
+// The cutaway surface at uv, in world space, with its normal from the neighbouring texels'
+// depths (Burns11 §5.2.4.1).
+void cutawaySurfaceAt(vec2 uv, out vec3 cutPosition, out vec3 cutNormal) {
+  vec2 texel = 1.0 / vec2(textureSize(uCutawayDepth, 0));
+  vec3 center = cutawayViewPoint(uv);
+  vec3 dx = cutawayViewPoint(uv + vec2(texel.x, 0.0)) - cutawayViewPoint(uv - vec2(texel.x, 0.0));
+  vec3 dy = cutawayViewPoint(uv + vec2(0.0, texel.y)) - cutawayViewPoint(uv - vec2(0.0, texel.y));
+  cutSurfaceAt(center, dx, dy, cutPosition, cutNormal);
+}
+#ifdef UNIT_CUTAWAY_CUT_POSITION
+layout(binding = UNIT_CUTAWAY_CUT_POSITION) uniform sampler2D uCutPosition;  // per pixel, world
+layout(binding = UNIT_CUTAWAY_CUT_NORMAL) uniform sampler2D uCutNormal;
+#endif
+
 #ifdef UNIT_CUTAWAY_DEPTH_C2
 // The contextual cutaway structure (Burns11 §4.1.3, §5.2.3); mirrors contextual_function.cpp.
 layout(binding = UNIT_CUTAWAY_DEPTH_C2) uniform sampler2D uCutawayDepthC2;  // C₂, window depth
@@ -150,11 +164,14 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   // A back face is a cut surface only where the cutaway surface lies in front of it; elsewhere
   // (no cut at this pixel) it is an ordinary inside view of an open mesh.
   if (frontFacing || c <= 0.0) return kKeep;
-  vec2 texel = 1.0 / vec2(textureSize(uCutawayDepth, 0));
-  vec3 center = cutawayViewPoint(uv);
-  vec3 dx = cutawayViewPoint(uv + vec2(texel.x, 0.0)) - cutawayViewPoint(uv - vec2(texel.x, 0.0));
-  vec3 dy = cutawayViewPoint(uv + vec2(0.0, texel.y)) - cutawayViewPoint(uv - vec2(0.0, texel.y));
-  cutSurfaceAt(center, dx, dy, cutPosition, cutNormal);
+#ifdef UNIT_CUTAWAY_CUT_POSITION
+  // Worked out once per pixel (cut_surface.frag): every fragment here lies at a pixel centre.
+  ivec2 pixel = clamp(ivec2(CUT_FRAG_COORD.xy), ivec2(0), textureSize(uCutPosition, 0) - 1);
+  cutPosition = texelFetch(uCutPosition, pixel, 0).xyz;
+  cutNormal = texelFetch(uCutNormal, pixel, 0).xyz;
+#else
+  cutawaySurfaceAt(uv, cutPosition, cutNormal);
+#endif
   return kCutSurface;
 #endif
 }
