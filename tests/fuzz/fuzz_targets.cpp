@@ -11,6 +11,7 @@
 #include "cutaway/core/image.hpp"
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
+#include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/io/volume_import.hpp"
 #include "cutaway/scene/scene.hpp"
 
@@ -23,10 +24,14 @@ const std::vector<Target>& targets() {
       {"mesh-ply", ".ply", "tests/data/fuzz/mesh-ply/*"},
       {"mesh-stl", ".stl", "tests/data/fuzz/mesh-stl/*"},
       {"mesh-glb", ".glb", "tests/data/fuzz/mesh-glb/*"},
+      {"mesh-gz", ".obj.gz", "tests/data/fuzz/mesh-gz/*"},
       {"volume-nrrd", ".nrrd", "tests/data/fuzz/volume-nrrd/*"},
       {"volume-mha", ".mha", "tests/data/fuzz/volume-mha/*"},
       {"volume-vtk", ".vtk", "tests/data/fuzz/volume-vtk/*"},
       {"volume-nifti", ".nii", "tests/data/fuzz/volume-nifti/*"},
+      {"volume-npy", ".npy", "tests/data/fuzz/volume-npy/*"},
+      {"volume-npz", ".npz", "tests/data/fuzz/volume-npz/*"},
+      {"raster", ".tif", "tests/data/fuzz/raster/*"},
       {"geojson", ".geojson", "tests/data/networks/*.geojson"},
       {"png", ".png", "tests/golden/bunny.png tests/data/fuzz/png/*"},
   };
@@ -73,6 +78,8 @@ void load(const Target& target, const std::filesystem::path& file) {
     importVolume(file);
   } else if (n == "geojson") {
     importGisLines(file);
+  } else if (n == "raster") {
+    importRasterTerrain(file);
   } else if (n == "png") {
     readPng(file);
     readPngGray(file);
