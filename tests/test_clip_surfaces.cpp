@@ -284,6 +284,49 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   EXPECT_GT(visible, 500);
 }
 
+// Trapp13 eqs. 1–3 with a non-constant offset map, in closed form: a sawtooth relief (a triangle
+// wave of frequency 3 along U, 64 texels) on the surface above the torus (N = −ẑ, O_z = 0.05,
+// S = (2, 2, 0.1)). A surface point is clipped where z > O_z + S_z·h(T_x), h(u) = 1 − |2 frac(3u)
+// − 1|, T_x = (y + 1.5)/3·S_x (eq. 2): written here from the equations, not from
+// clipSurfaceFunction. Bilinear filtering of the texels is that wave exactly except within a
+// texel of its peaks and troughs, which are left out, as are points within 1e-3 of the surface.
+TEST(ClipSurfaceGpu, ASawtoothReliefClipsWhereItsTriangleWaveSays) {
+  writeTorus();
+  const Scene clipped =
+      parseScene(torusScene(R"({"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0],
+                     "scale": [2, 2, 0.1],
+                     "offsetMap": {"pattern": "sawtooth", "frequency": 3, "size": 64}})",
+                            false),
+                 "torus.json", kData);
+  Scene plain = clipped;
+  plain.cutters.disable<ClipSurfaceOptions>();
+  const auto a = renderAovs(plain), b = renderAovs(clipped);
+  const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
+                   &id = aov(b, "objectId"), &pos = aov(b, "position");
+  int removed = 0, kept = 0, wrong = 0;
+  for (int y = 0; y < plainId.height; ++y)
+    for (int x = 0; x < plainId.width; ++x) {
+      if (plainId.at(x, y)[0] != 0.0f) continue;
+      const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
+      const double u = (double(p.y) + 1.5) / 3.0 * 2.0, phase = 3.0 * u;
+      // Peaks at whole phases, troughs at halves; a texel is 3/64 of a phase.
+      const double toKink = std::abs(2.0 * phase - std::round(2.0 * phase)) / 2.0;
+      if (toKink < 3.0 / 64.0) continue;
+      const double h = 1.0 - std::abs(2.0 * (phase - std::floor(phase)) - 1.0);
+      const double f = -double(p.z) + 0.05 + 0.1 * h;  // eq. 1 with N = −ẑ
+      if (std::abs(f) < 1e-3) continue;
+      const bool same =
+          id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-5f;
+      if (f < 0.0)
+        ++removed, wrong += same;
+      else
+        ++kept, wrong += !same;
+    }
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GT(removed, 500);
+  EXPECT_GT(kept, 300);
+}
+
 // Trapp13 §3: the edge-enhancement pass runs over the caps with the clipped meshes, so a
 // cap's border with the mesh is outlined (a crease between the cap and the torus) and its flat
 // inside is not: line pixels lie along the cap's border, and almost every border pixel has
