@@ -370,6 +370,7 @@ TEST_F(VolumeTest, ABoxWithACavityCutOpenShowsTheCutFaceAndTheCavitysFarWall) {
 // A volume larger than the GPU's 3-D textures on one axis is refused when the renderer is
 // made, naming the file and the limit.
 TEST_F(VolumeTest, AVolumeBeyondTheGpusTextureSizeIsRefused) {
+  test::glContext();  // current, for the query
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
   ASSERT_GT(maxSize, 0);
