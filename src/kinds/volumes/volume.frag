@@ -9,9 +9,6 @@
 // MODE (0 composite, 1 maximum, 2 isosurface); SHADING, gradient normals shaded by the style;
 // CUT, some cutter cuts this volume. They are constants, not uniforms, because llvmpipe runs
 // both sides of a branch on a uniform: every sample would pay for the modes it is not in.
-#ifndef MODE
-#define MODE 0
-#endif
 #include "frame/samples.glsl"
 #include "frame/frame_uniforms.glsl"
 #include "styles/surface.glsl"

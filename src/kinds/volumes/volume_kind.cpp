@@ -203,7 +203,6 @@ int VolumeKind::cutBy(const std::vector<ActiveCutter>& cutters, std::size_t volu
 }
 
 namespace {
-// The defines of a volume's program variant.
 // A volume's program variant: what volume.frag compiles in (TRANSFER_2D, SHADOWS, MODE,
 // SHADING, CUT); the rear hulls' programs take only the transfer function's dimension.
 struct Variant {
@@ -212,8 +211,9 @@ struct Variant {
   int key() const {
     return int(twoDimensional) | int(shadows) << 1 | int(shading) << 2 | int(cut) << 3 | mode << 4;
   }
-  std::map<std::string, std::string> defines() const {
-    std::map<std::string, std::string> d{{"MODE", std::to_string(mode)}};
+  std::map<std::string, std::string> defines(bool cast = true) const {
+    std::map<std::string, std::string> d;
+    if (cast) d["MODE"] = std::to_string(mode);
     if (twoDimensional) d["TRANSFER_2D"] = "1";
     if (shadows) d["SHADOWS"] = "1";
     if (shading) d["SHADING"] = "1";
@@ -244,7 +244,7 @@ GLuint VolumeKind::rearHullProgram(const SceneVolume& v) const {
     p = setup_.bindings.build(
         {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                     {GL_FRAGMENT_SHADER, "kinds/volumes/volume_rear_hull.frag"}},
-         .defines = variant.defines()});
+         .defines = variant.defines(false)});
   return p.id();
 }
 
