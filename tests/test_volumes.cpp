@@ -187,6 +187,34 @@ float blinnSpecular(glm::vec3 n, glm::vec3 l, glm::vec3 v, float shininess) {
   return std::pow(std::max(glm::dot(n, glm::normalize(l + v)), 0.0f), shininess);
 }
 
+// The scene style written as JSON (`{"name": …}`).
+Style parseStyle(const std::string& json) {
+  return parseScene(
+             R"({"style": )" + json + R"(, "objects": [{"name": "c", "file": "meshes/cube.obj"}]})",
+             "style.json", kData)
+      .style;
+}
+
+glm::mat4 inverseViewProjection(const Scene& s) {
+  const Camera c = s.resolvedCamera();
+  return glm::inverse(c.projectionMatrix(float(s.width) / float(s.height)) * c.view());
+}
+
+// The largest difference, in levels of 255, between rendered pixels and their expected colours.
+struct WorstPixel {
+  double levels = 0.0;
+  std::string where;
+  void compare(const Rgba8Image& color, int x, int y, glm::vec3 expected) {
+    for (int k = 0; k < 3; ++k) {
+      const double error = std::abs(color.at(x, y)[k] / 255.0 - expected[k]) * 255.0;
+      if (error > levels)
+        levels = error, where = std::to_string(x) + "," + std::to_string(y) + " channel " +
+                                std::to_string(k) + ": " + std::to_string(color.at(x, y)[k]) +
+                                " vs " + std::to_string(expected[k] * 255.0f);
+    }
+  }
+};
+
 }  // namespace
 
 // Volume samples are shaded by the scene's style with their gradient normals, then emphasised
@@ -231,19 +259,14 @@ TEST_F(VolumeTest, IsosurfacesAreShadedByTheStyleAndEmphasisedByImportance) {
                                           "importance": 0.25}]})",
                     std::string(R"(, "lights": [{"type": "directional",
                     "direction": [-0.5, -0.7, -0.3], "space": "world"}])"));
-    s.style = parseScene(std::string(R"({"style": )") + c.style +
-                             R"(, "objects": [{"name": "c", "file": "meshes/cube.obj"}]})",
-                         "style.json", kData)
-                  .style;
+    s.style = parseStyle(c.style);
     Renderer renderer(s, test::glContext().info());
     renderer.render();
     const Rgba8Image color = renderer.readColor();  // rows top to bottom
     const Camera camera = s.resolvedCamera();
-    const glm::mat4 inverse =
-        glm::inverse(camera.projectionMatrix(float(s.width) / float(s.height)) * camera.view());
+    const glm::mat4 inverse = inverseViewProjection(s);
     const float voxel = 2.0f / 47.0f;
-    double worst = 0.0;
-    std::string where;
+    WorstPixel worst;
     int compared = 0;
     for (int y = 0; y < s.height; ++y)
       for (int x = 0; x < s.width; ++x) {
@@ -262,20 +285,13 @@ TEST_F(VolumeTest, IsosurfacesAreShadedByTheStyleAndEmphasisedByImportance) {
           const float luma = glm::dot(suppressed, glm::vec3(0.2126f, 0.7152f, 0.0722f));
           expected = glm::mix(suppressed, glm::vec3(luma), ec * (1.0f - importance));
         }
-        expected = glm::clamp(expected, 0.0f, 1.0f);
-        for (int k = 0; k < 3; ++k) {
-          const double error = std::abs(color.at(x, y)[k] / 255.0 - expected[k]) * 255.0;
-          if (error > worst)
-            worst = error, where = std::to_string(x) + "," + std::to_string(y) + " channel " +
-                                   std::to_string(k) + ": " + std::to_string(color.at(x, y)[k]) +
-                                   " vs " + std::to_string(expected[k] * 255.0f);
-        }
+        worst.compare(color, x, y, glm::clamp(expected, 0.0f, 1.0f));
         ++compared;
       }
     // The gradient's central differences and its half floats, and the hit placed by linear
     // interpolation between samples, against the analytic sphere.
-    EXPECT_LE(worst, 3.0) << c.style << ": worst pixel " << where;
-    std::printf("%s: worst %.2f levels\n", c.style, worst);
+    EXPECT_LE(worst.levels, 3.0) << c.style << ": worst pixel " << worst.where;
+    std::printf("%s: worst %.2f levels\n", c.style, worst.levels);
     EXPECT_GT(compared, 500) << c.style;
   }
 }
@@ -302,19 +318,15 @@ TEST_F(VolumeTest, ABoxWithACavityCutOpenShowsTheCutFaceAndTheCavitysFarWall) {
                   R"(, "lights": [{"type": "directional", "direction": [-0.5, -0.7, -0.3],
                                    "space": "world"}],
                      "cutters": {"boxCut": {"center": [0, 0, 1], "size": [3, 3, 2]}})");
-  s.style = parseScene(R"({"style": {"name": "blinn-phong", "lines": false,
-                                     "blinnPhong": {"ambient": 0.1}},
-                           "objects": [{"name": "c", "file": "meshes/cube.obj"}]})",
-                       "style.json", kData)
-                .style;
+  s.style =
+      parseStyle(R"({"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}})");
   Renderer renderer(s, test::glContext().info());
   renderer.render();
   const Rgba8Image color = renderer.readColor();  // rows top to bottom
   const auto aovs = renderer.readAovs();
   const FloatImage& hit = aov(aovs, "volumeHitDepth");
   const Camera camera = s.resolvedCamera();
-  const glm::mat4 inverse =
-      glm::inverse(camera.projectionMatrix(float(s.width) / float(s.height)) * camera.view());
+  const glm::mat4 inverse = inverseViewProjection(s);
   const float voxel = 2.0f / 47.0f, step = 0.5f * voxel;
   const auto shade = [&](glm::vec3 n, glm::vec3 q) {
     const glm::vec3 v = glm::normalize(camera.eye - q);
@@ -324,8 +336,7 @@ TEST_F(VolumeTest, ABoxWithACavityCutOpenShowsTheCutFaceAndTheCavitysFarWall) {
                       0.0f, 1.0f);
   };
   int face = 0, wall = 0;
-  double worst = 0.0;
-  std::string where;
+  WorstPixel worst;
   for (int y = 0; y < s.height; ++y)
     for (int x = 0; x < s.width; ++x) {
       const glm::vec2 uv((x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height);
@@ -352,17 +363,11 @@ TEST_F(VolumeTest, ABoxWithACavityCutOpenShowsTheCutFaceAndTheCavitysFarWall) {
       } else {
         continue;
       }
-      for (int k = 0; k < 3; ++k) {
-        const double error = std::abs(color.at(x, y)[k] / 255.0 - expected[k]) * 255.0;
-        if (error > worst)
-          worst = error, where = std::to_string(x) + "," + std::to_string(y) + " channel " +
-                                 std::to_string(k) + ": " + std::to_string(color.at(x, y)[k]) +
-                                 " vs " + std::to_string(expected[k] * 255.0f);
-      }
+      worst.compare(color, x, y, expected);
     }
   // As the sphere's isosurface: central differences and half floats against the analytic
   // normal; the face's normal is exact.
-  EXPECT_LE(worst, 3.0) << "worst pixel " << where;
+  EXPECT_LE(worst.levels, 3.0) << "worst pixel " << worst.where;
   EXPECT_GT(face, 300);
   EXPECT_GT(wall, 150);
 }
