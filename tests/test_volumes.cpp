@@ -77,6 +77,28 @@ class VolumeTest : public ::testing::Test {
     return parseScene(text, "volumes.json", dir_);
   }
 
+  // A block of one material (value 0.6, opacity 0.3, the given importance) around a cube of
+  // interest, cut by the contextual structure (θ 30°, θ₂ 55°, d 0.3, R from importance) applied
+  // as `apply`; 128² with a 128² cutaway buffer, so that a pixel centre is a texel centre of C₁
+  // and C₂.
+  Scene contextualBlock(float importance, const std::string& apply) {
+    const fs::path file = volume("block", 24, 1.0f, [](glm::vec3) { return 0.6f; });
+    Scene s = scene(R"({"name": "block", "file": ")" + file.string() +
+                        R"(", "shading": false, "jitter": false,
+                    "transferFunction": [{"value": 0.6, "color": [0.8, 0.7, 0.6], "opacity": 0.3,
+                                          "importance": )" +
+                        std::to_string(importance) + "}]}",
+                    R"(, "objects": [{"name": "probe", "file": ")" + kData +
+                        R"(/meshes/cube.obj", "role": "interest",
+                          "transform": {"translate": [-0.25, -0.25, -0.25], "scale": 0.5}}],
+                    "cutters": {"adaptive": {"angle": 30, "bufferSize": 128,
+                      "contextual": {"transitionAngle": 55, "overlay": 0.3,
+                                     "reduction": "importance", "apply": ")" +
+                        apply + R"("}}})");
+    s.width = s.height = 128;
+    return s;
+  }
+
   fs::path dir_;
 };
 
@@ -96,6 +118,12 @@ PixelRay pixelRay(const glm::mat4& inverseViewProjection, glm::vec2 uv) {
   const glm::vec4 b = inverseViewProjection * glm::vec4(uv * 2.0f - 1.0f, 1.0f, 1.0f);
   const glm::vec3 o = glm::vec3(a) / a.w;
   return {o, glm::normalize(glm::vec3(b) / b.w - o)};
+}
+
+// The view distance of window depth `windowDepth` (perspective: the same at every pixel).
+float viewDistance(const glm::mat4& inverseProjection, float windowDepth) {
+  const glm::vec4 h = inverseProjection * glm::vec4(0.0f, 0.0f, 2.0f * windowDepth - 1.0f, 1.0f);
+  return -h.z / h.w;
 }
 
 // The distance along the ray from o (unit direction d) to the sphere |x| = r; < 0: a miss.
@@ -807,33 +835,17 @@ TEST_F(VolumeTest, RaysStartAtTheAdaptiveCutawaySurface) {
 // material (I = 0.3) is trimmed behind C₁, important material (I = 0.9) reaches into the
 // overlay; within one step along the ray.
 TEST_F(VolumeTest, TheContextualStructureTrimsEachMaterialWhereItsImportanceSays) {
-  const fs::path file = volume("block", 24, 1.0f, [](glm::vec3) { return 0.6f; });
   const float overlay = 0.3f, step = 0.5f * 2.0f / 23.0f;
   for (const float importance : {0.3f, 0.9f}) {
     SCOPED_TRACE(importance);
-    Scene s = scene(R"({"name": "block", "file": ")" + file.string() +
-                        R"(", "shading": false, "jitter": false,
-                    "transferFunction": [{"value": 0.6, "color": [0.8, 0.7, 0.6], "opacity": 0.3,
-                                          "importance": )" +
-                        std::to_string(importance) + "}]}",
-                    R"(, "objects": [{"name": "probe", "file": ")" + kData +
-                        R"(/meshes/cube.obj", "role": "interest",
-                          "transform": {"translate": [-0.25, -0.25, -0.25], "scale": 0.5}}],
-                    "cutters": {"adaptive": {"angle": 30, "bufferSize": 128,
-                      "contextual": {"transitionAngle": 55, "overlay": 0.3,
-                                     "reduction": "importance"}}})");
-    s.width = s.height = 128;  // a pixel centre is a texel centre of C₁ and C₂
+    const Scene s = contextualBlock(importance, "cut");
     const auto aovs = renderAovs(s);
     const FloatImage &entry = aov(aovs, "volumeEntryDepth"), &c1 = aov(aovs, "cutawayDepth"),
                      &c2 = aov(aovs, "cutawayDepthC2");
     const Camera c = s.resolvedCamera();
     const glm::mat4 projection = c.projectionMatrix(1.0f);
     const glm::mat4 inverseProjection = glm::inverse(projection);
-    const auto distance = [&](float windowDepth) {
-      const glm::vec4 h =
-          inverseProjection * glm::vec4(0.0f, 0.0f, 2.0f * windowDepth - 1.0f, 1.0f);
-      return -h.z / h.w;
-    };
+    const auto distance = [&](float windowDepth) { return viewDistance(inverseProjection, windowDepth); };
     const float omega = 0.5f * (std::max(2.0f * importance - 1.0f, 0.0f) + importance);
     int trimmed = 0, inOverlay = 0;
     for (int y = 0; y < s.height; ++y)
@@ -867,20 +879,8 @@ TEST_F(VolumeTest, TheContextualStructureTrimsEachMaterialWhereItsImportanceSays
 // step's opacity 1 − (1 − α)^(Δs/d) times 1 − R, with Ω by eq. 5.6 from the dumped C₁, C₂ and
 // R by eq. 7.3.
 TEST_F(VolumeTest, AsTranslucencyRScalesEachSamplesOpacity) {
-  const int n = 24;
-  const fs::path file = volume("block", n, 1.0f, [](glm::vec3) { return 0.6f; });
-  const float overlay = 0.3f, importance = 0.3f, voxel = 2.0f / float(n - 1), step = 0.5f * voxel;
-  Scene s = scene(R"({"name": "block", "file": ")" + file.string() +
-                      R"(", "shading": false, "jitter": false,
-                  "transferFunction": [{"value": 0.6, "color": [0.8, 0.7, 0.6], "opacity": 0.3,
-                                        "importance": 0.3}]})",
-                  R"(, "objects": [{"name": "probe", "file": ")" + kData +
-                      R"(/meshes/cube.obj", "role": "interest",
-                        "transform": {"translate": [-0.25, -0.25, -0.25], "scale": 0.5}}],
-                  "cutters": {"adaptive": {"angle": 30, "bufferSize": 128,
-                    "contextual": {"transitionAngle": 55, "overlay": 0.3,
-                                   "reduction": "importance", "apply": "translucency"}}})");
-  s.width = s.height = 128;  // a pixel centre is a texel centre of C₁ and C₂
+  const float overlay = 0.3f, importance = 0.3f, voxel = 2.0f / 23.0f, step = 0.5f * voxel;
+  const Scene s = contextualBlock(importance, "translucency");
   const auto aovs = renderAovs(s);
   const FloatImage &opacity = aov(aovs, "volumeOpacity"), &c1 = aov(aovs, "cutawayDepth"),
                    &c2 = aov(aovs, "cutawayDepthC2");
@@ -888,10 +888,7 @@ TEST_F(VolumeTest, AsTranslucencyRScalesEachSamplesOpacity) {
   const glm::mat4 view = c.view(), projection = c.projectionMatrix(1.0f);
   const glm::mat4 inverseProjection = glm::inverse(projection);
   const glm::mat4 inverse = glm::inverse(projection * view);
-  const auto distance = [&](float windowDepth) {
-    const glm::vec4 h = inverseProjection * glm::vec4(0.0f, 0.0f, 2.0f * windowDepth - 1.0f, 1.0f);
-    return -h.z / h.w;
-  };
+  const auto distance = [&](float windowDepth) { return viewDistance(inverseProjection, windowDepth); };
   const auto ramp = [](float a, float b, float x) {
     return a < b ? std::clamp((x - a) / (b - a), 0.0f, 1.0f) : x > a ? 1.0f : 0.0f;
   };
