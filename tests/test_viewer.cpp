@@ -4,11 +4,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
 
 #include "cutaway/core/image.hpp"
@@ -365,4 +367,87 @@ TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
   EXPECT_LT(balance(images[4], 0, 2), 0);
   EXPECT_EQ(images[5].pixels, images[4].pixels);
   EXPECT_NE(images[6].pixels, images[4].pixels);
+}
+
+// Issue 18's interactive resolution: while the view moves (the script's `moving on` stands
+// for a mouse drag) and a full frame misses --interactive-fps, the window shows the view
+// rendered at 1/d of its size without multisampling, stretched bilinearly; once the view
+// rests, the frame at full size. With --interactive-fps 0 every frame is at full size.
+TEST(Viewer, WhileTheViewMovesAFrameTooSlowIsDrawnSmallerThenAtFullSize) {
+  ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
+  constexpr int kWidth = 480, kHeight = 360;
+  const auto session = [&](const std::string& tag, const std::string& fps) {
+    const fs::path script = scratch("moving-" + tag + ".txt");
+    std::ofstream(script) << "moving on\norbit 30 10\nsave " << scratch("moving.json").string()
+                          << "\nscreenshot-window " << scratch("moving-" + tag + ".png").string()
+                          << "\nmoving off\nscreenshot-window "
+                          << scratch("rest-" + tag + ".png").string() << "\nquit\n";
+    return runUnderXvfb(kSource + "/examples/engine.json --no-panels --size " +
+                        std::to_string(kWidth) + "x" + std::to_string(kHeight) +
+                        " --interactive-fps " + fps + " --script " + script.string());
+  };
+  // A goal of 1 ms: no frame meets it, so the moving frame is at the coarsest size.
+  const Result r = session("reduced", "1000");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      r.out, m, std::regex(R"(while the view moves: (\d+)x(\d+) \(1/(\d) of 480x360\))")))
+      << r.out;
+  const int d = std::stoi(m[3]), w = std::stoi(m[1]), h = std::stoi(m[2]);
+  EXPECT_EQ(d, 8) << r.out;
+  EXPECT_EQ(w, kWidth / d);
+  EXPECT_EQ(h, kHeight / d);
+
+  // The moving frame is `cutaway render` of the same view at w×h and one sample, stretched
+  // with bilinear filtering (texel centres at (i + ½)·d); GL's filter weights round, by a level
+  // at most when this was written.
+  const std::string cli = cliLike(r);
+  const fs::path small = scratch("moving-small.png");
+  const Result rendered =
+      run(cli + " render " + scratch("moving.json").string() + " --size " + std::to_string(w) +
+          "x" + std::to_string(h) + " --samples 1 -o " + small.string());
+  ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+  const Rgba8Image ref = readPng(small), moving = readPng(scratch("moving-reduced.png"));
+  ASSERT_EQ(moving.width, kWidth);
+  ASSERT_EQ(moving.height, kHeight);
+  double sum = 0;
+  int worst = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const float u = (x + 0.5f) * w / kWidth - 0.5f, v = (y + 0.5f) * h / kHeight - 0.5f;
+      const int x0 = int(std::floor(u)), y0 = int(std::floor(v));
+      const float fx = u - x0, fy = v - y0;
+      const auto texel = [&](int i, int j, int c) {
+        return float(ref.at(std::clamp(i, 0, w - 1), std::clamp(j, 0, h - 1))[c]);
+      };
+      for (int c = 0; c < 3; ++c) {
+        const float expected =
+            (1 - fy) * ((1 - fx) * texel(x0, y0, c) + fx * texel(x0 + 1, y0, c)) +
+            fy * ((1 - fx) * texel(x0, y0 + 1, c) + fx * texel(x0 + 1, y0 + 1, c));
+        const int diff = int(std::lround(std::abs(expected - moving.at(x, y)[c])));
+        sum += diff;
+        worst = std::max(worst, diff);
+      }
+    }
+  const double mean = sum / (3.0 * kWidth * kHeight);
+  std::printf("moving frame vs the %dx%d render stretched: mean %.3f, worst %d (of 255)\n", w, h,
+              mean, worst);
+  EXPECT_LE(mean, 0.1);
+  EXPECT_LE(worst, 2);
+
+  // At rest: the full-size frame, which the reduced one is not.
+  const Rgba8Image rest = readPng(scratch("rest-reduced.png"));
+  const fs::path full = scratch("rest-reference.png");
+  ASSERT_EQ(run(cli + " render " + scratch("moving.json").string() + " --size 480x360 -o " +
+                full.string())
+                .exitCode,
+            0);
+  expectSameImage(rest, readPng(full));
+  EXPECT_NE(moving.pixels, rest.pixels);
+
+  // Off: the moving frame is the full one.
+  const Result off = session("full", "0");
+  ASSERT_EQ(off.exitCode, 0) << off.out << off.err;
+  EXPECT_EQ(off.out.find("while the view moves"), std::string::npos) << off.out;
+  expectSameImage(readPng(scratch("moving-full.png")), readPng(full));
 }

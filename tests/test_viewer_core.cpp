@@ -87,10 +87,11 @@ screenshot-window w.png
 save saved.json
 save-aovs aovs
 panels off
+moving on
 quit
 )",
                                "s.txt");
-  ASSERT_EQ(s.commands.size(), 30u);
+  ASSERT_EQ(s.commands.size(), 31u);
   using Kind = ScriptCommand::Kind;
   EXPECT_EQ(s.commands[0].kind, Kind::Wait);
   EXPECT_EQ(s.commands[0].line, 2);
@@ -109,7 +110,9 @@ quit
   EXPECT_EQ(s.commands[18].colormap, "turbo");
   EXPECT_EQ(s.commands[24].text, "out dir/view #1.png");  // paths keep spaces and '#'
   EXPECT_FALSE(s.commands[28].on);
-  EXPECT_EQ(s.commands[29].kind, Kind::Quit);
+  EXPECT_EQ(s.commands[29].kind, Kind::Moving);
+  EXPECT_TRUE(s.commands[29].on);
+  EXPECT_EQ(s.commands[30].kind, Kind::Quit);
 }
 
 struct BadLine {
@@ -147,9 +150,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadLine{"SetIntegerParameter", "set cutters.adaptive.bufferSize 100.5\n",
                 "s.txt: line 1: cutters.adaptive.bufferSize: expected an integer, got 100.5"},
         BadLine{"SetBool", "set cutters.adaptive.outlines maybe\n",
-                "s.txt: line 1: cutters.adaptive.outlines: expected true/false or on/off, got \"maybe\""},
+                "s.txt: line 1: cutters.adaptive.outlines: expected true/false or on/off, got "
+                "\"maybe\""},
         BadLine{"SetChoice", "set cutters.adaptive.compute gpu2\n",
-                "s.txt: line 1: cutters.adaptive.compute: unknown value \"gpu2\" (expected one of: auto, "
+                "s.txt: line 1: cutters.adaptive.compute: unknown value \"gpu2\" (expected one of: "
+                "auto, "
                 "gpu, cpu)"},
         BadLine{"SetColour", "set style.lines.color 1,2,0\n",
                 "s.txt: line 1: style.lines.color: colour channels must lie in [0, 1], got "
@@ -165,8 +170,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadLine{"QuitWithArgument", "quit now\n",
                 "s.txt: line 1: \"quit\" takes no arguments, got 1 argument"},
         BadLine{"NegativePixel", "pick -1 3\n", "s.txt: line 1: pixel coordinates must be ≥ 0"},
-        BadLine{"Panels", "panels maybe\n",
-                "s.txt: line 1: panels takes on or off, got \"maybe\""}),
+        BadLine{"Panels", "panels maybe\n", "s.txt: line 1: panels takes on or off, got \"maybe\""},
+        BadLine{"Moving", "moving 1\n", "s.txt: line 1: moving takes on or off, got \"1\""}),
     [](const testing::TestParamInfo<BadLine>& info) { return std::string(info.param.name); });
 
 TEST(ViewerScript, UnknownParameterListsTheKnownOnes) {

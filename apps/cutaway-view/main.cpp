@@ -4,6 +4,7 @@
 //   cutaway-view examples/engine-cutaway.json --script session.txt --size 1024x768
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <regex>
 
 #include "cutaway/core/error.hpp"
@@ -22,6 +23,17 @@ int main(int argc, char** argv) {
                  "Replay a script of viewer actions and exit (docs/viewer.md lists the commands)");
   app.add_option("--size", size, "Window size WxH (default: the scene's resolution)");
   app.add_flag("--no-panels", noPanels, "Start with the panels hidden (H toggles them)");
+  app.add_option("--interactive-fps", options.interactiveFps,
+                 "While the view moves, draw frames that miss this rate at a lower resolution "
+                 "(0: always at full size)")
+      ->check([](const std::string& text) -> std::string {
+        // CLI::Range lets NaN through.
+        char* end = nullptr;
+        const float fps = std::strtof(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !(fps >= 0.0f && fps <= 1000.0f))
+          return "expected a number in [0, 1000], got \"" + text + "\"";
+        return "";
+      });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -59,6 +59,8 @@ const std::map<std::string, CommandSpec>& commands() {
       {"open", {Kind::Open, Args::Rest}},
       {"save-aovs", {Kind::SaveAovs, Args::Rest}},
       {"panels", {Kind::Panels, Args::Special}},
+      {"moving", {Kind::Moving, Args::Special}},
+      {"timings", {Kind::Timings, Args::None}},
       {"quit", {Kind::Quit, Args::None}},
   };
   return table;
@@ -208,9 +210,10 @@ ScriptCommand parseLine(const std::string& line) {
       }
       break;
     case Kind::Panels:
+    case Kind::Moving:
       expectCount(name, args, 1, "on or off");
       if (args[0] != "on" && args[0] != "off")
-        throw std::invalid_argument("panels takes on or off, got \"" + args[0] + "\"");
+        throw std::invalid_argument(name + " takes on or off, got \"" + args[0] + "\"");
       c.on = args[0] == "on";
       break;
     default:

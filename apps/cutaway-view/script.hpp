@@ -51,6 +51,8 @@ struct ScriptCommand {
     Open,              // open FILE
     SaveAovs,          // save-aovs DIR
     Panels,            // panels on|off
+    Moving,            // moving on|off: the view's changes count as a mouse drag's
+    Timings,           // timings: print the last frame's size and times
     Quit,              // quit
   };
   Kind kind;
@@ -58,7 +60,7 @@ struct ScriptCommand {
   std::vector<float> numbers;            // numeric arguments in order
   std::string text;                      // name, file, role, AOV, projection; "off" for Angle/Aov
   std::string colormap;                  // Aov: optional colormap name
-  bool on = false;                       // Panels
+  bool on = false;                       // Panels, Moving
   const Parameter* parameter = nullptr;  // Set
   ParameterValue value;                  // Set
 };

@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -65,6 +66,11 @@ std::string formatValue(const float* v, int channels) {
   return s.str();
 }
 
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 // Appended to an error that a reload, an open or an option change could not survive.
 constexpr const char* kKept = " (the last good scene stays)";
 
@@ -108,6 +114,7 @@ Viewer::Viewer(const ViewerOptions& options) : options_(options) {
 
 Viewer::~Viewer() {
   if (!window_) return;
+  moving_.reset();
   renderer_.reset();
   aovTexture_.reset();
   overlayTexture_.reset();
@@ -125,7 +132,8 @@ int Viewer::run() {
   while (!quit_ && !window_->shouldClose()) {
     const bool busy = script_ || state_.playing || state_.sceneChanged || state_.viewChanged ||
                       state_.aovChanged || state_.saveRequested || state_.screenshotRequested ||
-                      state_.frameRequested || state_.reloadRequested || state_.flyMode;
+                      state_.frameRequested || state_.reloadRequested || state_.flyMode ||
+                      shown_ != renderer_.get();  // a frame drawn while moving, to redraw
     // Idle: sleep until an event instead of redrawing an unchanged view.
     if (busy)
       window_->pollEvents();
@@ -139,7 +147,12 @@ int Viewer::run() {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
+    // The view's changes from the mouse, the wheel and the fly keys: the view moves.
+    const bool changed = state_.viewChanged;
+    state_.viewChanged = false;
     handleInput(seconds);
+    if (state_.viewChanged) lastMove_ = now;
+    state_.viewChanged = state_.viewChanged || changed;
     if (state_.playing) {
       float duration = state_.scene.duration();
       if (!state_.cameraPath.empty()) duration = std::max(duration, state_.cameraPath.back().time);
@@ -305,7 +318,7 @@ void Viewer::execute(const ScriptCommand& c) {
       state_.selection.clear();
       break;
     case Kind::Pick:
-      update();
+      update(true);
       if (int(n[0]) >= width_ || int(n[1]) >= height_)
         throw Error("pixel (" + std::to_string(int(n[0])) + ", " + std::to_string(int(n[1])) +
                     ") is outside the " + std::to_string(width_) + "×" + std::to_string(height_) +
@@ -384,13 +397,25 @@ void Viewer::execute(const ScriptCommand& c) {
       openScene(c.text, false);
       break;
     case Kind::SaveAovs:
-      update();
+      update(true);
       writeAovs(c.text, renderer_->readAovs(), viewCamera(state_), aspect());
       std::printf("wrote AOVs to %s\n", c.text.c_str());
       break;
     case Kind::Panels:
       state_.showPanels = c.on;
       break;
+    case Kind::Moving:
+      scriptMoving_ = c.on;
+      break;
+    case Kind::Timings: {
+      const int d = state_.shownDivisor;
+      std::printf("timings: %dx%d%s, %.1f ms;", width_ / d, height_ / d,
+                  d > 1 ? " (while moving)" : "", state_.renderMs);
+      for (const PassTiming& t : state_.timings) std::printf(" %s %.1f", t.name.c_str(), t.gpuMs);
+      std::printf("\n");
+      std::fflush(stdout);
+      break;
+    }
     case Kind::Quit:
       quit_ = true;
       break;
@@ -423,7 +448,7 @@ void Viewer::frameSelection() {
   state_.viewChanged = true;
 }
 
-void Viewer::update() {
+void Viewer::update(bool full) {
   // While a slider is dragged, a machine that needs longer than this for a new renderer and
   // its frame (llvmpipe: about a second for the engine) rebuilds when the slider is let go,
   // so that the slider follows the mouse; a faster one updates live.
@@ -434,26 +459,105 @@ void Viewer::update() {
   if (rebuilding) {
     const auto start = std::chrono::steady_clock::now();
     rebuild();
-    rebuildMs_ =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    rebuildMs_ = millisecondsSince(start);
   }
-  if (state_.viewChanged) {
-    const auto start = std::chrono::steady_clock::now();
-    renderer_->render(viewCamera(state_), state_.time);
-    state_.timings = renderer_->timings();  // waits for the frame's timer queries
-    state_.renderMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  // The inspector's buffers are read at the window's size: an AOV shown keeps it.
+  const bool reduce = !full && moving() && state_.aov.empty() && options_.interactiveFps > 0 &&
+                      state_.fullMs > 1000.0 / options_.interactiveFps;
+  if (state_.viewChanged && reduce) {
+    renderMoving();
+  } else if (state_.viewChanged || (shown_ != renderer_.get() && (full || !moving()))) {
+    renderFull();
     if (rebuilding) rebuildMs_ += state_.renderMs;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    readFrameBuffers();
-    state_.viewChanged = false;
-    state_.aovChanged = true;
-    overlaySelection_.clear();
-    overlayVisible_ = false;
   }
   if (state_.aovChanged) refreshAov(), state_.aovChanged = false;
-  if (state_.selection != overlaySelection_ || (!overlayVisible_ && !state_.selection.empty()))
+  if (shown_ == renderer_.get() &&
+      (state_.selection != overlaySelection_ || (!overlayVisible_ && !state_.selection.empty())))
     refreshOverlay();
+}
+
+void Viewer::renderFull() {
+  const auto start = std::chrono::steady_clock::now();
+  renderer_->render(viewCamera(state_), state_.time);
+  state_.timings = renderer_->timings();  // waits for the frame's timer queries
+  state_.renderMs = state_.fullMs = millisecondsSince(start);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  readFrameBuffers();
+  shown_ = renderer_.get();
+  state_.shownDivisor = 1;
+  state_.viewChanged = false;
+  state_.aovChanged = true;
+  overlaySelection_.clear();
+  overlayVisible_ = false;
+}
+
+void Viewer::renderMoving() {
+  const double goalMs = 1000.0 / options_.interactiveFps;
+  // First guess: the cost in proportion to the pixels (vertex-bound scenes gain less; the
+  // frames below correct it).
+  if (movingDivisor_ == 0) {
+    movingDivisor_ =
+        std::clamp(int(std::ceil(std::sqrt(state_.fullMs / goalMs))), 2, kMaxMovingDivisor);
+    movingMs_.fill(0.0);
+    movingMs_[1] = state_.fullMs;
+  }
+  const int width = std::max(1, width_ / movingDivisor_);
+  const int height = std::max(1, height_ / movingDivisor_);
+  // The live scene at the reduced size: live options reach moving_ as they reach renderer_.
+  const bool built = !moving_ || movingScene_.width != width || movingScene_.height != height;
+  movingScene_ = state_.scene;
+  movingScene_.width = width, movingScene_.height = height;
+  movingScene_.samples = 1;  // stretched and soon redrawn: no multisampling
+  if (built) {
+    moving_.reset();
+    try {
+      moving_ = std::make_unique<Renderer>(movingScene_, window_->info());
+    } catch (const Error& e) {
+      report(std::string("frames at the window's size only: ") + e.what());
+      options_.interactiveFps = 0;
+      renderFull();
+      return;
+    }
+    std::printf(
+        "while the view moves: %dx%d (1/%d of %dx%d); a full frame took %.0f ms, the "
+        "goal is %.0f ms\n",
+        width, height, movingDivisor_, width_, height_, state_.fullMs, goalMs);
+    std::fflush(stdout);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  moving_->render(viewCamera(state_), state_.time);
+  state_.timings = moving_->timings();
+  state_.renderMs = millisecondsSince(start);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  // Stretched to the window: bilinear rather than blocks.
+  glTextureParameteri(moving_->colorTexture(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  shown_ = moving_.get();
+  state_.shownDivisor = movingDivisor_;
+  state_.movingWidth = width, state_.movingHeight = height;
+  state_.viewChanged = false;
+  overlayVisible_ = false;  // the selection's outline follows the full frame's ids
+  // Adapt the divisor for the next frame, from the second frame of a renderer on (its first
+  // compiles shaders). Coarser while over the goal, unless the last step coarser saved under
+  // 15% (the vertices, not the pixels, cost: a coarser image would only look worse); finer
+  // when the next finer size would take under 80% of the goal (measured, or cost ∝ pixels
+  // within half of it).
+  if (built) return;
+  const int d = movingDivisor_;
+  const double t = movingMs_[std::size_t(d)] = state_.renderMs;
+  const double finer = movingMs_[std::size_t(d - 1)];
+  if (t > 1.25 * goalMs && d < kMaxMovingDivisor && !(finer > 0 && t > 0.85 * finer))
+    ++movingDivisor_;
+  else if (d > 2 &&
+           (finer > 0 ? finer < 0.8 * goalMs : t * d * d / ((d - 1) * (d - 1)) < 0.5 * goalMs))
+    --movingDivisor_;
+}
+
+bool Viewer::moving() const {
+  // The view rests once the mouse lets go of it and this long after the last mouse, wheel or
+  // fly-key change (a drag held still would otherwise start a full frame it must wait for).
+  constexpr auto kRest = std::chrono::milliseconds(200);
+  return scriptMoving_ || state_.playing || viewDrag_ ||
+         std::chrono::steady_clock::now() - lastMove_ < kRest;
 }
 
 void Viewer::readFrameBuffers() {
@@ -524,8 +628,8 @@ void Viewer::refreshOverlay() {
 }
 
 void Viewer::drawView() {
-  if (!renderer_) return;
-  drawFullscreen(state_.aov.empty() ? renderer_->colorTexture() : aovTexture_.id());
+  if (!shown_) return;
+  drawFullscreen(state_.aov.empty() ? shown_->colorTexture() : aovTexture_.id());
   if (overlayVisible_ && state_.aov.empty()) drawFullscreen(overlayTexture_.id());
   const ImGuiIO& io = ImGui::GetIO();
   const float scale = window_->pixelScale();
@@ -649,6 +753,9 @@ bool Viewer::rebuild() {
   // The renderer keeps a reference to the scene and builds its passes from it: a new one,
   // made after the old one is gone (two frames' targets may not fit together; glFinish lets
   // the driver free them before the new frame reads the free memory).
+  moving_.reset();
+  movingDivisor_ = 0;  // chosen again, with movingMs_, by the next frame drawn while moving
+  shown_ = nullptr;
   renderer_.reset();
   glFinish();
   bool made = true;
@@ -691,7 +798,7 @@ void Viewer::saveScene(const fs::path& path) {
 }
 
 void Viewer::screenshot(const fs::path& path) {
-  update();
+  update(true);
   writePng(path, renderer_->readColor());
   state_.status = "wrote " + path.string() + " (" + std::to_string(width_) + "x" +
                   std::to_string(height_) + ", " + state_.rendererName + ")";

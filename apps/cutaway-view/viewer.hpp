@@ -11,6 +11,8 @@
 //   return viewer.run();
 #pragma once
 
+#include <array>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -31,6 +33,9 @@ struct ViewerOptions {
   std::filesystem::path script;  // empty: interactive
   int width = 0, height = 0;     // window size; 0: the scene's resolution
   bool panels = true;
+  // While the view moves, frames slower than this rate are drawn at a lower resolution and
+  // stretched; the view is drawn at full size once it rests. 0: always at full size.
+  float interactiveFps = 10.0f;
 };
 
 class Viewer {
@@ -51,7 +56,12 @@ class Viewer {
   void execute(const ScriptCommand& command);
   void handleRequests();
   void syncSize();
-  void update();  // rebuilds, renders and recolours as the state's flags say
+  // Rebuilds, renders and recolours as the state's flags say; `full`: the frame at the
+  // window's size even while the view moves (screenshots, picking, AOVs written).
+  void update(bool full = false);
+  void renderFull();
+  void renderMoving();
+  bool moving() const;
   void readFrameBuffers();
   void refreshAov();
   void refreshOverlay();
@@ -91,6 +101,19 @@ class Viewer {
 
   std::unique_ptr<gl::WindowContext> window_;
   std::unique_ptr<Renderer> renderer_;
+  // Interactive resolution (ParaView's LOD render, by resolution): while the view moves and
+  // a full frame misses options_.interactiveFps, `moving_` draws it at 1/movingDivisor_ of
+  // the window's size from `movingScene_` (the live scene at that size); once the view
+  // rests, renderer_ draws it again. `shown_` drew what the window shows.
+  std::unique_ptr<Renderer> moving_;
+  Scene movingScene_;
+  static constexpr int kMaxMovingDivisor = 8;
+  int movingDivisor_ = 0;  // 0: not chosen since the last rebuild
+  // Wall time of the last frame at each divisor since it was chosen ([1]: the full frame).
+  std::array<double, kMaxMovingDivisor + 1> movingMs_{};
+  Renderer* shown_ = nullptr;
+  std::chrono::steady_clock::time_point lastMove_;  // of the mouse, the wheel or a fly key
+  bool scriptMoving_ = false;                       // the script's `moving on`
   int width_ = 0, height_ = 0;  // framebuffer = render size
   float sceneRadius_ = 1.0f;    // of the visible objects' bounds, world units
   double rebuildMs_ = 0;        // wall time of the last renderer rebuild and its first frame

@@ -42,6 +42,11 @@ struct ViewerState {
   // Measurements of the last rendered frame.
   std::vector<PassTiming> timings;
   double renderMs = 0;  // wall time of the last render, timer queries included
+  double fullMs = 0;    // the same for the last frame at the window's size
+  // The last frame was drawn at 1/shownDivisor of the window's size (1: at its size) while
+  // the view moved; `movingSize` is that size.
+  int shownDivisor = 1;
+  int movingWidth = 0, movingHeight = 0;
   std::string rendererName, computePath;
 
   // The transfer-function editor: the volume, its gradient row and point being edited (-1:

@@ -1,5 +1,6 @@
 // Per-pass GPU and CPU times of the last rendered frame (Renderer::timings(), GL_TIME_ELAPSED
-// queries) and the frame rate of the window.
+// queries), the frame rate of the window, and the reduced size of a frame drawn while the
+// view moves.
 #include <imgui.h>
 
 #include "panels.hpp"
@@ -9,6 +10,9 @@ namespace cutaway::view {
 void timingsPanel(const ViewerState& state, float framesPerSecond) {
   ImGui::Text("%.1f fps (UI)   last render %.1f ms", framesPerSecond, state.renderMs);
   ImGui::TextDisabled("%s", state.rendererName.c_str());
+  if (state.shownDivisor > 1)
+    ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "moving: %d×%d (1/%d size), full %.0f ms",
+                       state.movingWidth, state.movingHeight, state.shownDivisor, state.fullMs);
   if (!ImGui::BeginTable("passes", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit))
     return;
   ImGui::TableSetupColumn("pass", ImGuiTableColumnFlags_WidthStretch);
