@@ -33,6 +33,9 @@ const std::vector<Target>& targets() {
       {"volume-npz", ".npz", "tests/data/fuzz/volume-npz/*"},
       {"raster", ".tif", "tests/data/fuzz/raster/*"},
       {"geojson", ".geojson", "tests/data/networks/*.geojson"},
+      {"geopackage", ".gpkg", "tests/data/fuzz/geopackage/*"},
+      {"shapefile", ".shp", "tests/data/fuzz/shapefile/*", {".shx", ".dbf", ".prj"}},
+      {"volume-raw", ".json", "tests/data/fuzz/volume-raw/*", {".raw"}},
       {"png", ".png", "tests/golden/bunny.png tests/data/fuzz/png/*"},
   };
   return list;
@@ -65,9 +68,14 @@ class ScratchFolder {
   std::filesystem::path path_;
 };
 
-std::filesystem::path scratchFile(const Target& target) {
+std::filesystem::path scratchFile(const std::string& extension) {
   static const ScratchFolder folder;
-  return folder.path() / ("input" + target.extension);
+  return folder.path() / ("input" + extension);
+}
+
+void write(const std::filesystem::path& file, std::string_view bytes) {
+  std::ofstream(file, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), std::streamsize(bytes.size()));
 }
 
 void load(const Target& target, const std::filesystem::path& file) {
@@ -76,7 +84,7 @@ void load(const Target& target, const std::filesystem::path& file) {
     importMeshNodes(file);
   } else if (n.starts_with("volume-")) {
     importVolume(file);
-  } else if (n == "geojson") {
+  } else if (n == "geojson" || n == "geopackage" || n == "shapefile") {
     importGisLines(file);
   } else if (n == "raster") {
     importRasterTerrain(file);
@@ -96,9 +104,24 @@ bool run(const Target& target, const std::uint8_t* data, std::size_t size) {
       parseScene(std::string(bytes), "fuzz.json", CUTAWAY_TEST_DATA);
       return true;
     }
-    const std::filesystem::path file = scratchFile(target);
-    std::ofstream(file, std::ios::binary | std::ios::trunc)
-        .write(bytes.data(), std::streamsize(size));
+    const std::filesystem::path file = scratchFile(target.extension);
+    std::string_view rest = bytes;
+    const auto part = [&rest] {
+      const std::size_t end = rest.find(kPartSeparator);
+      const std::string_view first = rest.substr(0, end);
+      rest = end == std::string_view::npos ? std::string_view()
+                                           : rest.substr(end + kPartSeparator.size());
+      return first;
+    };
+    write(file, target.moreParts.empty() ? bytes : part());
+    for (const std::string& extension : target.moreParts) {
+      const bool present = !rest.empty();
+      const std::string_view content = part();
+      if (present)
+        write(scratchFile(extension), content);
+      else
+        std::filesystem::remove(scratchFile(extension));
+    }
     load(target, file);
     return true;
   } catch (const Error&) {

@@ -1,6 +1,6 @@
 // The loaders that read files users did not write themselves, as fuzz targets (issue 16): each
-// takes arbitrary bytes as the content of one file and must either load it or throw
-// cutaway::Error; anything else (a crash, a sanitizer report, a hang, another exception) is a
+// takes arbitrary bytes as the content of one file (or of a file set) and must either load it or
+// throw cutaway::Error; anything else (a crash, a sanitizer report, a hang, another exception) is a
 // defect. Run under libFuzzer by tests/fuzz/libfuzzer_main.cpp (scripts/fuzz), and replayed
 // on the regression corpus tests/data/fuzz/<target>/ by the test suite (test_fuzz_corpus.cpp).
 #pragma once
@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace cutaway::fuzz {
@@ -16,7 +17,13 @@ struct Target {
   std::string name;       // also the corpus folder's name
   std::string extension;  // the file name's, which picks the reader ("" for the scene text)
   std::string seeds;      // what scripts/fuzz starts its corpus from (globs under the source)
+  // A file set (a Shapefile's .shp/.shx/.dbf, a raw volume's header and data): the input is
+  // split at kPartSeparator, its first part written with `extension`, the next ones with
+  // these; a part the input lacks is a file that does not exist.
+  std::vector<std::string> moreParts = {};
 };
+
+inline constexpr std::string_view kPartSeparator = "\n--cutaway-fuzz-part--\n";
 
 const std::vector<Target>& targets();
 const Target* findTarget(const std::string& name);
