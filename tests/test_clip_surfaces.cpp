@@ -327,6 +327,51 @@ TEST(ClipSurfaceGpu, ASawtoothReliefClipsWhereItsTriangleWaveSays) {
   EXPECT_GT(kept, 300);
 }
 
+// Trapp13 §6.1, the caps' normal map: with "normalMap" on, a cap pixel's normal is the normal
+// of the displaced surface X(s,t) = O + sU + tV − S_z·h(S_x s, S_y t)·N (eq. 1) at that
+// point, facing the eye, here differentiated from the sawtooth's closed form (slope ±2f per
+// map unit) rather than from the offset map the shader reads.
+TEST(ClipSurfaceGpu, CapNormalsAreThoseOfTheDisplacedSurface) {
+  writeTorus();
+  std::string text = torusScene(R"({"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0],
+                     "scale": [2, 2, 0.1],
+                     "offsetMap": {"pattern": "sawtooth", "frequency": 3, "size": 64}})",
+                                true);
+  text.replace(text.find(R"("caps": true)"), 12,
+               R"("caps": true, "capStyle": {"normalMap": true})");
+  const Scene scene = parseScene(text, "torus.json", kData);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &cap = aov(aovs, "capMask"), &normal = aov(aovs, "normal"),
+                   &position = aov(aovs, "position");
+  const glm::vec3 eye = scene.resolvedCamera(0.0f).eye;
+  const glm::dvec3 U(0, 3, 0), V(3, 0, 0), N(0, 0, -1);  // N = normalize(U × V)
+  int checked = 0, tilted = 0;
+  double worst = 0;
+  for (int y = 0; y < cap.height; ++y)
+    for (int x = 0; x < cap.width; ++x) {
+      if (cap.at(x, y)[0] != 1.0f) continue;
+      const glm::dvec3 p = glm::make_vec3(position.at(x, y));
+      const double s = (p.y + 1.5) / 3.0, phase = 3.0 * 2.0 * s;  // f·S_x·s
+      // Two texels (3/64 of a phase each) from a kink the derived gradient blends both slopes.
+      const double toKink = std::abs(2.0 * phase - std::round(2.0 * phase)) / 2.0;
+      if (toKink < 6.0 / 64.0) continue;
+      const double slope = phase - std::floor(phase) < 0.5 ? 6.0 : -6.0;  // dh/du, u = S_x s
+      const glm::dvec3 ds = U - 0.1 * 2.0 * slope * N;                    // ∂X/∂s
+      glm::dvec3 expected = glm::normalize(glm::cross(ds, V));
+      if (glm::dot(expected, glm::dvec3(eye) - p) < 0.0) expected = -expected;
+      const glm::dvec3 got = glm::normalize(glm::dvec3(glm::make_vec3(normal.at(x, y))));
+      const double degrees =
+          glm::degrees(std::acos(std::clamp(glm::dot(got, expected), -1.0, 1.0)));
+      worst = std::max(worst, degrees);
+      ++checked;
+      tilted += std::abs(got.y) > 0.3;  // 21.8° off the plane's normal
+    }
+  std::printf("cap normals: %d pixels, worst %.3f° from the displaced surface's\n", checked, worst);
+  EXPECT_GT(checked, 300);
+  EXPECT_GT(tilted, checked * 9 / 10);
+  EXPECT_LT(worst, 1.0);
+}
+
 // Trapp13 §3: the edge-enhancement pass runs over the caps with the clipped meshes, so a
 // cap's border with the mesh is outlined (a crease between the cap and the torus) and its flat
 // inside is not: line pixels lie along the cap's border, and almost every border pixel has
