@@ -234,6 +234,38 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
     if (mask.data[i] > 0.5f) ASSERT_EQ(id.data[i], 0.0f) << i;
 }
 
+// Burns08 §4.2: the cut outline is the border of the cut surfaces: a cut-surface pixel with a
+// pixel outside them within the line width along a row or a column (the image's edge
+// extends). Checked pixel by pixel against that rule evaluated on the dumped cut mask, at
+// widths 1 and 3.
+TEST(AdaptiveCutaway, CutOutlinesAreTheBorderOfTheCutSurfaces) {
+  for (const int width : {1, 3}) {
+    SCOPED_TRACE(width);
+    Scene scene = shellAroundACore();
+    scene.width = 160, scene.height = 120;
+    scene.style.lines = LineStyle{};
+    scene.style.lines->width = float(width);
+    scene.style.lines->silhouettes = scene.style.lines->creases = false;
+    const auto aovs = renderAovs(scene);
+    const FloatImage &mask = aov(aovs, "cutMask"), &outlines = aov(aovs, "cutOutlines");
+    const auto cut = [&](int x, int y) {
+      return mask.at(std::clamp(x, 0, mask.width - 1), std::clamp(y, 0, mask.height - 1))[0] >=
+             0.5f;
+    };
+    int expectedPixels = 0, wrong = 0;
+    for (int y = 0; y < mask.height; ++y)
+      for (int x = 0; x < mask.width; ++x) {
+        bool border = false;
+        for (int r = 1; r <= width && cut(x, y); ++r)
+          border = border || !cut(x + r, y) || !cut(x - r, y) || !cut(x, y + r) || !cut(x, y - r);
+        expectedPixels += border;
+        wrong += border != (outlines.at(x, y)[0] == 1.0f);
+      }
+    EXPECT_GT(expectedPixels, 40 * width);
+    EXPECT_EQ(wrong, 0) << "of " << expectedPixels << " outline pixels";
+  }
+}
+
 // Burns08 §5.1: the seed is the rear hull of the objects of interest (the greater-than depth
 // test), with each texel's local angle θ that of the object seen there (§5.3); each texel of
 // the seed buffer against a CPU ray cast through its centre: the farthest hit of any object of
