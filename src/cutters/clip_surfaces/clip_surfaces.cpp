@@ -21,14 +21,17 @@ struct ClipSurfaceBlock {
   glm::vec4 capStyle;
 };
 
-// A cap grid: (n+1)² vertices at (s, t) ∈ [0,1]², two triangles per cell.
-struct CapGrid {
+// A cap's grid is drawn as instances of one tile of kCapTileCells² cells (cap.vert places
+// each): (n+1)² vertices at (s, t) ∈ [0,1]², two triangles per cell.
+constexpr int kCapTileCells = 16;
+
+struct CapTile {
   gl::VertexArray vertexArray;
   gl::Buffer vertices, indices;
   GLsizei indexCount = 0;
 };
 
-CapGrid makeCapGrid(int n) {
+CapTile makeCapTile(int n) {
   std::vector<glm::vec2> st;
   st.reserve(std::size_t(n + 1) * std::size_t(n + 1));
   for (int j = 0; j <= n; ++j)
@@ -40,7 +43,7 @@ CapGrid makeCapGrid(int n) {
       const GLuint a = GLuint(j * (n + 1) + i), b = a + 1, c = a + GLuint(n + 1), d = c + 1;
       idx.insert(idx.end(), {a, b, d, a, d, c});
     }
-  CapGrid g;
+  CapTile g;
   g.vertices = gl::Buffer::create(GLsizeiptr(st.size() * sizeof(glm::vec2)), st.data());
   g.indices = gl::Buffer::create(GLsizeiptr(idx.size() * sizeof(GLuint)), idx.data());
   g.indexCount = GLsizei(idx.size());
@@ -155,7 +158,7 @@ struct ClipSurfaceCutter::Gpu {
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
   std::vector<glm::vec3> reliefScale;        // the S each relief map was derived with
   std::vector<glm::vec2> reliefRange;        // the offset map's least and greatest h
-  std::vector<CapGrid> grids;                // 2^k cells per side, k = 3 … 10
+  CapTile capTile;
   std::vector<DepthSpriteGpu> sprites;       // one per capped object
   std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
 };
@@ -200,7 +203,7 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
     }
     g.diffuse.push_back(std::move(d));
   }
-  for (int cells = 8; cells <= 1024; cells *= 2) g.grids.push_back(makeCapGrid(cells));
+  g.capTile = makeCapTile(kCapTileCells);
   g.block = gl::Buffer::create(sizeof(ClipSurfaceBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
   const Scene& scene = setup.scene;
 
@@ -348,7 +351,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   // Locations of cap.vert / cap.frag.
   constexpr GLint kObjectId = 11, kCutBy = 13, kImportance = 16, kCapSurface = 40,
                   kCapToTexture = 41, kDepthComplexity = 45, kCapColor = 46, kCapRect = 48,
-                  kHasDiffuse = 49;
+                  kHasDiffuse = 49, kCapTiles = 50;
   const Scene& scene = setup_.scene;
   const ClipSurfaceOptions& options = live();
   const float time = draw.time;
@@ -395,20 +398,25 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
       if (nearest > 0.0f || farthest < -cs.scale.z) continue;
       lo = glm::clamp(lo, 0.0f, 1.0f), hi = glm::clamp(hi, 0.0f, 1.0f);
       if (hi.x <= lo.x || hi.y <= lo.y) continue;
-      // §5.1: as many cells as offset-map texels the rectangle covers (a power of two).
-      const float texels = std::max((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x,
-                                    (hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y);
-      std::size_t grid = 0;
-      while (grid + 1 < gpu_->grids.size() && float(8 << grid) < texels) ++grid;
+      // §5.1: as many cells as offset-map texels the rectangle covers, along each side (whole
+      // tiles, at most 1024 cells): a long thin rectangle takes a long thin grid.
+      const auto cells = [](float texels) {
+        return std::clamp(int(std::ceil(texels / float(kCapTileCells))), 1,
+                          1024 / kCapTileCells);  // tiles
+      };
+      const glm::ivec2 tiles(cells((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x),
+                             cells((hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y));
       glProgramUniform1i(program, kCapSurface, GLint(i));
+      glProgramUniform2i(program, kCapTiles, tiles.x, tiles.y);
       const glm::vec3 capColor = cs.capColor.value_or(o.material.color * 0.7f);
       glProgramUniform3fv(program, kCapColor, 1, &capColor[0]);
       glProgramUniform4f(program, kCapRect, lo.x, lo.y, hi.x, hi.y);
       const GLuint diffuse = gpu_->diffuse[i].id();
       glProgramUniform1i(program, kHasDiffuse, diffuse != 0);
       if (diffuse) glBindTextureUnit(diffuseUnit_, diffuse);
-      glBindVertexArray(gpu_->grids[grid].vertexArray.id());
-      glDrawElements(GL_TRIANGLES, gpu_->grids[grid].indexCount, GL_UNSIGNED_INT, nullptr);
+      glBindVertexArray(gpu_->capTile.vertexArray.id());
+      glDrawElementsInstanced(GL_TRIANGLES, gpu_->capTile.indexCount, GL_UNSIGNED_INT, nullptr,
+                              tiles.x * tiles.y);
     }
   }
 }
