@@ -16,7 +16,9 @@ void main() {
   vec2 tile = vec2(gl_InstanceID % uCapTiles.x, gl_InstanceID / uCapTiles.x);
   vec2 st = mix(uCapRect.xy, uCapRect.zw, (tile + aST) / vec2(uCapTiles));
   vec3 plane = uClipOrigin[i].xyz + st.x * uClipU[i].xyz + st.y * uClipV[i].xyz;
-  float h = clipReliefLod(i, st * uClipScale[i].xy).r;
+  // Indexed by the uniform itself (no loop, no discard here, unlike clipRelief's callers):
+  // llvmpipe runs every case of clipRelief's switch, four fetches per grid vertex.
+  float h = textureLod(uClipRelief[i], st * uClipScale[i].xy, 0.0).r;
   vWorldPosition = plane - uClipScale[i].z * h * clipSurfaceNormal(i);
   vST = st;
   gl_Position = uViewProjection * vec4(vWorldPosition, 1.0);

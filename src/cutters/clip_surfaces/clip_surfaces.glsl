@@ -27,14 +27,6 @@ vec4 clipRelief(int i, vec2 st) {
     default: return texture(uClipRelief[3], st);
   }
 }
-vec4 clipReliefLod(int i, vec2 st) {
-  switch (i) {
-    case 0: return textureLod(uClipRelief[0], st, 0.0);
-    case 1: return textureLod(uClipRelief[1], st, 0.0);
-    case 2: return textureLod(uClipRelief[2], st, 0.0);
-    default: return textureLod(uClipRelief[3], st, 0.0);
-  }
-}
 
 vec3 clipSurfaceNormal(int i) {
   return normalize(cross(normalize(uClipU[i].xyz), normalize(uClipV[i].xyz)));
