@@ -570,6 +570,48 @@ TEST(AdaptiveCutaway, DirectionalConstraintClampsTheAngleAsEquationsSixPointOneA
   }
 }
 
+// Burns11 eq. 6.3's n̂_proj, the screen direction in which the floor's normal points at a seed:
+// against the projections of the seed's point p and of p + ε·n̂ (view-plane units: NDC over
+// P₀₀ and P₁₁), over a grid of seeds, for a camera looking down at the floor in perspective
+// and in orthographic projection, and by hand for a level camera, where every vertical
+// projects vertical: (0, 1) at every seed.
+TEST(AdaptiveCutaway, FloorDirectionIsTheProjectedFloorNormal) {
+  AdaptiveCutawayOptions options;
+  options.directionalConstraint = true;
+  options.floorNormal = glm::vec3(0.0f, 1.0f, 0.0f);
+  for (const auto& [eye, orthographic] : std::vector<std::pair<glm::vec3, bool>>{
+           {{3.0f, 5.0f, 8.0f}, false}, {{3.0f, 5.0f, 8.0f}, true}, {{0.0f, 0.0f, 9.0f}, false}}) {
+    Camera camera;
+    camera.eye = eye, camera.near = 0.5f, camera.far = 50.0f;
+    if (orthographic) camera.setProjection(Projection::Orthographic);
+    const CutawayProjection projection = cutawayProjection(camera, 4.0f / 3.0f);
+    const glm::mat4& P = projection.projection;
+    const glm::vec3 n = projection.viewRotation * options.floorNormal;
+    for (float x = -0.9f; x <= 0.91f; x += 0.3f)
+      for (float y = -0.9f; y <= 0.91f; y += 0.3f) {
+        const glm::vec3 ndc(x, y, 0.3f);
+        const glm::vec4 h = glm::inverse(P) * glm::vec4(ndc, 1.0f);
+        const glm::vec3 p = glm::vec3(h) / h.w;
+        const auto project = [&](const glm::vec3& q) {
+          const glm::vec4 c = P * glm::vec4(q, 1.0f);
+          return glm::dvec2(c.x / c.w, c.y / c.w);
+        };
+        const double eps = 1e-3 * glm::length(p);
+        glm::dvec2 d = (project(p + float(eps) * n) - project(p)) / glm::dvec2(P[0][0], P[1][1]);
+        d = glm::normalize(d);
+        const glm::vec2 floor = anchorCone(ndc, glm::radians(40.0f), options, projection).floor;
+        SCOPED_TRACE(testing::Message() << "eye " << eye.z << (orthographic ? " ortho" : "")
+                                        << ", seed at " << x << "," << y);
+        EXPECT_NEAR(floor.x, d.x, 2e-3);
+        EXPECT_NEAR(floor.y, d.y, 2e-3);
+        if (eye.y == 0.0f) {  // level: by hand
+          EXPECT_NEAR(floor.x, 0.0f, 1e-5);
+          EXPECT_NEAR(floor.y, 1.0f, 1e-5);
+        }
+      }
+  }
+}
+
 // Burns08 §4.2: the dilated cutaway (used for back faces) is the minimum of the cutaway depth
 // over each texel's 3×3 neighbourhood, edges clamped: against a CPU minimum filter of the
 // dumped buffer, texel by texel.
