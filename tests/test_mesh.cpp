@@ -76,7 +76,8 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
          {"empty.stl.gz", "empty after gzip"});
   refuse("cut.stl.gz", "\x1f\x8b\x08\x00\x00\x00", {"cut.stl.gz", "gzip"});
   // A binary glTF whose JSON chunk claims 1.2 GB (Assimp allocated it; found by fuzzing), one
-  // whose header claims more than the file, and one cut inside its chunk table.
+  // whose header claims more than the file, and one cut inside its chunk table (after an empty
+  // first chunk).
   const auto header = [](std::uint32_t length) {
     std::string h("glTF\x02\x00\x00\x00", 8);
     for (int i = 0; i < 4; ++i) h += char(length >> (8 * i) & 0xff);
@@ -85,7 +86,12 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
   refuse("chunk.glb", header(36) + std::string("\xdc\x01\x01\x4aJSON{}", 10) + std::string(14, ' '),
          {"chunk.glb", "chunk at byte 12", "claims 1241579996 bytes"});
   refuse("length.glb", header(65535), {"length.glb", "claims 65535 bytes, the file has 12"});
-  refuse("cut.glb", header(15) + std::string(3, '\x04'), {"cut.glb", "byte 12", "ends early"});
+  refuse("cut.glb", header(22) + std::string("\0\0\0\0JSON\x04\x04", 10),
+         {"cut.glb", "byte 20", "ends early"});
+  // A header claiming 1 byte in a 541-byte file: the chunk table went unchecked and Assimp
+  // took 1.8 GB and 12 s for the JSON chunk's claimed length (fuzzing).
+  refuse("short.glb", header(1) + std::string("\0\0\0\x6eJSON{}", 10) + std::string(519, ' '),
+         {"short.glb", "header", "claims 1 bytes, less than its 20-byte header"});
   // The good file still loads.
   const std::filesystem::path good = plyFile("good.ply", kPlyHeader + "3 0 1 2\n");
   EXPECT_EQ(importMeshNodes(good).front().mesh.triangles.size(), 1u);

@@ -141,7 +141,20 @@ void checkGlbHeader(const std::filesystem::path& file) {
     throw Error(
         file.string(), "header",
         "claims " + std::to_string(length) + " bytes, the file has " + std::to_string(size));
-  if (version != 2) return;  // glTF 1.0's binary: one content block, within `length`
+  // Shorter than its own header and first chunk header (glTF 1.0: the content's header):
+  // Assimp then reads the first chunk's claimed length without a bound (a 541-byte file
+  // claiming 1 byte took 1.8 GB and 12 s to refuse).
+  if (length < 20)
+    throw Error(file.string(), "header",
+                "claims " + std::to_string(length) + " bytes, less than its 20-byte header");
+  if (version != 2) {
+    // glTF 1.0's binary: one content block of contentLength bytes after the 20-byte header.
+    if (20 + std::uint64_t(u32(12)) > length)
+      throw Error(file.string(), "header",
+                  "its content claims " + std::to_string(u32(12)) + " bytes beyond the file's " +
+                      std::to_string(length));
+    return;
+  }
   for (std::uint64_t at = 12; at < length;) {
     const std::uint64_t chunk = u32(at);
     if (at + 8 + chunk > length)
