@@ -92,6 +92,47 @@ TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
 
 INSTANTIATE_TEST_SUITE_P(Metrics, TerrainOpeningGpuCpu, ::testing::Values("l1", "euclidean"));
 
+// Konev18 eqs. 1–3 worked by hand on a 4×4 distance texture over a 20 × 10 world rectangle
+// (texel (i, j) at row j of increasing z): eq. 1's threshold t = w(s² − d_c)/s; eq. 2 keeps
+// terrain where D ≥ t; eq. 3 peeks ε = √2/T along the view's horizontal direction in texture
+// space (x over 20, z over 10) and shows the thickness where the texel there exceeds t.
+TEST(TerrainOpening, EquationsOneToThreeByHand) {
+  TerrainOpeningOptions o;
+  o.w = 0.1f, o.s = 2.0f, o.cameraDistance = true;
+  EXPECT_FLOAT_EQ(openingThreshold(o, 1.0f), 0.1f * (4.0f - 1.0f) / 2.0f);  // 0.15
+  EXPECT_FLOAT_EQ(openingThreshold(o, 4.0f), 0.0f);                         // closed at d_c = s²
+  o.cameraDistance = false;
+  EXPECT_FLOAT_EQ(openingThreshold(o, 123.0f), 0.2f);  // w·s
+  TerrainField field;
+  field.min = {100.0f, -5.0f}, field.size = {20.0f, 10.0f}, field.resolution = 4;
+  field.distance = {0.1f, 0.1f, 0.1f, 0.1f,   // j = 0
+                    0.1f, 0.1f, 0.1f, 0.1f,   // j = 1
+                    0.1f, 0.1f, 0.5f, 0.1f,   // j = 2: texel (2, 2) beyond t = 0.2
+                    0.1f, 0.1f, 0.1f, 0.3f};  // j = 3
+  // A point of texel (1, 1), its centre at uv (0.375, 0.375): world (107.5, y, −1.25).
+  const glm::vec3 p(107.5f, 3.0f, -1.25f), eye(0.0f, 50.0f, 0.0f);
+  // Forward (2, ·, 1) in the world is (0.1, 0.1) in texture space: the diagonal, so the peek
+  // of ε = √2/4 lands in texel (2, 2).
+  EXPECT_EQ(terrainFate(field, o, p, eye, glm::normalize(glm::vec3(2.0f, -1.0f, 1.0f))),
+            TerrainFate::Thickness);
+  // Back along it: texel (0, 0), below t.
+  EXPECT_EQ(terrainFate(field, o, p, eye, glm::normalize(glm::vec3(-2.0f, -1.0f, -1.0f))),
+            TerrainFate::Discard);
+  // World-diagonal (1, ·, 1) is (0.05, 0.1) in texture space: the peek goes to uv
+  // (0.375, 0.375) + ε(0.447, 0.894) = (0.533, 0.691), texel (2, 2) again; (1, ·, 0.1):
+  // (0.05, 0.01) → (0.722, 0.444), texel (2, 1): 0.1.
+  EXPECT_EQ(terrainFate(field, o, p, eye, glm::normalize(glm::vec3(1.0f, 0.0f, 1.0f))),
+            TerrainFate::Thickness);
+  EXPECT_EQ(terrainFate(field, o, p, eye, glm::normalize(glm::vec3(1.0f, 0.0f, 0.1f))),
+            TerrainFate::Discard);
+  // Eq. 2: on texel (2, 2) itself the terrain stays; on (3, 3), 0.3 ≥ 0.2, too.
+  EXPECT_EQ(terrainFate(field, o, {112.5f, 0.0f, 1.25f}, eye, {1, 0, 0}), TerrainFate::Terrain);
+  EXPECT_EQ(terrainFate(field, o, {117.5f, 0.0f, 3.75f}, eye, {1, 0, 0}), TerrainFate::Terrain);
+  // With the camera distance, t at this p (d_c = |eye − p| ≈ 117 > s²) is negative: terrain.
+  o.cameraDistance = true;
+  EXPECT_EQ(terrainFate(field, o, p, eye, {1, 0, 0}), TerrainFate::Terrain);
+}
+
 // `cutBuildings`: a building over a pipe is opened by the terrain's rule (eqs. 1–3), pixel by
 // pixel as terrainFate decides for its surface points; without the flag it stays whole.
 TEST(TerrainOpening, BuildingsAreOpenedByTheTerrainsRuleOnlyWhenAsked) {
