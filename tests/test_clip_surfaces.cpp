@@ -189,6 +189,40 @@ TEST(OffsetMap, SixteenBitPngKeepsItsLevels) {
   std::filesystem::remove(file);
 }
 
+// Trapp13 §5.1 drawn where it can be: the tiles capTiles keeps for a torus (axis ẑ, tube 0.35
+// around radius 1) cut by a surface through z = 0 with a relief up to S_z = 0.1 below it. The
+// cut is the annulus 1 − √(0.35² − z²) ≤ ρ ≤ 1 + √(0.35² − z²) for z ∈ [−0.1, 0]: every tile
+// that meets it is kept, while the tiles of the hole and the far corners, more than the
+// tile of growth and a triangle's extent away from it, are not.
+TEST(CapTiles, EveryTileTheCutMeetsIsKeptAndTheHoleAndCornersAreNot) {
+  const Mesh mesh = torus();
+  ClipSurface cs;
+  cs.origin = {-1.5f, -1.5f, 0.0f}, cs.u = {3, 0, 0}, cs.v = {0, 3, 0}, cs.scale = {1, 1, 0.1f};
+  constexpr int kTiles = 24;  // 0.125 each
+  for (const glm::vec2 relief : {glm::vec2(0.0f), glm::vec2(0.0f, 1.0f)}) {
+    const std::vector<std::uint8_t> keep =
+        capTiles(mesh, glm::mat4(1.0f), cs, relief, {0, 0, 1, 1}, {kTiles, kTiles});
+    ASSERT_EQ(keep.size(), std::size_t(kTiles * kTiles));
+    const float inner = 1.0f - std::sqrt(0.35f * 0.35f - 0.01f * relief.y), outer = 1.0f + 0.35f;
+    const float margin = 0.125f * std::sqrt(2.0f) + 0.15f;  // a grown tile, a triangle
+    int kept = 0, farTiles = 0, wrong = 0;
+    for (int y = 0; y < kTiles; ++y)
+      for (int x = 0; x < kTiles; ++x) {
+        const glm::vec2 lo(-1.5f + 0.125f * float(x), -1.5f + 0.125f * float(y)), hi = lo + 0.125f;
+        const float nearest = glm::length(glm::clamp(glm::vec2(0.0f), lo, hi));
+        const float farthest = glm::length(glm::max(glm::abs(lo), glm::abs(hi)));
+        const bool meets = nearest <= outer && farthest >= std::min(inner, 0.65f);
+        const bool far = nearest > outer + margin || farthest < 0.65f - margin;
+        const bool k = keep[std::size_t(y * kTiles + x)] != 0;
+        kept += k, farTiles += far;
+        wrong += (meets && !k) || (far && k);
+      }
+    EXPECT_EQ(wrong, 0) << "relief " << relief.y;
+    EXPECT_GE(farTiles, 50);  // the hole and the corners, all dropped
+    EXPECT_GT(kept, 300);
+  }
+}
+
 // Trapp13 §5.2: the depth complexity counted by peeling.
 TEST(DepthSprite, DepthComplexityOfKnownShapes) {
   EXPECT_EQ(spriteOf(sphere(), 128).depthComplexity, 2);

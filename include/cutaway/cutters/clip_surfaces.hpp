@@ -11,6 +11,7 @@
 //   scene.cutters.enable<cutaway::ClipSurfaceOptions>().surfaces = {cs};
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -121,5 +122,15 @@ bool volumetricParityTest(const VolumetricDepthSprite& vds, const glm::vec3& p);
 // Ray parity against the triangles themselves (the reference for the VPT): a ray from p along
 // a fixed, generic direction crosses a closed mesh an odd number of times when p is inside.
 bool insideMesh(const Mesh& mesh, const glm::vec3& p);
+
+// Which tiles of a cap grid can hold a cap of `mesh` (watertight, object space, placed in the
+// world by `model`) on surface `cs` (§5.1: the grid spans `rect` = (s0, t0, s1, t1) of its
+// [0,1]² extent in tiles.x × tiles.y tiles): the tiles one of its triangles crosses within the
+// slab the displaced surface lies in (S_z·[h_min, h_max] behind the plane; `relief` = (h_min,
+// h_max)), and the tiles of every other connected run whose prism lies inside the solid (one
+// ray-parity test per run: no surface crosses it, so all of it is in or all out), grown by one
+// tile. Row-major, rows of increasing t; 1: draw the tile.
+std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, const ClipSurface& cs,
+                                   glm::vec2 relief, glm::vec4 rect, glm::ivec2 tiles);
 
 }  // namespace cutaway

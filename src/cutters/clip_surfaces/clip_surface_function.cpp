@@ -169,4 +169,76 @@ bool insideMesh(const Mesh& mesh, const glm::vec3& p) {
   return rayHits(mesh, p, dir).size() % 2 == 1;
 }
 
+std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, const ClipSurface& cs,
+                                   glm::vec2 relief, glm::vec4 rect, glm::ivec2 tiles) {
+  const int nx = tiles.x, ny = tiles.y;
+  std::vector<std::uint8_t> crossed(std::size_t(nx) * std::size_t(ny), 0);
+  const glm::vec3 n = cs.normal(), U = cs.u, V = cs.v, O = cs.origin;
+  // The displaced surface X = O + sU + tV − S_z·h·N lies at n·(X − O) ∈ [−S_z h_max, −S_z h_min].
+  const float slabLow = -cs.scale.z * relief.y, slabHigh = -cs.scale.z * relief.x;
+  const glm::vec2 size(rect.z - rect.x, rect.w - rect.y);
+  if (size.x <= 0.0f || size.y <= 0.0f) return crossed;
+  // A tile index along one side, of a surface coordinate (may lie outside the grid).
+  const auto tileOf = [&](float st, int axis) {
+    return (st - rect[axis]) / size[axis] * float(axis == 0 ? nx : ny);
+  };
+  std::vector<glm::vec3> world(mesh.positions.size());
+  for (std::size_t i = 0; i < world.size(); ++i)
+    world[i] = glm::vec3(model * glm::vec4(mesh.positions[i], 1.0f));
+  for (const auto& tri : mesh.triangles) {
+    float dLow = 1e30f, dHigh = -1e30f;
+    glm::vec2 lo(1e30f), hi(-1e30f);
+    for (int c = 0; c < 3; ++c) {
+      const glm::vec3 d = world[tri[c]] - O;
+      const float h = glm::dot(d, n);
+      dLow = std::min(dLow, h), dHigh = std::max(dHigh, h);
+      const glm::vec2 st(glm::dot(d, U) / glm::dot(U, U), glm::dot(d, V) / glm::dot(V, V));
+      lo = glm::min(lo, st), hi = glm::max(hi, st);
+    }
+    if (dHigh < slabLow || dLow > slabHigh) continue;
+    const int x0 = std::max(0, int(std::floor(tileOf(lo.x, 0)))),
+              x1 = std::min(nx - 1, int(std::floor(tileOf(hi.x, 0)))),
+              y0 = std::max(0, int(std::floor(tileOf(lo.y, 1)))),
+              y1 = std::min(ny - 1, int(std::floor(tileOf(hi.y, 1))));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) crossed[std::size_t(y) * std::size_t(nx) + std::size_t(x)] = 1;
+  }
+  // The other tiles in runs connected through shared sides, each run decided by the parity
+  // of its first tile's centre halfway through the slab (in the object's own space).
+  std::vector<std::uint8_t> keep = crossed;
+  std::vector<std::uint8_t> seen = crossed;
+  const glm::mat4 toObject = glm::inverse(model);
+  std::vector<int> run;
+  for (int start = 0; start < nx * ny; ++start) {
+    if (seen[std::size_t(start)]) continue;
+    run.assign(1, start);
+    seen[std::size_t(start)] = 1;
+    for (std::size_t k = 0; k < run.size(); ++k) {
+      const int x = run[k] % nx, y = run[k] / nx;
+      const int next[4][2] = {{x - 1, y}, {x + 1, y}, {x, y - 1}, {x, y + 1}};
+      for (const auto& q : next) {
+        if (q[0] < 0 || q[1] < 0 || q[0] >= nx || q[1] >= ny) continue;
+        const std::size_t i = std::size_t(q[1]) * std::size_t(nx) + std::size_t(q[0]);
+        if (!seen[i]) seen[i] = 1, run.push_back(q[1] * nx + q[0]);
+      }
+    }
+    const glm::vec2 st(rect.x + (float(start % nx) + 0.5f) / float(nx) * size.x,
+                       rect.y + (float(start / nx) + 0.5f) / float(ny) * size.y);
+    const glm::vec3 p = O + st.x * U + st.y * V + 0.5f * (slabLow + slabHigh) * n;
+    if (insideMesh(mesh, glm::vec3(toObject * glm::vec4(p, 1.0f))))
+      for (int i : run) keep[std::size_t(i)] = 1;
+  }
+  // Grown by a tile: the GPU's parity test reads the depth sprite, whose texels may reach a
+  // little past the triangles.
+  std::vector<std::uint8_t> grown = keep;
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      if (keep[std::size_t(y) * std::size_t(nx) + std::size_t(x)])
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx)
+            if (x + dx >= 0 && y + dy >= 0 && x + dx < nx && y + dy < ny)
+              grown[std::size_t(y + dy) * std::size_t(nx) + std::size_t(x + dx)] = 1;
+  return grown;
+}
+
 }  // namespace cutaway

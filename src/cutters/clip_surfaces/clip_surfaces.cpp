@@ -21,8 +21,8 @@ struct ClipSurfaceBlock {
   glm::vec4 capStyle;
 };
 
-// A cap's grid is drawn as instances of one tile of kCapTileCells² cells (cap.vert places
-// each): (n+1)² vertices at (s, t) ∈ [0,1]², two triangles per cell.
+// A cap's grid is drawn as instances of one tile of kCapTileCells² cells, each placed by its
+// tile's (x, y) (cap.vert): (n+1)² vertices at (s, t) ∈ [0,1]², two triangles per cell.
 constexpr int kCapTileCells = 16;
 
 struct CapTile {
@@ -54,6 +54,11 @@ CapTile makeCapTile(int n) {
   glEnableVertexArrayAttrib(vao, 0);
   glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribBinding(vao, 0, 0);
+  // Attribute 1: the instance's tile in its grid, from the frame's tile list (binding 1).
+  glEnableVertexArrayAttrib(vao, 1);
+  glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao, 1, 1);
+  glVertexArrayBindingDivisor(vao, 1, 1);
   return g;
 }
 
@@ -159,6 +164,17 @@ struct ClipSurfaceCutter::Gpu {
   std::vector<glm::vec3> reliefScale;        // the S each relief map was derived with
   std::vector<glm::vec2> reliefRange;        // the offset map's least and greatest h
   CapTile capTile;
+  // Per capped object and surface, the tiles its cap can cover, and what they were found for.
+  struct TileCache {
+    glm::mat4 model;
+    glm::vec4 rect;
+    glm::ivec2 tiles;
+    glm::vec3 origin, u, v, scale;
+    std::vector<std::uint8_t> keep;
+  };
+  std::vector<TileCache> tileCache;
+  gl::Buffer tileList;  // this frame's tiles of every cap, (x, y) per instance
+  GLsizeiptr tileListBytes = 0;
   std::vector<DepthSpriteGpu> sprites;       // one per capped object
   std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
 };
@@ -235,8 +251,8 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
   capParity_ = frame.declare(
       "capParity", {.format = GL_R32UI,
                     .meaning = "volumetric parity test of the cap fragments at this pixel (Trapp13 "
-                               "§5.3): 0 none tested, 1 only outside the solid (discarded), 2 at "
-                               "least one inside (kept)"});
+                               "§5.3): 0 none tested (also where no tile of a cap was drawn), 1 "
+                               "only outside the solid (discarded), 2 at least one inside (kept)"});
   capMask_ = frame.declare("capMask", {.format = GL_R32F,
                                        .meaning = "1 where a cap surface covers a clip surface's "
                                                   "cut (Trapp13 §5), else 0; sample 0"});
@@ -355,30 +371,23 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   const Scene& scene = setup_.scene;
   const ClipSurfaceOptions& options = live();
   const float time = draw.time;
-  const GLuint program = gpu_->cap.id();
-  const std::vector<ActiveCutter>& cutters = *draw.cutters;
-  int ownSlot = -1;
-  for (const ActiveCutter& c : cutters) {
-    if (c.cutter.get() == this) ownSlot = c.slot;
-    c.cutter->setProgramUniforms(program);
-  }
-  glUseProgram(program);
+  // Each cap's grid: the part of the surface its object's box spans, in tiles, and the tiles
+  // that can hold its cap (capTiles, worked out again only when the object, the surface or
+  // the grid moved), gathered into one instance buffer.
+  struct CapDraw {
+    std::size_t k, surface;
+    glm::vec4 rect;
+    glm::ivec2 tiles;
+    GLuint first = 0, count = 0;
+  };
+  std::vector<CapDraw> draws;
+  std::vector<glm::vec2> tileList;
+  Gpu& g = *gpu_;
+  g.tileCache.resize(capped_.size() * std::size_t(kMaxClipSurfaces));
   for (std::size_t k = 0; k < capped_.size(); ++k) {
-    setCutUniforms(program, {kCutBy}, cutters, objectCut(cutters, capped_[k], ownSlot), capped_[k],
-                   glm::vec3(0.0f));
-    const DepthSpriteGpu& sprite = gpu_->sprites[k];
-    // Sprites map the object's own space to LDI space: world → object → LDI.
-    const glm::mat4 toTexture =
-        sprite.sprite.toTexture * glm::inverse(scene.objects[capped_[k]].transformAt(time));
-    glProgramUniform1i(program, kObjectId, int(capped_[k]));
-    glProgramUniformMatrix4fv(program, kCapToTexture, 1, GL_FALSE, &toTexture[0][0]);
-    glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
-    glBindTextureUnit(layersUnit_, sprite.layers.id());
     const SceneObject& o = scene.objects[capped_[k]];
-    glProgramUniform1f(program, kImportance,
-                       emphasisImportance(o.role == Role::Interest, o.importance));
     const glm::mat4 model = o.transformAt(time);
-    const Bounds& b = gpu_->capBounds[k];
+    const Bounds& b = g.capBounds[k];
     for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
       const ClipSurface& cs = options.surfaces[i];
       if (!cs.enabled) continue;
@@ -404,20 +413,75 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
         return std::clamp(int(std::ceil(texels / float(kCapTileCells))), 1,
                           1024 / kCapTileCells);  // tiles
       };
-      const glm::ivec2 tiles(cells((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x),
-                             cells((hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y));
-      glProgramUniform1i(program, kCapSurface, GLint(i));
-      glProgramUniform2i(program, kCapTiles, tiles.x, tiles.y);
-      const glm::vec3 capColor = cs.capColor.value_or(o.material.color * 0.7f);
-      glProgramUniform3fv(program, kCapColor, 1, &capColor[0]);
-      glProgramUniform4f(program, kCapRect, lo.x, lo.y, hi.x, hi.y);
-      const GLuint diffuse = gpu_->diffuse[i].id();
-      glProgramUniform1i(program, kHasDiffuse, diffuse != 0);
-      if (diffuse) glBindTextureUnit(diffuseUnit_, diffuse);
-      glBindVertexArray(gpu_->capTile.vertexArray.id());
-      glDrawElementsInstanced(GL_TRIANGLES, gpu_->capTile.indexCount, GL_UNSIGNED_INT, nullptr,
-                              tiles.x * tiles.y);
+      CapDraw d{k, i, glm::vec4(lo, hi),
+                glm::ivec2(cells((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x),
+                           cells((hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y))};
+      Gpu::TileCache& cache = g.tileCache[k * std::size_t(kMaxClipSurfaces) + i];
+      if (cache.keep.empty() || cache.model != model || cache.rect != d.rect ||
+          cache.tiles != d.tiles || cache.origin != cs.origin || cache.u != cs.u ||
+          cache.v != cs.v || cache.scale != cs.scale) {
+        cache = {model,    d.rect,
+                 d.tiles,  cs.origin,
+                 cs.u,     cs.v,
+                 cs.scale, capTiles(*o.mesh, model, cs, g.reliefRange[i], d.rect, d.tiles)};
+      }
+      d.first = GLuint(tileList.size());
+      for (int y = 0; y < d.tiles.y; ++y)
+        for (int x = 0; x < d.tiles.x; ++x)
+          if (cache.keep[std::size_t(y) * std::size_t(d.tiles.x) + std::size_t(x)])
+            tileList.emplace_back(float(x), float(y));
+      d.count = GLuint(tileList.size()) - d.first;
+      if (d.count > 0) draws.push_back(d);
     }
+  }
+  if (draws.empty()) return;
+  const GLsizeiptr bytes = GLsizeiptr(tileList.size() * sizeof(glm::vec2));
+  if (g.tileListBytes < bytes) {
+    g.tileList = gl::Buffer::create(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+    g.tileListBytes = bytes;
+  }
+  glNamedBufferSubData(g.tileList.id(), 0, bytes, tileList.data());
+  const GLuint vao = g.capTile.vertexArray.id();
+  glVertexArrayVertexBuffer(vao, 1, g.tileList.id(), 0, sizeof(glm::vec2));
+
+  const GLuint program = g.cap.id();
+  const std::vector<ActiveCutter>& cutters = *draw.cutters;
+  int ownSlot = -1;
+  for (const ActiveCutter& c : cutters) {
+    if (c.cutter.get() == this) ownSlot = c.slot;
+    c.cutter->setProgramUniforms(program);
+  }
+  glUseProgram(program);
+  glBindVertexArray(vao);
+  std::size_t object = capped_.size();
+  for (const CapDraw& d : draws) {
+    const std::size_t k = d.k;
+    const SceneObject& o = scene.objects[capped_[k]];
+    if (k != object) {
+      object = k;
+      setCutUniforms(program, {kCutBy}, cutters, objectCut(cutters, capped_[k], ownSlot),
+                     capped_[k], glm::vec3(0.0f));
+      const DepthSpriteGpu& sprite = g.sprites[k];
+      // Sprites map the object's own space to LDI space: world → object → LDI.
+      const glm::mat4 toTexture = sprite.sprite.toTexture * glm::inverse(o.transformAt(time));
+      glProgramUniform1i(program, kObjectId, int(capped_[k]));
+      glProgramUniformMatrix4fv(program, kCapToTexture, 1, GL_FALSE, &toTexture[0][0]);
+      glProgramUniform1i(program, kDepthComplexity, sprite.sprite.depthComplexity);
+      glBindTextureUnit(layersUnit_, sprite.layers.id());
+      glProgramUniform1f(program, kImportance,
+                         emphasisImportance(o.role == Role::Interest, o.importance));
+    }
+    const ClipSurface& cs = options.surfaces[d.surface];
+    glProgramUniform1i(program, kCapSurface, GLint(d.surface));
+    glProgramUniform2i(program, kCapTiles, d.tiles.x, d.tiles.y);
+    const glm::vec3 capColor = cs.capColor.value_or(o.material.color * 0.7f);
+    glProgramUniform3fv(program, kCapColor, 1, &capColor[0]);
+    glProgramUniform4fv(program, kCapRect, 1, &d.rect[0]);
+    const GLuint diffuse = g.diffuse[d.surface].id();
+    glProgramUniform1i(program, kHasDiffuse, diffuse != 0);
+    if (diffuse) glBindTextureUnit(diffuseUnit_, diffuse);
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, g.capTile.indexCount, GL_UNSIGNED_INT,
+                                        nullptr, GLsizei(d.count), d.first);
   }
 }
 
