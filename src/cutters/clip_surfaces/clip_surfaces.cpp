@@ -21,9 +21,10 @@ struct ClipSurfaceBlock {
   glm::vec4 capStyle;
 };
 
-// A cap's grid is drawn as instances of one tile of kCapTileCells² cells, each placed by its
-// tile's (x, y) (cap.vert): (n+1)² vertices at (s, t) ∈ [0,1]², two triangles per cell.
-constexpr int kCapTileCells = 16;
+// A cap's grid is drawn as instances of a tile of up to kCapTileCells² cells, each placed by
+// its tile's (x, y) (cap.vert): (nx+1)(ny+1) vertices at (s, t) ∈ [0,1]², two triangles per
+// cell; a side of fewer texels takes a tile of fewer cells (a power of two).
+constexpr int kCapTileCells = 16, kCapTileSizes = 5;  // 1, 2, 4, 8, 16 cells
 
 struct CapTile {
   gl::VertexArray vertexArray;
@@ -31,16 +32,16 @@ struct CapTile {
   GLsizei indexCount = 0;
 };
 
-CapTile makeCapTile(int n) {
+CapTile makeCapTile(int nx, int ny) {
   std::vector<glm::vec2> st;
-  st.reserve(std::size_t(n + 1) * std::size_t(n + 1));
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) st.emplace_back(float(i) / float(n), float(j) / float(n));
+  st.reserve(std::size_t(nx + 1) * std::size_t(ny + 1));
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) st.emplace_back(float(i) / float(nx), float(j) / float(ny));
   std::vector<GLuint> idx;
-  idx.reserve(std::size_t(n) * std::size_t(n) * 6);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const GLuint a = GLuint(j * (n + 1) + i), b = a + 1, c = a + GLuint(n + 1), d = c + 1;
+  idx.reserve(std::size_t(nx) * std::size_t(ny) * 6);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const GLuint a = GLuint(j * (nx + 1) + i), b = a + 1, c = a + GLuint(nx + 1), d = c + 1;
       idx.insert(idx.end(), {a, b, d, a, d, c});
     }
   CapTile g;
@@ -163,7 +164,7 @@ struct ClipSurfaceCutter::Gpu {
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
   std::vector<glm::vec3> reliefScale;        // the S each relief map was derived with
   std::vector<glm::vec2> reliefRange;        // the offset map's least and greatest h
-  CapTile capTile;
+  std::vector<CapTile> capTiles;  // [log2 cells along s · kCapTileSizes + log2 cells along t]
   // Per capped object and surface, the tiles its cap can cover, and what they were found for.
   struct TileCache {
     glm::mat4 model;
@@ -219,7 +220,8 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
     }
     g.diffuse.push_back(std::move(d));
   }
-  g.capTile = makeCapTile(kCapTileCells);
+  for (int x = 0; x < kCapTileSizes; ++x)
+    for (int y = 0; y < kCapTileSizes; ++y) g.capTiles.push_back(makeCapTile(1 << x, 1 << y));
   g.block = gl::Buffer::create(sizeof(ClipSurfaceBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
   const Scene& scene = setup.scene;
 
@@ -378,6 +380,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     std::size_t k, surface;
     glm::vec4 rect;
     glm::ivec2 tiles;
+    int tile;  // into Gpu::capTiles
     GLuint first = 0, count = 0;
   };
   std::vector<CapDraw> draws;
@@ -408,14 +411,19 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
       lo = glm::clamp(lo, 0.0f, 1.0f), hi = glm::clamp(hi, 0.0f, 1.0f);
       if (hi.x <= lo.x || hi.y <= lo.y) continue;
       // §5.1: as many cells as offset-map texels the rectangle covers, along each side (whole
-      // tiles, at most 1024 cells): a long thin rectangle takes a long thin grid.
+      // tiles, at most 1024 cells; under one tile, a power of two): a long thin rectangle
+      // takes a long thin grid. Returns the tiles and log2 of a tile's cells.
       const auto cells = [](float texels) {
-        return std::clamp(int(std::ceil(texels / float(kCapTileCells))), 1,
-                          1024 / kCapTileCells);  // tiles
+        int log2 = 0;
+        while (log2 + 1 < kCapTileSizes && float(1 << log2) < texels) ++log2;
+        return glm::ivec2(
+            std::clamp(int(std::ceil(texels / float(kCapTileCells))), 1, 1024 / kCapTileCells),
+            log2);
       };
-      CapDraw d{k, i, glm::vec4(lo, hi),
-                glm::ivec2(cells((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x),
-                           cells((hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y))};
+      const glm::ivec2 alongS = cells((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x),
+                       alongT = cells((hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y);
+      CapDraw d{k, i, glm::vec4(lo, hi), glm::ivec2(alongS.x, alongT.x),
+                alongS.y * kCapTileSizes + alongT.y};
       Gpu::TileCache& cache = g.tileCache[k * std::size_t(kMaxClipSurfaces) + i];
       if (cache.keep.empty() || cache.model != model || cache.rect != d.rect ||
           cache.tiles != d.tiles || cache.origin != cs.origin || cache.u != cs.u ||
@@ -441,8 +449,8 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     g.tileListBytes = bytes;
   }
   glNamedBufferSubData(g.tileList.id(), 0, bytes, tileList.data());
-  const GLuint vao = g.capTile.vertexArray.id();
-  glVertexArrayVertexBuffer(vao, 1, g.tileList.id(), 0, sizeof(glm::vec2));
+  for (const CapTile& tile : g.capTiles)
+    glVertexArrayVertexBuffer(tile.vertexArray.id(), 1, g.tileList.id(), 0, sizeof(glm::vec2));
 
   const GLuint program = g.cap.id();
   const std::vector<ActiveCutter>& cutters = *draw.cutters;
@@ -452,7 +460,6 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     c.cutter->setProgramUniforms(program);
   }
   glUseProgram(program);
-  glBindVertexArray(vao);
   std::size_t object = capped_.size();
   for (const CapDraw& d : draws) {
     const std::size_t k = d.k;
@@ -480,8 +487,10 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     const GLuint diffuse = g.diffuse[d.surface].id();
     glProgramUniform1i(program, kHasDiffuse, diffuse != 0);
     if (diffuse) glBindTextureUnit(diffuseUnit_, diffuse);
-    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, g.capTile.indexCount, GL_UNSIGNED_INT,
-                                        nullptr, GLsizei(d.count), d.first);
+    const CapTile& tile = g.capTiles[std::size_t(d.tile)];
+    glBindVertexArray(tile.vertexArray.id());
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, tile.indexCount, GL_UNSIGNED_INT, nullptr,
+                                        GLsizei(d.count), d.first);
   }
 }
 
