@@ -80,6 +80,10 @@ class Cutter {
   virtual void bindForGeometry() const {}
   // Uniforms of its GLSL in a geometry program, set before the program draws.
   virtual void setProgramUniforms(GLuint /*program*/) const {}
+  // Compile-time choices of its GLSL (`#define` lines, from options a change of which rebuilds
+  // the renderer), written before its file in cutters/composition.glsl: llvmpipe runs both
+  // sides of a branch on a uniform.
+  virtual std::string glslDefines() const { return {}; }
 
   // Whether its GLSL decides the fragments of scene object `index` (a mesh object): by its
   // own rule, and only if the object allows it (SceneObject::mayBeCutBy its key).

@@ -71,6 +71,7 @@ std::string cutterComposition(const std::vector<ActiveCutter>& active) {
       std::to_string(cutterTypes().size()) + "\n#include \"cutters/fate.glsl\"\n";
   for (const ActiveCutter& c : active) {
     if (c.cutter->translucentLayers() > 0) glsl += "#define " + upper(c.type->name) + "_GRADED\n";
+    glsl += c.cutter->glslDefines();
     glsl += "#include \"" + c.type->glsl + "\"\n";
   }
   glsl +=

@@ -187,6 +187,14 @@ void Cutout::setVolumeUniforms(GLuint program, std::size_t index) const {
   setWedgeUniforms(program, wedgeOf(unitOfVolume_[index]));
 }
 
+int Cutout::jitterPattern() const {
+  return method_ == CutoutOptions::Method::Texture ? int(options().jitter.pattern) : 0;
+}
+
+std::string Cutout::glslDefines() const {
+  return "#define CUTOUT_JITTER_PATTERN " + std::to_string(jitterPattern()) + "\n";
+}
+
 void Cutout::setWedgeUniforms(GLuint program, const CutoutWedge* w) const {
   if (!w) {
     glProgramUniform1i(program, planeCountLocation_, 0);
@@ -198,8 +206,7 @@ void Cutout::setWedgeUniforms(GLuint program, const CutoutWedge* w) const {
                      w->axisLength);
   glProgramUniform3fv(program, axisLocation_, 1, &w->axis[0]);
   const CutoutJitter& j = options().jitter;
-  const int pattern = method_ == CutoutOptions::Method::Texture ? int(j.pattern) : 0;
-  glProgramUniform4f(program, jitterLocation_, float(pattern), j.amplitude * w->axisLength,
+  glProgramUniform4f(program, jitterLocation_, float(jitterPattern()), j.amplitude * w->axisLength,
                      j.frequency / w->axisLength, float(j.octaves));
 }
 

@@ -45,25 +45,33 @@ float cutoutTriangleWave(float t) {
   return 4.0 * abs(t - floor(t) - 0.5) - 1.0;
 }
 
-// The jitter displacement in [−1, 1] at world point x (Diepstraten03 §4.5).
+// The jitter displacement in [−1, 1] at world point x (Diepstraten03 §4.5); the pattern is
+// CUTOUT_JITTER_PATTERN (Cutout::glslDefines), an object without a wedge never asks.
 float cutoutPerturbation(vec3 x) {
   vec3 d = x - uCutoutOrigin.xyz;
   float along = dot(d, uCutoutAxis);
   float radial = length(d - along * uCutoutAxis);
   vec2 uv = vec2(along, radial) * uCutoutJitter.z;
-  int pattern = int(uCutoutJitter.x);
-  if (pattern == 1) return 0.5 * (cutoutTriangleWave(uv.x) + cutoutTriangleWave(uv.y));
-  if (pattern == 2) return cutoutFractalNoise(uv, int(uCutoutJitter.w));
-  if (pattern == 3) return 2.0 * texture(uCutoutImage, uv).r - 1.0;
+#if CUTOUT_JITTER_PATTERN == 1
+  return 0.5 * (cutoutTriangleWave(uv.x) + cutoutTriangleWave(uv.y));
+#elif CUTOUT_JITTER_PATTERN == 2
+  return cutoutFractalNoise(uv, int(uCutoutJitter.w));
+#elif CUTOUT_JITTER_PATTERN == 3
+  return 2.0 * texture(uCutoutImage, uv).r - 1.0;
+#else
   return 0.0;
+#endif
 }
 
 // Signed distance to the removed region, perturbed: > 0 removed.
 float cutoutDistance(vec3 x) {
   float d = 1e30;
   for (int i = 0; i < uCutoutPlaneCount; ++i) d = min(d, dot(uCutoutPlanes[i].xyz, x) + uCutoutPlanes[i].w);
-  if (uCutoutJitter.x == 0.0) return d;
+#if CUTOUT_JITTER_PATTERN == 0
+  return d;
+#else
   return d + uCutoutJitter.y * cutoutPerturbation(x);
+#endif
 }
 
 // kDiscard inside the wedge; a back face outside it is seen through the cut (Diepstraten03

@@ -26,6 +26,8 @@ class Cutout : public Cutter {
   CutLook look(std::size_t index) const override;
   void setObjectUniforms(GLuint program, std::size_t index) const override;
   void setVolumeUniforms(GLuint program, std::size_t index) const override;
+  // CUTOUT_JITTER_PATTERN: the jitter's pattern (0 none, 1 sawtooth, 2 noise, 3 image).
+  std::string glslDefines() const override;
   std::optional<glm::vec3> cutOutlineColor() const override { return glm::vec3(0.0f); }
 
  private:
@@ -33,6 +35,7 @@ class Cutout : public Cutter {
   // The wedge of exterior unit `unit`, or null for -1 (not exterior).
   const CutoutWedge* wedgeOf(int unit) const;
   void setWedgeUniforms(GLuint program, const CutoutWedge* wedge) const;
+  int jitterPattern() const;  // CutoutJitter::Pattern as an int; 0 under the clip-plane method
 
   FrameSetup& setup_;
   const CutoutOptions::Method method_;
