@@ -1386,3 +1386,35 @@ TEST(SceneRoles, SetRoleGivesObjectsByNameOrGroupAndVolumesByName) {
                     {"room: matches no object's name or group, nor a volume"});
   test::expectError([&] { s.setRole("(", Role::Context); }, {"("});
 }
+
+// Issue 17: a glTF node the file leaves unnamed (Assimp calls it by its place, "nodes[74]")
+// takes its mesh's name, and the place stays matchable as its alias, so scenes written for
+// the places keep working: 2CylinderEngine.glb names none of its 67 mesh nodes.
+TEST(SceneNames, UnnamedGltfNodesTakeTheirMeshNamesAndKeepTheirPlaceAsAnAlias) {
+  const std::string engine =
+      "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  Scene s = parseScene(R"({"objects": [{"name": "engine", "file": ")" + engine +
+                           R"(", "split": "nodes",
+      "overrides": [{"match": "nodes\\[(2|5)\\]", "role": "interest", "group": "pistons"}]}]})",
+                       "engine.json", kMeshes);
+  ASSERT_EQ(s.objects.size(), 67u);
+  std::vector<std::string> pistons;
+  for (const SceneObject& o : s.objects) {
+    EXPECT_EQ(o.name.find("nodes["), std::string::npos) << o.name;
+    EXPECT_EQ(o.alias.rfind("engine/nodes[", 0), 0u) << o.alias;
+    if (o.group == "pistons") pistons.push_back(o.name + " = " + o.alias);
+  }
+  std::sort(pistons.begin(), pistons.end());
+  EXPECT_EQ(pistons,
+            (std::vector<std::string>{"engine/Piston_123-844_0_Parts_1-0 = engine/nodes[5]",
+                                      "engine/Piston_123-844_0_Parts_1-0#2 = engine/nodes[2]"}));
+  // Name patterns elsewhere take either name.
+  s.setRole("engine/nodes\\[9\\]", Role::Interest);
+  s.setImportance("engine/rod_.*", 0.9f);
+  int rods = 0;
+  for (const SceneObject& o : s.objects) {
+    EXPECT_EQ(o.role == Role::Interest, o.group == "pistons" || o.alias == "engine/nodes[9]");
+    rods += o.importance == 0.9f;
+  }
+  EXPECT_EQ(rods, 2);
+}

@@ -9,7 +9,8 @@ namespace cutaway::view {
 std::vector<std::size_t> objectsNamed(const Scene& scene, const std::string& name) {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].name == name) return {i};
+    if (scene.objects[i].name == name || (!name.empty() && scene.objects[i].alias == name))
+      return {i};
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     if (!name.empty() && scene.objects[i].group == name) out.push_back(i);
   return out;

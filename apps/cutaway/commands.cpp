@@ -389,6 +389,7 @@ int info(const std::string& path) {
     for (const auto& [k, v] : o.params) std::visit([&](auto value) { params[k] = value; }, v);
     objects.push_back({{"index", i},
                        {"name", o.name},
+                       {"alias", o.alias},
                        {"source", o.source},
                        {"group", o.group},
                        {"role", roleName(o.role)},

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <regex>
 #include <sstream>
 
 #include "cutaway/core/error.hpp"
@@ -120,6 +121,13 @@ Mesh convert(const std::filesystem::path& file, const aiMesh& in, bool& normalsC
   return m;
 }
 
+// Assimp's name for a glTF node, mesh or material the file leaves unnamed: its place
+// ("nodes[74]"; a mesh split by primitive: "meshes[3]-1").
+bool isStandIn(const std::string& name) {
+  static const std::regex standIn(R"((nodes|meshes|materials)\[\d+\](-\d+)?)");
+  return std::regex_match(name, standIn);
+}
+
 // A binary glTF's header and chunk table (glTF 2.0 §4.4), checked before Assimp reads it:
 // Assimp allocates the lengths they claim (a 330-byte file claiming a 1.2 GB JSON chunk took
 // 1.2 GB and five seconds to refuse).
@@ -208,7 +216,22 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
     const glm::mat4 transform = parent * toGlm(node->mTransformation);
     if (node->mNumMeshes > 0) {
       ImportedNode out;
-      std::string name = node->mName.length ? node->mName.C_Str() : "node";
+      std::string name = node->mName.C_Str();
+      if (name.empty() || isStandIn(name)) {
+        const aiMesh* first = scene->mMeshes[node->mMeshes[0]];
+        const std::string candidates[] = {
+            first->mName.C_Str(), node->mParent ? node->mParent->mName.C_Str() : "",
+            first->mMaterialIndex < scene->mNumMaterials
+                ? scene->mMaterials[first->mMaterialIndex]->GetName().C_Str()
+                : ""};
+        for (const std::string& c : candidates)
+          if (!c.empty() && !isStandIn(c) && c != AI_DEFAULT_MATERIAL_NAME) {
+            out.id = name;
+            name = c;
+            break;
+          }
+        if (name.empty()) name = "node";
+      }
       const int seen = nameCount[name]++;
       out.name = seen ? name + "#" + std::to_string(seen + 1) : name;
       bool normalsComputed = false;

@@ -128,7 +128,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       const std::regex pattern = regex(ctx, *v, r.at("terrain"));
       terrainPattern = string(ctx, *v, r.at("terrain"));
       for (const auto& o : scene.objects)
-        if (!o.proxy && std::regex_match(o.name, pattern))
+        if (!o.proxy && o.named(pattern))
           meshes.push_back(o.mesh.get()), transforms.push_back(o.transform);
       if (meshes.empty())
         ctx.fail(r.at("terrain"), "no object name matches \"" + terrainPattern + "\"");

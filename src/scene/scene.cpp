@@ -124,6 +124,10 @@ bool SceneObject::solid() const {
   return it != params.end() ? std::get<bool>(it->second) : mesh->report.watertight;
 }
 
+bool SceneObject::named(const std::regex& pattern) const {
+  return std::regex_match(name, pattern) || (!alias.empty() && std::regex_match(alias, pattern));
+}
+
 glm::mat4 SceneObject::transformAt(float time) const {
   if (animation.empty()) return transform;
   if (time <= animation.front().time) return animation.front().trs.matrix() * transform;
@@ -195,7 +199,7 @@ std::regex namePattern(const std::string& pattern) {
 }
 
 bool matches(const SceneObject& o, const std::regex& re) {
-  return std::regex_match(o.name, re) || (!o.group.empty() && std::regex_match(o.group, re));
+  return o.named(re) || (!o.group.empty() && std::regex_match(o.group, re));
 }
 
 }  // namespace

@@ -440,7 +440,9 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
   }
   std::vector<const ImportedNode*> selected;
   for (const auto& node : *nodes)
-    if (!nodeFilter || std::regex_match(node.name, *nodeFilter)) selected.push_back(&node);
+    if (!nodeFilter || std::regex_match(node.name, *nodeFilter) ||
+        (!node.id.empty() && std::regex_match(node.id, *nodeFilter)))
+      selected.push_back(&node);
   if (selected.empty()) ctx.fail(r.at("nodes"), "no mesh node of " + file.string() + " matches");
 
   if (!split) {
@@ -461,11 +463,14 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
   for (const auto* node : selected) {
     SceneObject o = base;
     o.name = name + "/" + node->name;
+    if (!node->id.empty()) o.alias = name + "/" + node->id;
     o.source = file.string() + "#" + node->name;
     if (!colorGiven && node->color) o.material.color = *node->color;
     o.mesh = std::shared_ptr<const Mesh>(nodes, &node->mesh);  // aliasing: shares the file's nodes
     for (const auto& ov : overrides) {
-      if (!std::regex_match(node->name, ov.match)) continue;
+      if (!std::regex_match(node->name, ov.match) &&
+          (node->id.empty() || !std::regex_match(node->id, ov.match)))
+        continue;
       ObjectReader orr(ctx, ov.body, ov.pointer);
       orr.take("match");
       appearance(ctx, orr, o, true);
@@ -504,7 +509,7 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
     std::vector<glm::vec3> points;
     int matched = 0;
     for (const auto& other : objects) {
-      if (other.proxy || !std::regex_match(other.name, pattern)) continue;
+      if (other.proxy || !other.named(pattern)) continue;
       ++matched;
       for (const auto& p : other.mesh->positions)
         points.push_back(glm::vec3(other.transform * glm::vec4(p, 1.0f)));

@@ -19,7 +19,11 @@
 namespace cutaway {
 
 struct ImportedNode {
-  std::string name;                // node name, made unique within the file
+  // The node's name, made unique within the file. A node the file leaves unnamed, which
+  // Assimp calls by its place (glTF: "nodes[74]"), takes its mesh's name, else its parent's,
+  // else its material's; `id` keeps the place, which patterns match too ("" when named).
+  std::string name;
+  std::string id;
   Mesh mesh;                       // in file space
   std::optional<glm::vec3> color;  // diffuse / base colour of its first material
 };

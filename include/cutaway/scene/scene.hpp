@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <string>
 #include <variant>
 #include <vector>
@@ -81,6 +82,9 @@ enum class NetworkPart { None, ShaftOuter, ShaftInner, Joints, MeshedPipes };
 
 struct SceneObject {
   std::string name;
+  // Another name that name patterns match: a file's own place for a node it leaves unnamed
+  // ("engine/nodes[74]", ImportedNode::id), so that scenes written for it keep working; "".
+  std::string alias;
   NetworkPart networkPart = NetworkPart::None;
   int network = -1;    // index in Scene::networks of the network it belongs to
   std::string group;   // optional group name ("" = none)
@@ -106,6 +110,8 @@ struct SceneObject {
   }
   // Whether a cut shows the inside as solid material: param "solid", else watertightness.
   bool solid() const;
+  // Whether `pattern` matches its name or its alias (the whole of either).
+  bool named(const std::regex& pattern) const;
   // Bounds in world space over the whole animation (at every keyframe).
   Bounds worldBounds() const;
 };
