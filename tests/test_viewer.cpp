@@ -386,15 +386,17 @@ TEST(Viewer, WhileTheViewMovesAFrameTooSlowIsDrawnSmallerThenAtFullSize) {
                         std::to_string(kWidth) + "x" + std::to_string(kHeight) +
                         " --interactive-fps " + fps + " --script " + script.string());
   };
-  // A goal of 1 ms: no frame meets it, so the moving frame is at the coarsest size.
+  // A goal of 1 ms: no frame meets it, so the moving frame is drawn smaller.
   const Result r = session("reduced", "1000");
   ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(
       r.out, m, std::regex(R"(while the view moves: (\d+)x(\d+) \(1/(\d) of 480x360\))")))
       << r.out;
+  // ⌈√(full frame / 1 ms)⌉ within [2, 8]: 8 on llvmpipe, where the full frame takes > 49 ms.
   const int d = std::stoi(m[3]), w = std::stoi(m[1]), h = std::stoi(m[2]);
-  EXPECT_EQ(d, 8) << r.out;
+  EXPECT_GE(d, 2) << r.out;
+  EXPECT_LE(d, 8) << r.out;
   EXPECT_EQ(w, kWidth / d);
   EXPECT_EQ(h, kHeight / d);
 
