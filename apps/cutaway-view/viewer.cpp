@@ -408,9 +408,10 @@ void Viewer::execute(const ScriptCommand& c) {
       scriptMoving_ = c.on;
       break;
     case Kind::Timings: {
-      const int d = state_.shownDivisor;
-      std::printf("timings: %dx%d%s, %.1f ms;", width_ / d, height_ / d,
-                  d > 1 ? " (while moving)" : "", state_.renderMs);
+      const bool moving = state_.shownDivisor > 1;
+      std::printf("timings: %dx%d%s, %.1f ms;", moving ? state_.movingWidth : width_,
+                  moving ? state_.movingHeight : height_, moving ? " (while moving)" : "",
+                  state_.renderMs);
       for (const PassTiming& t : state_.timings) std::printf(" %s %.1f", t.name.c_str(), t.gpuMs);
       std::printf("\n");
       std::fflush(stdout);

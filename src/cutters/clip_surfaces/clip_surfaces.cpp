@@ -447,10 +447,10 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   if (g.tileListBytes < bytes) {
     g.tileList = gl::Buffer::create(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
     g.tileListBytes = bytes;
+    for (const CapTile& tile : g.capTiles)
+      glVertexArrayVertexBuffer(tile.vertexArray.id(), 1, g.tileList.id(), 0, sizeof(glm::vec2));
   }
   glNamedBufferSubData(g.tileList.id(), 0, bytes, tileList.data());
-  for (const CapTile& tile : g.capTiles)
-    glVertexArrayVertexBuffer(tile.vertexArray.id(), 1, g.tileList.id(), 0, sizeof(glm::vec2));
 
   const GLuint program = g.cap.id();
   const std::vector<ActiveCutter>& cutters = *draw.cutters;
