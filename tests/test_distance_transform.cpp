@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "cutaway/fields/distance_transform.hpp"
@@ -257,4 +258,84 @@ TEST(RasterizeSegments, IgnoresNonFiniteAndClipsHugeCoordinates) {
   rasterizeSegment(mask, {{-1e30f, 4.5f}, {1e30f, 4.5f}});
   for (int x = 0; x < 10; ++x) EXPECT_TRUE(mask.at(x, 4)) << x;
   EXPECT_EQ(std::count(mask.seeded.begin(), mask.seeded.end(), 1), 10);
+}
+
+// ---- the distance to the segments themselves (the smooth opening) -----------------------
+
+// Worked by hand: Euclidean to the interior and to an end; L1 to a slanted segment is the
+// vertical or horizontal step to it, whichever is shorter (the dual norm of L1 is L∞:
+// |n·p − c| / max(|nₓ|, |n_y|)); on an axis-aligned segment both metrics agree.
+TEST(SegmentDistance, ClosedForms) {
+  const GridSegment slanted{{0.0f, 0.0f}, {100.0f, 50.0f}};  // y = x / 2
+  EXPECT_NEAR(segmentDistance({50.0f, 40.0f}, slanted, Metric::Euclidean), 15.0 / std::sqrt(1.25),
+              1e-9);
+  EXPECT_NEAR(segmentDistance({50.0f, 40.0f}, slanted, Metric::L1), 15.0, 1e-9);  // straight down
+  EXPECT_NEAR(segmentDistance({80.0f, 0.0f}, slanted, Metric::L1), 40.0, 1e-9);   // straight up
+  EXPECT_NEAR(segmentDistance({-3.0f, -4.0f}, slanted, Metric::Euclidean), 5.0, 1e-9);  // end a
+  EXPECT_NEAR(segmentDistance({-3.0f, -4.0f}, slanted, Metric::L1), 7.0, 1e-9);
+  EXPECT_NEAR(segmentDistance({103.0f, 54.0f}, slanted, Metric::L1), 7.0, 1e-9);  // end b
+  const GridSegment diagonal{{-10.0f, -10.0f}, {10.0f, 10.0f}};
+  EXPECT_NEAR(segmentDistance({0.0f, 2.0f}, diagonal, Metric::L1), 2.0, 1e-9);
+  EXPECT_NEAR(segmentDistance({0.0f, 2.0f}, diagonal, Metric::Euclidean), std::sqrt(2.0), 1e-6);
+  const GridSegment axis{{2.0f, 5.0f}, {2.0f, 9.0f}};
+  for (const Metric m : {Metric::L1, Metric::Euclidean})
+    EXPECT_NEAR(segmentDistance({6.0f, 7.5f}, axis, m), 4.0, 1e-9);
+  const GridSegment point{{1.0f, 1.0f}, {1.0f, 1.0f}};
+  EXPECT_NEAR(segmentDistance({4.0f, 5.0f}, point, Metric::Euclidean), 5.0, 1e-9);
+  EXPECT_NEAR(segmentDistance({4.0f, 5.0f}, point, Metric::L1), 7.0, 1e-9);
+}
+
+// Random networks, partly outside the grid, against every pixel measured to every segment.
+// Every value is a distance to some segment, so never below brute force; within `reach` it
+// is brute force's, exactly under L1 and within 0.2 pixel under the Euclidean metric, where
+// near two crossing segments a third's nearest pixels can be a sliver that no neighbour hands
+// on (measured worst over 4000 trials of up to 8 segments: 0.090; over 2000 of up to 30
+// long segments crossing in under 90 × 90 pixels: 0.142).
+TEST(SegmentDistance, FieldMatchesBruteForceOnRandomNetworks) {
+  std::mt19937 rng(1980);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (const auto& [segmentsAtMost, trials] : {std::pair{8, 400}, {30, 200}})
+    for (const Metric metric : {Metric::L1, Metric::Euclidean}) {
+      const double tolerance = metric == Metric::L1 ? 1e-4 : 0.2;
+      double worst = 0.0;
+      for (int trial = 0; trial < trials; ++trial) {
+        const Size size{1 + int(rng() % 90u), 1 + int(rng() % 90u)};
+        const float reach = 40.0f * u(rng);
+        std::vector<GridSegment> segments;
+        const int count = 1 + int(rng() % unsigned(segmentsAtMost));
+        for (int i = 0; i < count; ++i) {
+          auto point = [&] {
+            return GridPoint{-30.0f + (size.width + 60) * u(rng),
+                             -30.0f + (size.height + 60) * u(rng)};
+          };
+          const GridPoint a = point();
+          segments.push_back({a, u(rng) < 0.1f ? a : point()});
+        }
+        const DistanceField fast =
+            segmentDistanceField(size.width, size.height, segments, metric, reach);
+        const DistanceField brute =
+            bruteForceSegmentDistance(size.width, size.height, segments, metric);
+        ASSERT_EQ(fast.distance.size(), brute.distance.size());
+        for (int y = 0; y < size.height; ++y)
+          for (int x = 0; x < size.width; ++x) {
+            const double b = brute.at(x, y), f = fast.at(x, y);
+            ASSERT_GE(f, b - 1e-4) << "trial " << trial << ": " << x << ", " << y;
+            if (b <= reach) worst = std::max(worst, f - b);
+          }
+      }
+      EXPECT_LE(worst, tolerance) << (metric == Metric::L1 ? "L1" : "Euclidean") << ", up to "
+                                  << segmentsAtMost << " segments";
+    }
+}
+
+// Empty grids, no segments, and a reach of 0 (only what is drawn inside counts).
+TEST(SegmentDistance, EdgeCases) {
+  const std::vector<GridSegment> none, one{{{-5.0f, 2.5f}, {-1.0f, 2.5f}}};
+  EXPECT_TRUE(segmentDistanceField(0, 7, one, Metric::L1, 3.0f).distance.empty());
+  const DistanceField empty = segmentDistanceField(4, 3, none, Metric::Euclidean, 10.0f);
+  for (const float d : empty.distance) EXPECT_EQ(d, std::numeric_limits<float>::infinity());
+  // The segment ends 1 pixel left of the grid: reach 2 finds it, reach 0 does not.
+  EXPECT_FLOAT_EQ(segmentDistanceField(4, 3, one, Metric::L1, 2.0f).at(0, 2), 1.5f);
+  EXPECT_EQ(segmentDistanceField(4, 3, one, Metric::L1, 0.0f).at(0, 2),
+            std::numeric_limits<float>::infinity());
 }

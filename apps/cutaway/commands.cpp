@@ -479,6 +479,7 @@ int info(const std::string& path) {
         {"nodes", nodes},
         {"resolution", t->resolution},
         {"metric", t->metric == TerrainOpeningOptions::Metric::L1 ? "l1" : "euclidean"},
+        {"rough", t->rough},
         {"w", t->w},
         {"s", t->s},
         {"cameraDistance", t->cameraDistance}};

@@ -1,9 +1,9 @@
 // cutaway/cutters/terrain_opening.hpp — the terrain opened above a pipe network (Konev et al.
-// 2018, §4): the network drawn into a grid aligned with the terrain, a distance transform
-// (L1 by two 1-D passes, the paper's zig-zag, or exact Euclidean) gives D_p, the distance to
-// the closest pipe; each terrain fragment compares it with a threshold t that shrinks with
-// the camera distance (eq. 1), and draws terrain, an artificial thickness, or nothing
-// (eqs. 2–3). Mirrored in src/cutters/terrain_opening/terrain_opening.glsl.
+// 2018, §4): over a grid aligned with the terrain, D_p, the distance to the closest pipe (L1
+// or Euclidean; to the lines themselves and interpolated, or, rough, between the texels the
+// lines are drawn into, as the paper's texture); each terrain fragment compares it with a
+// threshold t that shrinks with the camera distance (eq. 1), and draws terrain, an artificial
+// thickness, or nothing (eqs. 2–3). Mirrored in src/cutters/terrain_opening/terrain_opening.glsl.
 //
 //   scene.cutters.enable<cutaway::TerrainOpeningOptions>() = {.terrain = "ground", .lines = {...}};
 #pragma once
@@ -29,6 +29,10 @@ struct TerrainOpeningOptions {
   std::vector<std::vector<glm::vec2>> lines;
   int resolution = 1024;  // T: texels per side of the distance texture
   enum class Metric { L1, Euclidean } metric = Metric::L1;
+  // Konev18's texture as the paper builds it: the network drawn into texels, distances
+  // between texel centres, the nearest texel looked up (its "rough cutaway", zig-zag edges
+  // of a texel's size); false: distances to the polylines themselves, bilinear (smooth).
+  bool rough = false;
   float w = 0.015f;            // eq. 1: width of the opening
   float s = 10.0f;             // eq. 1: size; the opening closes at camera distance s²
   bool cameraDistance = true;  // false: t = w·s everywhere
@@ -38,13 +42,18 @@ inline constexpr glm::vec3 kSoilColor{0.58f, 0.43f, 0.3f};
 const OptionsSchema& terrainOpeningSchema();
 
 // D_p over the terrain's extent: texel (i, j) covers x ∈ min.x + [i, i+1)·size.x/T and
-// z ∈ min.y + [j, j+1)·size.y/T; values min(distance in texels, 255) / 255, as the paper's
-// 8-bit texture (0 on a pipe, 1 from 255 texels on).
+// z ∈ min.y + [j, j+1)·size.y/T; values min(distance in texels, 255) / 255, scaled as the
+// paper's 8-bit texture (0 on a pipe, 1 from 255 texels on) but kept in float. Rough: the
+// distance from the texel's centre to the nearest drawn texel's; else to the nearest
+// polyline itself.
 struct TerrainField {
   glm::vec2 min{0.0f}, size{1.0f};  // world x, z
   int resolution = 0;
+  bool nearest = false;          // rough: look up the nearest texel, else bilinear
   std::vector<float> distance;   // resolution², rows of increasing z
-  float at(glm::vec2 uv) const;  // nearest texel at uv ∈ [0,1]² (clamped)
+  // D_p at uv ∈ [0,1]²: the texel uv falls in, or bilinear between the four texel centres
+  // around it (clamped to the edge texels).
+  float at(glm::vec2 uv) const;
 };
 TerrainField terrainField(const TerrainOpeningOptions& options, const Bounds& terrainBounds);
 

@@ -8,10 +8,26 @@
 
 namespace cutaway {
 
+namespace {
+constexpr float kFar = 255.0f;  // texels: D_p = 1 from here on, the paper's 8-bit white
+}  // namespace
+
 float TerrainField::at(glm::vec2 uv) const {
-  const int i = std::clamp(int(std::floor(uv.x * float(resolution))), 0, resolution - 1);
-  const int j = std::clamp(int(std::floor(uv.y * float(resolution))), 0, resolution - 1);
-  return distance[std::size_t(j) * std::size_t(resolution) + std::size_t(i)];
+  const auto texel = [&](int i, int j) {
+    i = std::clamp(i, 0, resolution - 1), j = std::clamp(j, 0, resolution - 1);
+    return distance[std::size_t(j) * std::size_t(resolution) + std::size_t(i)];
+  };
+  // Clamped before the conversion to int, which would overflow far outside; the clamp
+  // changes no value, the edge texels extend beyond the grid.
+  const float n = float(resolution);
+  const glm::vec2 g = glm::clamp(uv * n, glm::vec2(-1.0f), glm::vec2(n + 1.0f));
+  if (nearest) return texel(int(std::floor(g.x)), int(std::floor(g.y)));
+  const glm::vec2 c = g - 0.5f;  // texel centres at (i + ½)/T
+  const glm::vec2 base = glm::floor(c), f = c - base;
+  const int i = int(base.x), j = int(base.y);
+  const float bottom = texel(i, j) + f.x * (texel(i + 1, j) - texel(i, j));
+  const float top = texel(i, j + 1) + f.x * (texel(i + 1, j + 1) - texel(i, j + 1));
+  return bottom + f.y * (top - bottom);
 }
 
 TerrainField terrainField(const TerrainOpeningOptions& options, const Bounds& terrain) {
@@ -19,7 +35,7 @@ TerrainField terrainField(const TerrainOpeningOptions& options, const Bounds& te
   f.min = {terrain.min.x, terrain.min.z};
   f.size = glm::max(glm::vec2(terrain.max.x, terrain.max.z) - f.min, glm::vec2(1e-6f));
   f.resolution = options.resolution;
-  // The network drawn into the grid (Konev18: "drawn with black lines onto a white texture").
+  f.nearest = options.rough;
   std::vector<fields::GridSegment> segments;
   const float t = float(f.resolution);
   for (const auto& line : options.lines)
@@ -27,13 +43,20 @@ TerrainField terrainField(const TerrainOpeningOptions& options, const Bounds& te
       const glm::vec2 a = (line[k - 1] - f.min) / f.size * t, b = (line[k] - f.min) / f.size * t;
       segments.push_back({{a.x, a.y}, {b.x, b.y}});
     }
-  const fields::SeedMask seeds = fields::rasterizeSegments(f.resolution, f.resolution, segments);
-  const fields::DistanceField d = options.metric == TerrainOpeningOptions::Metric::L1
-                                      ? fields::l1DistanceTransform(seeds)
-                                      : fields::euclideanDistanceTransform(seeds);
+  const bool l1 = options.metric == TerrainOpeningOptions::Metric::L1;
+  fields::DistanceField d;
+  if (options.rough) {
+    // The network drawn into the grid (Konev18: "drawn with black lines onto a white
+    // texture"), then the distance between texel centres.
+    const fields::SeedMask seeds = fields::rasterizeSegments(f.resolution, f.resolution, segments);
+    d = l1 ? fields::l1DistanceTransform(seeds) : fields::euclideanDistanceTransform(seeds);
+  } else {
+    d = fields::segmentDistanceField(f.resolution, f.resolution, segments,
+                                     l1 ? fields::Metric::L1 : fields::Metric::Euclidean, kFar);
+  }
   f.distance.resize(d.distance.size());
   for (std::size_t i = 0; i < d.distance.size(); ++i)
-    f.distance[i] = std::min(d.distance[i], 255.0f) / 255.0f;
+    f.distance[i] = std::min(d.distance[i], kFar) / kFar;
   return f;
 }
 

@@ -117,6 +117,10 @@ void TerrainOpening::setProgramUniforms(GLuint program) const {
                      float(field_.resolution));
 }
 
+std::string TerrainOpening::glslDefines() const {
+  return std::string("#define TERRAIN_NEAREST ") + (field_.nearest ? "1" : "0") + "\n";
+}
+
 CutLook TerrainOpening::look(std::size_t) const {
   // Eq. 3's artificial thickness is shown as the cut surface.
   return {.cutSurface = true, .cutColor = options().thicknessColor.value_or(kSoilColor)};
@@ -128,8 +132,11 @@ std::vector<Aov> TerrainOpening::extraAovs() const {
   image.data = field_.distance;
   image.flipVertically();  // rows of increasing z stored first; AOVs run top to bottom
   return {{"terrainDistance",
-           "D_p (Konev18 §4): distance from texel to the closest pipe, min(texels, 255) / 255, "
-           "over the terrain's x (columns) and z (rows, decreasing downwards) extent",
+           std::string("D_p (Konev18 §4): distance from the texel's centre to the closest ") +
+               (field_.nearest ? "drawn pipe texel's centre" : "pipe polyline") +
+               ", min(texels, 255) / 255, over the terrain's x (columns) and z (rows, "
+               "decreasing downwards) extent; sampled " +
+               (field_.nearest ? "at the nearest texel" : "bilinearly between texel centres"),
            std::move(image)}};
 }
 

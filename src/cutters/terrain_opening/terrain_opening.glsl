@@ -9,11 +9,26 @@ layout(binding = UNIT_TERRAIN_DISTANCE) uniform sampler2D uTerrainDistance;  // 
 layout(binding = IMAGE_TERRAIN_THRESHOLD, rg32f) uniform writeonly image2D uTerrainThreshold;
 layout(binding = IMAGE_TERRAIN_CLASS, r32ui) uniform coherent uimage2D uTerrainClass;
 
-// Nearest texel, as TerrainField::at.
+float terrainTexel(ivec2 texel) {
+  return texelFetch(uTerrainDistance, clamp(texel, ivec2(0), textureSize(uTerrainDistance, 0) - 1), 0).r;
+}
+
+// As TerrainField::at: the nearest texel when rough (TERRAIN_NEAREST, TerrainOpening::
+// glslDefines), else bilinear between texel centres, weighted in float as on the CPU rather
+// than by the texture unit's coarser fixed-point weights.
 float terrainDistanceAt(vec2 uv) {
-  ivec2 size = textureSize(uTerrainDistance, 0);
-  ivec2 texel = clamp(ivec2(floor(uv * vec2(size))), ivec2(0), size - 1);
-  return texelFetch(uTerrainDistance, texel, 0).r;
+  float n = float(textureSize(uTerrainDistance, 0).x);
+  vec2 g = clamp(uv * n, vec2(-1.0), vec2(n + 1.0));
+#if TERRAIN_NEAREST
+  return terrainTexel(ivec2(floor(g)));
+#else
+  vec2 c = g - 0.5;
+  vec2 base = floor(c), f = c - base;
+  ivec2 i = ivec2(base);
+  float bottom = terrainTexel(i) + f.x * (terrainTexel(i + ivec2(1, 0)) - terrainTexel(i));
+  float top = terrainTexel(i + ivec2(0, 1)) + f.x * (terrainTexel(i + ivec2(1, 1)) - terrainTexel(i + ivec2(0, 1)));
+  return bottom + f.y * (top - bottom);
+#endif
 }
 
 int terrainFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {

@@ -3,6 +3,7 @@
 // terrain_opening.glsl.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "cutaway/cutters/terrain_opening.hpp"
@@ -23,6 +24,8 @@ class TerrainOpening : public Cutter {
   CutLook look(std::size_t index) const override;
   // The distance texture.
   std::vector<Aov> extraAovs() const override;
+  // TERRAIN_NEAREST: the rough texture's nearest-texel lookup, else bilinear.
+  std::string glslDefines() const override;
 
  private:
   const TerrainOpeningOptions& options() const {

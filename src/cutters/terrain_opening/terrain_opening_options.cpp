@@ -68,22 +68,34 @@ const OptionsSchema& terrainOpeningSchema() {
                  {.label = "cut buildings",
                   .doc = "Open the buildings by the same rule, or leave them whole."})
           .number("resolution", &O::resolution, 16, 8192,
-                  {.label = "texture size T", .doc = "Texels per side of the distance texture.",
+                  {.label = "texture size T",
+                   .doc = "Texels per side of the distance texture.",
                    .sliderMax = 4096})
-          .choice("metric", &O::metric, {{"l1", O::Metric::L1}, {"euclidean", O::Metric::Euclidean}},
-                  {.doc = "L1 (zig-zag edges, the paper's default) or exact Euclidean distance."})
+          .choice("metric", &O::metric,
+                  {{"l1", O::Metric::L1}, {"euclidean", O::Metric::Euclidean}},
+                  {.doc = "L1 (the paper's default; diamond-shaped ends) or Euclidean distance."})
+          .value("rough", &O::rough,
+                 {.doc = "The paper's texture as built: the network drawn into texels, distances "
+                         "between texel centres, the nearest texel looked up (zig-zag edges a "
+                         "texel wide, its \"rough cutaway\"); off: distances to the lines "
+                         "themselves, interpolated (smooth at any zoom)."})
           .number("w", &O::w, 0, 1e6,
-                  {.label = "width w", .doc = "Eq. 1's width of the opening.", .live = true,
+                  {.label = "width w",
+                   .doc = "Eq. 1's width of the opening.",
+                   .live = true,
                    .sliderMax = 0.1})
           .number("s", &O::s, 1e-6, 1e6,
-                  {.label = "size s", .doc = "Eq. 1's size: the opening closes at camera distance s².",
-                   .live = true, .sliderMax = 100})
+                  {.label = "size s",
+                   .doc = "Eq. 1's size: the opening closes at camera distance s².",
+                   .live = true,
+                   .sliderMax = 100})
           .value("cameraDistance", &O::cameraDistance,
                  {.label = "camera distance",
                   .doc = "Shrink the opening with the camera distance (eq. 1); off: t = w·s.",
                   .live = true})
           .optional("thicknessColor", &O::thicknessColor, OptionSpec::Type::Color, 0, 1, kSoilColor,
-                    {.label = "thickness colour", .doc = "Colour of the artificial thickness (eq. 3).",
+                    {.label = "thickness colour",
+                     .doc = "Colour of the artificial thickness (eq. 3).",
                      .live = true})
           .check([](const Context& ctx, ObjectReader& r, O& o) {
             (void)regex(ctx, o.terrain, r.at("terrain"));
