@@ -20,11 +20,13 @@ namespace {
 
 const std::string kSource = CUTAWAY_SOURCE_DIR;
 
-// A 100 × 100 ground over a floor 2 units below, two crossing "pipes" and a bend. `metric`:
-// "l1" or "euclidean", "-rough" appended for the paper's texture as built.
-std::string groundScene(std::string metric, bool cut) {
-  const bool rough = metric.ends_with("-rough");
-  if (rough) metric.resize(metric.size() - 6);
+// A 100 × 100 ground over a floor 2 units below, two crossing "pipes" and a bend. `variant`:
+// "l1" or "euclidean", then "-rough" for the paper's texture as built, "-peek" for eq. 3's
+// one-texel peek instead of the trench wall.
+std::string groundScene(const std::string& variant, bool cut) {
+  const std::string metric = variant.substr(0, variant.find('-'));
+  const bool rough = variant.find("-rough") != std::string::npos;
+  const bool peek = variant.find("-peek") != std::string::npos;
   return R"({"resolution": [128, 96], "samples": 1, "style": {"name": "gooch", "lines": false},
     "camera": {"eye": [50, 14, 8], "target": [50, 0, -40], "fov": 50, "near": 0.5, "far": 300},
     "objects": [
@@ -35,8 +37,8 @@ std::string groundScene(std::string metric, bool cut) {
          R"(/examples/data/tile.obj", "transform": {"translate": [0, -2, 0], "scale": [100, 1, 100]}}]
     )" +
          (cut ? R"(, "cutters": {"terrainOpening": {"terrain": "ground", "resolution": 256, "metric": ")" +
-                    metric + R"(", "rough": )" + (rough ? "true" : "false") +
-                    R"(, "w": 0.02, "s": 8,
+                    metric + R"(", "rough": )" + (rough ? "true" : "false") + R"(, "wall": )" +
+                    (peek ? "0" : "1") + R"(, "w": 0.02, "s": 8,
         "lines": [[[10, -30], [90, -40]], [[50, -5], [52, -90]], [[20, -70], [40, -60], [45, -80]]]}})"
               : std::string()) +
          "}";
@@ -53,10 +55,6 @@ TerrainField groundField(const Scene& cut) {
   return terrainField(*cut.cutters.find<TerrainOpeningOptions>(), terrain);
 }
 
-glm::vec3 viewForward(const Camera& camera) {
-  return glm::normalize(camera.target - camera.eye);
-}
-
 }  // namespace
 
 class TerrainOpeningGpuCpu : public ::testing::TestWithParam<std::string> {};
@@ -70,21 +68,34 @@ TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
   const Camera camera = cut.resolvedCamera();
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position"), &mask = aov(b, "cutMask"),
-                   &threshold = aov(b, "terrainThreshold"), &fate = aov(b, "terrainClass");
-  int counts[3] = {0, 0, 0}, wrong = 0, ground = 0;
+                   &threshold = aov(b, "terrainThreshold"), &fate = aov(b, "terrainClass"),
+                   &normal = aov(b, "normal");
+  const float kFloor = -2.0f;
+  int counts[3] = {0, 0, 0}, wrong = 0, ground = 0, walls = 0, hidden = 0;
   for (int y = 0; y < plainId.height; ++y)
     for (int x = 0; x < plainId.width; ++x) {
       if (plainId.at(x, y)[0] != 0.0f) continue;
       ++ground;
       const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
-      const TerrainFate f = terrainFate(field, o, p, camera.eye, viewForward(camera));
+      TerrainWall wall;
+      const TerrainFate f = terrainFate(field, o, p, camera.eye, p - camera.eye, &wall);
       ++counts[int(f)];
-      const bool same =
-          id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-3f;
+      const glm::vec3 shown = glm::make_vec3(pos.at(x, y));
+      const bool same = id.at(x, y)[0] == 0.0f && glm::length(shown - p) < 1e-3f;
       const bool thick = mask.at(x, y)[0] == 1.0f;
-      const bool ok = f == TerrainFate::Terrain     ? same && !thick && fate.at(x, y)[0] == 1.0f
-                      : f == TerrainFate::Thickness ? id.at(x, y)[0] == 0.0f && thick
-                                                    : !same && fate.at(x, y)[0] == 3.0f;
+      bool ok = f == TerrainFate::Terrain ? same && !thick && fate.at(x, y)[0] == 1.0f
+                                          : !same && fate.at(x, y)[0] == 3.0f;
+      if (f == TerrainFate::Thickness) {
+        // The wall where the ray meets it, at its own depth: behind the floor if deeper.
+        ++walls;
+        if (wall.point.y < kFloor) {
+          hidden += ok = id.at(x, y)[0] == 1.0f && fate.at(x, y)[0] == 2.0f;
+        } else {
+          const glm::vec3 n = glm::make_vec3(normal.at(x, y));
+          ok = id.at(x, y)[0] == 0.0f && thick && glm::length(shown - wall.point) < 0.02f &&
+               glm::dot(n, wall.normal) > std::cos(glm::radians(2.0f));
+        }
+      }
       wrong += !ok;
       // Eq. 1 at the pixel: d_c from the eye, t from d_c.
       EXPECT_NEAR(threshold.at(x, y)[0], glm::length(camera.eye - p), 1e-2f);
@@ -93,12 +104,17 @@ TEST_P(TerrainOpeningGpuCpu, FatesMatchEquations1To3) {
   EXPECT_GT(counts[int(TerrainFate::Terrain)], 1000);
   EXPECT_GT(counts[int(TerrainFate::Discard)], 200);
   EXPECT_GT(counts[int(TerrainFate::Thickness)], 5);
+  if (o.wall > 0.0f) {  // walls both in front of the floor and behind it
+    EXPECT_GT(hidden, 20) << walls;
+    EXPECT_GT(walls - hidden, 20) << walls;
+  }
   // Points where D_p is t to rounding (or on a texel border, rough) may go either way.
   EXPECT_LE(wrong, ground / 200) << wrong << " of " << ground;
 }
 
 INSTANTIATE_TEST_SUITE_P(Metrics, TerrainOpeningGpuCpu,
-                         ::testing::Values("l1", "euclidean", "l1-rough", "euclidean-rough"),
+                         ::testing::Values("l1", "euclidean", "l1-rough", "euclidean-rough",
+                                           "l1-peek", "euclidean-rough-peek"),
                          [](const auto& info) {
                            std::string name = info.param;
                            std::replace(name.begin(), name.end(), '-', '_');
@@ -111,7 +127,7 @@ INSTANTIATE_TEST_SUITE_P(Metrics, TerrainOpeningGpuCpu,
 // space (x over 20, z over 10) and shows the thickness where the texel there exceeds t.
 TEST(TerrainOpening, EquationsOneToThreeByHand) {
   TerrainOpeningOptions o;
-  o.w = 0.1f, o.s = 2.0f, o.cameraDistance = true;
+  o.w = 0.1f, o.s = 2.0f, o.cameraDistance = true, o.wall = 0.0f;
   EXPECT_FLOAT_EQ(openingThreshold(o, 1.0f), 0.1f * (4.0f - 1.0f) / 2.0f);  // 0.15
   EXPECT_FLOAT_EQ(openingThreshold(o, 4.0f), 0.0f);                         // closed at d_c = s²
   o.cameraDistance = false;
@@ -179,7 +195,7 @@ TEST(TerrainOpening, BuildingsAreOpenedByTheTerrainsRuleOnlyWhenAsked) {
       const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
       const bool same =
           id.at(x, y)[0] == house && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-3f;
-      const TerrainFate f = terrainFate(field, o, p, camera.eye, viewForward(camera));
+      const TerrainFate f = terrainFate(field, o, p, camera.eye, p - camera.eye);
       if (f == TerrainFate::Discard) ++opened, wrong += same;
       if (f == TerrainFate::Terrain) wrong += !same;
       touched += wholeId.at(x, y)[0] != house ||

@@ -84,6 +84,10 @@ class Cutter {
   // the renderer), written before its file in cutters/composition.glsl: llvmpipe runs both
   // sides of a branch on a uniform.
   virtual std::string glslDefines() const { return {}; }
+  // Whether the cut position its GLSL gives lies on the view ray behind the fragment (the
+  // terrain opening's trench wall): the composition then makes that point's window depth the
+  // fragment's (gCutFragDepth, written by mesh.frag), so that what stands in front of it wins.
+  virtual bool cutSurfaceBehind() const { return false; }
 
   // Whether its GLSL decides the fragments of scene object `index` (a mesh object): by its
   // own rule, and only if the object allows it (SceneObject::mayBeCutBy its key).

@@ -36,6 +36,10 @@ struct TerrainOpeningOptions {
   float w = 0.015f;            // eq. 1: width of the opening
   float s = 10.0f;             // eq. 1: size; the opening closes at camera distance s²
   bool cameraDistance = true;  // false: t = w·s everywhere
+  // Beyond the paper: the artificial thickness as a trench wall this many half-widths of the
+  // opening (t · 255 texels) deep, where the view ray continued below the ground meets it;
+  // 0: eq. 3's peek of one texel.
+  float wall = 1.0f;
   std::optional<glm::vec3> thicknessColor;  // default kSoilColor
 };
 inline constexpr glm::vec3 kSoilColor{0.58f, 0.43f, 0.3f};
@@ -61,10 +65,20 @@ TerrainField terrainField(const TerrainOpeningOptions& options, const Bounds& te
 float openingThreshold(const TerrainOpeningOptions& options, float cameraDistance);
 
 enum class TerrainFate { Terrain, Thickness, Discard };
-// Eqs. 2–3 for a terrain point p seen from `eye` looking along `forward`: terrain where
-// D_p(P_uv) ≥ t; else, one texel further along the view's horizontal direction
-// (ε = √2/T), thickness where D_p > t there, else discard.
+// Eqs. 2–3 for a terrain point p seen from `eye` (d_c = |eye − p|) along the view ray `ray`
+// (p − eye, or the view direction when orthographic): terrain where D_p(P_uv) ≥ t. Else, with
+// `wall` 0, eq. 3's peek one texel further along the ray's horizontal direction (ε = √2/T in
+// texture space): thickness where D_p > t there. With `wall` > 0, the ray continued below the
+// ground: thickness where, within the horizontal distance it covers while descending the
+// wall's depth, it reaches D_p > t (the first such point, to 1/64 of the marching step, is the
+// wall point); else discard. `wall`, if given, receives the thickness as shown: its world
+// position, and its normal against D_p's gradient (central differences a texel apart, per
+// world unit; where D_p is flat, against the ray's horizontal direction; else up).
+struct TerrainWall {
+  glm::vec3 point, normal;
+};
 TerrainFate terrainFate(const TerrainField& field, const TerrainOpeningOptions& options,
-                        const glm::vec3& p, const glm::vec3& eye, const glm::vec3& forward);
+                        const glm::vec3& p, const glm::vec3& eye, const glm::vec3& ray,
+                        TerrainWall* wall = nullptr);
 
 }  // namespace cutaway

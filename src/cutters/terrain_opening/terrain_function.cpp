@@ -66,16 +66,56 @@ float openingThreshold(const TerrainOpeningOptions& o, float cameraDistance) {
 }
 
 TerrainFate terrainFate(const TerrainField& field, const TerrainOpeningOptions& options,
-                        const glm::vec3& p, const glm::vec3& eye, const glm::vec3& forward) {
+                        const glm::vec3& p, const glm::vec3& eye, const glm::vec3& ray,
+                        TerrainWall* wall) {
   const glm::vec2 uv = (glm::vec2(p.x, p.z) - field.min) / field.size;
   const float t = openingThreshold(options, glm::length(eye - p));
   if (field.at(uv) >= t) return TerrainFate::Terrain;  // eq. 2
-  // The view's horizontal direction in texture space (y, the height, is ignored).
-  glm::vec2 v(forward.x / field.size.x, forward.z / field.size.y);
-  const float len = glm::length(v);
-  v = len > 0.0f ? v / len : glm::vec2(0.0f);
-  const float epsilon = std::sqrt(2.0f) / float(field.resolution);
-  return field.at(uv + v * epsilon) > t ? TerrainFate::Thickness : TerrainFate::Discard;  // eq. 3
+  const float across = glm::length(glm::vec2(ray.x, ray.z));
+  // The ray's horizontal direction in the world, and per world unit in texture space.
+  const glm::vec2 along = across > 0.0f ? glm::vec2(ray.x, ray.z) / across : glm::vec2(0.0f);
+  const glm::vec2 perUnit = along / field.size;
+  const float n = float(field.resolution);
+  float found = -1.0f;  // world distance along `along` to the thickness
+  if (options.wall == 0.0f) {
+    // Eq. 3's peek, ε = √2/T along the view's horizontal direction in texture space.
+    const float len = glm::length(perUnit);
+    const glm::vec2 v = len > 0.0f ? perUnit / len : glm::vec2(0.0f);
+    if (field.at(uv + v * (std::sqrt(2.0f) / n)) > t) found = 0.0f;
+  } else if (ray.y < 0.0f && across > 0.0f) {
+    // The wall H = wall · t · 255 texels deep; the ray covers `reach` horizontally meanwhile.
+    const float texel = std::sqrt(field.size.x * field.size.y) / n;
+    const float reach = options.wall * t * kFar * texel * across / -ray.y;
+    const int steps = int(std::clamp(std::ceil(reach / texel), 1.0f, 64.0f));
+    const float step = reach / float(steps);
+    float below = 0.0f;
+    for (int k = 1; k <= steps && found < 0.0f; ++k) {
+      const float d = float(k) * step;
+      if (field.at(uv + perUnit * d) > t)
+        found = d;
+      else
+        below = d;
+    }
+    for (int k = 0; k < 6 && found > 0.0f; ++k) {  // bisection: the crossing within a step
+      const float mid = 0.5f * (below + found);
+      (field.at(uv + perUnit * mid) > t ? found : below) = mid;
+    }
+  }
+  if (found < 0.0f) return TerrainFate::Discard;  // eq. 3
+  if (wall) {
+    wall->point = found > 0.0f ? p + ray * (found / across) : p;
+    // Beyond the paper (its §4 suggestion): lit as a wall facing the closest pipe.
+    const glm::vec2 at = uv + perUnit * found;
+    const float texel = 1.0f / n;
+    const glm::vec2 g =
+        glm::vec2(field.at(at + glm::vec2(texel, 0.0f)) - field.at(at - glm::vec2(texel, 0.0f)),
+                  field.at(at + glm::vec2(0.0f, texel)) - field.at(at - glm::vec2(0.0f, texel))) /
+        field.size;
+    wall->normal = glm::dot(g, g) > 0.0f ? glm::normalize(glm::vec3(-g.x, 0.0f, -g.y))
+                                         : -glm::vec3(along.x, 0.0f, along.y);
+    if (glm::dot(wall->normal, wall->normal) == 0.0f) wall->normal = {0.0f, 1.0f, 0.0f};
+  }
+  return TerrainFate::Thickness;
 }
 
 }  // namespace cutaway

@@ -56,7 +56,8 @@ TerrainOpening::TerrainOpening(FrameSetup& setup)
       thresholdImage_(setup.bindings.imageUnit("TERRAIN_THRESHOLD")),
       classImage_(setup.bindings.imageUnit("TERRAIN_CLASS")),
       frameLocation_(setup.bindings.uniformLocation("TERRAIN_FRAME")),
-      paramsLocation_(setup.bindings.uniformLocation("TERRAIN_PARAMS")) {
+      paramsLocation_(setup.bindings.uniformLocation("TERRAIN_PARAMS")),
+      wallLocation_(setup.bindings.uniformLocation("TERRAIN_WALL")) {
   const TerrainOpeningOptions& options = this->options();
   const Scene& scene = setup.scene;
   const std::regex terrain(options.terrain);
@@ -115,6 +116,7 @@ void TerrainOpening::setProgramUniforms(GLuint program) const {
                      1.0f / field_.size.y);
   glProgramUniform4f(program, paramsLocation_, o.w, o.s, o.cameraDistance ? 1.0f : 0.0f,
                      float(field_.resolution));
+  glProgramUniform1f(program, wallLocation_, o.wall);
 }
 
 std::string TerrainOpening::glslDefines() const {

@@ -26,6 +26,8 @@ class TerrainOpening : public Cutter {
   std::vector<Aov> extraAovs() const override;
   // TERRAIN_NEAREST: the rough texture's nearest-texel lookup, else bilinear.
   std::string glslDefines() const override;
+  // The trench wall lies behind the ground's fragment.
+  bool cutSurfaceBehind() const override { return true; }
 
  private:
   const TerrainOpeningOptions& options() const {
@@ -37,7 +39,7 @@ class TerrainOpening : public Cutter {
   TerrainField field_;
   gl::Texture texture_;
   GLuint distanceUnit_, thresholdImage_, classImage_;
-  GLint frameLocation_, paramsLocation_;
+  GLint frameLocation_, paramsLocation_, wallLocation_;
   Target threshold_, class_;
 };
 

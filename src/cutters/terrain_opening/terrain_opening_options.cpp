@@ -89,6 +89,12 @@ const OptionsSchema& terrainOpeningSchema() {
                    .doc = "Eq. 1's size: the opening closes at camera distance s².",
                    .live = true,
                    .sliderMax = 100})
+          .number("wall", &O::wall, 0, 1000,
+                  {.label = "wall depth",
+                   .doc = "The artificial thickness as a trench wall this many half-widths of the "
+                          "opening deep (beyond the paper); 0: eq. 3's one-texel peek.",
+                   .live = true,
+                   .sliderMax = 4})
           .value("cameraDistance", &O::cameraDistance,
                  {.label = "camera distance",
                   .doc = "Shrink the opening with the camera distance (eq. 1); off: t = w·s.",

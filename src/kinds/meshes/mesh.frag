@@ -30,12 +30,25 @@ layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cu
 layout(binding = UNIT_PEEL_DEPTH) uniform SAMPLER_MS uPeelDepth;
 layout(location = 17) uniform int uFirstLayer;
 #endif
+#ifdef CUT_WRITES_DEPTH
+// A cut surface behind the fragment (cutters/composition.glsl) moves it back, never forward.
+layout(depth_greater) out float gl_FragDepth;
+#define FRAGMENT_DEPTH gCutFragDepth
+#else
+#define FRAGMENT_DEPTH gl_FragCoord.z
+#endif
 void main() {
   CutFragment f = CutFragment(vWorldPosition, vWorldNormal, gl_FrontFacing);
   vec3 cutPosition, cutNormal;
   int cutter;
+#ifdef CUT_WRITES_DEPTH
+  gCutFragDepth = gl_FragCoord.z;
+#endif
   int fate = cutFragment(uCutBy, f, cutPosition, cutNormal, cutter);
   if (fate == kDiscard) discard;
+#ifdef CUT_WRITES_DEPTH
+  gl_FragDepth = gCutFragDepth;
+#endif
   bool cut = fate == kCutSurface && (uCutSurfaces & (1 << cutter)) != 0;
   vec3 n = vWorldNormal;
   // Interpolated normals can vanish (opposite vertex normals); fall back to the face normal.
@@ -60,7 +73,7 @@ void main() {
   opacity = min(opacity, vec2(1.0, uLines));
   if (!(max(opacity.x, opacity.y) > 1.0 / 512.0)) discard;
   if (uFirstLayer == 0 &&
-      gl_FragCoord.z <= texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), gl_SampleID).r)
+      FRAGMENT_DEPTH <= texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), gl_SampleID).r)
     discard;
   writeGBuffer(s, color, opacity.y, uObjectId, cut, false);  // the lines' weight: their opacity
   outColor = vec4(clamp(color, 0.0, 1.0) * opacity.x, opacity.x);  // premultiplied
