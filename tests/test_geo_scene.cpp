@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/scene/scene.hpp"
@@ -99,5 +102,56 @@ TEST(GeoScene, PipeRadiiComeFromAFieldPerFeature) {
   EXPECT_FLOAT_EQ(radius.begin()->second, 0.3f);             // 600 × 0.0005
   EXPECT_FLOAT_EQ(std::next(radius.begin())->second, 0.2f);  // 0: the default
   EXPECT_FLOAT_EQ(std::prev(radius.end())->second, 0.2f);    // null: the default
+  fs::remove_all(dir);
+}
+
+// Issue 17: a mesh in UTM coordinates (E ≈ 5e5, N ≈ 4.8e6 m, each vertex a float exactly),
+// rotated by 30° about the vertical and moved near the origin by the scene's transform. Each
+// vertex as the vertex shader places it (the object's float matrix times its float position)
+// lands within a millimetre of the same transform worked in double; composed and applied in
+// float it drifted by up to a metre (a float's step at 4.8e6 is 0.5).
+TEST(GeoScene, AMeshInUtmCoordinatesKeepsItsMillimetresThroughTheTransform) {
+  const fs::path dir = fs::temp_directory_path() / ("cutaway-utm-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::vector<glm::dvec3> vertices = {{500000.25, 12.0, -4800000.0},
+                                            {500010.75, 12.0, -4800000.5},
+                                            {500004.5, 19.5, -4800014.0},
+                                            {500001.0, 12.0, -4800021.5}};
+  {
+    std::ofstream obj(dir / "utm.obj");
+    obj.precision(17);
+    for (const glm::dvec3& v : vertices) obj << "v " << v.x << ' ' << v.y << ' ' << v.z << '\n';
+    obj << "f 1 2 3\nf 1 3 4\n";
+  }
+  const glm::dmat4 rotate =
+      glm::rotate(glm::dmat4(1.0), glm::radians(30.0), glm::dvec3(0.0, 1.0, 0.0));
+  // The translation that brings the first vertex, rotated, back to (1, 2, 3).
+  const glm::dvec3 translate =
+      glm::dvec3(1.0, 2.0, 3.0) - glm::dvec3(rotate * glm::dvec4(vertices[0], 1.0));
+  std::ostringstream text;
+  text.precision(17);
+  text << R"({"objects": [{"name": "utm", "file": "utm.obj", "transform": {"translate": [)"
+       << translate.x << ", " << translate.y << ", " << translate.z
+       << R"(], "rotate": {"axis": [0, 1, 0], "degrees": 30}}}]})";
+  const Scene scene = parseScene(text.str(), "utm.json", dir);
+  const SceneObject& o = scene.objects.at(0);
+  const glm::dmat4 exact = glm::translate(glm::dmat4(1.0), translate) * rotate;
+  // Each placed position against the nearest vertex placed in double (the importer may repeat
+  // vertices per face); every vertex is some position's.
+  std::vector<bool> matched(vertices.size(), false);
+  ASSERT_GE(o.mesh->positions.size(), vertices.size());
+  for (const glm::vec3& p : o.mesh->positions) {
+    const glm::dvec3 placed(glm::vec3(o.transform * glm::vec4(p, 1.0f)));
+    double nearest = 1e30;
+    std::size_t which = 0;
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+      const double d = glm::length(placed - glm::dvec3(exact * glm::dvec4(vertices[i], 1.0)));
+      if (d < nearest) nearest = d, which = i;
+    }
+    EXPECT_LT(nearest, 1e-3) << "placed (" << placed.x << ", " << placed.y << ", " << placed.z
+                             << "), " << nearest << " from vertex " << which << " in double";
+    matched[which] = true;
+  }
+  for (std::size_t i = 0; i < vertices.size(); ++i) EXPECT_TRUE(matched[i]) << i;
   fs::remove_all(dir);
 }

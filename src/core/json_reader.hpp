@@ -122,15 +122,20 @@ inline std::string oneOf(const Context& ctx, const json& j, const std::string& p
   ctx.fail(ptr, "unknown value \"" + v + "\" (expected one of: " + list + ")");
 }
 
-inline glm::vec3 vec3(const Context& ctx, const json& j, const std::string& ptr, double lo = -1e30,
-               double hi = 1e30) {
+inline glm::dvec3 dvec3(const Context& ctx, const json& j, const std::string& ptr,
+                        double lo = -1e30, double hi = 1e30) {
   if (!j.is_array() || j.size() != 3)
     ctx.fail(ptr, "expected an array of 3 numbers, got " +
                       (j.is_array() ? std::to_string(j.size()) + " elements" : typeName(j)));
-  glm::vec3 v;
+  glm::dvec3 v;
   for (int i = 0; i < 3; ++i)
-    v[i] = float(number(ctx, j[std::size_t(i)], ptr + "/" + std::to_string(i), lo, hi));
+    v[i] = number(ctx, j[std::size_t(i)], ptr + "/" + std::to_string(i), lo, hi);
   return v;
+}
+
+inline glm::vec3 vec3(const Context& ctx, const json& j, const std::string& ptr, double lo = -1e30,
+                      double hi = 1e30) {
+  return glm::vec3(dvec3(ctx, j, ptr, lo, hi));
 }
 
 inline glm::vec3 color(const Context& ctx, const json& j, const std::string& ptr) {

@@ -41,31 +41,43 @@ using json = nlohmann::json;
 // dropped without a word.
 constexpr std::size_t kMaxLights = 8;
 
-// translate / rotate / scale keys of a transform or keyframe, read from `r`.
-Trs readTrs(const Context& ctx, ObjectReader& r) {
-  Trs out;
-  if (const json* v = r.take("translate")) out.translate = vec3(ctx, *v, r.at("translate"));
+// translate / rotate / scale keys of a transform or keyframe, read from `r` in double, so that
+// a placement millions of units from the origin (projected GIS coordinates) keeps its
+// centimetres until the composed matrix is rounded once (placeObject).
+struct ExactTrs {
+  glm::dvec3 translate{0.0};
+  glm::dquat rotate{1.0, 0.0, 0.0, 0.0};
+  glm::dvec3 scale{1.0};
+  glm::dmat4 matrix() const {
+    return glm::translate(glm::dmat4(1.0), translate) * glm::mat4_cast(rotate) *
+           glm::scale(glm::dmat4(1.0), scale);
+  }
+  Trs single() const { return {glm::vec3(translate), glm::quat(rotate), glm::vec3(scale)}; }
+};
+
+ExactTrs readTrs(const Context& ctx, ObjectReader& r) {
+  ExactTrs out;
+  if (const json* v = r.take("translate")) out.translate = dvec3(ctx, *v, r.at("translate"));
   if (const json* v = r.take("rotate")) {
     if (v->is_array()) {  // Euler angles in degrees, applied about x, then y, then z
-      const glm::vec3 e = glm::radians(vec3(ctx, *v, r.at("rotate")));
-      out.rotate = glm::angleAxis(e.z, glm::vec3(0, 0, 1)) *
-                   glm::angleAxis(e.y, glm::vec3(0, 1, 0)) *
-                   glm::angleAxis(e.x, glm::vec3(1, 0, 0));
+      const glm::dvec3 e = glm::radians(dvec3(ctx, *v, r.at("rotate")));
+      out.rotate = glm::angleAxis(e.z, glm::dvec3(0, 0, 1)) *
+                   glm::angleAxis(e.y, glm::dvec3(0, 1, 0)) *
+                   glm::angleAxis(e.x, glm::dvec3(1, 0, 0));
     } else {
       ObjectReader rr(ctx, *v, r.at("rotate"));
-      const glm::vec3 axis = direction(ctx, rr.require("axis"), rr.at("axis"));
+      const glm::dvec3 axis(direction(ctx, rr.require("axis"), rr.at("axis")));
       const double degrees = number(ctx, rr.require("degrees"), rr.at("degrees"), -1e6, 1e6);
       rr.finish();
-      out.rotate = glm::angleAxis(glm::radians(float(degrees)), axis);
+      out.rotate = glm::angleAxis(glm::radians(degrees), glm::normalize(axis));
     }
   }
   if (const json* v = r.take("scale")) {
-    const glm::vec3 k = v->is_number()
-                            ? glm::vec3(float(number(ctx, *v, r.at("scale"), -1e30, 1e30)))
-                            : vec3(ctx, *v, r.at("scale"));
+    const glm::dvec3 k = v->is_number() ? glm::dvec3(number(ctx, *v, r.at("scale"), -1e30, 1e30))
+                                        : dvec3(ctx, *v, r.at("scale"));
     // Per component: the product would reject small uniform scales (0.0001³ < 1e-12).
     for (int i = 0; i < 3; ++i)
-      if (!(std::abs(k[i]) >= std::numeric_limits<float>::min()))
+      if (!(std::abs(float(k[i])) >= std::numeric_limits<float>::min()))
         ctx.fail(r.at("scale"), "scale must not be zero");
     out.scale = k;
   }
@@ -80,7 +92,7 @@ std::vector<Keyframe> animation(const Context& ctx, const json& j, const std::st
     const float time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
     if (!keys.empty() && time <= keys.back().time)
       ctx.fail(r.at("time"), "keyframe times must increase");
-    keys.push_back({time, readTrs(ctx, r)});
+    keys.push_back({time, readTrs(ctx, r).single()});
     r.finish();
   }
   return keys;
@@ -104,33 +116,54 @@ std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::
   return keys;
 }
 
-glm::mat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
+glm::dmat4 transform(const Context& ctx, const json& j, const std::string& ptr) {
   ObjectReader r(ctx, j, ptr);
   if (const json* m = r.take("matrix")) {
     for (const char* k : {"translate", "rotate", "scale"})
       if (r.has(k)) ctx.fail(r.at(k), "\"matrix\" excludes translate/rotate/scale");
     if (!m->is_array() || m->size() != 16) ctx.fail(r.at("matrix"), "expected 16 numbers");
-    glm::mat4 out;
+    glm::dmat4 out;
     for (int row = 0; row < 4; ++row)
       for (int col = 0; col < 4; ++col)  // written row-major, as one reads a matrix
-        out[col][row] =
-            float(number(ctx, (*m)[std::size_t(row * 4 + col)],
-                         r.at("matrix") + "/" + std::to_string(row * 4 + col), -1e30, 1e30));
+        out[col][row] = number(ctx, (*m)[std::size_t(row * 4 + col)],
+                               r.at("matrix") + "/" + std::to_string(row * 4 + col), -1e30, 1e30);
     // The renderer and the bounds use the matrix as an affine map (w stays 1).
-    if (glm::vec4(out[0][3], out[1][3], out[2][3], out[3][3]) != glm::vec4(0, 0, 0, 1))
+    if (glm::dvec4(out[0][3], out[1][3], out[2][3], out[3][3]) != glm::dvec4(0, 0, 0, 1))
       ctx.fail(r.at("matrix"), "the last row must be 0, 0, 0, 1 (an affine transform)");
     // Singular relative to the columns' lengths (|det| ≤ their product), so that a uniformly
     // small scale such as 1e-4 is not mistaken for a singular matrix.
-    const glm::mat3 linear(out);
+    const glm::dmat3 linear(out);
     if (!(std::abs(glm::determinant(linear)) >
-          1e-6f * glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2])))
+          1e-6 * glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2])))
       ctx.fail(r.at("matrix"), "the matrix is singular");
     r.finish();
     return out;
   }
-  const Trs trs = readTrs(ctx, r);
+  const ExactTrs trs = readTrs(ctx, r);
   r.finish();
   return trs.matrix();
+}
+
+// Beyond 2¹⁶ units from the origin a float's step exceeds 1/128 of a unit (0.5 at UTM's
+// 4.8e6 m northings).
+constexpr float kFarFromOrigin = 65536.0f;
+
+// Gives `o` its mesh and its transform `m`, rounded to float once. A mesh whose centre c lies
+// beyond kFarFromOrigin (projected GIS coordinates: UTM, the British National Grid) is moved
+// by −c, each vertex rounded once, and c is folded into the matrix in double, m·T(c): neither
+// the vertices nor the matrix then carry the large coordinates through float arithmetic, and
+// a rotation about a far origin keeps the vertices' precision.
+void placeObject(SceneObject& o, std::shared_ptr<const Mesh> mesh, const glm::dmat4& m) {
+  const Bounds b = mesh->bounds();
+  const glm::vec3 c = b.empty() ? glm::vec3(0.0f) : (b.min + b.max) * 0.5f;
+  if (glm::all(glm::lessThanEqual(glm::abs(c), glm::vec3(kFarFromOrigin)))) {
+    o.mesh = std::move(mesh), o.transform = glm::mat4(m);
+    return;
+  }
+  auto moved = std::make_shared<Mesh>(*mesh);
+  for (glm::vec3& p : moved->positions) p -= c;
+  o.mesh = std::move(moved);
+  o.transform = glm::mat4(m * glm::translate(glm::dmat4(1.0), glm::dvec3(c)));
 }
 
 Role role(const Context& ctx, const json& j, const std::string& ptr) {
@@ -387,12 +420,12 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
   r.take("split");
   std::optional<std::regex> nodeFilter;
   if (const json* v = r.take("nodes")) nodeFilter = regex(ctx, *v, r.at("nodes"));
-  glm::mat4 m(1.0f);
+  glm::dmat4 m(1.0);
   if (const json* v = r.take("transform")) m = transform(ctx, *v, r.at("transform"));
 
   SceneObject base;
   base.name = name;
-  base.transform = m;
+  base.transform = glm::mat4(m);
   if (const json* v = r.take("animation")) base.animation = animation(ctx, *v, r.at("animation"));
   const bool colorGiven = r.has("color");
   appearance(ctx, r, base, true);
@@ -421,12 +454,14 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
   if (!fileKey) {
     SceneObject o = base;
     if (arraysKey) {
-      o.mesh = arraysEntry(ctx, *arraysKey, r.at("arrays"), arrays.meshes);
+      placeObject(o, arraysEntry(ctx, *arraysKey, r.at("arrays"), arrays.meshes), m);
       o.source = "arrays " + arraysKey->get<std::string>();
     } else {
-      o.mesh = rasterKey ? rasterMesh(ctx, *rasterKey, r.at("raster"), o.source)
-                         : footprintMesh(ctx, *footprintsKey, r.at("footprints"), out,
-                                         base.transform, o.source);
+      placeObject(o,
+                  rasterKey ? rasterMesh(ctx, *rasterKey, r.at("raster"), o.source)
+                            : footprintMesh(ctx, *footprintsKey, r.at("footprints"), out,
+                                            base.transform, o.source),
+                  m);
     }
     out.push_back(std::move(o));
     return;
@@ -456,7 +491,7 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
     SceneObject o = base;
     o.source = file.string();
     if (!colorGiven && selected.front()->color) o.material.color = *selected.front()->color;
-    o.mesh = std::move(mesh);
+    placeObject(o, std::move(mesh), m);
     out.push_back(std::move(o));
     return;
   }
@@ -466,7 +501,8 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
     if (!node->id.empty()) o.alias = name + "/" + node->id;
     o.source = file.string() + "#" + node->name;
     if (!colorGiven && node->color) o.material.color = *node->color;
-    o.mesh = std::shared_ptr<const Mesh>(nodes, &node->mesh);  // aliasing: shares the file's nodes
+    // Aliasing: shares the file's nodes (unless far from the origin: a moved copy).
+    placeObject(o, std::shared_ptr<const Mesh>(nodes, &node->mesh), m);
     for (const auto& ov : overrides) {
       if (!std::regex_match(node->name, ov.match) &&
           (node->id.empty() || !std::regex_match(node->id, ov.match)))
@@ -492,7 +528,8 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
   const json* box = r.take("box");
   const json* hullOf = r.take("hullOf");
   if (!!box == !!hullOf) ctx.fail(ptr, "a proxy needs exactly one of \"box\" or \"hullOf\"");
-  if (const json* v = r.take("transform")) o.transform = transform(ctx, *v, r.at("transform"));
+  if (const json* v = r.take("transform"))
+    o.transform = glm::mat4(transform(ctx, *v, r.at("transform")));
   if (const json* v = r.take("animation")) o.animation = animation(ctx, *v, r.at("animation"));
   appearance(ctx, r, o, false);
   r.finish();
@@ -583,7 +620,8 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr,
     if (file.is_relative()) file = ctx.baseDir / file;
     v.source = file.string();
   }
-  if (const json* t = r.take("transform")) v.transform = transform(ctx, *t, r.at("transform"));
+  if (const json* t = r.take("transform"))
+    v.transform = glm::mat4(transform(ctx, *t, r.at("transform")));
   if (const json* t = r.take("role")) v.role = role(ctx, *t, r.at("role"));
   if (const json* t = r.take("cutBy")) {
     std::vector<std::string> keys;
