@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <glm/glm.hpp>
 #include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -725,4 +726,119 @@ TEST(Cli, FarCoordinatesAreWarnedAbout) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("about [265005, 145000]"), std::string::npos) << r.err;
+}
+
+// Issue 17: aovs.json says enough to recompute the cutaway depth from the files alone. On a
+// non-square view (96 × 64) with a 48² buffer, Burns11 eq. 4.2 is worked here by brute force
+// from anchorCone's z and m_E and the buffer's pixel size in view-plane units (its "values"),
+// and compared with cutawayDepth, window depth = (NDC + 1)/2, clamped at the near plane. Both
+// compute paths (CPU on llvmpipe, the GPU's passes) write anchorCone.
+TEST(Cli, TheCutawayDepthIsRecomputedFromTheAovFilesAlone) {
+  for (const std::string compute : {"cpu", "gpu"}) {
+    const fs::path dir = scratch("recompute-" + compute);
+    const Result r =
+        run("render " + kSource + "/examples/engine-cutaway.json --size 96x64 -o " +
+            scratch("recompute.png").string() + " --aov " + dir.string() +
+            " --set cutters.adaptive.bufferSize=48 --set cutters.adaptive.compute=" + compute +
+            " --set cutters.adaptive.jumpFlooding=jfa+2");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream indexFile(dir / "aovs.json");
+    const auto index = nlohmann::json::parse(indexFile);
+    std::map<std::string, nlohmann::json> byName;
+    for (const auto& a : index["aovs"]) byName[a["name"]] = a;
+    ASSERT_TRUE(byName.count("anchorCone") && byName.count("cutawayDepth")) << compute;
+    const nlohmann::json& values = byName["cutawayDepth"]["values"];
+    ASSERT_EQ(values["bufferSize"], 48);
+    const double ux = values["viewPlanePerPixelX"], uy = values["viewPlanePerPixelY"];
+    // The camera's projection says the same: 2 / (n · P00), 2 / (n · P11).
+    const auto& P = index["camera"]["projectionMatrix"];
+    EXPECT_NEAR(ux, 2.0 / 48.0 / P[0][0].get<double>(), 1e-9);
+    EXPECT_NEAR(uy, 2.0 / 48.0 / P[1][1].get<double>(), 1e-9);
+    EXPECT_NE(ux, uy);  // the buffer is stretched over a 3:2 view
+    const FloatImage cone = readPfm(dir / "anchorCone.pfm"),
+                     depth = readPfm(dir / "cutawayDepth.pfm");
+    ASSERT_EQ(cone.width, 48);
+    ASSERT_EQ(depth.width, 48);
+    int seeds = 0, cut = 0, off = 0;
+    double worst = 0.0;
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 48; ++x) {
+        double c = -1.0;  // the near plane: nothing cut
+        for (int qy = 0; qy < 48; ++qy)
+          for (int qx = 0; qx < 48; ++qx) {
+            const float* q = cone.at(qx, qy);
+            if (q[0] <= -1.0f) continue;
+            c = std::max(c, q[0] - q[1] * std::hypot((qx - x) * ux, (qy - y) * uy));
+          }
+        seeds += cone.at(x, y)[0] > -1.0f;
+        cut += c > -1.0;
+        const double error = std::abs((c + 1.0) / 2.0 - depth.at(x, y)[0]);
+        worst = std::max(worst, error);
+        off += error > 1e-5;
+      }
+    EXPECT_GT(seeds, 20) << compute;
+    EXPECT_GT(cut, 48 * 48 / 4) << compute;
+    // Jump flooding with two extra passes finds every pixel's best seed here (measured worst
+    // 1e-7 on both paths).
+    EXPECT_EQ(off, 0) << compute << ": worst " << worst;
+  }
+}
+
+// Issue 17: aovs.json says which row of an offset map is t = 0, and the surface it belongs to.
+// examples/bunny-clip.json's noisy relief: every cap pixel's position (position.pfm, capMask)
+// lies on Trapp13 eq. 1's surface f = 0 with OM read from offsetMap_0.pfm as its meaning says
+// (bottom row t = 0, bilinear between texel centres, repeating) and O, U, V, S from its
+// values, within a tenth of the relief's height S_z (the cap mesh interpolates the map
+// linearly between its grid's nodes; measured worst 0.06·S_z); read upside down, over a third
+// of them are off by more (measured: 41%).
+TEST(Cli, CapsLieOnTheReliefReadFromTheAovFilesAlone) {
+  const fs::path dir = scratch("relief");
+  const Result r = run("render " + kSource + "/examples/bunny-clip.json --size 200x150 -o " +
+                       scratch("relief.png").string() + " --aov " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream indexFile(dir / "aovs.json");
+  const auto index = nlohmann::json::parse(indexFile);
+  nlohmann::json map;
+  for (const auto& a : index["aovs"])
+    if (a["name"] == "offsetMap_0") map = a;
+  ASSERT_FALSE(map.is_null());
+  const nlohmann::json& v = map["values"];
+  const glm::dvec3 o(v["originX"], v["originY"], v["originZ"]), u(v["uX"], v["uY"], v["uZ"]),
+      w(v["vX"], v["vY"], v["vZ"]);
+  const double sx = v["scaleX"], sy = v["scaleY"], sz = v["height"];
+  const glm::dvec3 n = glm::normalize(glm::cross(glm::normalize(u), glm::normalize(w)));
+  const FloatImage om = readPfm(dir / "offsetMap_0.pfm"), cap = readPfm(dir / "capMask.pfm"),
+                   pos = readPfm(dir / "position.pfm");
+  // OM at (s, t): texel (i, j) with j counted from the bottom row (or, `flipped`, the top).
+  const auto sample = [&](double s, double t, bool flipped) {
+    const double x = s * om.width - 0.5, y = t * om.height - 0.5;
+    const double fx = std::floor(x), fy = std::floor(y);
+    const auto texel = [&](double i, double j) {
+      const int col = int(i - om.width * std::floor(i / om.width));
+      const int fromBottom = int(j - om.height * std::floor(j / om.height));
+      return double(om.at(col, flipped ? fromBottom : om.height - 1 - fromBottom)[0]);
+    };
+    const double bottom = texel(fx, fy) + (x - fx) * (texel(fx + 1, fy) - texel(fx, fy));
+    const double top = texel(fx, fy + 1) + (x - fx) * (texel(fx + 1, fy + 1) - texel(fx, fy + 1));
+    return bottom + (y - fy) * (top - bottom);
+  };
+  int caps = 0, off = 0, offFlipped = 0;
+  double worst = 0.0;
+  for (int y = 0; y < cap.height; ++y)
+    for (int x = 0; x < cap.width; ++x) {
+      if (cap.at(x, y)[0] != 1.0f) continue;
+      ++caps;
+      const glm::dvec3 p(pos.at(x, y)[0], pos.at(x, y)[1], pos.at(x, y)[2]);
+      const glm::dvec3 pn = p - glm::dot(p - o, n) * n;                             // eq. 3
+      const double s = glm::dot(pn - o, u / glm::length(u)) / glm::length(u) * sx,  // eq. 2
+          t = glm::dot(pn - o, w / glm::length(w)) / glm::length(w) * sy;
+      const double plane = glm::dot(p, n) - glm::dot(n, o);
+      const double f = std::abs(plane + sample(s, t, false) * sz);  // eq. 1
+      worst = std::max(worst, f);
+      off += f > 0.1 * sz;
+      offFlipped += std::abs(plane + sample(s, t, true) * sz) > 0.1 * sz;
+    }
+  EXPECT_GT(caps, 1000);
+  EXPECT_EQ(off, 0) << "of " << caps << " worst " << worst;
+  EXPECT_GT(offFlipped, caps / 3) << "of " << caps;
 }

@@ -125,6 +125,9 @@ class Cutter {
   virtual std::optional<GhostBuffers> ghosts() const { return std::nullopt; }
   // Buffers of its own that are no frame target, as AOVs.
   virtual std::vector<Aov> extraAovs() const { return {}; }
+  // Once the frame's AOVs are read (its targets', every cutter's and kind's extra ones): adds
+  // the frame's numbers they depend on (Aov::values) and AOVs derived from them.
+  virtual void describeAovs(std::vector<Aov>& /*aovs*/) const {}
   // Facts about how it runs, for `cutaway bench` and the viewer (e.g. "computePath": "cpu").
   virtual std::vector<std::pair<std::string, std::string>> facts() const { return {}; }
 };

@@ -57,12 +57,14 @@ void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, c
   for (const auto& aov : aovs) {
     const std::string file = aov.name + ".pfm";
     writePfm(dir / file, aov.image);
-    list.push_back({{"name", aov.name},
-                    {"file", file},
-                    {"width", aov.image.width},
-                    {"height", aov.image.height},
-                    {"channels", aov.image.channels},
-                    {"meaning", aov.meaning}});
+    nlohmann::json entry = {{"name", aov.name},
+                            {"file", file},
+                            {"width", aov.image.width},
+                            {"height", aov.image.height},
+                            {"channels", aov.image.channels},
+                            {"meaning", aov.meaning}};
+    if (!aov.values.empty()) entry["values"] = aov.values;
+    list.push_back(std::move(entry));
   }
   index["aovs"] = list;
   writeFileAtomically(dir / "aovs.json", [&](std::ostream& os) { os << index.dump(2) << "\n"; });

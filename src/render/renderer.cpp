@@ -370,6 +370,7 @@ std::vector<Aov> Renderer::readAovs() const {
     aovs.push_back(std::move(importance));
   }
   for (auto& aov : extraAovs()) aovs.push_back(std::move(aov));
+  for (const ActiveCutter& c : impl_->cutters) c.cutter->describeAovs(aovs);
   return aovs;
 }
 

@@ -2,13 +2,14 @@
 // inspection.
 //
 // Every AOV becomes DIR/<name>.pfm, and DIR/aovs.json lists, per AOV, its file, size,
-// channels and meaning (units and depth conventions), plus the camera matrices so that
-// values can be checked from outside.
+// channels, meaning (units and depth conventions) and the frame's numbers it depends on, plus
+// the camera matrices, so that values can be checked from outside.
 //
 //   cutaway::writeAovs("out/aovs", renderer.readAovs(), camera, aspect);
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct Aov {
   std::string name;     // file stem, e.g. "depth"
   std::string meaning;  // what a texel holds, with units and conventions
   FloatImage image;     // rows top to bottom
+  // Numbers of the frame that recomputing the texels from outside needs (e.g. the cutaway
+  // buffer's pixel size in view-plane units), by name; written as "values" in aovs.json.
+  std::map<std::string, double> values = {};
 };
 
 // The frame's targets that have a meaning, in declaration order, rows top-down.

@@ -118,6 +118,11 @@ std::optional<GhostBuffers> AdaptiveCutaway::ghosts() const {
                       [this] { return options().ghostLines ? options().ghostLines->opacity : 0.0f; }};
 }
 
+void AdaptiveCutaway::describeAovs(std::vector<Aov>& aovs) const {
+  surface_.describeAovs(aovs);
+  if (transition_) transition_->describeAovs(aovs);
+}
+
 std::vector<std::pair<std::string, std::string>> AdaptiveCutaway::facts() const {
   return {{"computePath", surface_.onCpu() ? "cpu" : "gpu"}};
 }

@@ -36,6 +36,8 @@ class AdaptiveCutaway : public Cutter {
   std::optional<glm::vec3> cutOutlineColor() const override;
   std::optional<GhostBuffers> ghosts() const override;
   std::vector<std::pair<std::string, std::string>> facts() const override;
+  // The cutaway buffers' pixel size in view-plane units, and the seeds' cones (CPU path).
+  void describeAovs(std::vector<Aov>& aovs) const override;
 
   // The local angle θ of an object of interest, radians (Burns11 §6.2.1); the scene's angle
   // for geometry that is no scene object.

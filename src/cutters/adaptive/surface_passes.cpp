@@ -7,6 +7,26 @@
 
 namespace cutaway {
 
+namespace {
+
+// How an n×n buffer lies over the view, whatever its aspect.
+std::string bufferText(int n) {
+  const std::string side = std::to_string(n);
+  return " (" + side + "x" + side +
+         " cutaway buffer over the whole view, stretched to its aspect: pixel (i, j), j from "
+         "the bottom, has its centre at NDC ((i + ½)·2/" +
+         side + " − 1, (j + ½)·2/" + side + " − 1))";
+}
+
+std::string anchorConeMeaning(const std::string& of, const std::string& size) {
+  return "per seed texel: its cone: NDC depth z (−1: not seeded), the slope m_E of the "
+         "edge-compressed angle θ_e (Burns11 eqs. 5.7–5.8) and m_F after the directional "
+         "constraint (eqs. 6.1–6.2), NDC depth per view-plane unit" +
+         of + size;
+}
+
+}  // namespace
+
 struct CutawaySurfacePasses::Programs {
   gl::Program anchors, jfaInit, jumpFlooding, cutawayDepth, dilate;
   FullscreenTriangle fullscreen;
@@ -23,7 +43,7 @@ CutawaySurfacePasses::CutawaySurfacePasses(Frame& frame, int bufferSize,
       options_(std::move(options)),
       programs_(std::make_unique<Programs>()) {
   const int n = bufferSize_;
-  const std::string size = " (" + std::to_string(n) + "x" + std::to_string(n) + " cutaway buffer)";
+  const std::string size = bufferText(n);
   seedDepth_ = frame.declare("seedDepth",
                              {.format = GL_R32F,
                               .width = n,
@@ -58,7 +78,7 @@ CutawaySurfacePasses::CutawaySurfacePasses(const CutawaySurfacePasses& seed, std
 void CutawaySurfacePasses::declareSurface() {
   Frame& frame = frame_;
   const int n = bufferSize_;
-  const std::string size = " (" + std::to_string(n) + "x" + std::to_string(n) + " cutaway buffer)";
+  const std::string size = bufferText(n);
   const std::string of = suffix_.empty() ? "" : ", every seed's angle at least θ₂ (" + suffix_ + ")";
   cutawayDepth_ = frame.declare("cutawayDepth" + suffix_,
                                 {.format = GL_R32F,
@@ -66,7 +86,11 @@ void CutawaySurfacePasses::declareSurface() {
                                  .height = n,
                                  .meaning = "cutaway surface C(p) as window depth in [0,1] (0 = "
                                             "near plane: nothing cut); fragments nearer than it "
-                                            "are removed" +
+                                            "are removed. Burns11 eq. 4.2 in NDC depth: C(p) = "
+                                            "max over seeds q of z_q − m_q·‖p − q‖, ‖·‖ in "
+                                            "view-plane units (values: viewPlanePerPixelX/Y per "
+                                            "buffer pixel), z_q and m_q in anchorCone; window "
+                                            "depth = (NDC + 1)/2" +
                                             of + size});
   cutawayDilated_ = frame.declare("cutawayDilated" + suffix_,
                                   {.format = GL_R32F,
@@ -82,16 +106,11 @@ void CutawaySurfacePasses::declareSurface() {
   Programs& p = *programs_;
   p.dilate = buildFullscreenProgram("cutters/adaptive/dilate.frag");
   if (cpu_) return;
-  anchorCone_ = frame.declare(
-      "anchorCone" + suffix_,
-      {.format = GL_RGBA32F,
-       .width = n,
-       .height = n,
-       .meaning = "per seed texel (GPU path): its cone: NDC depth z (−1: not seeded), the slope "
-                  "m_E of the edge-compressed angle θ_e (Burns11 eqs. 5.7–5.8) and m_F after the "
-                  "directional constraint (eqs. 6.1–6.2)" +
-                  of + size,
-       .aovChannels = 3});
+  anchorCone_ = frame.declare("anchorCone" + suffix_, {.format = GL_RGBA32F,
+                                                       .width = n,
+                                                       .height = n,
+                                                       .meaning = anchorConeMeaning(of, size),
+                                                       .aovChannels = 3});
   anchorFloor_ = frame.declare("anchorFloor" + suffix_, {.format = GL_RG32F, .width = n, .height = n});
   anchorsA_ = frame.declare("anchorsA" + suffix_, {.format = GL_R32I, .width = n, .height = n});
   anchorsB_ = frame.declare("anchorsB" + suffix_, {.format = GL_R32I, .width = n, .height = n});
@@ -202,6 +221,35 @@ void CutawaySurfacePasses::computeOnCpu() {
   for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
   glTextureSubImage2D(frame_.texture(cutawayDepth_).id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
                       field.depth.data());
+}
+
+void CutawaySurfacePasses::describeAovs(std::vector<Aov>& aovs) const {
+  const int n = bufferSize_;
+  const std::string of =
+      suffix_.empty() ? "" : ", every seed's angle at least θ₂ (" + suffix_ + ")";
+  if (cpu_) {
+    std::vector<float> angle = frame_.read(seedAngle_, 1);
+    for (float& a : angle) a = std::max(a, minAngle_());
+    const fields::SeedImage seeds =
+        makeSeedImage(frame_.read(seedDepth_, 1), angle, n, options_(), camera_);
+    FloatImage cone(n, n, 3);
+    for (std::size_t i = 0; i < seeds.depth.size(); ++i) {
+      cone.data[3 * i] = seeds.seeded[i] ? seeds.depth[i] : -1.0f;
+      cone.data[3 * i + 1] = seeds.slopeE[i];
+      cone.data[3 * i + 2] = seeds.slopeF[i];
+    }
+    cone.flipVertically();  // AOVs run top to bottom
+    aovs.push_back({"anchorCone" + suffix_, anchorConeMeaning(of, bufferText(n)), std::move(cone)});
+  }
+  const std::map<std::string, double> values = {
+      {"bufferSize", n},
+      {"viewPlanePerPixelX", 2.0 / double(n) / double(camera_.projection[0][0])},
+      {"viewPlanePerPixelY", 2.0 / double(n) / double(camera_.projection[1][1])}};
+  for (Aov& aov : aovs)
+    if (aov.name == "cutawayDepth" + suffix_ || aov.name == "cutawayDilated" + suffix_ ||
+        aov.name == "anchorCone" + suffix_ ||
+        (suffix_.empty() && (aov.name == "seedDepth" || aov.name == "seedAngle")))
+      aov.values = values;
 }
 
 }  // namespace cutaway

@@ -8,8 +8,11 @@
 
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "cutaway/cutters/adaptive.hpp"
+#include "cutaway/frame/aov.hpp"
 #include "cutaway/frame/frame.hpp"
 
 namespace cutaway {
@@ -42,6 +45,9 @@ class CutawaySurfacePasses {
   // The passes after the seed's, into the frame: cutawayCpu, or cutawayAnchors,
   // jumpFloodingInit, jumpFlooding/k…, cutawayDepth; then cutawayDilate.
   void addPasses();
+  // After the frame: its buffers' AOVs get the size and the pixel size in view-plane units
+  // (Aov::values); on the CPU path, the seeds' cones are added as the GPU path's anchorCone.
+  void describeAovs(std::vector<Aov>& aovs) const;
 
  private:
   void addGpuPasses();

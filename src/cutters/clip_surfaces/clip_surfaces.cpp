@@ -509,6 +509,33 @@ void ClipSurfaceCutter::addPassesAfterGeometry(Frame& frame) {
 std::vector<Aov> ClipSurfaceCutter::extraAovs() const {
   std::vector<Aov> aovs;
   const Scene& scene = setup_.scene;
+  const ClipSurfaceOptions& options = live();
+  for (std::size_t k = 0; k < options.surfaces.size(); ++k) {
+    const ClipSurface& cs = options.surfaces[k];
+    FloatImage map = cs.offsetMap;
+    map.flipVertically();  // held with t = 0 first; AOVs run top to bottom
+    aovs.push_back(
+        {"offsetMap_" + std::to_string(k),
+         "offset map OM of clip surface " + std::to_string(k) +
+             " (Trapp13 §4.1) as sampled: heights in [0, 1]; the image's bottom row is t = 0 (the "
+             "PFM's first stored row; a PNG's last row), its left column s = 0, texel centres "
+             "at ((i + ½)/width, (j + ½)/height), bilinear and repeating; T = (s, t) by eq. 2: s "
+             "= (P_N − O)·Û/|U|·S_x, t = (P_N − O)·V̂/|V|·S_y (values: O, U, V, S_x, S_y; "
+             "height S_z); eq. 1: f(P) = P·N − N·O + OM(T)·S_z, N = Û × V̂, clipped where f < 0",
+         std::move(map),
+         {{"originX", cs.origin.x},
+          {"originY", cs.origin.y},
+          {"originZ", cs.origin.z},
+          {"uX", cs.u.x},
+          {"uY", cs.u.y},
+          {"uZ", cs.u.z},
+          {"vX", cs.v.x},
+          {"vY", cs.v.y},
+          {"vZ", cs.v.z},
+          {"scaleX", cs.scale.x},
+          {"scaleY", cs.scale.y},
+          {"height", cs.scale.z}}});
+  }
   for (std::size_t k = 0; k < capped_.size(); ++k) {
     const DepthSpriteGpu& s = gpu_->sprites[k];
     const int n = s.sprite.width, d = s.sprite.depthComplexity;
