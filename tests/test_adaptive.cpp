@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -666,4 +667,48 @@ TEST(AdaptiveCutaway, GhostLinesShowRemovedMaterialOnly) {
   const double near = ghostCoverage(5.0f), far = ghostCoverage(50.0f);
   EXPECT_GT(near, 1.0);
   EXPECT_GT(far, near);  // a longer distance fades less
+}
+
+// `cutSurfaces` (Burns08 §4.1): two shells around two objects of interest, a closed cube and
+// the same cube with one face missing (its open side turned away). With "all" the cut walls
+// of both show cut surfaces; with "watertight" only the closed one's, the open one's inside
+// still seen through its cut but not as a cut surface; with "none", neither. Which shell is
+// watertight is known by construction (meshes/cube.obj, meshes/open_cube.obj).
+TEST(AdaptiveCutaway, CutSurfacesOnAllWatertightOrNoShells) {
+  const auto cutPixels = [](const std::string& mode) {
+    const Scene scene = parseScene(
+        R"({"resolution": [120, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
+        "camera": {"eye": [0, 2, 14], "target": [0, 0, 0], "fov": 40},
+        "cutters": {"adaptive": {"angle": 35, "bufferSize": 128, "cutSurfaces": ")" +
+            mode + R"("}},
+        "objects": [
+          {"name": "closed", "file": "meshes/cube.obj", "transform": {"translate": [-4.5, -1.5, -1.5], "scale": 3}},
+          {"name": "open", "file": "meshes/open_cube.obj",
+           "transform": {"translate": [4.5, -1.5, 1.5], "rotate": [0, 180, 0], "scale": 3}},
+          {"name": "left core", "file": "meshes/cube.obj", "role": "interest",
+           "transform": {"translate": [-3.3, -0.3, -0.3], "scale": 0.6}},
+          {"name": "right core", "file": "meshes/cube.obj", "role": "interest",
+           "transform": {"translate": [2.7, -0.3, -0.3], "scale": 0.6}}]})",
+        "shells.json", kData);
+    EXPECT_TRUE(scene.objects[0].mesh->report.watertight);
+    EXPECT_FALSE(scene.objects[1].mesh->report.watertight);
+    const auto aovs = renderAovs(scene);
+    const FloatImage &mask = aov(aovs, "cutMask"), &id = aov(aovs, "objectId");
+    std::array<int, 2> counts{0, 0};  // per shell
+    int inside = 0;  // the open shell's pixels where the plain frame shows its front
+    for (std::size_t i = 0; i < mask.data.size(); ++i) {
+      if (mask.data[i] > 0.5f && id.data[i] >= 0.0f && id.data[i] < 2.0f)
+        ++counts[std::size_t(id.data[i])];
+      inside += id.data[i] == 1.0f;
+    }
+    EXPECT_GT(inside, 100) << mode;  // the open shell stays in view either way
+    return counts;
+  };
+  const auto all = cutPixels("all"), watertight = cutPixels("watertight"), none = cutPixels("none");
+  EXPECT_GT(all[0], 30);
+  EXPECT_GT(all[1], 30);
+  EXPECT_EQ(watertight[0], all[0]);
+  EXPECT_EQ(watertight[1], 0);
+  EXPECT_EQ(none[0], 0);
+  EXPECT_EQ(none[1], 0);
 }
