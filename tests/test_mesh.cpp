@@ -66,6 +66,14 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
          {"case.ply", "header line 3", "4294967294"});
   refuse("inline.ply", "ply\nformat ascii 1.0\ncomment end_header\n",
          {"inline.ply", "end_header line"});
+  // Faces cut off by the end of the file after a garbled header line: Assimp's reader
+  // returns them empty, called polygons, and its triangulation aborted on an assertion
+  // (fuzzing; tests/data/fuzz/mesh-ply/empty-faces-called-polygons.ply).
+  refuse("empty-faces.ply",
+         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+         "property float z\nelementrty float y\nproperty float z\nelement face 4\n"
+         "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 2 3\n",
+         {"empty-faces.ply", "face 0", "a face without vertices"});
   // .gz files that are not gzip, or hold nothing (Assimp said "Invalid parameters passed to
   // ReadFileFromMemory()").
   refuse("plain.stl.gz", "solid x\nendsolid x\n", {"plain.stl.gz", "not a gzip file"});

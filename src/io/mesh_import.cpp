@@ -183,9 +183,9 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
   // Points and lines carry no surface: drop them rather than fail.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  // Validation first: the later steps index vertices the file claims without checking.
-  const unsigned flags = aiProcess_ValidateDataStructure | aiProcess_Triangulate |
-                         aiProcess_SortByPType | aiProcess_JoinIdenticalVertices;
+  // Validation first: the later steps index vertices the file claims without checking. They
+  // run once the primitive types are corrected (below).
+  const unsigned flags = aiProcess_ValidateDataStructure;
   const aiScene* scene = nullptr;
   const bool gzip = file.extension() == ".gz";
   // "room.stl.gz" → "stl"
@@ -200,6 +200,29 @@ std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
   } else {
     if (format == "glb") checkGlbHeader(file);
     scene = importer.ReadFile(file.string(), flags);
+  }
+  if (scene && scene->mRootNode) {
+    // A reader may return faces without vertices and claim primitive types its faces do not
+    // have (a truncated PLY: empty faces, called polygons), and Assimp's triangulation then
+    // aborts on an assertion (found by fuzzing), which its validation lets through: empty
+    // faces are refused, and the types set from the faces before the steps that trust them.
+    for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+      aiMesh& mesh = *scene->mMeshes[i];
+      unsigned types = 0;
+      for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const unsigned n = mesh.mFaces[f].mNumIndices;
+        if (n == 0)
+          throw Error(file.string(), "mesh " + std::to_string(i) + ", face " + std::to_string(f),
+                      "a face without vertices (truncated or corrupt file?)");
+        types |= n == 1   ? aiPrimitiveType_POINT
+                 : n == 2 ? aiPrimitiveType_LINE
+                 : n == 3 ? aiPrimitiveType_TRIANGLE
+                          : aiPrimitiveType_POLYGON;
+      }
+      mesh.mPrimitiveTypes = types;
+    }
+    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
+                                         aiProcess_JoinIdenticalVertices);
   }
   if (!scene || !scene->mRootNode) {
     // A file read from memory goes by Assimp's stand-in name: give the user's back.
