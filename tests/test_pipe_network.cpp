@@ -489,3 +489,77 @@ TEST(PipeRendering, OpenedPipesAreLitInsideAndShadowTheGround) {
   EXPECT_LT(insideDifference / (3.0 * inside), 4.0) << "mean channel difference inside";
   EXPECT_GT(darkFloor, 500);
 }
+
+// Konev18 §7 on the GPU against the rule written here: a junction shaft seen from above and to
+// the side, rendered whole (shaftOpening 1 removes nothing) and opened (0.3). Every outer-wall
+// front-face pixel of the whole frame whose normal and view, heights ignored, meet at n̂·v̂ > 0.3 is
+// gone from the opened frame and every other one stays (pixels within 0.02 of the
+// coefficient may go either way); every cut-surface pixel of the opened shaft has the wedge's
+// side plane for its normal: horizontal, perpendicular to the radius from the shaft's axis
+// through its position, turned towards the viewer.
+TEST(PipeRendering, TheShaftWedgeRemovesWhereNormalAndViewMeet) {
+  const auto scene = [&](double opening) {
+    return parseScene(
+        R"({"resolution": [320, 240], "samples": 1,
+      "style": {"name": "blinn-phong", "lines": false},
+      "camera": {"eye": [4, 5, 7], "target": [0, -1.5, 0], "fov": 40},
+      "networks": [{"name": "n", "radius": 0.3, "wallThickness": 0.05, "depth": 2,
+        "shaftOpening": )" +
+            std::to_string(opening) +
+            R"(, "pipes": [{"lines": [[[-6, 0], [0, 0]], [[0, 0], [6, 1]], [[0, 0], [0, -6]]]}],
+        "shafts": {"generate": "junctions", "radius": 1.0, "wallThickness": 0.15}}]})",
+        "shaft.json", kSource);
+  };
+  const Scene whole = scene(1.0), opened = scene(0.3);
+  ASSERT_EQ(opened.networks.at(0).shafts.size(), 1u);
+  const Shaft shaft = opened.networks[0].shafts[0];
+  float outerId = -1.0f, innerId = -1.0f;
+  for (std::size_t i = 0; i < opened.objects.size(); ++i) {
+    if (opened.objects[i].networkPart == NetworkPart::ShaftOuter) outerId = float(i);
+    if (opened.objects[i].networkPart == NetworkPart::ShaftInner) innerId = float(i);
+  }
+  ASSERT_GE(outerId, 0.0f);
+  ASSERT_GE(innerId, 0.0f);
+  const glm::vec3 eye = opened.resolvedCamera().eye;
+  const auto a = renderAovs(whole), b = renderAovs(opened);
+  const FloatImage &wholeId = aov(a, "objectId"), &wholePos = aov(a, "position"),
+                   &wholeNormal = aov(a, "normal"), &id = aov(b, "objectId"),
+                   &pos = aov(b, "position"), &normal = aov(b, "normal"), &cut = aov(b, "cutMask");
+  int removed = 0, kept = 0, wrong = 0, cutPixels = 0, wrongCut = 0;
+  for (int y = 0; y < id.height; ++y)
+    for (int x = 0; x < id.width; ++x) {
+      if (wholeId.at(x, y)[0] == outerId) {
+        const glm::vec3 p = glm::make_vec3(wholePos.at(x, y)),
+                        n = glm::make_vec3(wholeNormal.at(x, y));
+        const glm::vec2 nh(n.x, n.z), vh(eye.x - p.x, eye.z - p.z);
+        // Front faces only: their normal is the radius (the outer wall's back faces, seen
+        // between the cylinders from above, are cut surfaces in both frames).
+        const glm::vec2 radius(p.x - shaft.bottom.x, p.z - shaft.bottom.z);
+        if (glm::length(nh) > 1e-3f &&
+            glm::dot(glm::normalize(nh), glm::normalize(radius)) > 0.9f &&
+            std::abs(glm::dot(glm::normalize(nh), glm::normalize(vh)) - 0.3f) > 0.02f) {
+          const bool gone = shaftWedgeRemoves(n, eye - p, 0.3f);
+          const bool same =
+              id.at(x, y)[0] == outerId && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-4f;
+          gone ? ++removed : ++kept;
+          wrong += gone == same;
+        }
+      }
+      const float k = id.at(x, y)[0];
+      if (cut.at(x, y)[0] != 1.0f || (k != outerId && k != innerId)) continue;
+      ++cutPixels;
+      const glm::vec3 p = glm::make_vec3(pos.at(x, y)), n = glm::make_vec3(normal.at(x, y));
+      const glm::vec2 radial =
+          glm::normalize(glm::vec2(p.x - shaft.bottom.x, p.z - shaft.bottom.z));
+      const bool side = std::abs(n.y) < 1e-3f &&
+                        std::abs(glm::dot(glm::vec2(n.x, n.z), radial)) < 0.09f &&
+                        glm::dot(glm::vec2(n.x, n.z), glm::vec2(eye.x - p.x, eye.z - p.z)) >= 0.0f;
+      wrongCut += !side;
+    }
+  EXPECT_GT(removed, 100);
+  EXPECT_GT(kept, 100);
+  EXPECT_EQ(wrong, 0) << "of " << removed + kept;
+  EXPECT_GT(cutPixels, 30);
+  // The cylinders' normals are interpolated between facets: within 5° of the true radius.
+  EXPECT_EQ(wrongCut, 0) << "of " << cutPixels;
+}
