@@ -59,6 +59,11 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
          "ply\nformat binary_little_endian 1.0\nelement vertex 2147483648\nproperty float x\n"
          "end_header\n",
          {"count.ply", "header line 3", "2147483648"});
+  // A count beyond every integer type: the message quotes it as written (converting it to an
+  // integer was undefined; fuzzing).
+  refuse("huge.ply",
+         "ply\nformat binary_little_endian 1.0\nelemeNt vertex 42949667294949667294\nend_header\n",
+         {"huge.ply", "header line 3", "claims 42949667294949667294 vertex elements"});
   refuse("magic.ply", "solid x\nendsolid x\n", {"magic.ply", "not a PLY"});
   // Keywords in another case, "end_header" only inside another line (Assimp hung; fuzzing).
   refuse("case.ply",

@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -63,18 +64,20 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
     std::istringstream words(line);
-    std::string keyword, name;
-    double count = 0.0;
+    std::string keyword, name, countText;
     if (!(words >> keyword)) continue;
     keyword = lower(keyword);
     if (keyword == "end_header" && !(words >> name)) return;
     if (keyword != "element") continue;
-    if (!(words >> name >> count) || !(count >= 0.0))
+    // The count as written: its value may be beyond every integer type (fuzzing).
+    char* end = nullptr;
+    const double count = words >> name >> countText ? std::strtod(countText.c_str(), &end) : -1.0;
+    if (countText.empty() || *end != '\0' || !(count >= 0.0))
       throw Error(file.string(), "header line " + std::to_string(number),
                   "an element needs a name and a count");
     if (count > double(size))
       throw Error(file.string(), "header line " + std::to_string(number),
-                  "claims " + std::to_string(std::uint64_t(count)) + " " + name +
+                  "claims " + countText.substr(0, 40) + " " + name.substr(0, 40) +
                       " elements in a file of " + std::to_string(size) + " bytes");
   }
   throw Error(file.string(), "header", "the PLY header has no end_header line (truncated?)");
