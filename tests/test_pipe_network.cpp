@@ -563,3 +563,58 @@ TEST(PipeRendering, TheShaftWedgeRemovesWhereNormalAndViewMeet) {
   // The cylinders' normals are interpolated between facets: within 5° of the true radius.
   EXPECT_EQ(wrongCut, 0) << "of " << cutPixels;
 }
+
+// Konev18 Fig. 10: an end triangle of a cut stretch seen from behind resets its area to the
+// pipe's outside (stencil 4), so the closed tube's end covers the disc there. A straight pipe
+// cut open over its middle, seen orthographically from beyond one end of the cut: every
+// stencil-4 pixel's ray meets one of the two end discs (radius r_out, perpendicular to the
+// pipe at the cut's ends) and shows the outside; the disc seen from behind shows the outside
+// wherever no cut surface lies in front (stencil 2), reset or covered by the closed tube in
+// front of it; the disc seen from the front is never reset.
+TEST(PipeRendering, AnEndTriangleSeenFromBehindShowsTheOutside) {
+  const float r = 0.5f, ends[2] = {-1.6f, 1.6f};  // the cut from 0.3 to 0.7 of x ∈ [−4, 4]
+  const Scene scene = parseScene(R"({"resolution": [200, 150], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false},
+    "camera": {"projection": "orthographic", "height": 4, "eye": [7, 2.5, 3], "target": [0, 0, 0]},
+    "networks": [{"name": "n", "wallThickness": 0.1, "cut": {"from": 0.3, "to": 0.7},
+                  "pipes": [{"lines": [[[-4, 0, 0], [4, 0, 0]]], "radius": 0.5}]}]})",
+                                 "ends.json", kSource);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &stencil = aov(aovs, "pipeStencil"), &cls = aov(aovs, "pipeClass");
+  const Camera camera = scene.resolvedCamera();
+  const float aspect = float(scene.width) / float(scene.height);
+  const glm::mat4 inverse = glm::inverse(camera.projectionMatrix(aspect) * camera.view());
+  const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+  // How far from end k's disc centre the pixel's ray crosses the disc's plane.
+  const auto offset = [&](int x, int y, int k) {
+    const glm::vec2 ndc((x + 0.5f) / float(stencil.width) * 2.0f - 1.0f,
+                        1.0f - (y + 0.5f) / float(stencil.height) * 2.0f);  // rows top down
+    const glm::vec4 h = inverse * glm::vec4(ndc, -1.0f, 1.0f);
+    const glm::vec3 origin = glm::vec3(h) / h.w;
+    const float t = (ends[k] - origin.x) / forward.x;
+    return glm::length(origin + t * forward - glm::vec3(ends[k], 0.0f, 0.0f));
+  };
+  int reset = 0, stray = 0, notOutside = 0, disc[2] = {0, 0}, outside[2] = {0, 0},
+      resetIn[2] = {0, 0};
+  for (int y = 0; y < stencil.height; ++y)
+    for (int x = 0; x < stencil.width; ++x) {
+      const float s = stencil.at(x, y)[0];
+      if (s == 4.0f) {
+        ++reset;
+        stray += offset(x, y, 0) > r + 0.03f && offset(x, y, 1) > r + 0.03f;
+        notOutside += std::lround(cls.at(x, y)[0] * 4.0f) != 1;
+      }
+      for (int k = 0; k < 2; ++k)
+        if (offset(x, y, k) < r - 0.03f && s != 2.0f)
+          ++disc[k], resetIn[k] += s == 4.0f,
+              outside[k] += std::lround(cls.at(x, y)[0] * 4.0f) == 1;
+    }
+  EXPECT_GT(reset, 100);
+  EXPECT_EQ(stray, 0);
+  EXPECT_EQ(notOutside, 0);
+  // The end nearer the eye (x = 1.6) is seen from behind: its disc, less the cut surfaces in
+  // front, shows the outside; the far end's is seen from the front and is not reset.
+  EXPECT_GT(resetIn[1], 100);
+  EXPECT_EQ(outside[1], disc[1]);
+  EXPECT_EQ(resetIn[0], 0) << "of " << disc[0];
+}
