@@ -618,3 +618,37 @@ TEST(PipeRendering, AnEndTriangleSeenFromBehindShowsTheOutside) {
   EXPECT_EQ(outside[1], disc[1]);
   EXPECT_EQ(resetIn[0], 0) << "of " << disc[0];
 }
+
+// Konev18 eqs. 15–16 on the GPU against the pipe's own geometry: the horizontal proxy quad
+// along a cut spans the full diameter, so seen from straight above (orthographic) proxy pass
+// 1 marks the two walls, r_in < |z| < r_out, as cut surface (stencil 2) and pass 2 the bore,
+// |z| < r_in, as inside (stencil 1), over the cut's middle; the end triangles are edge-on.
+// Pixels within 1.5 pixels of a band's border may go either way.
+TEST(PipeRendering, TheCutQuadMarksWallsAndBoreFromAbove) {
+  const float rOut = 0.5f, rIn = 0.4f;
+  const Scene scene = parseScene(R"({"resolution": [200, 200], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false},
+    "camera": {"projection": "orthographic", "height": 2, "eye": [0, 10, 0], "target": [0, 0, 0],
+               "up": [0, 0, -1]},
+    "networks": [{"name": "n", "wallThickness": 0.1, "cut": {"from": 0.2, "to": 0.8},
+                  "pipes": [{"lines": [[[-4, 0, 0], [4, 0, 0]]], "radius": 0.5}]}]})",
+                                 "quad.json", kSource);
+  const auto aovs = renderAovs(scene);
+  const FloatImage& stencil = aov(aovs, "pipeStencil");
+  const float pixel = 2.0f / float(stencil.height);  // scene units per pixel
+  int walls = 0, bore = 0, wrong = 0;
+  for (int y = 0; y < stencil.height; ++y)
+    for (int x = 0; x < stencil.width; ++x) {
+      // Up is −z: row 0 (the top) at z = −1; columns from x = −1.
+      const float wx = -1.0f + (x + 0.5f) * pixel, z = std::abs(-1.0f + (y + 0.5f) * pixel);
+      if (std::abs(wx) > 0.9f) continue;
+      const float margin = 1.5f * pixel;
+      if (std::abs(z - rIn) < margin || std::abs(z - rOut) < margin) continue;
+      const float expected = z < rIn ? 1.0f : z < rOut ? 2.0f : 0.0f;
+      walls += expected == 2.0f, bore += expected == 1.0f;
+      wrong += stencil.at(x, y)[0] != expected;
+    }
+  EXPECT_GT(walls, 1000);
+  EXPECT_GT(bore, 5000);
+  EXPECT_EQ(wrong, 0);
+}
