@@ -712,3 +712,61 @@ TEST(AdaptiveCutaway, CutSurfacesOnAllWatertightOrNoShells) {
   EXPECT_EQ(none[0], 0);
   EXPECT_EQ(none[1], 0);
 }
+
+// Burns11 §5.2.4.1 under the contextual structure (§4.1.3, eqs. 5.5–5.6, 7.1–7.3): a shell of
+// importance I around a point seed seen orthographically is trimmed where R(I, Ω) = ½, i.e. at
+// Ω* = (max(2I − 1, 0) + I)/2. Without an overlay, Ω runs linearly from the wide cone C₂ (θ₂)
+// to the narrow one C₁ (θ₁), so the trimming surface is itself a cone about the view axis:
+// height ρ·((1 − Ω*)/tan θ₂ + Ω*/tan θ₁) over the apex. Each cut pixel's normal is that
+// cone's inner normal and its point lies on it (I = 0.5: θ* = 49.1°; I = 0.8: 35.8°).
+TEST(AdaptiveCutaway, ContextualCutSurfaceIsTheTrimmingConeOfTheShellsImportance) {
+  const float theta1 = glm::radians(30.0f), theta2 = glm::radians(60.0f);
+  for (const float importance : {0.5f, 0.8f}) {
+    char json[1400];
+    std::snprintf(json, sizeof json, R"({"resolution": [160, 160], "samples": 1,
+        "style": {"name": "gooch", "lines": false},
+        "camera": {"projection": "orthographic", "height": 4.4, "eye": [0, 0, 10],
+                   "target": [0, 0, 0]},
+        "cutters": {"adaptive": {"angle": 30, "bufferSize": 512, "edgeCompression": false,
+                                 "ghostLines": false,
+                                 "contextual": {"transitionAngle": 60, "overlay": 0,
+                                                "reduction": "importance"}}},
+        "objects": [{"name": "shell", "file": "meshes/cube.obj", "importance": %g,
+                     "transform": {"translate": [-2, -2, -2], "scale": 4}}],
+        "proxies": [{"name": "seed", "box": {"min": [-0.01, -0.01, -0.52], "max": [0.01, 0.01, -0.5]}}]})",
+                  importance);
+    const Scene scene = parseScene(json, "trim.json", kData);
+    const auto aovs = renderAovs(scene);
+    const FloatImage &mask = aov(aovs, "cutMask"), &normal = aov(aovs, "normal"),
+                     &position = aov(aovs, "position");
+    const float omega = (std::max(2.0f * importance - 1.0f, 0.0f) + importance) / 2.0f;
+    const float slope = (1.0f - omega) / std::tan(theta2) + omega / std::tan(theta1);  // 1/tan θ*
+    const float t = std::atan(1.0f / slope);
+    // Where C₁ would lie in front of the near plane it is held there, and the cone bends.
+    const Camera camera = scene.resolvedCamera();
+    const float nearZ = camera.eye.z - camera.near;
+    int compared = 0, off = 0;
+    double worst = 0.0;
+    for (int y = 0; y < mask.height; ++y)
+      for (int x = 0; x < mask.width; ++x) {
+        if (mask.at(x, y)[0] < 0.5f) continue;
+        const glm::vec3 p = glm::make_vec3(position.at(x, y));
+        const float rho = glm::length(glm::vec2(p));
+        if (rho < 0.25f || std::max(std::abs(p.x), std::abs(p.y)) > 1.9f ||
+            -0.5f + (rho + 0.05f) / std::tan(theta1) > nearZ)
+          continue;
+        const glm::vec2 out = glm::vec2(p) / rho;
+        const glm::vec3 expected(-std::cos(t) * out, std::sin(t));
+        const double angle = glm::degrees(std::acos(
+            std::clamp(double(glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), expected)),
+                       -1.0, 1.0)));
+        worst = std::max(worst, angle);
+        ++compared;
+        // On the cone, within the seed's footprint and a texel or two of both surfaces.
+        off += std::abs(p.z - (-0.5f + rho * slope)) > 0.04f;
+      }
+    EXPECT_GT(compared, 2000) << "I " << importance;
+    EXPECT_EQ(off, 0) << "I " << importance;
+    EXPECT_LE(worst, 2.0) << "I " << importance << ", θ* " << glm::degrees(t);
+  }
+}
