@@ -51,8 +51,9 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
 
 // A PLY file's header, checked before Assimp reads it: Assimp's reader loops forever on a header
 // without an "end_header" line and allocates what an element count claims. Each element takes
-// at least one byte of the file, so a count beyond its size is a lie. Keywords are compared
-// without case, as a header Assimp still parses ("elemeNt", found by fuzzing) must be checked.
+// at least one byte of the file, so a count beyond its size is a lie. "element" is compared
+// without case, as a header Assimp still parses ("elemeNt", found by fuzzing) must be checked;
+// "end_header" with it, as Assimp reads nothing else as the header's end.
 void checkPlyHeader(const std::filesystem::path& file, const char* data, std::size_t size) {
   const std::string head(data, std::min<std::size_t>(size, 1 << 16));
   if (head.rfind("ply", 0) != 0) throw Error(file.string(), "", "not a PLY file (no \"ply\" line)");
@@ -66,9 +67,10 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
     std::istringstream words(line);
     std::string keyword, name, countText;
     if (!(words >> keyword)) continue;
-    keyword = lower(keyword);
+    // Assimp ends the header only at "end_header" as written ("end_headEr" made it read on
+    // and loop at the end of the file; fuzzing), but takes "elemeNt" for an element.
     if (keyword == "end_header" && !(words >> name)) return;
-    if (keyword != "element") continue;
+    if (lower(keyword) != "element") continue;
     // The count as written: its value may be beyond every integer type (fuzzing).
     char* end = nullptr;
     const double count = words >> name >> countText ? std::strtod(countText.c_str(), &end) : -1.0;
