@@ -411,6 +411,36 @@ TEST(Renderer, TheCompositeIsTheColourWithItsOverlaysBlendedInOrder) {
   EXPECT_LE(worst * 255.0, 0.75);
 }
 
+namespace {
+
+// A 4-unit watertight cube shell (`shell`: extra keys of it) around a point-like proxy seed at
+// depth −0.5, seen orthographically down −z (160², 4.4 units high); `adaptive`: the cutter's
+// keys besides those that keep the cone exact (512² buffer, no edge compression or ghosts).
+Scene pointSeedInAShell(const std::string& adaptive, const std::string& shell) {
+  return parseScene(
+      R"({"resolution": [160, 160], "samples": 1, "style": {"name": "gooch", "lines": false},
+        "camera": {"projection": "orthographic", "height": 4.4, "eye": [0, 0, 10],
+                   "target": [0, 0, 0]},
+        "cutters": {"adaptive": {"bufferSize": 512, "edgeCompression": false,
+                                 "ghostLines": false, )" +
+          adaptive + R"(}},
+        "objects": [{"name": "shell", "file": "meshes/cube.obj", )" +
+          shell + R"("transform": {"translate": [-2, -2, -2], "scale": 4}}],
+        "proxies": [{"name": "seed", "box": {"min": [-0.01, -0.01, -0.52], "max": [0.01, 0.01, -0.5]}}]})",
+      "cone.json", kData);
+}
+
+// Degrees between `normal` and the inner normal (−cos θ ρ̂, sin θ) at p of the cone of
+// half-angle θ about the view axis.
+double degreesFromConeNormal(const glm::vec3& normal, const glm::vec3& p, float theta) {
+  const glm::vec2 out = glm::normalize(glm::vec2(p));
+  const glm::vec3 expected(-std::cos(theta) * out, std::sin(theta));
+  return glm::degrees(
+      std::acos(std::clamp(double(glm::dot(glm::normalize(normal), expected)), -1.0, 1.0)));
+}
+
+}  // namespace
+
 // Burns08 §4.1 / Burns11 §5.2.4.1: the cut surface is shaded with the normal of the cutaway
 // surface. Seen orthographically down −z with a point-like seed at depth −0.5, that surface is
 // the cone of half-angle θ about the view axis with its apex at the seed, whose inner normal
@@ -418,18 +448,7 @@ TEST(Renderer, TheCompositeIsTheColourWithItsOverlaysBlendedInOrder) {
 // against it.
 TEST(AdaptiveCutaway, CutSurfaceNormalsAreTheConesNormal) {
   for (const float theta : {30.0f, 45.0f}) {
-    char json[1200];
-    std::snprintf(json, sizeof json, R"({"resolution": [160, 160], "samples": 1,
-        "style": {"name": "gooch", "lines": false},
-        "camera": {"projection": "orthographic", "height": 4.4, "eye": [0, 0, 10],
-                   "target": [0, 0, 0]},
-        "cutters": {"adaptive": {"angle": %g, "bufferSize": 512, "edgeCompression": false,
-                                 "ghostLines": false}},
-        "objects": [{"name": "shell", "file": "meshes/cube.obj",
-                     "transform": {"translate": [-2, -2, -2], "scale": 4}}],
-        "proxies": [{"name": "seed", "box": {"min": [-0.01, -0.01, -0.52], "max": [0.01, 0.01, -0.5]}}]})",
-                  theta);
-    const Scene scene = parseScene(json, "cone.json", kData);
+    const Scene scene = pointSeedInAShell(R"("angle": )" + std::to_string(theta), "");
     const auto aovs = renderAovs(scene);
     const FloatImage &mask = aov(aovs, "cutMask"), &normal = aov(aovs, "normal"),
                      &position = aov(aovs, "position");
@@ -443,12 +462,7 @@ TEST(AdaptiveCutaway, CutSurfaceNormalsAreTheConesNormal) {
         const float rho = glm::length(glm::vec2(p));
         // Away from the apex (the seed's own footprint) and from the shell's walls.
         if (rho < 0.25f || std::max(std::abs(p.x), std::abs(p.y)) > 1.9f) continue;
-        const glm::vec2 out = glm::vec2(p) / rho;
-        const glm::vec3 expected(-std::cos(t) * out, std::sin(t));
-        const double angle = glm::degrees(std::acos(
-            std::clamp(double(glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), expected)),
-                       -1.0, 1.0)));
-        worst = std::max(worst, angle);
+        worst = std::max(worst, degreesFromConeNormal(glm::make_vec3(normal.at(x, y)), p, t));
         ++compared;
         // The cut point lies on the cone too, at height ρ / tan θ over the apex, brought out by
         // the seed's footprint (a 0.01 half-side) and the dilation (one of 512 texels over 4.4
@@ -722,20 +736,9 @@ TEST(AdaptiveCutaway, CutSurfacesOnAllWatertightOrNoShells) {
 TEST(AdaptiveCutaway, ContextualCutSurfaceIsTheTrimmingConeOfTheShellsImportance) {
   const float theta1 = glm::radians(30.0f), theta2 = glm::radians(60.0f);
   for (const float importance : {0.5f, 0.8f}) {
-    char json[1400];
-    std::snprintf(json, sizeof json, R"({"resolution": [160, 160], "samples": 1,
-        "style": {"name": "gooch", "lines": false},
-        "camera": {"projection": "orthographic", "height": 4.4, "eye": [0, 0, 10],
-                   "target": [0, 0, 0]},
-        "cutters": {"adaptive": {"angle": 30, "bufferSize": 512, "edgeCompression": false,
-                                 "ghostLines": false,
-                                 "contextual": {"transitionAngle": 60, "overlay": 0,
-                                                "reduction": "importance"}}},
-        "objects": [{"name": "shell", "file": "meshes/cube.obj", "importance": %g,
-                     "transform": {"translate": [-2, -2, -2], "scale": 4}}],
-        "proxies": [{"name": "seed", "box": {"min": [-0.01, -0.01, -0.52], "max": [0.01, 0.01, -0.5]}}]})",
-                  importance);
-    const Scene scene = parseScene(json, "trim.json", kData);
+    const Scene scene = pointSeedInAShell(
+        R"("angle": 30, "contextual": {"transitionAngle": 60, "overlay": 0, "reduction": "importance"})",
+        R"("importance": )" + std::to_string(importance) + ", ");
     const auto aovs = renderAovs(scene);
     const FloatImage &mask = aov(aovs, "cutMask"), &normal = aov(aovs, "normal"),
                      &position = aov(aovs, "position");
@@ -755,12 +758,7 @@ TEST(AdaptiveCutaway, ContextualCutSurfaceIsTheTrimmingConeOfTheShellsImportance
         if (rho < 0.25f || std::max(std::abs(p.x), std::abs(p.y)) > 1.9f ||
             -0.5f + (rho + 0.05f) / std::tan(theta1) > nearZ)
           continue;
-        const glm::vec2 out = glm::vec2(p) / rho;
-        const glm::vec3 expected(-std::cos(t) * out, std::sin(t));
-        const double angle = glm::degrees(std::acos(
-            std::clamp(double(glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), expected)),
-                       -1.0, 1.0)));
-        worst = std::max(worst, angle);
+        worst = std::max(worst, degreesFromConeNormal(glm::make_vec3(normal.at(x, y)), p, t));
         ++compared;
         // On the cone, within the seed's footprint and a texel or two of both surfaces.
         off += std::abs(p.z - (-0.5f + rho * slope)) > 0.04f;
