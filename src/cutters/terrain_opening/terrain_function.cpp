@@ -106,10 +106,10 @@ TerrainFate terrainFate(const TerrainField& field, const TerrainOpeningOptions& 
     wall->point = found > 0.0f ? p + ray * (found / across) : p;
     // Beyond the paper (its §4 suggestion): lit as a wall facing the closest pipe.
     const glm::vec2 at = uv + perUnit * found;
-    const float texel = 1.0f / n;
+    const float h = 1.0f / n;  // central differences a texel apart, in texture space
     const glm::vec2 g =
-        glm::vec2(field.at(at + glm::vec2(texel, 0.0f)) - field.at(at - glm::vec2(texel, 0.0f)),
-                  field.at(at + glm::vec2(0.0f, texel)) - field.at(at - glm::vec2(0.0f, texel))) /
+        glm::vec2(field.at(at + glm::vec2(h, 0.0f)) - field.at(at - glm::vec2(h, 0.0f)),
+                  field.at(at + glm::vec2(0.0f, h)) - field.at(at - glm::vec2(0.0f, h))) /
         field.size;
     wall->normal = glm::dot(g, g) > 0.0f ? glm::normalize(glm::vec3(-g.x, 0.0f, -g.y))
                                          : -glm::vec3(along.x, 0.0f, along.y);
