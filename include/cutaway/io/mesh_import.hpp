@@ -28,7 +28,12 @@ struct ImportedNode {
   std::optional<glm::vec3> color;  // diffuse / base colour of its first material
 };
 
-// Throws cutaway::Error naming the file and the reason.
+// Throws cutaway::Error naming the file and the reason. The importer runs in a child process
+// under importLimits() (cutaway/core/contained.hpp): a file that crashes Assimp, hangs it or
+// makes it allocate without bound is an Error too.
 std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file);
+// The same import in the calling process, without limits: for the fuzzer, which must see the
+// importer's faults, and for callers that trust their files.
+std::vector<ImportedNode> importMeshNodesInProcess(const std::filesystem::path& file);
 
 }  // namespace cutaway

@@ -1,0 +1,184 @@
+#include "cutaway/core/contained.hpp"
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include "cutaway/core/error.hpp"
+#include "cutaway/io/mesh_import.hpp"
+#include "expect_error.hpp"
+
+using namespace cutaway;
+
+namespace {
+
+ContainmentLimits limits(double seconds, std::uint64_t megabytes) {
+  ContainmentLimits l;
+  l.seconds = seconds;
+  l.memoryBytes = megabytes << 20;
+  return l;
+}
+
+void expectContainedError(const std::function<std::string()>& work, const ContainmentLimits& l,
+                          std::initializer_list<std::string> parts) {
+  test::expectError([&] { runContained("input.bin", "the test parser", work, l); }, parts);
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
+}  // namespace
+
+TEST(Contained, TheChildsBytesComeBackWhole) {
+  // 48 MB with a pattern: more than a pipe or a page holds, every byte checked.
+  std::string expected(48u << 20, '\0');
+  for (std::size_t i = 0; i < expected.size(); ++i) expected[i] = char(i * 2654435761u >> 24);
+  const ContainedReply reply = runContained(
+      "input.bin", "the test parser", [&] { return expected; }, limits(60, 1024));
+  ASSERT_EQ(reply.bytes().size(), expected.size());
+  EXPECT_TRUE(reply.bytes() == expected);
+  // An empty result is a result.
+  EXPECT_EQ(runContained(
+                "input.bin", "p", [] { return std::string(); }, limits(60, 64))
+                .bytes()
+                .size(),
+            0u);
+}
+
+TEST(Contained, AnErrorTheChildThrowsComesBackAsThrown) {
+  try {
+    runContained(
+        "input.bin", "the test parser",
+        []() -> std::string { throw Error("mesh.ply", "header line 3", "a count too large"); },
+        limits(60, 64));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.file(), "mesh.ply");
+    EXPECT_EQ(e.place(), "header line 3");
+    EXPECT_EQ(e.reason(), "a count too large");
+  }
+  expectContainedError([]() -> std::string { throw std::runtime_error("vector::reserve"); },
+                       limits(60, 64),
+                       {"input.bin: the test parser failed on this file: vector::reserve"});
+}
+
+TEST(Contained, ACrashIsAnErrorNamingTheFileAndTheSignal) {
+  expectContainedError([]() -> std::string { std::abort(); }, limits(60, 64),
+                       {"input.bin: the test parser crashed on this file (Aborted)"});
+  expectContainedError(
+      []() -> std::string {
+        std::raise(SIGSEGV);
+        return "";
+      },
+      limits(60, 64), {"input.bin: the test parser crashed on this file (Segmentation fault)"});
+  expectContainedError([]() -> std::string { ::_exit(3); }, limits(60, 64),
+                       {"crashed on this file (exit status 3)"});
+}
+
+TEST(Contained, TheChildLeavesWhatTheParentBufferedToTheParent) {
+  // Output buffered before the fork is written once, by the parent: the child leaves by
+  // _exit, which flushes no stream and runs no exit handler of the parent's.
+  const std::string path = ::testing::TempDir() + "cutaway-contained-buffered.txt";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_TRUE(f);
+  std::fputs("written once", f);
+  runContained(
+      "input.bin", "p", [] { return std::string("done"); }, limits(60, 64));
+  std::fclose(f);
+  std::FILE* in = std::fopen(path.c_str(), "r");
+  char text[64] = {};
+  const std::size_t n = std::fread(text, 1, sizeof text - 1, in);
+  std::fclose(in);
+  std::remove(path.c_str());
+  EXPECT_EQ(std::string(text, n), "written once");
+}
+
+TEST(Contained, AChildPastItsTimeIsStopped) {
+  const auto start = std::chrono::steady_clock::now();
+  expectContainedError(
+      []() -> std::string {
+        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+      },
+      limits(0.5, 64), {"input.bin: the test parser took longer than 0.5 s on this file"});
+  const double took =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(took, 0.5);
+  EXPECT_LT(took, 10.0);  // a bound for a starved machine, not a speed goal
+}
+
+TEST(Contained, AChildPastItsMemoryIsStopped) {
+  // 1 GB touched page by page under a 64 MB limit. AddressSanitizer's allocator dies on a
+  // failed mapping rather than throwing, which is a crash.
+  const auto allocate = []() -> std::string {
+    std::string big(1u << 30, 'x');
+    return big.substr(0, 1);
+  };
+  if (kAddressSanitizer)
+    expectContainedError(allocate, limits(60, 64), {"input.bin: the test parser crashed"});
+  else
+    expectContainedError(
+        allocate, limits(60, 64),
+        {"input.bin: the test parser needed more than 64 MB of memory for this file"});
+  // Within the limit it runs.
+  EXPECT_EQ(
+      runContained(
+          "input.bin", "p", [] { return std::string(32u << 20, 'y').substr(0, 2); }, limits(60, 64))
+          .bytes(),
+      "yy");
+}
+
+TEST(Contained, BadLimitsInTheEnvironmentAreRefused) {
+  ::setenv("CUTAWAY_IMPORT_SECONDS", "-3", 1);
+  test::expectError([] { importLimits(); }, {"CUTAWAY_IMPORT_SECONDS", "-3"});
+  ::setenv("CUTAWAY_IMPORT_SECONDS", "2.5", 1);
+  ::setenv("CUTAWAY_IMPORT_MEMORY_MB", "12x", 1);
+  test::expectError([] { importLimits(); }, {"CUTAWAY_IMPORT_MEMORY_MB", "12x"});
+  ::setenv("CUTAWAY_IMPORT_MEMORY_MB", "100", 1);
+  const ContainmentLimits l = importLimits();
+  EXPECT_EQ(l.seconds, 2.5);
+  EXPECT_EQ(l.memoryBytes, 100u << 20);
+  ::unsetenv("CUTAWAY_IMPORT_SECONDS");
+  ::unsetenv("CUTAWAY_IMPORT_MEMORY_MB");
+  EXPECT_EQ(importLimits().seconds, 300.0);
+}
+
+// The contained import hands back exactly what the in-process import builds: names, places,
+// every vertex, normal and index, the report and the colour.
+TEST(Contained, AMeshImportedInTheChildIsTheMeshImportedHere) {
+  for (const char* file :
+       {"/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+        CUTAWAY_SOURCE_DIR "/examples/data/hollow-box.obj"}) {
+    SCOPED_TRACE(file);
+    const std::vector<ImportedNode> here = importMeshNodesInProcess(file);
+    const std::vector<ImportedNode> there = importMeshNodes(file);
+    ASSERT_EQ(here.size(), there.size());
+    for (std::size_t i = 0; i < here.size(); ++i) {
+      const Mesh &a = here[i].mesh, &b = there[i].mesh;
+      EXPECT_EQ(here[i].name, there[i].name);
+      EXPECT_EQ(here[i].id, there[i].id);
+      EXPECT_EQ(here[i].color, there[i].color);
+      EXPECT_EQ(a.positions, b.positions);
+      EXPECT_EQ(a.normals, b.normals);
+      EXPECT_EQ(a.triangles, b.triangles);
+      EXPECT_EQ(a.report.droppedDegenerate, b.report.droppedDegenerate);
+      EXPECT_EQ(a.report.normalsComputed, b.report.normalsComputed);
+      EXPECT_EQ(a.report.boundaryEdges, b.report.boundaryEdges);
+      EXPECT_EQ(a.report.nonManifoldEdges, b.report.nonManifoldEdges);
+      EXPECT_EQ(a.report.misorientedEdges, b.report.misorientedEdges);
+      EXPECT_EQ(a.report.watertight, b.report.watertight);
+    }
+  }
+}
