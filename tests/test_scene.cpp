@@ -1,12 +1,14 @@
 // Tests of the JSON scene format (docs/scene-format.md): malformed files are rejected with the
 // file, the JSON pointer and the reason; valid files load with the documented defaults.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -1417,4 +1419,29 @@ TEST(SceneNames, UnnamedGltfNodesTakeTheirMeshNamesAndKeepTheirPlaceAsAnAlias) {
     rods += o.importance == 0.9f;
   }
   EXPECT_EQ(rods, 2);
+}
+
+// A reload while the last scene is held (the viewer's way) imports no mesh file again; a file
+// that changed is imported anew, and one no scene holds any more is let go.
+TEST(SceneMeshes, AFileAScenesStillHoldsIsNotImportedAgain) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                                    ("cutaway-reload-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(std::string(CUTAWAY_SOURCE_DIR) + "/examples/data/hollow-box.obj",
+                             dir / "box.obj", std::filesystem::copy_options::overwrite_existing);
+  // Split by nodes, objects share the file's meshes (an unsplit object is a merged copy).
+  const std::string text = R"({"objects": [{"name": "box", "file": "box.obj", "split": "nodes"},
+                                {"name": "again", "file": "box.obj", "split": "nodes"}]})";
+  const auto load = [&] { return parseScene(text, "reload.json", dir); };
+  const Scene first = load();
+  const Mesh* mesh = first.objects[0].mesh.get();
+  EXPECT_EQ(first.objects[1].mesh.get(), mesh);  // one import per scene
+  const Scene second = load();
+  EXPECT_EQ(second.objects[0].mesh.get(), mesh);
+  // Changed on disk: imported again, and what it holds is the new file.
+  std::ofstream(dir / "box.obj", std::ios::app) << "v 9 9 9\nv 9 9 10\nv 9 10 9\nf 17 18 19\n";
+  const Scene third = load();
+  EXPECT_NE(third.objects[0].mesh.get(), mesh);
+  EXPECT_EQ(third.objects[0].mesh->triangles.size(), mesh->triangles.size() + 1);
+  std::filesystem::remove_all(dir);
 }

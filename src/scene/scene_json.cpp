@@ -10,11 +10,13 @@
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "core/json_reader.hpp"
 #include "cutaway/core/error.hpp"
@@ -219,20 +221,38 @@ void appearance(const Context& ctx, ObjectReader& r, SceneObject& o, bool visibl
     o.material.shininess = float(number(ctx, *v, r.at("shininess"), 1, 10000));
 }
 
+// A mesh file is imported once per scene, and not again while a scene still holds it (the
+// viewer's last good scene while an edit reloads): files are known by path, size and
+// modification time.
 class MeshCache {
  public:
   // Shared so that the objects' meshes (aliasing pointers into it) outlive the cache.
   std::shared_ptr<const std::vector<ImportedNode>> get(const std::filesystem::path& file) {
     auto it = files_.find(file);
-    if (it == files_.end())
-      it = files_
-               .emplace(file,
-                        std::make_shared<const std::vector<ImportedNode>>(importMeshNodes(file)))
-               .first;
-    return it->second;
+    if (it != files_.end()) return it->second;
+    std::error_code sizeError, timeError;
+    const Key key{file, std::filesystem::file_size(file, sizeError),
+                  std::filesystem::last_write_time(file, timeError)};
+    if (sizeError || timeError) return files_[file] = import(file);  // its error names why
+    static std::mutex mutex;
+    static std::map<Key, std::weak_ptr<const std::vector<ImportedNode>>> held;
+    {
+      const std::lock_guard lock(mutex);
+      if (auto nodes = held[key].lock()) return files_[file] = nodes;
+    }
+    auto nodes = import(file);
+    const std::lock_guard lock(mutex);
+    std::erase_if(held, [](const auto& entry) { return entry.second.expired(); });
+    held[key] = nodes;
+    return files_[file] = nodes;
   }
 
  private:
+  using Key = std::tuple<std::filesystem::path, std::uintmax_t, std::filesystem::file_time_type>;
+  static std::shared_ptr<const std::vector<ImportedNode>> import(
+      const std::filesystem::path& file) {
+    return std::make_shared<const std::vector<ImportedNode>>(importMeshNodes(file));
+  }
   std::map<std::filesystem::path, std::shared_ptr<const std::vector<ImportedNode>>> files_;
 };
 
