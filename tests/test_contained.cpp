@@ -9,12 +9,62 @@
 #include <thread>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
+#include "cutaway/io/raster_terrain.hpp"
 #include "expect_error.hpp"
 
 using namespace cutaway;
 
 namespace {
+
+// `read()` once in this process and once through the child.
+template <class Read>
+auto hereAndThere(Read&& read) {
+  ::setenv("CUTAWAY_IMPORT_CONTAINED", "0", 1);
+  auto here = read();
+  ::unsetenv("CUTAWAY_IMPORT_CONTAINED");
+  return std::pair(std::move(here), read());
+}
+
+void expectSameCrs(const GisCrs& a, const GisCrs& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.authority, b.authority);
+  EXPECT_EQ(a.wkt, b.wkt);
+}
+
+void expectSameMesh(const Mesh& a, const Mesh& b) {
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.normals, b.normals);
+  EXPECT_EQ(a.triangles, b.triangles);
+  EXPECT_EQ(a.report.droppedDegenerate, b.report.droppedDegenerate);
+  EXPECT_EQ(a.report.normalsComputed, b.report.normalsComputed);
+  EXPECT_EQ(a.report.boundaryEdges, b.report.boundaryEdges);
+  EXPECT_EQ(a.report.nonManifoldEdges, b.report.nonManifoldEdges);
+  EXPECT_EQ(a.report.misorientedEdges, b.report.misorientedEdges);
+  EXPECT_EQ(a.report.watertight, b.report.watertight);
+}
+
+void expectSameLayer(const GisLayerImport& a, const GisLayerImport& b) {
+  EXPECT_EQ(a.layer.name, b.layer.name);
+  EXPECT_EQ(a.layer.geometryType, b.layer.geometryType);
+  EXPECT_EQ(a.layer.featureCount, b.layer.featureCount);
+  expectSameCrs(a.layer.crs, b.layer.crs);
+  ASSERT_TRUE(a.layer.extent && b.layer.extent);
+  EXPECT_EQ(a.layer.extent->min, b.layer.extent->min);
+  EXPECT_EQ(a.layer.extent->max, b.layer.extent->max);
+  EXPECT_EQ(a.layer.fields, b.layer.fields);
+  EXPECT_EQ(a.layer.fieldTypes, b.layer.fieldTypes);
+  expectSameCrs(a.crs, b.crs);
+  EXPECT_EQ(a.offset, b.offset);
+  EXPECT_EQ(a.hasZ, b.hasZ);
+  EXPECT_EQ(a.report.features, b.report.features);
+  EXPECT_EQ(a.report.featuresWithoutGeometry, b.report.featuresWithoutGeometry);
+  EXPECT_EQ(a.report.repeatedNodes, b.report.repeatedNodes);
+  EXPECT_EQ(a.report.degenerateParts, b.report.degenerateParts);
+  EXPECT_EQ(a.report.missingAttributeValues, b.report.missingAttributeValues);
+  EXPECT_EQ(a.report.degenerateRings, b.report.degenerateRings);
+}
 
 ContainmentLimits limits(double seconds, std::uint64_t megabytes) {
   ContainmentLimits l;
@@ -162,23 +212,81 @@ TEST(Contained, AMeshImportedInTheChildIsTheMeshImportedHere) {
        {"/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
         CUTAWAY_SOURCE_DIR "/examples/data/hollow-box.obj"}) {
     SCOPED_TRACE(file);
-    const std::vector<ImportedNode> here = importMeshNodesInProcess(file);
-    const std::vector<ImportedNode> there = importMeshNodes(file);
+    const auto [here, there] = hereAndThere([&] { return importMeshNodes(file); });
     ASSERT_EQ(here.size(), there.size());
     for (std::size_t i = 0; i < here.size(); ++i) {
-      const Mesh &a = here[i].mesh, &b = there[i].mesh;
       EXPECT_EQ(here[i].name, there[i].name);
       EXPECT_EQ(here[i].id, there[i].id);
       EXPECT_EQ(here[i].color, there[i].color);
-      EXPECT_EQ(a.positions, b.positions);
-      EXPECT_EQ(a.normals, b.normals);
-      EXPECT_EQ(a.triangles, b.triangles);
-      EXPECT_EQ(a.report.droppedDegenerate, b.report.droppedDegenerate);
-      EXPECT_EQ(a.report.normalsComputed, b.report.normalsComputed);
-      EXPECT_EQ(a.report.boundaryEdges, b.report.boundaryEdges);
-      EXPECT_EQ(a.report.nonManifoldEdges, b.report.nonManifoldEdges);
-      EXPECT_EQ(a.report.misorientedEdges, b.report.misorientedEdges);
-      EXPECT_EQ(a.report.watertight, b.report.watertight);
+      expectSameMesh(here[i].mesh, there[i].mesh);
     }
   }
+}
+
+// The same for GDAL's readers: a layer's lines and polygons with their attributes, CRS, extent
+// and report; a raster's terrain and description.
+TEST(Contained, GisLayersAndRastersReadInTheChildAreTheOnesReadHere) {
+  const std::string ss = "/usr/share/plplot5.15.0/ss/";
+  GisImportOptions options;
+  options.attributes = {"FEATCODE"};
+  options.targetCrs = "EPSG:27700";
+  options.offset = {264000.0, 144000.0, 0.0};
+  const auto [lines, linesThere] =
+      hereAndThere([&] { return importGisLines(ss + "ss64ne_Road_Centreline.shp", options); });
+  const auto [areas, areasThere] =
+      hereAndThere([&] { return importGisPolygons(ss + "ss64ne_Building_Area.shp", options); });
+  ASSERT_GT(lines.polylines.size(), 10u);
+  ASSERT_GT(areas.polygons.size(), 10u);
+  expectSameLayer(lines, linesThere);
+  expectSameLayer(areas, areasThere);
+  ASSERT_EQ(lines.polylines.size(), linesThere.polylines.size());
+  for (std::size_t i = 0; i < lines.polylines.size(); ++i) {
+    EXPECT_EQ(lines.polylines[i].featureId, linesThere.polylines[i].featureId);
+    EXPECT_EQ(lines.polylines[i].part, linesThere.polylines[i].part);
+    EXPECT_EQ(lines.polylines[i].points, linesThere.polylines[i].points);
+    EXPECT_EQ(lines.polylines[i].attributes, linesThere.polylines[i].attributes);
+  }
+  ASSERT_EQ(areas.polygons.size(), areasThere.polygons.size());
+  for (std::size_t i = 0; i < areas.polygons.size(); ++i) {
+    EXPECT_EQ(areas.polygons[i].featureId, areasThere.polygons[i].featureId);
+    EXPECT_EQ(areas.polygons[i].part, areasThere.polygons[i].part);
+    EXPECT_EQ(areas.polygons[i].outer, areasThere.polygons[i].outer);
+    EXPECT_EQ(areas.polygons[i].holes, areasThere.polygons[i].holes);
+    EXPECT_EQ(areas.polygons[i].attributes, areasThere.polygons[i].attributes);
+  }
+  const auto [layers, layersThere] =
+      hereAndThere([&] { return listGisLayers(ss + "ss64ne_Water_Line.shp"); });
+  ASSERT_EQ(layers.size(), 1u);
+  ASSERT_EQ(layersThere.size(), 1u);
+  EXPECT_EQ(layers[0].name, layersThere[0].name);
+  EXPECT_EQ(layers[0].fields, layersThere[0].fields);
+
+  const std::string dem = CUTAWAY_SOURCE_DIR "/examples/data/ss64ne-dem.tif";
+  RasterTerrainOptions rasterOptions;
+  rasterOptions.step = 2;
+  rasterOptions.offset = {264000.0, 144000.0, 0.0};
+  const auto [terrain, terrainThere] =
+      hereAndThere([&] { return importRasterTerrain(dem, rasterOptions); });
+  expectSameMesh(terrain.mesh, terrainThere.mesh);
+  EXPECT_EQ(terrain.columns, terrainThere.columns);
+  EXPECT_EQ(terrain.rows, terrainThere.rows);
+  expectSameCrs(terrain.crs, terrainThere.crs);
+  expectSameCrs(terrain.sceneCrs, terrainThere.sceneCrs);
+  EXPECT_EQ(terrain.geoTransform, terrainThere.geoTransform);
+  EXPECT_EQ(terrain.filledNodata, terrainThere.filledNodata);
+  EXPECT_EQ(terrain.minHeight, terrainThere.minHeight);
+  EXPECT_EQ(terrain.maxHeight, terrainThere.maxHeight);
+  const auto [info, infoThere] = hereAndThere([&] { return describeRaster(dem); });
+  EXPECT_EQ(info.driver, infoThere.driver);
+  EXPECT_EQ(info.width, infoThere.width);
+  EXPECT_EQ(info.height, infoThere.height);
+  EXPECT_EQ(info.bands, infoThere.bands);
+  EXPECT_EQ(info.dataType, infoThere.dataType);
+  expectSameCrs(info.crs, infoThere.crs);
+  EXPECT_EQ(info.geoTransform, infoThere.geoTransform);
+  EXPECT_EQ(info.nodata, infoThere.nodata);
+  EXPECT_EQ(info.minimum, infoThere.minimum);
+  EXPECT_EQ(info.maximum, infoThere.maximum);
+  EXPECT_TRUE(isRaster(dem));
+  EXPECT_FALSE(isRaster(ss + "ss64ne_Water_Line.shp"));
 }

@@ -1,6 +1,7 @@
 #include "cutaway/core/contained.hpp"
 
 #include <fcntl.h>
+#include <malloc.h>
 #include <poll.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
@@ -63,16 +64,14 @@ std::uint64_t dataSegmentBytes() {
   } catch (const Error& e) {
     kind = kError;
     ByteWriter w;
-    w.string(e.file());
-    w.string(e.place());
-    w.string(e.reason());
+    w(e.file(), e.place(), e.reason());
     reply = std::move(w.bytes);
   } catch (const std::bad_alloc&) {
     kind = kOutOfMemory;
   } catch (const std::exception& e) {
     kind = kOther;
     ByteWriter w;
-    w.string(e.what());
+    w(std::string(e.what()));
     reply = std::move(w.bytes);
   }
   // _exit: the parent's atexit handlers and stdio buffers are the parent's to run and flush.
@@ -135,6 +134,7 @@ ContainedReply runContained(const std::string& file, const std::string& parser,
   if (::pipe2(pipeEnds, O_CLOEXEC) != 0) throw failed("pipe");
   // The child holds the write end until it ends: its closing is the parent's signal.
   Fd ended{pipeEnds[0]}, running{pipeEnds[1]};
+  ::malloc_trim(0);
   const pid_t pid = ::fork();
   if (pid < 0) throw failed("fork");
   if (pid == 0) runChild(reply.fd, work, limits);
@@ -191,15 +191,16 @@ ContainedReply runContained(const std::string& file, const std::string& parser,
     case kResult:
       return result;
     case kError: {
-      std::string errorFile = r.string(), place = r.string();
-      throw Error(errorFile, place, r.string());
+      std::string errorFile, place, reason;
+      r(errorFile, place, reason);
+      throw Error(errorFile, place, reason);
     }
     case kOutOfMemory:
       throw Error(file, "",
                   prefix + "needed more than " + std::to_string(limits.memoryBytes >> 20) +
                       " MB of memory for this file (CUTAWAY_IMPORT_MEMORY_MB)");
     default:
-      throw Error(file, "", prefix + "failed on this file: " + r.string());
+      throw Error(file, "", prefix + "failed on this file: " + r.read<std::string>());
   }
 }
 

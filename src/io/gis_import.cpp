@@ -17,8 +17,10 @@
 #include <memory>
 #include <mutex>
 
+#include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
 #include "io/gdal_support.hpp"
+#include "io/wire_fields.hpp"
 
 namespace cutaway {
 
@@ -228,12 +230,14 @@ bool gisCrsKnown(const std::string& crs) {
 }
 
 std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file) {
-  gdal::QuietErrors quiet;
-  GDALDatasetUniquePtr dataset = openVectorSource(file);
-  std::vector<GisLayerInfo> layers;
-  for (int i = 0; i < dataset->GetLayerCount(); ++i)
-    layers.push_back(describeLayer(*dataset->GetLayer(i)));
-  return layers;
+  return importContained<std::vector<GisLayerInfo>>(file.string(), "GDAL", [&] {
+    gdal::QuietErrors quiet;
+    GDALDatasetUniquePtr dataset = openVectorSource(file);
+    std::vector<GisLayerInfo> layers;
+    for (int i = 0; i < dataset->GetLayerCount(); ++i)
+      layers.push_back(describeLayer(*dataset->GetLayer(i)));
+    return layers;
+  });
 }
 
 namespace {
@@ -333,38 +337,42 @@ Out importParts(const std::filesystem::path& file, const GisImportOptions& optio
 }  // namespace
 
 GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
-  return importParts<OGRLineString, OGRMultiLineString>(
-      file, options, wkbLineString, wkbMultiLineString, "line", &GisLines::polylines,
-      " with two distinct nodes",
-      [](GisLines& out, FeatureReader& reader, GIntBig fid, int part, const OGRLineString& line,
-         const std::vector<double>& attributes) {
-        GisPolyline polyline{fid, part, {}, attributes};
-        for (int k = 0; k < line.getNumPoints(); ++k) {
-          const glm::vec3 node = reader.node(line, k, fid);
-          // A node equal (as the renderer will see it, in float) to the previous one makes a
-          // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
-          // need a direction per segment, so it is dropped.
-          if (!polyline.points.empty() && polyline.points.back() == node) {
-            ++out.report.repeatedNodes;
-            continue;
+  return importContained<GisLines>(file.string(), "GDAL", [&] {
+    return importParts<OGRLineString, OGRMultiLineString>(
+        file, options, wkbLineString, wkbMultiLineString, "line", &GisLines::polylines,
+        " with two distinct nodes",
+        [](GisLines& out, FeatureReader& reader, GIntBig fid, int part, const OGRLineString& line,
+           const std::vector<double>& attributes) {
+          GisPolyline polyline{fid, part, {}, attributes};
+          for (int k = 0; k < line.getNumPoints(); ++k) {
+            const glm::vec3 node = reader.node(line, k, fid);
+            // A node equal (as the renderer will see it, in float) to the previous one makes a
+            // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
+            // need a direction per segment, so it is dropped.
+            if (!polyline.points.empty() && polyline.points.back() == node) {
+              ++out.report.repeatedNodes;
+              continue;
+            }
+            polyline.points.push_back(node);
           }
-          polyline.points.push_back(node);
-        }
-        if (polyline.points.size() < 2)
-          ++out.report.degenerateParts;
-        else
-          out.polylines.push_back(std::move(polyline));
-      });
+          if (polyline.points.size() < 2)
+            ++out.report.degenerateParts;
+          else
+            out.polylines.push_back(std::move(polyline));
+        });
+  });
 }
 
 GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
-  return importParts<OGRPoint, OGRMultiPoint>(
-      file, options, wkbPoint, wkbMultiPoint, "point", &GisPoints::points, "",
-      [](GisPoints& out, FeatureReader& reader, GIntBig fid, int part, const OGRPoint& point,
-         const std::vector<double>& attributes) {
-        out.points.push_back(
-            {fid, part, reader.place(point.getX(), point.getY(), point.getZ(), fid), attributes});
-      });
+  return importContained<GisPoints>(file.string(), "GDAL", [&] {
+    return importParts<OGRPoint, OGRMultiPoint>(
+        file, options, wkbPoint, wkbMultiPoint, "point", &GisPoints::points, "",
+        [](GisPoints& out, FeatureReader& reader, GIntBig fid, int part, const OGRPoint& point,
+           const std::vector<double>& attributes) {
+          out.points.push_back(
+              {fid, part, reader.place(point.getX(), point.getY(), point.getZ(), fid), attributes});
+        });
+  });
 }
 
 namespace {
@@ -400,25 +408,28 @@ std::vector<glm::vec3> readRing(const OGRLinearRing& ring, FeatureReader& reader
 }  // namespace
 
 GisPolygons importGisPolygons(const std::filesystem::path& file, const GisImportOptions& options) {
-  return importParts<OGRPolygon, OGRMultiPolygon>(
-      file, options, wkbPolygon, wkbMultiPolygon, "polygon", &GisPolygons::polygons,
-      " with three distinct nodes",
-      [](GisPolygons& out, FeatureReader& reader, GIntBig fid, int part, const OGRPolygon& shape,
-         const std::vector<double>& attributes) {
-        const OGRLinearRing* exterior = shape.getExteriorRing();
-        if (!exterior) return;  // an empty part of a MultiPolygon
-        GisPolygon polygon{fid, part, readRing(*exterior, reader, fid, out.report), {}, attributes};
-        if (polygon.outer.empty()) {
-          ++out.report.degenerateParts;
-          return;
-        }
-        for (int h = 0; h < shape.getNumInteriorRings(); ++h) {
-          std::vector<glm::vec3> hole =
-              readRing(*shape.getInteriorRing(h), reader, fid, out.report);
-          if (!hole.empty()) polygon.holes.push_back(std::move(hole));
-        }
-        out.polygons.push_back(std::move(polygon));
-      });
+  return importContained<GisPolygons>(file.string(), "GDAL", [&] {
+    return importParts<OGRPolygon, OGRMultiPolygon>(
+        file, options, wkbPolygon, wkbMultiPolygon, "polygon", &GisPolygons::polygons,
+        " with three distinct nodes",
+        [](GisPolygons& out, FeatureReader& reader, GIntBig fid, int part, const OGRPolygon& shape,
+           const std::vector<double>& attributes) {
+          const OGRLinearRing* exterior = shape.getExteriorRing();
+          if (!exterior) return;  // an empty part of a MultiPolygon
+          GisPolygon polygon{
+              fid, part, readRing(*exterior, reader, fid, out.report), {}, attributes};
+          if (polygon.outer.empty()) {
+            ++out.report.degenerateParts;
+            return;
+          }
+          for (int h = 0; h < shape.getNumInteriorRings(); ++h) {
+            std::vector<glm::vec3> hole =
+                readRing(*shape.getInteriorRing(h), reader, fid, out.report);
+            if (!hole.empty()) polygon.holes.push_back(std::move(hole));
+          }
+          out.polygons.push_back(std::move(polygon));
+        });
+  });
 }
 
 }  // namespace cutaway

@@ -20,6 +20,7 @@
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
+#include "io/wire_fields.hpp"
 
 namespace cutaway {
 
@@ -179,60 +180,8 @@ void checkGlbHeader(const std::filesystem::path& file) {
   }
 }
 
-std::string serialize(const std::vector<ImportedNode>& nodes) {
-  ByteWriter w;
-  w.value(std::uint64_t(nodes.size()));
-  for (const ImportedNode& n : nodes) {
-    w.string(n.name);
-    w.string(n.id);
-    w.array(n.mesh.positions);
-    w.array(n.mesh.normals);
-    w.array(n.mesh.triangles);
-    const MeshReport& report = n.mesh.report;
-    for (std::size_t count : {report.droppedDegenerate, report.boundaryEdges,
-                              report.nonManifoldEdges, report.misorientedEdges})
-      w.value(std::uint64_t(count));
-    w.value(report.normalsComputed);
-    w.value(report.watertight);
-    w.value(n.color.has_value());
-    w.value(n.color.value_or(glm::vec3(0.0f)));
-  }
-  return std::move(w.bytes);
-}
-
-std::vector<ImportedNode> deserialize(std::string_view bytes) {
-  ByteReader r(bytes);
-  std::vector<ImportedNode> nodes(r.value<std::uint64_t>());
-  for (ImportedNode& n : nodes) {
-    n.name = r.string();
-    n.id = r.string();
-    n.mesh.positions = r.array<glm::vec3>();
-    n.mesh.normals = r.array<glm::vec3>();
-    n.mesh.triangles = r.array<glm::uvec3>();
-    MeshReport& report = n.mesh.report;
-    for (std::size_t* count : {&report.droppedDegenerate, &report.boundaryEdges,
-                               &report.nonManifoldEdges, &report.misorientedEdges})
-      *count = r.value<std::uint64_t>();
-    report.normalsComputed = r.value<bool>();
-    report.watertight = r.value<bool>();
-    const bool hasColor = r.value<bool>();
-    const auto color = r.value<glm::vec3>();
-    if (hasColor) n.color = color;
-  }
-  return nodes;
-}
-
-}  // namespace
-
-std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
-  if (!importsContained()) return importMeshNodesInProcess(file);
-  const ContainedReply reply = runContained(
-      file.string(), "the mesh importer", [&] { return serialize(importMeshNodesInProcess(file)); },
-      importLimits());
-  return deserialize(reply.bytes());
-}
-
-std::vector<ImportedNode> importMeshNodesInProcess(const std::filesystem::path& file) {
+// The import itself, in whichever process runs it.
+std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     throw Error(file.string(), "", "mesh file not found");
@@ -341,6 +290,18 @@ std::vector<ImportedNode> importMeshNodesInProcess(const std::filesystem::path& 
   visit(visit, scene->mRootNode, glm::mat4(1.0f));
   if (nodes.empty()) throw Error(file.string(), "", "the file contains no triangles");
   return nodes;
+}
+
+}  // namespace
+
+template <class Archive>
+void wireFields(Archive& a, ImportedNode& n) {
+  a(n.name, n.id, n.mesh, n.color);
+}
+
+std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
+  return importContained<std::vector<ImportedNode>>(file.string(), "the mesh importer",
+                                                    [&] { return importHere(file); });
 }
 
 }  // namespace cutaway

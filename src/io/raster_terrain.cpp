@@ -15,9 +15,11 @@
 #include <vector>
 
 #include "cutaway/core/atomic_file.hpp"
+#include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/noise.hpp"
 #include "io/gdal_support.hpp"
+#include "io/wire_fields.hpp"
 
 namespace cutaway {
 
@@ -81,7 +83,10 @@ void smoothNormals(Mesh& mesh) {
 
 }  // namespace
 
-bool isRaster(const std::filesystem::path& file) {
+// The readers themselves, in whichever process runs them.
+namespace {
+
+bool isRasterHere(const std::filesystem::path& file) {
   gdal::registerDrivers();
   gdal::QuietErrors quiet;
   GDALDatasetUniquePtr dataset(GDALDataset::Open(file.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY,
@@ -89,7 +94,7 @@ bool isRaster(const std::filesystem::path& file) {
   return dataset && dataset->GetRasterCount() > 0;
 }
 
-RasterInfo describeRaster(const std::filesystem::path& file) {
+RasterInfo describeRasterHere(const std::filesystem::path& file) {
   gdal::QuietErrors quiet;
   GDALDatasetUniquePtr dataset = openRaster(file);
   RasterInfo info;
@@ -112,8 +117,8 @@ RasterInfo describeRaster(const std::filesystem::path& file) {
   return info;
 }
 
-RasterTerrain importRasterTerrain(const std::filesystem::path& file,
-                                  const RasterTerrainOptions& options) {
+RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
+                                      const RasterTerrainOptions& options) {
   gdal::QuietErrors quiet;
   const std::string name = file.string();
   if (options.step < 1) throw Error(name, "", "step must be at least 1");
@@ -227,6 +232,35 @@ RasterTerrain importRasterTerrain(const std::filesystem::path& file,
   smoothNormals(mesh);
   mesh.report.normalsComputed = true;
   return out;
+}
+
+}  // namespace
+
+template <class Archive>
+void wireFields(Archive& a, RasterInfo& i) {
+  a(i.driver, i.width, i.height, i.bands, i.dataType, i.crs, i.geoTransform, i.nodata, i.minimum,
+    i.maximum);
+}
+
+template <class Archive>
+void wireFields(Archive& a, RasterTerrain& t) {
+  a(t.mesh, t.columns, t.rows, t.crs, t.sceneCrs, t.geoTransform, t.filledNodata, t.minHeight,
+    t.maxHeight);
+}
+
+bool isRaster(const std::filesystem::path& file) {
+  return importContained<bool>(file.string(), "GDAL", [&] { return isRasterHere(file); });
+}
+
+RasterInfo describeRaster(const std::filesystem::path& file) {
+  return importContained<RasterInfo>(file.string(), "GDAL",
+                                     [&] { return describeRasterHere(file); });
+}
+
+RasterTerrain importRasterTerrain(const std::filesystem::path& file,
+                                  const RasterTerrainOptions& options) {
+  return importContained<RasterTerrain>(file.string(), "GDAL",
+                                        [&] { return importRasterTerrainHere(file, options); });
 }
 
 double syntheticDemHeight(const SyntheticDemOptions& o, double easting, double northing) {

@@ -81,7 +81,7 @@ void write(const std::filesystem::path& file, std::string_view bytes) {
 void load(const Target& target, const std::filesystem::path& file) {
   const std::string& n = target.name;
   if (n.starts_with("mesh-")) {
-    importMeshNodesInProcess(file);  // in this process, where the sanitizers see a fault
+    importMeshNodes(file);
   } else if (n.starts_with("volume-")) {
     importVolume(file);
   } else if (n == "geojson" || n == "geopackage" || n == "shapefile") {
@@ -98,14 +98,15 @@ void load(const Target& target, const std::filesystem::path& file) {
 
 bool run(const Target& target, const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  // The readers run here rather than in a child process (cutaway/core/contained.hpp), where
+  // neither the sanitizers nor the fuzzer would see a fault.
+  const struct InProcess {
+    InProcess() { ::setenv("CUTAWAY_IMPORT_CONTAINED", "0", 1); }
+    ~InProcess() { ::unsetenv("CUTAWAY_IMPORT_CONTAINED"); }
+  } inProcess;
   try {
     if (target.extension.empty()) {
-      // Scene text: files it names are looked up beside the tests' data, and imported here
-      // rather than in a child process, where the sanitizers would not see a fault.
-      const struct InProcess {
-        InProcess() { ::setenv("CUTAWAY_IMPORT_CONTAINED", "0", 1); }
-        ~InProcess() { ::unsetenv("CUTAWAY_IMPORT_CONTAINED"); }
-      } inProcess;
+      // Scene text: files it names are looked up beside the tests' data.
       parseScene(std::string(bytes), "fuzz.json", CUTAWAY_TEST_DATA);
       return true;
     }

@@ -11,9 +11,12 @@
 //                                                   [&] { return serialize(parse(file)); });
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <glm/glm.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -60,58 +63,140 @@ ContainedReply runContained(const std::string& file, const std::string& parser,
                             const std::function<std::string()>& work,
                             const ContainmentLimits& limits);
 
-// The bytes a contained parser hands back: values, arrays and strings, read in the order
-// they were written.
+// The bytes a contained parser hands back, and what they are read back into. Numbers, enums
+// and glm vectors and matrices are written as their bytes (the child is the same program);
+// strings, vectors, arrays and optionals with their sizes; any other type through a function
+// found by argument-dependent lookup that names its members to an archive, once for both ways:
+//
+//   template <class Archive> void wireFields(Archive& a, GisCrs& c) { a(c.name, c.wkt); }
+namespace wire {
+template <class T>
+struct IsGlm : std::false_type {};
+template <glm::length_t L, class T, glm::qualifier Q>
+struct IsGlm<glm::vec<L, T, Q>> : std::true_type {};
+template <glm::length_t C, glm::length_t R, class T, glm::qualifier Q>
+struct IsGlm<glm::mat<C, R, T, Q>> : std::true_type {};
+template <class T>
+constexpr bool kAsBytes = std::is_arithmetic_v<T> || std::is_enum_v<T> || IsGlm<T>::value;
+template <class T>
+struct IsVector : std::false_type {};
+template <class T, class A>
+struct IsVector<std::vector<T, A>> : std::true_type {};
+template <class T>
+struct IsOptional : std::false_type {};
+template <class T>
+struct IsOptional<std::optional<T>> : std::true_type {};
+template <class T>
+struct IsArray : std::false_type {};
+template <class T, std::size_t N>
+struct IsArray<std::array<T, N>> : std::true_type {};
+}  // namespace wire
+
 class ByteWriter {
  public:
-  template <class T>
-  void value(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  template <class T>
-  void array(const std::vector<T>& v) {
-    value(std::uint64_t(v.size()));
-    bytes.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-  void string(const std::string& s) {
-    value(std::uint64_t(s.size()));
-    bytes += s;
+  template <class... T>
+  void operator()(const T&... values) {
+    (put(values), ...);
   }
   std::string bytes;
+
+ private:
+  void raw(const void* p, std::size_t n) { bytes.append(static_cast<const char*>(p), n); }
+  template <class T>
+  void put(const T& v) {
+    if constexpr (wire::kAsBytes<T>) {
+      raw(&v, sizeof v);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      put(std::uint64_t(v.size()));
+      raw(v.data(), v.size());
+    } else if constexpr (wire::IsVector<T>::value) {
+      put(std::uint64_t(v.size()));
+      if constexpr (wire::kAsBytes<typename T::value_type>)
+        raw(v.data(), v.size() * sizeof(typename T::value_type));
+      else
+        for (const auto& e : v) put(e);
+    } else if constexpr (wire::IsArray<T>::value) {
+      for (const auto& e : v) put(e);
+    } else if constexpr (wire::IsOptional<T>::value) {
+      put(v.has_value());
+      if (v) put(*v);
+    } else {
+      wireFields(*this, const_cast<T&>(v));  // only read
+    }
+  }
 };
 
 class ByteReader {
  public:
   explicit ByteReader(std::string_view bytes) : bytes_(bytes) {}
+  template <class... T>
+  void operator()(T&... values) {
+    (get(values), ...);
+  }
+  // Reads one T.
   template <class T>
-  T value() {
-    static_assert(std::is_trivially_copyable_v<T>);
-    T v;
-    std::memcpy(&v, take(sizeof v), sizeof v);
+  T read() {
+    T v{};
+    get(v);
     return v;
   }
-  template <class T>
-  std::vector<T> array() {
-    const auto n = value<std::uint64_t>();
-    if (n > (bytes_.size() - at_) / sizeof(T)) throw std::length_error("a reply cut short");
-    std::vector<T> v(n);
-    std::memcpy(v.data(), take(n * sizeof(T)), n * sizeof(T));
-    return v;
-  }
-  std::string string() {
-    const auto n = value<std::uint64_t>();
-    return std::string(take(n), n);
-  }
+  bool atEnd() const { return at_ == bytes_.size(); }
 
  private:
   const char* take(std::uint64_t n) {
-    if (n > bytes_.size() - at_) throw std::length_error("a reply cut short");
+    if (n > bytes_.size() - at_) throw std::length_error("a contained parser's reply cut short");
     at_ += n;
     return bytes_.data() + at_ - n;
+  }
+  std::uint64_t count(std::size_t elementSize) {
+    const auto n = read<std::uint64_t>();
+    if (elementSize && n > (bytes_.size() - at_) / elementSize)
+      throw std::length_error("a contained parser's reply cut short");
+    return n;
+  }
+  template <class T>
+  void get(T& v) {
+    if constexpr (wire::kAsBytes<T>) {
+      std::memcpy(&v, take(sizeof v), sizeof v);
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      const auto n = count(1);
+      v.assign(take(n), n);
+    } else if constexpr (wire::IsVector<T>::value) {
+      using E = typename T::value_type;
+      v.resize(count(wire::kAsBytes<E> ? sizeof(E) : 0));
+      if constexpr (wire::kAsBytes<E>)
+        std::memcpy(v.data(), take(v.size() * sizeof(E)), v.size() * sizeof(E));
+      else
+        for (auto& e : v) get(e);
+    } else if constexpr (wire::IsArray<T>::value) {
+      for (auto& e : v) get(e);
+    } else if constexpr (wire::IsOptional<T>::value) {
+      if (read<bool>())
+        get(v.emplace());
+      else
+        v.reset();
+    } else {
+      wireFields(*this, v);
+    }
   }
   std::string_view bytes_;
   std::size_t at_ = 0;
 };
+
+// `parse()` run by runContained under importLimits() and its T handed back (in this process
+// when CUTAWAY_IMPORT_CONTAINED=0).
+template <class T, class Parse>
+T importContained(const std::string& file, const std::string& parser, Parse&& parse) {
+  if (!importsContained()) return parse();
+  const ContainedReply reply = runContained(
+      file, parser,
+      [&] {
+        ByteWriter w;
+        w(parse());
+        return std::move(w.bytes);
+      },
+      importLimits());
+  return ByteReader(reply.bytes()).read<T>();
+}
 
 }  // namespace cutaway

@@ -32,8 +32,5 @@ struct ImportedNode {
 // under importLimits() (cutaway/core/contained.hpp): a file that crashes Assimp, hangs it or
 // makes it allocate without bound is an Error too.
 std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file);
-// The same import in the calling process, without limits: for the fuzzer, which must see the
-// importer's faults, and for callers that trust their files.
-std::vector<ImportedNode> importMeshNodesInProcess(const std::filesystem::path& file);
 
 }  // namespace cutaway
