@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -73,9 +75,49 @@ ContainmentLimits limits(double seconds, std::uint64_t megabytes) {
   return l;
 }
 
-void expectContainedError(const std::function<std::string()>& work, const ContainmentLimits& l,
-                          std::initializer_list<std::string> parts) {
-  test::expectError([&] { runContained("input.bin", "the test parser", work, l); }, parts);
+// The parsers the tests run in workers, registered before the helper starts. An argument is
+// a size in bytes or megabytes where one is needed.
+std::string pattern(std::size_t size) {
+  std::string bytes(size, '\0');
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = char(i * 2654435761u >> 24);
+  return bytes;
+}
+
+const bool kRegistered = [] {
+  registerContainedParser("test-pattern",
+                          [](std::string_view a) { return pattern(std::stoul(std::string(a))); });
+  registerContainedParser("test-pid", [](std::string_view) { return std::to_string(::getpid()); });
+  registerContainedParser("test-error", [](std::string_view) -> std::string {
+    throw Error("mesh.ply", "header line 3", "a count too large");
+  });
+  registerContainedParser("test-exception", [](std::string_view) -> std::string {
+    throw std::runtime_error("vector::reserve");
+  });
+  registerContainedParser("test-abort", [](std::string_view) -> std::string { std::abort(); });
+  registerContainedParser("test-segv", [](std::string_view) -> std::string {
+    std::raise(SIGSEGV);
+    return "";
+  });
+  registerContainedParser("test-exit", [](std::string_view) -> std::string { ::_exit(3); });
+  registerContainedParser("test-sleep", [](std::string_view) -> std::string {
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
+  });
+  registerContainedParser("test-allocate", [](std::string_view a) {
+    // Megabytes touched page by page, one byte of them handed back.
+    const std::string big(std::size_t(std::stoul(std::string(a))) << 20, 'y');
+    return big.substr(0, 1);
+  });
+  return true;
+}();
+
+ContainedReply run(const std::string& id, const std::string& arguments = "",
+                   const ContainmentLimits& l = limits(60, 64)) {
+  return runContained("input.bin", "the test parser", id, arguments, l);
+}
+
+void expectContainedError(const std::string& id, const std::string& arguments,
+                          const ContainmentLimits& l, std::initializer_list<std::string> parts) {
+  test::expectError([&] { run(id, arguments, l); }, parts);
 }
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -92,61 +134,56 @@ constexpr bool kAddressSanitizer = false;
 
 }  // namespace
 
-TEST(Contained, TheChildsBytesComeBackWhole) {
-  // 48 MB with a pattern: more than a pipe or a page holds, every byte checked.
-  std::string expected(48u << 20, '\0');
-  for (std::size_t i = 0; i < expected.size(); ++i) expected[i] = char(i * 2654435761u >> 24);
-  const ContainedReply reply = runContained(
-      "input.bin", "the test parser", [&] { return expected; }, limits(60, 1024));
-  ASSERT_EQ(reply.bytes().size(), expected.size());
-  EXPECT_TRUE(reply.bytes() == expected);
+TEST(Contained, TheWorkersBytesComeBackWhole) {
+  // 48 MB with a pattern: more than a socket or a page holds, every byte checked.
+  const ContainedReply reply = run("test-pattern", std::to_string(48u << 20), limits(60, 1024));
+  ASSERT_EQ(reply.bytes().size(), 48u << 20);
+  EXPECT_TRUE(reply.bytes() == pattern(48u << 20));
   // An empty result is a result.
-  EXPECT_EQ(runContained(
-                "input.bin", "p", [] { return std::string(); }, limits(60, 64))
-                .bytes()
-                .size(),
-            0u);
+  EXPECT_EQ(run("test-pattern", "0").bytes().size(), 0u);
 }
 
-TEST(Contained, AnErrorTheChildThrowsComesBackAsThrown) {
+TEST(Contained, EachFileHasAFreshWorker) {
+  const std::string first(run("test-pid").bytes()), second(run("test-pid").bytes());
+  EXPECT_NE(first, std::to_string(::getpid()));
+  EXPECT_NE(first, second);
+}
+
+TEST(Contained, AnErrorTheWorkerThrowsComesBackAsThrown) {
   try {
-    runContained(
-        "input.bin", "the test parser",
-        []() -> std::string { throw Error("mesh.ply", "header line 3", "a count too large"); },
-        limits(60, 64));
+    run("test-error");
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.file(), "mesh.ply");
     EXPECT_EQ(e.place(), "header line 3");
     EXPECT_EQ(e.reason(), "a count too large");
   }
-  expectContainedError([]() -> std::string { throw std::runtime_error("vector::reserve"); },
-                       limits(60, 64),
+  expectContainedError("test-exception", "", limits(60, 64),
                        {"input.bin: the test parser failed on this file: vector::reserve"});
+  expectContainedError("test-unknown", "", limits(60, 64),
+                       {"failed on this file: no parser \"test-unknown\""});
 }
 
 TEST(Contained, ACrashIsAnErrorNamingTheFileAndTheSignal) {
-  expectContainedError([]() -> std::string { std::abort(); }, limits(60, 64),
+  expectContainedError("test-abort", "", limits(60, 64),
                        {"input.bin: the test parser crashed on this file (Aborted)"});
-  expectContainedError(
-      []() -> std::string {
-        std::raise(SIGSEGV);
-        return "";
-      },
-      limits(60, 64), {"input.bin: the test parser crashed on this file (Segmentation fault)"});
-  expectContainedError([]() -> std::string { ::_exit(3); }, limits(60, 64),
-                       {"crashed on this file (exit status 3)"});
+  expectContainedError("test-segv", "", limits(60, 64),
+                       {"input.bin: the test parser crashed on this file (Segmentation fault)"});
+  expectContainedError("test-exit", "", limits(60, 64), {"crashed on this file (exit status 3)"});
+  // The next file goes on as before.
+  EXPECT_EQ(run("test-pattern", "5").bytes(), pattern(5));
 }
 
-TEST(Contained, TheChildLeavesWhatTheParentBufferedToTheParent) {
-  // Output buffered before the fork is written once, by the parent: the child leaves by
-  // _exit, which flushes no stream and runs no exit handler of the parent's.
+TEST(Contained, TheWorkerLeavesWhatTheProgramBufferedToTheProgram) {
+  // Output buffered before the helper starts or a worker runs is written once, by the
+  // program: helper and worker leave by _exit, which flushes no stream and runs no exit
+  // handler of the program's.
   const std::string path = ::testing::TempDir() + "cutaway-contained-buffered.txt";
   std::FILE* f = std::fopen(path.c_str(), "w");
   ASSERT_TRUE(f);
   std::fputs("written once", f);
-  runContained(
-      "input.bin", "p", [] { return std::string("done"); }, limits(60, 64));
+  run("test-pattern", "4");
+  EXPECT_THROW(run("test-error"), Error);
   std::fclose(f);
   std::FILE* in = std::fopen(path.c_str(), "r");
   char text[64] = {};
@@ -156,38 +193,28 @@ TEST(Contained, TheChildLeavesWhatTheParentBufferedToTheParent) {
   EXPECT_EQ(std::string(text, n), "written once");
 }
 
-TEST(Contained, AChildPastItsTimeIsStopped) {
+TEST(Contained, AWorkerPastItsTimeIsStopped) {
   const auto start = std::chrono::steady_clock::now();
-  expectContainedError(
-      []() -> std::string {
-        for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
-      },
-      limits(0.5, 64), {"input.bin: the test parser took longer than 0.5 s on this file"});
+  expectContainedError("test-sleep", "", limits(0.5, 64),
+                       {"input.bin: the test parser took longer than 0.5 s on this file"});
   const double took =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GE(took, 0.5);
   EXPECT_LT(took, 10.0);  // a bound for a starved machine, not a speed goal
 }
 
-TEST(Contained, AChildPastItsMemoryIsStopped) {
-  // 1 GB touched page by page under a 64 MB limit. AddressSanitizer's allocator dies on a
-  // failed mapping rather than throwing, which is a crash.
-  const auto allocate = []() -> std::string {
-    std::string big(1u << 30, 'x');
-    return big.substr(0, 1);
-  };
+TEST(Contained, AWorkerPastItsMemoryIsStopped) {
+  // 1 GB under a 64 MB limit. AddressSanitizer's allocator dies on a failed mapping rather
+  // than throwing, which is a crash.
   if (kAddressSanitizer)
-    expectContainedError(allocate, limits(60, 64), {"input.bin: the test parser crashed"});
+    expectContainedError("test-allocate", "1024", limits(60, 64),
+                         {"input.bin: the test parser crashed"});
   else
     expectContainedError(
-        allocate, limits(60, 64),
+        "test-allocate", "1024", limits(60, 64),
         {"input.bin: the test parser needed more than 64 MB of memory for this file"});
   // Within the limit it runs.
-  EXPECT_EQ(
-      runContained(
-          "input.bin", "p", [] { return std::string(32u << 20, 'y').substr(0, 2); }, limits(60, 64))
-          .bytes(),
-      "yy");
+  EXPECT_EQ(run("test-allocate", "32").bytes(), "y");
 }
 
 TEST(Contained, BadLimitsInTheEnvironmentAreRefused) {

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/scene.hpp"
@@ -93,6 +94,7 @@ constexpr const char* kCityHelp =
 }  // namespace
 
 int main(int argc, char** argv) {
+  cutaway::startContainedHelper();  // while the process is small (cutaway/core/contained.hpp)
   CLI::App app{"cutaway: cutaway illustrations of 3-D scenes"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cutaway 0.1.0");

@@ -6,6 +6,7 @@
 #include <sys/mman.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -16,6 +17,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <new>
 #include <sstream>
 
@@ -25,16 +28,75 @@ namespace cutaway {
 
 namespace {
 
-// What the child hands back, first byte: its result, an Error, or a failed allocation.
-constexpr char kResult = 'R', kError = 'E', kOutOfMemory = 'M', kOther = 'X';
+// Messages between the process that imports, the helper and its workers (one socket,
+// SOCK_SEQPACKET, so each message arrives whole). The first byte says what follows.
+constexpr char kResult = 'R';       // a worker's reply, in the memfd that comes with it
+constexpr char kError = 'E';        // a worker's cutaway::Error: file, place, reason
+constexpr char kOutOfMemory = 'M';  // a worker's failed allocation
+constexpr char kOther = 'X';        // a worker's other exception: what()
+constexpr char kEnded = 'S';        // the helper's word that the worker ended: status, timedOut
 
-bool writeAll(int fd, const std::string& bytes) {
+std::map<std::string, ContainedParser>& parsers() {
+  static std::map<std::string, ContainedParser> registry;
+  return registry;
+}
+
+bool writeAll(int fd, std::string_view bytes) {
   for (std::size_t at = 0; at < bytes.size();) {
     const ssize_t n = ::write(fd, bytes.data() + at, bytes.size() - at);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return false;
     at += std::size_t(n);
   }
+  return true;
+}
+
+// Sends one message, with a descriptor when `fd` ≥ 0.
+bool sendMessage(int socket, std::string_view bytes, int fd = -1) {
+  iovec iov{const_cast<char*>(bytes.data()), bytes.size()};
+  msghdr msg{};
+  msg.msg_iov = &iov;
+  msg.msg_iovlen = 1;
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
+  if (fd >= 0) {
+    msg.msg_control = control;
+    msg.msg_controllen = sizeof control;
+    cmsghdr* c = CMSG_FIRSTHDR(&msg);
+    c->cmsg_level = SOL_SOCKET;
+    c->cmsg_type = SCM_RIGHTS;
+    c->cmsg_len = CMSG_LEN(sizeof(int));
+    std::memcpy(CMSG_DATA(c), &fd, sizeof fd);
+  }
+  for (;;) {
+    const ssize_t n = ::sendmsg(socket, &msg, MSG_NOSIGNAL);
+    if (n >= 0) return std::size_t(n) == bytes.size();
+    if (errno != EINTR) return false;
+  }
+}
+
+// Receives one message and the descriptor that came with it (−1: none); false at the end of
+// the stream or on an error.
+bool receiveMessage(int socket, std::string& bytes, int& fd) {
+  fd = -1;
+  ssize_t size;
+  do size = ::recv(socket, nullptr, 0, MSG_PEEK | MSG_TRUNC);
+  while (size < 0 && errno == EINTR);
+  if (size <= 0) return false;
+  bytes.assign(std::size_t(size), '\0');
+  iovec iov{bytes.data(), bytes.size()};
+  msghdr msg{};
+  msg.msg_iov = &iov;
+  msg.msg_iovlen = 1;
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))] = {};
+  msg.msg_control = control;
+  msg.msg_controllen = sizeof control;
+  ssize_t n;
+  do n = ::recvmsg(socket, &msg, MSG_CMSG_CLOEXEC);
+  while (n < 0 && errno == EINTR);
+  if (n != size) return false;
+  for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c))
+    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_RIGHTS)
+      std::memcpy(&fd, CMSG_DATA(c), sizeof fd);
   return true;
 }
 
@@ -49,18 +111,31 @@ std::uint64_t dataSegmentBytes() {
   return 0;
 }
 
-[[noreturn]] void runChild(int out, const std::function<std::string()>& work,
-                           const ContainmentLimits& limits) {
-  // Gone with its parent; a crash ends it by the signal (not by a handler the parent set up).
+struct Request {
+  std::string id, arguments;
+  double seconds = 0.0;
+  std::uint64_t memoryBytes = 0;
+};
+
+template <class Archive>
+void wireFields(Archive& a, Request& r) {
+  a(r.id, r.arguments, r.seconds, r.memoryBytes);
+}
+
+// A worker: one parser on one file, its reply sent to the importing process, then gone.
+[[noreturn]] void runWorker(int socket, const Request& request) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // A crash ends it by the signal (not by a handler the program set up).
   for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(s, SIG_DFL);
-  const rlim_t data = rlim_t(dataSegmentBytes() + limits.memoryBytes);
+  const rlim_t data = rlim_t(dataSegmentBytes() + request.memoryBytes);
   const rlimit limit{data, data};
   ::setrlimit(RLIMIT_DATA, &limit);
   char kind = kResult;
   std::string reply;
   try {
-    reply = work();
+    const auto parser = parsers().find(request.id);
+    if (parser == parsers().end()) throw std::logic_error("no parser \"" + request.id + "\"");
+    reply = parser->second(request.arguments);
   } catch (const Error& e) {
     kind = kError;
     ByteWriter w;
@@ -74,16 +149,128 @@ std::uint64_t dataSegmentBytes() {
     w(std::string(e.what()));
     reply = std::move(w.bytes);
   }
-  // _exit: the parent's atexit handlers and stdio buffers are the parent's to run and flush.
-  ::_exit(writeAll(out, std::string(1, kind)) && writeAll(out, reply) ? 0 : 120);
+  bool sent = false;
+  if (kind == kResult) {
+    // The result goes through shared memory, mapped by the importer rather than copied.
+    const int memory = ::memfd_create("cutaway-contained", MFD_CLOEXEC);
+    sent = memory >= 0 && writeAll(memory, reply) &&
+           sendMessage(socket, std::string_view(&kind, 1), memory);
+  } else {
+    // An error's text is short; a message keeps it under the socket's limit.
+    reply.resize(std::min<std::size_t>(reply.size(), 16384));
+    sent = sendMessage(socket, kind + reply);
+  }
+  // _exit: the program's exit handlers and buffered streams are the program's.
+  ::_exit(sent ? 0 : 120);
 }
 
-// Closes a descriptor when the scope ends.
-struct Fd {
-  int fd = -1;
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
+// The helper: forked once, while the program is small, it forks a fresh worker per file
+// (so no file sees what an earlier one did), enforces the time limit and reports how each
+// worker ended. The program pays for one fork; a worker copies only the helper's pages.
+[[noreturn]] void runHelper(int socket) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  for (;;) {
+    std::string bytes;
+    int unused = -1;
+    if (!receiveMessage(socket, bytes, unused)) ::_exit(0);  // the program has gone
+    Request request;
+    ByteReader r(bytes);
+    r(request);
+    int pipeEnds[2];
+    if (::pipe2(pipeEnds, O_CLOEXEC) != 0) ::_exit(121);
+    const pid_t worker = ::fork();
+    if (worker == 0) {
+      ::close(pipeEnds[0]);
+      runWorker(socket, request);  // holds the pipe's write end until it ends
+    }
+    ::close(pipeEnds[1]);
+    bool timedOut = false;
+    if (worker > 0) {
+      const auto deadline = std::chrono::steady_clock::now() +
+                            std::chrono::duration<double>(std::max(request.seconds, 0.0));
+      for (;;) {
+        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+            deadline - std::chrono::steady_clock::now());
+        if (left.count() <= 0) {
+          timedOut = true;
+          ::kill(worker, SIGKILL);
+          break;
+        }
+        pollfd p{pipeEnds[0], POLLIN, 0};
+        const int n = ::poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
+        if (n > 0 || (n < 0 && errno != EINTR)) break;
+      }
+    }
+    ::close(pipeEnds[0]);
+    int status = 0;
+    if (worker < 0) status = 122 << 8;  // as an exit status: the fork failed
+    while (worker > 0 && ::waitpid(worker, &status, 0) < 0 && errno == EINTR) {
+    }
+    ByteWriter w;
+    w(kEnded, status, timedOut);
+    if (!sendMessage(socket, w.bytes)) ::_exit(0);
   }
+}
+
+class Helper {
+ public:
+  // Runs one request; the messages that came back, the worker's reply first.
+  void run(const std::string& file, const std::string& parser, const Request& request,
+           std::string& reply, int& replyFd, int& status, bool& timedOut) {
+    if (pid_ <= 0) start();
+    ByteWriter w;
+    w(const_cast<Request&>(request));
+    if (!sendMessage(socket_, w.bytes)) stopped(file, parser);
+    reply.clear();
+    replyFd = -1;
+    for (;;) {
+      std::string bytes;
+      int fd = -1;
+      if (!receiveMessage(socket_, bytes, fd)) stopped(file, parser);
+      if (bytes[0] == kEnded) {
+        ByteReader r(std::string_view(bytes).substr(1));
+        r(status, timedOut);
+        return;
+      }
+      reply = std::move(bytes);
+      replyFd = fd;
+    }
+  }
+
+  void start() {
+    if (pid_ > 0) return;
+    int ends[2];
+    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, ends) != 0)
+      throw Error("cannot start the importers' helper process (socketpair: " +
+                  std::string(std::strerror(errno)) + ")");
+    ::malloc_trim(0);  // what the helper need not copy
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+      ::close(ends[0]);
+      ::close(ends[1]);
+      throw Error("cannot start the importers' helper process (fork: " +
+                  std::string(std::strerror(errno)) + ")");
+    }
+    if (pid == 0) {
+      ::close(ends[0]);
+      runHelper(ends[1]);
+    }
+    ::close(ends[1]);
+    pid_ = pid;
+    socket_ = ends[0];
+  }
+
+ private:
+  [[noreturn]] void stopped(const std::string& file, const std::string& parser) {
+    ::close(socket_);
+    ::kill(pid_, SIGKILL);
+    while (::waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+    throw Error(file, "", "the helper process running " + parser + " stopped");
+  }
+  pid_t pid_ = -1;
+  int socket_ = -1;
 };
 
 double positiveNumber(const char* variable, double max) {
@@ -98,7 +285,21 @@ double positiveNumber(const char* variable, double max) {
   return v;
 }
 
+std::mutex& helperMutex() {
+  static std::mutex mutex;  // one helper, one request at a time
+  return mutex;
+}
+
+Helper& helper() {
+  static Helper helper;
+  return helper;
+}
+
 }  // namespace
+
+bool registerContainedParser(const std::string& id, ContainedParser parser) {
+  return parsers().emplace(id, parser).second;
+}
 
 ContainedReply::~ContainedReply() {
   if (data_) ::munmap(const_cast<char*>(data_), size_);
@@ -120,49 +321,33 @@ bool importsContained() {
   return !text || std::string(text) != "0";
 }
 
-ContainedReply runContained(const std::string& file, const std::string& parser,
-                            const std::function<std::string()>& work,
-                            const ContainmentLimits& limits) {
-  const auto failed = [&](const std::string& what) {
-    return Error(file, "",
-                 "cannot run " + parser + " in a child process (" + what + ": " +
-                     std::strerror(errno) + ")");
-  };
-  Fd reply{::memfd_create("cutaway-contained", MFD_CLOEXEC)};
-  if (reply.fd < 0) throw failed("memfd_create");
-  int pipeEnds[2];
-  if (::pipe2(pipeEnds, O_CLOEXEC) != 0) throw failed("pipe");
-  // The child holds the write end until it ends: its closing is the parent's signal.
-  Fd ended{pipeEnds[0]}, running{pipeEnds[1]};
-  ::malloc_trim(0);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw failed("fork");
-  if (pid == 0) runChild(reply.fd, work, limits);
-  ::close(running.fd);
-  running.fd = -1;
-
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration<double>(std::max(limits.seconds, 0.0));
-  bool timedOut = false;
-  for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) {
-      timedOut = true;
-      ::kill(pid, SIGKILL);
-      break;
-    }
-    pollfd p{ended.fd, POLLIN, 0};
-    const int n = ::poll(&p, 1, int(std::min<long long>(left.count(), 1000)));
-    if (n > 0) break;
-    if (n < 0 && errno != EINTR) {
-      ::kill(pid, SIGKILL);
-      break;
-    }
+void startContainedHelper() {
+  if (!importsContained()) return;
+  const std::lock_guard lock(helperMutex());
+  try {
+    helper().start();
+  } catch (const Error&) {
+    // The first contained call tries again, and says why it cannot.
   }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw failed("waitpid");
+}
+
+ContainedReply runContained(const std::string& file, const std::string& parser,
+                            const std::string& id, const std::string& arguments,
+                            const ContainmentLimits& limits) {
+  std::string reply;
+  int replyFd = -1, status = 0;
+  bool timedOut = false;
+  {
+    const std::lock_guard lock(helperMutex());
+    helper().run(file, parser, Request{id, arguments, limits.seconds, limits.memoryBytes}, reply,
+                 replyFd, status, timedOut);
+  }
+  struct Closer {
+    int fd;
+    ~Closer() {
+      if (fd >= 0) ::close(fd);
+    }
+  } closer{replyFd};
 
   const std::string prefix = parser + " ";
   std::ostringstream seconds;
@@ -175,21 +360,23 @@ ContainedReply runContained(const std::string& file, const std::string& parser,
     throw Error(
         file, "",
         prefix + "crashed on this file (" + std::string(::strsignal(WTERMSIG(status))) + ")");
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || reply.empty())
     throw Error(
         file, "",
         prefix + "crashed on this file (exit status " + std::to_string(WEXITSTATUS(status)) + ")");
-
-  struct stat st {};
-  if (::fstat(reply.fd, &st) != 0 || st.st_size < 1) throw failed("reading its reply");
-  void* mapped = ::mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE, reply.fd, 0);
-  if (mapped == MAP_FAILED) throw failed("mapping its reply");
-  ContainedReply result(static_cast<const char*>(mapped), std::size_t(st.st_size));
-  const char kind = *static_cast<const char*>(mapped);
-  ByteReader r(result.bytes());
-  switch (kind) {
-    case kResult:
-      return result;
+  ByteReader r(std::string_view(reply).substr(1));
+  switch (reply[0]) {
+    case kResult: {
+      struct stat st {};
+      if (replyFd < 0 || ::fstat(replyFd, &st) != 0)
+        throw Error(file, "", prefix + "handed back no result");
+      if (st.st_size == 0) return ContainedReply(nullptr, 0);
+      void* mapped = ::mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE,
+                            replyFd, 0);
+      if (mapped == MAP_FAILED)
+        throw Error(file, "", prefix + "'s result cannot be mapped: " + std::strerror(errno));
+      return ContainedReply(static_cast<const char*>(mapped), std::size_t(st.st_size));
+    }
     case kError: {
       std::string errorFile, place, reason;
       r(errorFile, place, reason);

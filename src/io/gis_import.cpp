@@ -229,16 +229,18 @@ bool gisCrsKnown(const std::string& crs) {
   return srs.SetFromUserInput(crs.c_str()) == OGRERR_NONE;
 }
 
-std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file) {
-  return importContained<std::vector<GisLayerInfo>>(file.string(), "GDAL", [&] {
-    gdal::QuietErrors quiet;
-    GDALDatasetUniquePtr dataset = openVectorSource(file);
-    std::vector<GisLayerInfo> layers;
-    for (int i = 0; i < dataset->GetLayerCount(); ++i)
-      layers.push_back(describeLayer(*dataset->GetLayer(i)));
-    return layers;
-  });
+namespace {
+
+std::vector<GisLayerInfo> listLayersHere(const std::filesystem::path& file) {
+  gdal::QuietErrors quiet;
+  GDALDatasetUniquePtr dataset = openVectorSource(file);
+  std::vector<GisLayerInfo> layers;
+  for (int i = 0; i < dataset->GetLayerCount(); ++i)
+    layers.push_back(describeLayer(*dataset->GetLayer(i)));
+  return layers;
 }
+
+}  // namespace
 
 namespace {
 
@@ -336,44 +338,48 @@ Out importParts(const std::filesystem::path& file, const GisImportOptions& optio
 
 }  // namespace
 
-GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
-  return importContained<GisLines>(file.string(), "GDAL", [&] {
-    return importParts<OGRLineString, OGRMultiLineString>(
-        file, options, wkbLineString, wkbMultiLineString, "line", &GisLines::polylines,
-        " with two distinct nodes",
-        [](GisLines& out, FeatureReader& reader, GIntBig fid, int part, const OGRLineString& line,
-           const std::vector<double>& attributes) {
-          GisPolyline polyline{fid, part, {}, attributes};
-          for (int k = 0; k < line.getNumPoints(); ++k) {
-            const glm::vec3 node = reader.node(line, k, fid);
-            // A node equal (as the renderer will see it, in float) to the previous one makes a
-            // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
-            // need a direction per segment, so it is dropped.
-            if (!polyline.points.empty() && polyline.points.back() == node) {
-              ++out.report.repeatedNodes;
-              continue;
-            }
-            polyline.points.push_back(node);
+namespace {
+
+GisLines importLinesHere(const std::filesystem::path& file, const GisImportOptions& options) {
+  return importParts<OGRLineString, OGRMultiLineString>(
+      file, options, wkbLineString, wkbMultiLineString, "line", &GisLines::polylines,
+      " with two distinct nodes",
+      [](GisLines& out, FeatureReader& reader, GIntBig fid, int part, const OGRLineString& line,
+         const std::vector<double>& attributes) {
+        GisPolyline polyline{fid, part, {}, attributes};
+        for (int k = 0; k < line.getNumPoints(); ++k) {
+          const glm::vec3 node = reader.node(line, k, fid);
+          // A node equal (as the renderer will see it, in float) to the previous one makes a
+          // zero-length segment with no direction: Konev18 §5's billboards and our rasteriser
+          // need a direction per segment, so it is dropped.
+          if (!polyline.points.empty() && polyline.points.back() == node) {
+            ++out.report.repeatedNodes;
+            continue;
           }
-          if (polyline.points.size() < 2)
-            ++out.report.degenerateParts;
-          else
-            out.polylines.push_back(std::move(polyline));
-        });
-  });
+          polyline.points.push_back(node);
+        }
+        if (polyline.points.size() < 2)
+          ++out.report.degenerateParts;
+        else
+          out.polylines.push_back(std::move(polyline));
+      });
 }
 
-GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
-  return importContained<GisPoints>(file.string(), "GDAL", [&] {
-    return importParts<OGRPoint, OGRMultiPoint>(
-        file, options, wkbPoint, wkbMultiPoint, "point", &GisPoints::points, "",
-        [](GisPoints& out, FeatureReader& reader, GIntBig fid, int part, const OGRPoint& point,
-           const std::vector<double>& attributes) {
-          out.points.push_back(
-              {fid, part, reader.place(point.getX(), point.getY(), point.getZ(), fid), attributes});
-        });
-  });
+}  // namespace
+
+namespace {
+
+GisPoints importPointsHere(const std::filesystem::path& file, const GisImportOptions& options) {
+  return importParts<OGRPoint, OGRMultiPoint>(
+      file, options, wkbPoint, wkbMultiPoint, "point", &GisPoints::points, "",
+      [](GisPoints& out, FeatureReader& reader, GIntBig fid, int part, const OGRPoint& point,
+         const std::vector<double>& attributes) {
+        out.points.push_back(
+            {fid, part, reader.place(point.getX(), point.getY(), point.getZ(), fid), attributes});
+      });
 }
+
+}  // namespace
 
 namespace {
 
@@ -407,29 +413,56 @@ std::vector<glm::vec3> readRing(const OGRLinearRing& ring, FeatureReader& reader
 
 }  // namespace
 
+namespace {
+
+GisPolygons importPolygonsHere(const std::filesystem::path& file, const GisImportOptions& options) {
+  return importParts<OGRPolygon, OGRMultiPolygon>(
+      file, options, wkbPolygon, wkbMultiPolygon, "polygon", &GisPolygons::polygons,
+      " with three distinct nodes",
+      [](GisPolygons& out, FeatureReader& reader, GIntBig fid, int part, const OGRPolygon& shape,
+         const std::vector<double>& attributes) {
+        const OGRLinearRing* exterior = shape.getExteriorRing();
+        if (!exterior) return;  // an empty part of a MultiPolygon
+        GisPolygon polygon{fid, part, readRing(*exterior, reader, fid, out.report), {}, attributes};
+        if (polygon.outer.empty()) {
+          ++out.report.degenerateParts;
+          return;
+        }
+        for (int h = 0; h < shape.getNumInteriorRings(); ++h) {
+          std::vector<glm::vec3> hole =
+              readRing(*shape.getInteriorRing(h), reader, fid, out.report);
+          if (!hole.empty()) polygon.holes.push_back(std::move(hole));
+        }
+        out.polygons.push_back(std::move(polygon));
+      });
+}
+
+}  // namespace
+
+// GDAL runs in a worker process (cutaway/core/contained.hpp).
+const ContainedReader<std::vector<GisLayerInfo>, &listLayersHere> containedLayers("gis-layers",
+                                                                                  "GDAL");
+const ContainedReader<GisLines, &importLinesHere, GisImportOptions> containedLines("gis-lines",
+                                                                                   "GDAL");
+const ContainedReader<GisPoints, &importPointsHere, GisImportOptions> containedPoints("gis-points",
+                                                                                      "GDAL");
+const ContainedReader<GisPolygons, &importPolygonsHere, GisImportOptions> containedPolygons(
+    "gis-polygons", "GDAL");
+
+std::vector<GisLayerInfo> listGisLayers(const std::filesystem::path& file) {
+  return containedLayers(file);
+}
+
+GisLines importGisLines(const std::filesystem::path& file, const GisImportOptions& options) {
+  return containedLines(file, options);
+}
+
+GisPoints importGisPoints(const std::filesystem::path& file, const GisImportOptions& options) {
+  return containedPoints(file, options);
+}
+
 GisPolygons importGisPolygons(const std::filesystem::path& file, const GisImportOptions& options) {
-  return importContained<GisPolygons>(file.string(), "GDAL", [&] {
-    return importParts<OGRPolygon, OGRMultiPolygon>(
-        file, options, wkbPolygon, wkbMultiPolygon, "polygon", &GisPolygons::polygons,
-        " with three distinct nodes",
-        [](GisPolygons& out, FeatureReader& reader, GIntBig fid, int part, const OGRPolygon& shape,
-           const std::vector<double>& attributes) {
-          const OGRLinearRing* exterior = shape.getExteriorRing();
-          if (!exterior) return;  // an empty part of a MultiPolygon
-          GisPolygon polygon{
-              fid, part, readRing(*exterior, reader, fid, out.report), {}, attributes};
-          if (polygon.outer.empty()) {
-            ++out.report.degenerateParts;
-            return;
-          }
-          for (int h = 0; h < shape.getNumInteriorRings(); ++h) {
-            std::vector<glm::vec3> hole =
-                readRing(*shape.getInteriorRing(h), reader, fid, out.report);
-            if (!hole.empty()) polygon.holes.push_back(std::move(hole));
-          }
-          out.polygons.push_back(std::move(polygon));
-        });
-  });
+  return containedPolygons(file, options);
 }
 
 }  // namespace cutaway

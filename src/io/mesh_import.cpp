@@ -299,9 +299,11 @@ void wireFields(Archive& a, ImportedNode& n) {
   a(n.name, n.id, n.mesh, n.color);
 }
 
+const ContainedReader<std::vector<ImportedNode>, &importHere> containedImport("mesh",
+                                                                              "the mesh importer");
+
 std::vector<ImportedNode> importMeshNodes(const std::filesystem::path& file) {
-  return importContained<std::vector<ImportedNode>>(file.string(), "the mesh importer",
-                                                    [&] { return importHere(file); });
+  return containedImport(file);
 }
 
 }  // namespace cutaway

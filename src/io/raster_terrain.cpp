@@ -248,19 +248,28 @@ void wireFields(Archive& a, RasterTerrain& t) {
     t.maxHeight);
 }
 
+template <class Archive>
+void wireFields(Archive& a, RasterTerrainOptions& o) {
+  a(o.step, o.heightScale, o.targetCrs, o.offset);
+}
+
+// GDAL runs in a worker process (cutaway/core/contained.hpp).
+const ContainedReader<bool, &isRasterHere> containedIsRaster("raster-test", "GDAL");
+const ContainedReader<RasterInfo, &describeRasterHere> containedDescription("raster-info", "GDAL");
+const ContainedReader<RasterTerrain, &importRasterTerrainHere, RasterTerrainOptions>
+    containedTerrain("raster-terrain", "GDAL");
+
 bool isRaster(const std::filesystem::path& file) {
-  return importContained<bool>(file.string(), "GDAL", [&] { return isRasterHere(file); });
+  return containedIsRaster(file);
 }
 
 RasterInfo describeRaster(const std::filesystem::path& file) {
-  return importContained<RasterInfo>(file.string(), "GDAL",
-                                     [&] { return describeRasterHere(file); });
+  return containedDescription(file);
 }
 
 RasterTerrain importRasterTerrain(const std::filesystem::path& file,
                                   const RasterTerrainOptions& options) {
-  return importContained<RasterTerrain>(file.string(), "GDAL",
-                                        [&] { return importRasterTerrainHere(file, options); });
+  return containedTerrain(file, options);
 }
 
 double syntheticDemHeight(const SyntheticDemOptions& o, double easting, double northing) {

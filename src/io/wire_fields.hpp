@@ -24,6 +24,11 @@ void wireFields(Archive& a, GisCrs& c) {
 }
 
 template <class Archive>
+void wireFields(Archive& a, GisImportOptions& o) {
+  a(o.layer, o.attributes, o.targetCrs, o.offset);
+}
+
+template <class Archive>
 void wireFields(Archive& a, GisExtent& e) {
   a(e.min, e.max);
 }

@@ -1,33 +1,39 @@
-// cutaway/core/contained.hpp — a third-party parser run on an untrusted file in a child
-// process, under a memory and a time limit.
+// cutaway/core/contained.hpp — third-party parsers run on untrusted files in child
+// processes, under a memory and a time limit.
 //
 // Assimp and GDAL have bugs this project cannot fix in their Debian packages: a file may
-// crash them, make them loop forever or allocate without bound. `runContained` forks, runs
-// `work` in the child and returns the bytes it produced; an Error it throws comes back as
-// thrown, and a crash, the time limit or the memory limit becomes an Error naming the file.
-// The caller (not the library) is never taken down, and nothing is half-read.
+// crash them, make them loop forever or allocate without bound. A contained parser runs in a
+// fresh worker process per file, forked by a helper process that the first call starts; its
+// result comes back through shared memory, an Error it throws comes back as thrown, and a
+// crash, the time limit or the memory limit becomes an Error naming the file. The program is
+// never taken down, and nothing is half-read.
 //
-//   const std::string bytes = cutaway::runContained("engine.glb", "the mesh importer",
-//                                                   [&] { return serialize(parse(file)); });
+// A parser is a plain function, registered by name at static initialisation (the helper
+// knows the parsers registered before it started); `ContainedReader` does both:
+//
+//   GisLines importHere(const std::filesystem::path& file, const GisImportOptions& options);
+//   const ContainedReader<GisLines, &importHere, GisImportOptions> reader("gis-lines", "GDAL");
+//   GisLines lines = reader(file, options);   // throws cutaway::Error
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <functional>
+#include <filesystem>
 #include <glm/glm.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
 namespace cutaway {
 
 struct ContainmentLimits {
-  double seconds = 300.0;         // wall-clock time the child may take
-  std::uint64_t memoryBytes = 0;  // memory the child may allocate beyond what it inherits
+  double seconds = 300.0;         // wall-clock time a worker may take
+  std::uint64_t memoryBytes = 0;  // memory a worker may allocate beyond what it inherits
 };
 
 // The limits file imports run under: CUTAWAY_IMPORT_SECONDS and CUTAWAY_IMPORT_MEMORY_MB when
@@ -37,7 +43,18 @@ struct ContainmentLimits {
 ContainmentLimits importLimits();
 bool importsContained();
 
-// The bytes a child handed back, mapped from its shared memory rather than copied.
+// Starts the helper process now (else the first contained call does). A program calls it
+// first thing in main(): the helper is then a copy of a small process, and the program does
+// not pay for copying its pages back from a copy-on-write share with the helper later.
+// Never throws: where the helper cannot start, the first contained call says why.
+void startContainedHelper();
+
+// A parser as a worker runs it: its arguments' bytes in, its result's bytes out.
+using ContainedParser = std::string (*)(std::string_view arguments);
+// Registers `parser` under `id` (false: the id was taken).
+bool registerContainedParser(const std::string& id, ContainedParser parser);
+
+// The bytes a worker handed back, mapped from its shared memory rather than copied.
 class ContainedReply {
  public:
   ContainedReply(const char* data, std::size_t size) : data_(data), size_(size) {}
@@ -48,19 +65,19 @@ class ContainedReply {
   ContainedReply& operator=(const ContainedReply&) = delete;
   ContainedReply& operator=(ContainedReply&&) = delete;
   ~ContainedReply();
-  std::string_view bytes() const { return {data_ ? data_ + 1 : "", data_ ? size_ - 1 : 0}; }
+  std::string_view bytes() const { return {data_ ? data_ : "", data_ ? size_ : 0}; }
 
  private:
-  const char* data_;  // the whole mapping: a kind byte, then the bytes
+  const char* data_;
   std::size_t size_;
 };
 
-// Runs `work` in a child process and returns what it returned. `file` names the input in
-// errors and `parser` the code that reads it ("the mesh importer"). Throws the cutaway::Error
-// that `work` threw, or an Error "FILE: PARSER crashed on this file (…)", "…took longer than
-// N s", "…needed more than N MB of memory".
+// Runs the parser registered as `id` on `arguments` in a worker process and returns its
+// result. `file` names the input in errors and `parser` the code that reads it ("the mesh
+// importer"). Throws the cutaway::Error that the parser threw, or an Error "FILE: PARSER
+// crashed on this file (…)", "…took longer than N s", "…needed more than N MB of memory".
 ContainedReply runContained(const std::string& file, const std::string& parser,
-                            const std::function<std::string()>& work,
+                            const std::string& id, const std::string& arguments,
                             const ContainmentLimits& limits);
 
 // The bytes a contained parser hands back, and what they are read back into. Numbers, enums
@@ -109,6 +126,8 @@ class ByteWriter {
     } else if constexpr (std::is_same_v<T, std::string>) {
       put(std::uint64_t(v.size()));
       raw(v.data(), v.size());
+    } else if constexpr (std::is_same_v<T, std::filesystem::path>) {
+      put(v.string());
     } else if constexpr (wire::IsVector<T>::value) {
       put(std::uint64_t(v.size()));
       if constexpr (wire::kAsBytes<typename T::value_type>)
@@ -161,6 +180,8 @@ class ByteReader {
     } else if constexpr (std::is_same_v<T, std::string>) {
       const auto n = count(1);
       v.assign(take(n), n);
+    } else if constexpr (std::is_same_v<T, std::filesystem::path>) {
+      v = read<std::string>();
     } else if constexpr (wire::IsVector<T>::value) {
       using E = typename T::value_type;
       v.resize(count(wire::kAsBytes<E> ? sizeof(E) : 0));
@@ -183,20 +204,34 @@ class ByteReader {
   std::size_t at_ = 0;
 };
 
-// `parse()` run by runContained under importLimits() and its T handed back (in this process
-// when CUTAWAY_IMPORT_CONTAINED=0).
-template <class T, class Parse>
-T importContained(const std::string& file, const std::string& parser, Parse&& parse) {
-  if (!importsContained()) return parse();
-  const ContainedReply reply = runContained(
-      file, parser,
-      [&] {
-        ByteWriter w;
-        w(parse());
-        return std::move(w.bytes);
-      },
-      importLimits());
-  return ByteReader(reply.bytes()).read<T>();
-}
+// `Read(file, arguments...)` as a contained parser named `id`: called, it runs in a worker
+// under importLimits() (in this process when CUTAWAY_IMPORT_CONTAINED=0). Define one as a
+// namespace-scope object, so that it registers before the helper starts.
+template <class Result, auto Read, class... Arguments>
+class ContainedReader {
+ public:
+  ContainedReader(const char* id, const char* parser) : id_(id), parser_(parser) {
+    registerContainedParser(id, &work);
+  }
+  Result operator()(const std::filesystem::path& file, const Arguments&... arguments) const {
+    if (!importsContained()) return Read(file, arguments...);
+    ByteWriter w;
+    w(file, arguments...);
+    const ContainedReply reply = runContained(file.string(), parser_, id_, w.bytes, importLimits());
+    return ByteReader(reply.bytes()).read<Result>();
+  }
+
+ private:
+  static std::string work(std::string_view bytes) {
+    std::tuple<std::filesystem::path, Arguments...> arguments;
+    ByteReader r(bytes);
+    std::apply([&](auto&... a) { r(a...); }, arguments);
+    ByteWriter w;
+    w(std::apply(Read, arguments));
+    return std::move(w.bytes);
+  }
+  const char* id_;
+  const char* parser_;
+};
 
 }  // namespace cutaway
