@@ -450,7 +450,8 @@ TEST(PipeRendering, BillboardsCastTheOutlineOfTubesAndTroughs) {
 
 TEST(PipeRendering, OpenedPipesAreLitInsideAndShadowTheGround) {
   // Light from above: the inside and the water of the cut stretch look as without shadows
-  // (the light falls into the trough), while the floor under the pipe darkens.
+  // (the light falls into the trough), while the floor under the pipe darkens. (The inside of
+  // the closed tube beyond, seen through an end triangle's bore, lies in its own shadow.)
   const auto render = [&](bool shadows) {
     const std::string text = std::string(R"({"resolution": [240, 150], "samples": 1,
       "style": {"name": "blinn-phong", "lines": false, "shadows": )") +
@@ -470,7 +471,8 @@ TEST(PipeRendering, OpenedPipesAreLitInsideAndShadowTheGround) {
   };
   const auto [plain, plainAovs] = render(false);
   const auto [shadowed, aovs] = render(true);
-  const FloatImage &cls = aov(aovs, "pipeClass"), &id = aov(aovs, "objectId");
+  const FloatImage &cls = aov(aovs, "pipeClass"), &id = aov(aovs, "objectId"),
+                   &position = aov(aovs, "position");
   double insideDifference = 0;
   int inside = 0, darkFloor = 0;
   for (int y = 0; y < cls.height; ++y)
@@ -478,7 +480,8 @@ TEST(PipeRendering, OpenedPipesAreLitInsideAndShadowTheGround) {
       const auto* a = plain.at(x, y);
       const auto* b = shadowed.at(x, y);
       const float c = cls.at(x, y)[0];
-      if ((c > 0.4f && c < 0.6f) || c > 0.9f) {  // inside or water
+      const bool cutStretch = std::abs(position.at(x, y)[0]) < 2.3f;  // the cut: |x| < 2.4
+      if (((c > 0.4f && c < 0.6f) || c > 0.9f) && cutStretch) {       // inside or water
         ++inside;
         for (int k = 0; k < 3; ++k) insideDifference += std::abs(int(a[k]) - int(b[k]));
       } else if (id.at(x, y)[0] == 0.0f && b[1] < 0.7 * a[1]) {
@@ -617,6 +620,56 @@ TEST(PipeRendering, AnEndTriangleSeenFromBehindShowsTheOutside) {
   EXPECT_GT(resetIn[1], 100);
   EXPECT_EQ(outside[1], disc[1]);
   EXPECT_EQ(resetIn[0], 0) << "of " << disc[0];
+}
+
+// Konev18 eqs. 12–14 on the GPU against the pipe's own geometry: the end triangle at the
+// cut's start, seen from the front (from above the opened stretch, so that nothing else lies
+// over it), holds the upper half of the pipe's cross-section. Where a pixel's ray meets that
+// plane at ρ from the axis (above it), pass 1 draws the cut surface for r_in < ρ < r_out
+// (eq. 13: stencil 2, pipe class "cut"), pass 2 marks the inside for ρ < r_in (eq. 14:
+// stencil 1), and the triangle's corners beyond r_out are discarded by both (stencil 0).
+// Through the bore the closed tube beyond the triangle shows its inside (pipe class 0.5).
+// Pixels within 1.5 pixels of a border may go either way.
+TEST(PipeRendering, TheEndTriangleMarksWallAndBoreByTheirDistanceFromTheAxis) {
+  const float rOut = 0.5f, rIn = 0.4f, start = -1.6f;  // the cut from 0.3 of x ∈ [−4, 4]
+  const Scene scene = parseScene(R"({"resolution": [240, 240], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false},
+    "camera": {"projection": "orthographic", "height": 1.6, "eye": [3, 2, 0],
+               "target": [-1.6, 0, 0]},
+    "networks": [{"name": "n", "wallThickness": 0.1, "cut": {"from": 0.3, "to": 0.7},
+                  "pipes": [{"lines": [[[-4, 0, 0], [4, 0, 0]]], "radius": 0.5}]}]})",
+                                 "end.json", kSource);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &stencil = aov(aovs, "pipeStencil"), &cls = aov(aovs, "pipeClass");
+  const Camera camera = scene.resolvedCamera();
+  const glm::mat4 inverse = glm::inverse(camera.projectionMatrix(1.0f) * camera.view());
+  const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+  const float pixel = 1.6f / float(stencil.height), margin = 1.5f * pixel;
+  int wall = 0, bore = 0, corners = 0, wrong = 0, notCut = 0, notInside = 0;
+  for (int y = 0; y < stencil.height; ++y)
+    for (int x = 0; x < stencil.width; ++x) {
+      const glm::vec2 ndc((x + 0.5f) / float(stencil.width) * 2.0f - 1.0f,
+                          1.0f - (y + 0.5f) / float(stencil.height) * 2.0f);  // rows top down
+      const glm::vec4 h = inverse * glm::vec4(ndc, -1.0f, 1.0f);
+      const glm::vec3 origin = glm::vec3(h) / h.w;
+      const glm::vec3 p = origin + (start - origin.x) / forward.x * forward;  // on x = start
+      const float rho = std::hypot(p.y, p.z);
+      // Within the triangle (apex √2·r_out above the axis, base ±√2·r_out), above the axis.
+      if (p.y < margin || p.y + std::abs(p.z) > std::sqrt(2.0f) * rOut - margin) continue;
+      if (std::abs(rho - rIn) < margin || std::abs(rho - rOut) < margin) continue;
+      const float expected = rho < rIn ? 1.0f : rho < rOut ? 2.0f : 0.0f;
+      wall += expected == 2.0f, bore += expected == 1.0f, corners += expected == 0.0f;
+      const float s = stencil.at(x, y)[0];
+      wrong += s != expected;
+      if (expected == 2.0f) notCut += std::abs(cls.at(x, y)[0] - 0.75f) > 0.01f;
+      if (expected == 1.0f) notInside += std::abs(cls.at(x, y)[0] - 0.5f) > 0.01f;
+    }
+  EXPECT_GT(wall, 300);
+  EXPECT_GT(bore, 3000);
+  EXPECT_GT(corners, 300);
+  EXPECT_EQ(wrong, 0) << "of " << wall + bore + corners;
+  EXPECT_EQ(notCut, 0) << "of " << wall;
+  EXPECT_EQ(notInside, 0) << "of " << bore;
 }
 
 // Konev18 eqs. 15–16 on the GPU against the pipe's own geometry: the horizontal proxy quad

@@ -5,7 +5,9 @@
 // the water surface, §6.4), over a cut surface (stencil 2), and outside over the back of an
 // end triangle (stencil 4, Fig. 10: the closed tube's end, so the upper half stays). A region
 // marked by another pipe's proxies is shaded as this pipe's outside (Konev18 §9's
-// interference): the proxies' nearest pipe id per pixel tells whose region it is.
+// interference): the proxies' nearest pipe id per pixel tells whose region it is. Of this
+// pipe, the cut stretch shows its inside there, and so does the closed tube beyond an end
+// triangle where it lies behind the triangle: it is seen through the triangle's bore (eq. 14).
 #include "frame/frame_uniforms.glsl"
 #include "styles/surface.glsl"
 #include "style.glsl"
@@ -21,6 +23,7 @@ flat in vec3 vDirection;
 flat in int vPipe;
 layout(location = PIPE_CLASS_LOCATION) out float outPipeClass;
 layout(binding = UNIT_PIPE_OWNER) uniform isampler2D uProxyOwner;  // global pipe id + 1; 0: none
+layout(binding = UNIT_PIPE_OWNER_DEPTH) uniform sampler2D uProxyDepth;  // that proxy's depth
 // 0 outside, 1 inside, 2 over a cut, 3 outside over an end triangle seen from behind
 layout(location = 37) uniform int uPass;
 
@@ -52,8 +55,9 @@ void main() {
   bool cut = inCutStretch(vPipe, vArc);
   vec3 up = cutUp(vDirection);
   bool upper = dot(vWorld - vAxis, up) > 0.0;
-  bool own = cut && texelFetch(uProxyOwner, ivec2(gl_FragCoord.xy), 0).r ==
-                        int(uPipes[vPipe].radii.w) + 1;
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  bool own = texelFetch(uProxyOwner, pixel, 0).r == int(uPipes[vPipe].radii.w) + 1 &&
+             (cut || gl_FragCoord.z > texelFetch(uProxyDepth, pixel, 0).r);
   vec3 tube = normalize(vNormal + vFace);  // eq. 11
   if (uPass == 2 && own) discard;          // this pipe's own cut surface stays
   if (uPass != 1 || !own) {

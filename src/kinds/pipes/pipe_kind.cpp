@@ -104,7 +104,8 @@ PipeKind::PipeKind(FrameSetup& setup)
     : setup_(setup),
       scene_(setup.scene),
       pipesBlock_(setup.bindings.storageBlock("PIPES")),
-      ownerUnit_(setup.bindings.textureUnit("PIPE_OWNER")) {
+      ownerUnit_(setup.bindings.textureUnit("PIPE_OWNER")),
+      ownerDepthUnit_(setup.bindings.textureUnit("PIPE_OWNER_DEPTH")) {
   const Scene& scene = scene_;
   GLint pipeBase = 0;
   for (std::size_t k = 0; k < scene.networks.size(); ++k) {
@@ -253,7 +254,7 @@ void PipeKind::addPassesAfterGeometry(Frame& frame) {
                  .writes = {owner_, ownerDepth_},
                  .run = [this](const PassContext&) { drawOwners(); }});
   frame.addPass({.name = "pipes",
-                 .reads = {owner_},
+                 .reads = {owner_, ownerDepth_},
                  .writes = writes,
                  .run = [this](const PassContext& pass) {
                    const GLint zero = 0;
@@ -369,6 +370,7 @@ void PipeKind::drawPipes() {
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glUseProgram(billboard);
   glBindTextureUnit(ownerUnit_, setup_.frame.texture(owner_).id());
+  glBindTextureUnit(ownerDepthUnit_, setup_.frame.texture(ownerDepth_).id());
   glEnable(GL_PRIMITIVE_RESTART);
   glPrimitiveRestartIndex(kPrimitiveRestart);
   for (const int pass : {0, 1, 2, 3}) {

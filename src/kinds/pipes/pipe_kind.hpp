@@ -59,7 +59,7 @@ class PipeKind : public GeometryKind {
   gl::Texture stencilView_;
   FullscreenTriangle fullscreen_;
   GLuint gbufferTargets_ = 0;
-  GLuint pipesBlock_, ownerUnit_;
+  GLuint pipesBlock_, ownerUnit_, ownerDepthUnit_;
   Target owner_, ownerDepth_, pipeClass_, stencilAov_, classAov_;
 };
 
