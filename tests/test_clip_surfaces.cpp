@@ -685,3 +685,73 @@ TEST(ClipSurfaceGpu, CapsAreShadedByTheStyleAndEmphasisedByImportance) {
     EXPECT_LE(worst, 1.0) << "importance " << c.importance << ", E_c " << c.ec << ", E_s " << c.es;
   }
 }
+
+// Trapp13 §6.1: the occlusion map darkens a cap's hollows. With the relief's normals off, a
+// cap pixel is the flat cap's Blinn-Phong (as above) times mix(1, a, k): a, the derived map's
+// occlusion (deriveReliefMaps' alpha), read bilinearly with repeat at the pixel's T (eq. 2,
+// from its world position; S_x and S_y included), and k the strength; each pixel of the cap's
+// inside against that, for k = 1 and 0.5.
+TEST(ClipSurfaceGpu, TheOcclusionMapDarkensCapsByItsValueAtTheirTexel) {
+  writeTorus();
+  const glm::vec3 kd(0.8f, 0.6f, 0.4f);
+  const glm::vec3 l = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
+  for (const float strength : {1.0f, 0.5f}) {
+    const std::string surface =
+        kNoisySurface.substr(0, kNoisySurface.size() - 1) + R"(, "capColor": [0.8, 0.6, 0.4]})";
+    const Scene scene = parseScene(
+        R"({"resolution": [128, 96], "samples": 1,
+            "style": {"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}},
+            "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
+            "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
+            "objects": [{"name": "torus", "importance": 1, "file": ")" +
+            std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
+            R"("}], "cutters": {"clipSurfaces": {"caps": true, "capStyle": {"normalMap": false,
+            "occlusion": )" +
+            std::to_string(strength) + R"(}, "surfaces": [)" + surface + "]}}}",
+        "torus.json", kData);
+    const ClipSurface& cs = scene.cutters.find<ClipSurfaceOptions>()->surfaces[0];
+    const FloatImage relief = deriveReliefMaps(cs);
+    const auto occlusion = [&](glm::vec2 uv) {  // GL_LINEAR, GL_REPEAT on the alpha channel
+      const glm::vec2 at = uv * glm::vec2(relief.width, relief.height) - 0.5f;
+      const glm::ivec2 i(glm::floor(at));
+      const glm::vec2 f = at - glm::vec2(i);
+      const auto texel = [&](int x, int y) {
+        x = ((x % relief.width) + relief.width) % relief.width;
+        y = ((y % relief.height) + relief.height) % relief.height;
+        return relief.at(x, y)[3];
+      };
+      return glm::mix(glm::mix(texel(i.x, i.y), texel(i.x + 1, i.y), f.x),
+                      glm::mix(texel(i.x, i.y + 1), texel(i.x + 1, i.y + 1), f.x), f.y);
+    };
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    const Rgba8Image color = renderer.readColor();
+    const auto aovs = renderer.readAovs();
+    const FloatImage &cap = aov(aovs, "capMask"), &position = aov(aovs, "position");
+    const glm::vec3 eye = scene.resolvedCamera().eye;
+    double worst = 0.0, darkest = 1.0;
+    int caps = 0;
+    for (int y = 1; y + 1 < cap.height; ++y)
+      for (int x = 1; x + 1 < cap.width; ++x) {
+        bool inside = true;  // away from the cap's anti-aliased rim
+        for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+          inside = inside && cap.at(x + dx, y + dy)[0] == 1.0f;
+        if (!inside) continue;
+        ++caps;
+        const glm::vec3 p = glm::make_vec3(position.at(x, y)), v = glm::normalize(eye - p);
+        const glm::vec3 n(0.0f, 0.0f, 1.0f), h = glm::normalize(l + v);
+        const glm::vec3 shaded = 0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
+                                 glm::vec3(0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f));
+        const float factor = glm::mix(1.0f, occlusion(clipSurfaceTexCoord(cs, p)), strength);
+        darkest = std::min(darkest, double(factor));
+        const glm::vec3 expected = glm::clamp(shaded * factor, 0.0f, 1.0f);
+        for (int k = 0; k < 3; ++k)
+          worst = std::max(worst, std::abs(color.at(x, y)[k] - 255.0 * expected[k]));
+      }
+    std::printf("occlusion %.1f: %d cap pixels, factor down to %.3f, worst %.2f levels\n", strength,
+                caps, darkest, worst);
+    EXPECT_GT(caps, 1000);
+    EXPECT_LT(darkest, 1.0 - 0.1 * strength);          // the relief has hollows to darken
+    EXPECT_LE(worst, 1.0) << "strength " << strength;  // 8-bit rounding
+  }
+}
