@@ -755,3 +755,71 @@ TEST(ClipSurfaceGpu, TheOcclusionMapDarkensCapsByItsValueAtTheirTexel) {
     EXPECT_LE(worst, 1.0) << "strength " << strength;  // 8-bit rounding
   }
 }
+
+// Trapp13 §6.1 Fig. 11: the procedural solid texture is a property of the material, so it is
+// anchored to world positions, not to the screen: two orthographic views straight down on a
+// flat cap, the second moved by (7, 5) pixels, give every world point the same colour; and
+// the texture is a factor in [0.55, 1.1] on the cap colour (from Blinn-Phong with the flat
+// cap's normal), with veins: the factor spans over half that range.
+TEST(ClipSurfaceGpu, TheSolidTextureStaysWithTheMaterialAsTheViewMoves) {
+  writeTorus();
+  const glm::vec3 kd(0.8f, 0.6f, 0.4f);
+  const glm::vec3 l = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
+  const float pixel = 3.0f / 120.0f;  // an orthographic view 3 units high, 120 pixels
+  const auto render = [&](glm::vec2 shift) {
+    char camera[200];
+    std::snprintf(camera, sizeof camera,
+                  R"({"projection": "orthographic", "height": 3, "eye": [%.6f, %.6f, 5],
+                      "target": [%.6f, %.6f, 0], "up": [0, 1, 0]})",
+                  shift.x, shift.y, shift.x, shift.y);
+    const std::string surface =
+        kFlatSurface.substr(0, kFlatSurface.size() - 1) + R"(, "capColor": [0.8, 0.6, 0.4]})";
+    const Scene scene = parseScene(std::string(R"({"resolution": [120, 120], "samples": 1,
+            "style": {"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}},
+            "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
+            "camera": )") + camera + R"(,
+            "objects": [{"name": "torus", "importance": 1, "file": ")" +
+                                       std::string(std::filesystem::temp_directory_path() /
+                                                   "cutaway-torus.obj") +
+                                       R"("}], "cutters": {"clipSurfaces": {"caps": true,
+            "capStyle": {"solidTexture": true, "solidTextureScale": 6, "occlusion": 0},
+            "surfaces": [)" + surface + "]}}}",
+                                   "torus.json", kData);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    return std::pair{renderer.readColor(), renderer.readAovs()};
+  };
+  const auto [a, aAovs] = render(glm::vec2(0.0f));
+  const auto [b, bAovs] = render(glm::vec2(7.0f, 5.0f) * pixel);
+  const FloatImage &capA = aov(aAovs, "capMask"), &capB = aov(bAovs, "capMask"),
+                   &posA = aov(aAovs, "position"), &posB = aov(bAovs, "position");
+  // Seen straight down: the cap's normal (0, 0, 1), the view (0, 0, 1).
+  const glm::vec3 n(0.0f, 0.0f, 1.0f), h = glm::normalize(l + n);
+  const float diffuse = 0.1f + std::max(glm::dot(n, l), 0.0f);
+  const float specular = 0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f);
+  int matched = 0, differ = 0, outOfRange = 0;
+  float low = 2.0f, high = 0.0f;
+  for (int y = 1; y + 1 < capA.height; ++y)
+    for (int x = 1; x + 1 < capA.width; ++x) {
+      bool inside = true;  // away from the cap's anti-aliased rim
+      for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+        inside = inside && capA.at(x + dx, y + dy)[0] == 1.0f;
+      if (!inside) continue;
+      // The factor, from the green channel (the largest of the cap colour's after red).
+      const float factor = (a.at(x, y)[1] / 255.0f - specular) / (kd.y * diffuse);
+      low = std::min(low, factor), high = std::max(high, factor);
+      outOfRange += factor < 0.55f - 0.01f || factor > 1.1f + 0.01f;
+      // The same world point in the moved view: 7 pixels left, 5 down (rows top down).
+      const int bx = x - 7, by = y + 5;
+      if (bx < 0 || by >= capB.height || capB.at(bx, by)[0] != 1.0f) continue;
+      if (glm::length(glm::make_vec3(posA.at(x, y)) - glm::make_vec3(posB.at(bx, by))) > 1e-3f)
+        continue;
+      ++matched;
+      for (int k = 0; k < 3; ++k) differ += std::abs(int(a.at(x, y)[k]) - int(b.at(bx, by)[k])) > 1;
+    }
+  std::printf("solid texture: %d points seen twice, factor %.3f to %.3f\n", matched, low, high);
+  EXPECT_GT(matched, 1000);
+  EXPECT_EQ(differ, 0) << "of " << matched;
+  EXPECT_EQ(outOfRange, 0);
+  EXPECT_GT(high - low, 0.3f);
+}
