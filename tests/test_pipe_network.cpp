@@ -567,6 +567,65 @@ TEST(PipeRendering, TheShaftWedgeRemovesWhereNormalAndViewMeet) {
   EXPECT_EQ(wrongCut, 0) << "of " << cutPixels;
 }
 
+// Konev18 §7: the cut surface colour goes on the outer cylinder's back faces and the inner
+// cylinder's front faces (the wall's thickness seen through the wedge), and nowhere else on
+// the shaft. Rendered with two cut colours, the shaft pixels that change are exactly those
+// whose surface (position AOV) faces away from the eye on the outer cylinder or towards it on
+// the inner one, the facing from the cylinder's radius there; pixels whose radius is within
+// 5° of edge-on may go either way (the rim's top and the floor are not cylinders).
+TEST(PipeRendering, TheShaftsCutColourIsOnOuterBackAndInnerFrontFaces) {
+  const auto render = [&](const char* cutColor) {
+    const Scene scene = parseScene(
+        std::string(R"({"resolution": [320, 240], "samples": 1,
+      "style": {"name": "blinn-phong", "lines": false},
+      "camera": {"eye": [4, 5, 7], "target": [0, -1.5, 0], "fov": 40},
+      "networks": [{"name": "n", "radius": 0.3, "wallThickness": 0.05, "depth": 2,
+        "shaftOpening": 0.3, "cutColor": )") +
+            cutColor +
+            R"(, "pipes": [{"lines": [[[-6, 0], [0, 0]], [[0, 0], [6, 1]], [[0, 0], [0, -6]]]}],
+        "shafts": {"generate": "junctions", "radius": 1.0, "wallThickness": 0.15}}]})",
+        "shaft.json", kSource);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    return std::tuple{scene, renderer.readColor(), renderer.readAovs()};
+  };
+  const auto [scene, red, aovs] = render("[1, 0, 0]");
+  const auto [unused, blue, unusedAovs] = render("[0, 0, 1]");
+  const Shaft shaft = scene.networks.at(0).shafts.at(0);
+  float outerId = -1.0f, innerId = -1.0f;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    if (scene.objects[i].networkPart == NetworkPart::ShaftOuter) outerId = float(i);
+    if (scene.objects[i].networkPart == NetworkPart::ShaftInner) innerId = float(i);
+  }
+  const glm::vec3 eye = scene.resolvedCamera().eye;
+  const FloatImage &id = aov(aovs, "objectId"), &pos = aov(aovs, "position");
+  int cut = 0, plain = 0, wrong = 0;
+  for (int y = 0; y < id.height; ++y)
+    for (int x = 0; x < id.width; ++x) {
+      const float k = id.at(x, y)[0];
+      if (k != outerId && k != innerId) continue;
+      const glm::vec3 p = glm::make_vec3(pos.at(x, y));
+      const glm::vec2 radial(p.x - shaft.bottom.x, p.z - shaft.bottom.z);
+      // On its cylinder: not the rim's top, not the floor (part of the inner object).
+      const float r = k == outerId ? shaft.radius : shaft.innerRadius();
+      if (p.y > shaft.top - 0.02f || p.y < shaft.bottom.y + 0.02f ||
+          std::abs(glm::length(radial) - r) > 0.02f)
+        continue;
+      const glm::vec2 radius = glm::normalize(radial);
+      const float facing = glm::dot(radius, glm::normalize(glm::vec2(eye.x - p.x, eye.z - p.z)));
+      if (std::abs(facing) < std::sin(glm::radians(5.0f))) continue;
+      const bool expected = k == outerId ? facing < 0.0f : facing > 0.0f;
+      const auto* a = red.at(x, y);
+      const auto* b = blue.at(x, y);
+      const bool changed = a[0] != b[0] || a[2] != b[2];
+      expected ? ++cut : ++plain;
+      wrong += changed != expected;
+    }
+  EXPECT_GT(cut, 100);
+  EXPECT_GT(plain, 1000);
+  EXPECT_EQ(wrong, 0) << "of " << cut + plain;
+}
+
 // Konev18 Fig. 10: an end triangle of a cut stretch seen from behind resets its area to the
 // pipe's outside (stencil 4), so the closed tube's end covers the disc there. A straight pipe
 // cut open over its middle, seen orthographically from beyond one end of the cut: every
