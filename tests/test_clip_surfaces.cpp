@@ -80,6 +80,18 @@ Mesh transformed(const Mesh& mesh, const glm::mat4& m) {
   return out;
 }
 
+// A texture read as GL_LINEAR with GL_REPEAT does: texel (x, y) of a w × h image at texture
+// coordinates ((x + ½)/w, (y + ½)/h), row 0 at t = 0.
+template <class Texel>
+auto bilinearRepeat(int w, int h, glm::vec2 uv, Texel texel) {
+  const glm::vec2 at = uv * glm::vec2(w, h) - 0.5f;
+  const glm::ivec2 i(glm::floor(at));
+  const glm::vec2 f = at - glm::vec2(i);
+  const auto wrapped = [&](int x, int y) { return texel(((x % w) + w) % w, ((y % h) + h) % h); };
+  return glm::mix(glm::mix(wrapped(i.x, i.y), wrapped(i.x + 1, i.y), f.x),
+                  glm::mix(wrapped(i.x, i.y + 1), wrapped(i.x + 1, i.y + 1), f.x), f.y);
+}
+
 Mesh hollowBox() {
   return importMeshNodes(kSource + "/examples/data/hollow-box.obj").at(0).mesh;
 }
@@ -711,17 +723,9 @@ TEST(ClipSurfaceGpu, TheOcclusionMapDarkensCapsByItsValueAtTheirTexel) {
         "torus.json", kData);
     const ClipSurface& cs = scene.cutters.find<ClipSurfaceOptions>()->surfaces[0];
     const FloatImage relief = deriveReliefMaps(cs);
-    const auto occlusion = [&](glm::vec2 uv) {  // GL_LINEAR, GL_REPEAT on the alpha channel
-      const glm::vec2 at = uv * glm::vec2(relief.width, relief.height) - 0.5f;
-      const glm::ivec2 i(glm::floor(at));
-      const glm::vec2 f = at - glm::vec2(i);
-      const auto texel = [&](int x, int y) {
-        x = ((x % relief.width) + relief.width) % relief.width;
-        y = ((y % relief.height) + relief.height) % relief.height;
-        return relief.at(x, y)[3];
-      };
-      return glm::mix(glm::mix(texel(i.x, i.y), texel(i.x + 1, i.y), f.x),
-                      glm::mix(texel(i.x, i.y + 1), texel(i.x + 1, i.y + 1), f.x), f.y);
+    const auto occlusion = [&](glm::vec2 uv) {
+      return bilinearRepeat(relief.width, relief.height, uv,
+                            [&](int x, int y) { return relief.at(x, y)[3]; });
     };
     Renderer renderer(scene, test::glContext().info());
     renderer.render();
@@ -822,4 +826,68 @@ TEST(ClipSurfaceGpu, TheSolidTextureStaysWithTheMaterialAsTheViewMoves) {
   EXPECT_EQ(differ, 0) << "of " << matched;
   EXPECT_EQ(outOfRange, 0);
   EXPECT_GT(high - low, 0.3f);
+}
+
+// Trapp13 §6.1: a diffuse map tints the cap. Each pixel of a flat cap's inside is the
+// Blinn-Phong of the cap colour times the map's colour, read bilinearly with repeat at the
+// pixel's T (eq. 2), for a 4 × 3 map of unlike colours repeated 2 × 2 times.
+TEST(ClipSurfaceGpu, TheDiffuseMapTintsEachCapPixelByItsTexel) {
+  writeTorus();
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "cutaway-diffuse-4x3.png";
+  Rgba8Image map(4, 3);
+  for (int i = 0; i < 12; ++i)
+    for (int k = 0; k < 3; ++k)
+      map.pixels[std::size_t(i) * 4 + k] = std::uint8_t(60 + (i * 71 + k * 97) % 190);
+  for (int i = 0; i < 12; ++i) map.pixels[std::size_t(i) * 4 + 3] = 255;
+  writePng(file, map);
+  const glm::vec3 color(0.9f, 0.85f, 0.8f);
+  const glm::vec3 l = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
+  const Scene scene = parseScene(
+      R"({"resolution": [128, 96], "samples": 1,
+          "style": {"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}},
+          "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
+          "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
+          "objects": [{"name": "torus", "importance": 1, "file": ")" +
+          std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
+          R"("}], "cutters": {"clipSurfaces": {"caps": true, "surfaces": [
+          {"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0], "scale": [2, 2, 0],
+           "capColor": [0.9, 0.85, 0.8], "diffuseMap": ")" +
+          file.string() + R"("}]}}})",
+      "torus.json", kData);
+  const ClipSurface& cs = scene.cutters.find<ClipSurfaceOptions>()->surfaces[0];
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Rgba8Image image = renderer.readColor();
+  const auto aovs = renderer.readAovs();
+  const FloatImage &cap = aov(aovs, "capMask"), &position = aov(aovs, "position");
+  const glm::vec3 eye = scene.resolvedCamera().eye;
+  double worst = 0.0;
+  int caps = 0;
+  for (int y = 1; y + 1 < cap.height; ++y)
+    for (int x = 1; x + 1 < cap.width; ++x) {
+      bool inside = true;  // away from the cap's anti-aliased rim
+      for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+        inside = inside && cap.at(x + dx, y + dy)[0] == 1.0f;
+      if (!inside) continue;
+      ++caps;
+      const glm::vec3 p = glm::make_vec3(position.at(x, y)), v = glm::normalize(eye - p);
+      const glm::vec3 tint = bilinearRepeat(cs.diffuseMap.width, cs.diffuseMap.height,
+                                            clipSurfaceTexCoord(cs, p), [&](int i, int j) {
+                                              const std::uint8_t* t = cs.diffuseMap.at(i, j);
+                                              return glm::vec3(t[0], t[1], t[2]) / 255.0f;
+                                            });
+      const glm::vec3 kd = color * tint, n(0.0f, 0.0f, 1.0f), h = glm::normalize(l + v);
+      const glm::vec3 expected =
+          glm::clamp(0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
+                         glm::vec3(0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f)),
+                     0.0f, 1.0f);
+      for (int k = 0; k < 3; ++k)
+        worst = std::max(worst, std::abs(image.at(x, y)[k] - 255.0 * expected[k]));
+    }
+  std::printf("diffuse map: %d cap pixels, worst %.2f levels\n", caps, worst);
+  EXPECT_GT(caps, 1000);
+  // 8-bit rounding, and the GPU filtering an 8-bit map with 8-bit weights (1/256 of a texel
+  // step of up to 0.75).
+  EXPECT_LE(worst, 2.0);
 }
