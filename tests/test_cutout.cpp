@@ -289,6 +289,64 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
 INSTANTIATE_TEST_SUITE_P(Patterns, CutoutGpuCpu,
                          ::testing::Values("none", "sawtooth", "noise", "image", "rotated"));
 
+// Diepstraten03 §4.5 with an image as the perturbation texture, against the definition rather
+// than the C++ mirror: the wedge's plane distance d(p) is displaced by A·L·(2g − 1), g the
+// image's grey level read bilinearly with repeat at u = (p − o)·a · F/L (o, a, L the main
+// axis' origin, direction and extent; A, F the amplitude and frequency). The image is two
+// texels, black and white, so g is a triangle wave along the axis. Each exterior pixel of the
+// plain frame is removed exactly where the displaced distance is positive; within 1% of L of
+// zero either way.
+TEST(Cutout, AnImageJitterDisplacesTheWedgeByItsGreyLevelAlongTheAxis) {
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "cutaway-test-black-white.png";
+  Rgba8Image img(2, 1);
+  img.at(1, 0)[0] = img.at(1, 0)[1] = img.at(1, 0)[2] = 255;
+  img.at(0, 0)[3] = img.at(1, 0)[3] = 255;
+  writePng(file, img);
+  const float amplitude = 0.08f, frequency = 2.0f;
+  char options[400];
+  std::snprintf(options, sizeof options,
+                R"("cutout": {"angle": 100, "jitter": {"pattern": "image", "amplitude": %g,
+                   "frequency": %g, "image": "%s"}})",
+                amplitude, frequency, file.c_str());
+  const Scene cut = parseScene(cubeScene(options), "cube.json", kData);
+  const Scene plain = parseScene(cubeScene(""), "cube.json", kData);
+  const auto cutAovs = renderAovs(cut), plainAovs = renderAovs(plain);
+  const CutoutWedge wedge = cubeWedge(cut);
+  const FloatImage &plainId = aov(plainAovs, "objectId"), &plainPos = aov(plainAovs, "position"),
+                   &plainNormal = aov(plainAovs, "normal"), &cutId = aov(cutAovs, "objectId"),
+                   &cutPos = aov(cutAovs, "position"), &cutMask = aov(cutAovs, "cutMask");
+  const glm::vec3 eye = cut.resolvedCamera().eye;
+  const float L = wedge.axisLength;
+  int removed = 0, kept = 0, wrong = 0, shifted = 0;
+  for (int y = 0; y < plainId.height; ++y)
+    for (int x = 0; x < plainId.width; ++x) {
+      const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
+      if (plainId.at(x, y)[0] != 0.0f ||
+          glm::dot(glm::make_vec3(plainNormal.at(x, y)), eye - p) <= 0.0f)
+        continue;  // not the cube's outside
+      float planes = 1e30f;
+      for (const glm::vec4& plane : wedge.planes)
+        planes = std::min(planes, glm::dot(glm::vec3(plane), p) + plane.w);
+      // Texel 0 (black) centred at u = 1/4, texel 1 (white) at 3/4, repeating.
+      const float u = glm::dot(p - wedge.origin, wedge.axis) * frequency / L;
+      const float phase = 2.0f * u - 0.5f;                      // in texels from texel 0's centre
+      const float w = phase - 2.0f * std::floor(phase / 2.0f);  // [0, 2): one repeat
+      const float grey = w < 1.0f ? w : 2.0f - w;
+      const float d = planes + amplitude * L * (2.0f * grey - 1.0f);
+      if (std::abs(d) < 0.01f * L) continue;
+      const bool same = cutId.at(x, y)[0] == 0.0f && cutMask.at(x, y)[0] == 0.0f &&
+                        glm::length(glm::make_vec3(cutPos.at(x, y)) - p) < 1e-4f;
+      d > 0.0f ? ++removed : ++kept;
+      wrong += (d > 0.0f) == same;
+      shifted += (d > 0.0f) != (planes > 0.0f);
+    }
+  EXPECT_GT(removed, 300);
+  EXPECT_GT(kept, 300);
+  EXPECT_GT(shifted, 100) << "the jitter should move the boundary";
+  EXPECT_EQ(wrong, 0) << "of " << removed + kept;
+}
+
 // Rule 5: through the wedge the cube's inside shows as its cut wall, in the wall colour, and
 // the interior object is never cut.
 TEST(Cutout, WallsAreShownAndInteriorIsWhole) {
