@@ -400,6 +400,54 @@ TEST_F(VolumeTest, ABoxWithACavityCutOpenShowsTheCutFaceAndTheCavitysFarWall) {
   EXPECT_GT(wall, 150);
 }
 
+// Maximum intensity projection against its definition: a Gaussian blob's largest value along
+// a ray is exp(−k·d²), d the ray's distance from the blob's centre, so with a white transfer
+// function whose opacity is the value (the pixel is colour × opacity over black) each pixel of
+// an orthographic view along z is 255·exp(−k·d²). Allowed: trilinear interpolation's bound
+// (h²/8)·(|f_xx| + |f_yy| + |f_zz|) ≤ (h²/8)·6k, plus a level for the steps and 8 bits.
+TEST_F(VolumeTest, TheMaximumModeShowsTheLargestValueAlongEachRay) {
+  const glm::vec3 centre(0.1f, -0.05f, 0.2f);
+  const float k = 6.0f;
+  const fs::path file = volume("gauss", 48, 1.0f, [&](glm::vec3 p) {
+    return std::exp(-k * glm::dot(p - centre, p - centre));
+  });
+  const Scene s = parseScene(
+      R"({"resolution": [96, 96], "samples": 1, "background": [0, 0, 0],
+          "style": {"name": "gooch", "lines": false},
+          "camera": {"projection": "orthographic", "height": 1.6, "eye": [0, 0, 4],
+                     "target": [0, 0, 0]},
+          "volumes": [{"name": "gauss", "file": ")" +
+          file.string() + R"(", "mode": "maximum", "shading": false, "transferFunction": [
+            {"value": 0, "color": [1, 1, 1], "opacity": 0},
+            {"value": 1, "color": [1, 1, 1], "opacity": 1}]}]})",
+      "mip.json", dir_);
+  Renderer renderer(s, test::glContext().info());
+  renderer.render();
+  const Rgba8Image color = renderer.readColor();
+  const Camera c = s.resolvedCamera();
+  const glm::mat4 inverse = glm::inverse(c.projectionMatrix(1.0f) * c.view());
+  double worst = 0.0;
+  int bright = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const glm::vec4 h =
+          inverse * glm::vec4((x + 0.5f) / float(s.width) * 2.0f - 1.0f,
+                              1.0f - (y + 0.5f) / float(s.height) * 2.0f, 0.0f, 1.0f);
+      const glm::vec2 onRay = glm::vec2(h) / h.w;  // the ray runs along z
+      const glm::vec2 off = onRay - glm::vec2(centre);
+      const float m = std::exp(-k * glm::dot(off, off));
+      const double expected = 255.0 * m;
+      bright += expected > 128.0;
+      for (int ch = 0; ch < 3; ++ch)
+        worst = std::max(worst, std::abs(color.at(x, y)[ch] - expected));
+    }
+  const double h = 2.0 / 47.0, bound = 255.0 * h * h / 8.0 * 6.0 * k + 1.0;
+  std::printf("maximum intensity: %d bright pixels, worst %.2f levels (bound %.2f)\n", bright,
+              worst, bound);
+  EXPECT_GT(bright, 500);
+  EXPECT_LE(worst, bound);
+}
+
 // A volume larger than the GPU's 3-D textures on one axis is refused when the renderer is
 // made, naming the file and the limit.
 TEST_F(VolumeTest, AVolumeBeyondTheGpusTextureSizeIsRefused) {
