@@ -1224,6 +1224,87 @@ TEST_F(VolumeTest, LinesAreDrawnWhereTheyGrazeTheSurfaceAndHiddenBehindNearerOne
   }
 }
 
+// Halos (Appel et al. 1979, Burns11 §2.4.2): two balls' contours cross on screen, A's 0.8
+// units (19 voxels) in front of B's. With halos of 8 pixels and hidden lines shown, B's
+// contour is broken within A's half width + 8 pixels of A's contour, on each side, and drawn
+// beyond; A's contour is whole. Checked on the drawn polylines (points every half pixel)
+// against the coverage AOV over each point's 3 × 3 pixels; points within 1.5 pixels of the
+// halo's edge or of A's line may go either way.
+TEST_F(VolumeTest, AHaloBreaksALineFarBehindANearerOneAndNothingElse) {
+  const Ball a{{-0.2f, 0.0f, 0.4f}, 0.35f}, b{{0.2f, 0.0f, -0.4f}, 0.35f};
+  const fs::path file = volume("balls", 48, 1.0f, [&](glm::vec3 p) {
+    return std::max(a.radius - glm::distance(p, a.centre), b.radius - glm::distance(p, b.centre));
+  });
+  const Scene s = parseScene(
+      R"({"resolution": [160, 160], "samples": 1, "background": [1, 1, 1],
+          "style": {"name": "gooch", "lines": false},
+          "camera": {"projection": "orthographic", "height": 2, "eye": [0, 0, 4],
+                     "target": [0, 0, 0]},
+          "volumes": [{"name": "balls", "file": ")" +
+          file.string() + R"(", )" + kRamp +
+          R"(, "lines": {"isoValues": [{"value": 0, "width": 1}], "only": true,
+                         "hidden": "shown", "halo": 8}}]})",
+      "halos.json", dir_);
+  Renderer renderer(s, test::glContext().info());
+  renderer.render();
+  const VolumeLineDrawing d = renderer.volumeLineDrawing();
+  const FloatImage coverage = aov(renderer.readAovs(), "volumeLineCoverage");
+  const float pixelsPerUnit = 80.0f;
+  const auto onScreen = [&](const Ball& ball) {
+    return glm::vec2((ball.centre.x + 1.0f) * pixelsPerUnit,
+                     (1.0f - ball.centre.y) * pixelsPerUnit);
+  };
+  const auto isA = [&](const DrawnVolumeLine& l) {
+    return std::abs(glm::distance(l.points.front(), onScreen(a)) - a.radius * pixelsPerUnit) <
+           std::abs(glm::distance(l.points.front(), onScreen(b)) - b.radius * pixelsPerUnit);
+  };
+  const auto around = [&](glm::vec2 q) {  // the most coverage over the 3 × 3 pixels at q
+    float most = 0.0f;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int x = int(q.x) + dx, y = int(q.y) + dy;
+        if (x >= 0 && y >= 0 && x < coverage.width && y < coverage.height)
+          most = std::max(most, coverage.at(x, y)[0]);
+      }
+    return most;
+  };
+  // Points every half pixel along the lines of A (or of B).
+  const auto points = [&](bool ofA) {
+    std::vector<glm::vec2> out;
+    for (const DrawnVolumeLine& l : d.lines) {
+      if (isA(l) != ofA) continue;
+      for (std::size_t i = 0; i + 1 < l.points.size(); ++i) {
+        const int n =
+            std::max(1, int(std::ceil(2.0f * glm::distance(l.points[i], l.points[i + 1]))));
+        for (int k = 0; k < n; ++k)
+          out.push_back(glm::mix(l.points[i], l.points[i + 1], float(k) / float(n)));
+      }
+    }
+    return out;
+  };
+  const std::vector<glm::vec2> onA = points(true), onB = points(false);
+  ASSERT_GT(onA.size(), 200u);
+  ASSERT_GT(onB.size(), 200u);
+  int broken = 0, drawn = 0, wrong = 0, aMissing = 0;
+  for (const glm::vec2& q : onB) {
+    float toA = 1e9f;
+    for (const glm::vec2& p : onA) toA = std::min(toA, glm::distance(p, q));
+    const float edge = 0.5f + 8.0f;  // A's half width and the halo
+    if (toA > 3.0f && toA < edge - 1.5f) {
+      ++broken;
+      wrong += around(q) > 0.1f;
+    } else if (toA > edge + 1.5f) {
+      ++drawn;
+      wrong += around(q) < 0.5f;
+    }
+  }
+  for (const glm::vec2& q : onA) aMissing += around(q) < 0.5f;
+  EXPECT_GT(broken, 10);
+  EXPECT_GT(drawn, 200);
+  EXPECT_EQ(wrong, 0) << "of " << broken + drawn;
+  EXPECT_EQ(aMissing, 0) << "of " << onA.size();
+}
+
 // The SVG holds the drawing: its polylines, read back, are the drawn runs point for point.
 TEST_F(VolumeTest, TheLinesSvgHoldsTheDrawnPolylines) {
   const fs::path file = volume("ball", 32, 1.0f, [](glm::vec3 p) { return 0.6f - glm::length(p); });
