@@ -8,6 +8,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "cutaway/core/error.hpp"
@@ -316,4 +318,28 @@ TEST(Contained, GisLayersAndRastersReadInTheChildAreTheOnesReadHere) {
   EXPECT_EQ(info.maximum, infoThere.maximum);
   EXPECT_TRUE(isRaster(dem));
   EXPECT_FALSE(isRaster(ss + "ss64ne_Water_Line.shp"));
+}
+
+// The helper killed between two files (by the user, or the kernel out of memory): the next
+// file starts a new one and is read.
+TEST(Contained, AKilledHelperIsStartedAgain) {
+  run("test-pattern", "3");  // the helper is running
+  std::vector<pid_t> children;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
+    std::ifstream in(task.path() / "children");
+    for (pid_t pid; in >> pid;) children.push_back(pid);
+  }
+  ASSERT_FALSE(children.empty());
+  for (const pid_t pid : children) ::kill(pid, SIGKILL);
+  // Dead (a zombie, its socket closed), and left for the library to reap.
+  for (const pid_t pid : children)
+    for (int i = 0; i < 500; ++i) {
+      std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+      std::string line;
+      std::getline(stat, line);
+      const std::size_t close = line.rfind(')');
+      if (close == std::string::npos || line.substr(close + 2, 1) == "Z") break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  EXPECT_EQ(run("test-pattern", "6").bytes(), pattern(6));
 }

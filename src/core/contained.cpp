@@ -169,6 +169,7 @@ void wireFields(Archive& a, Request& r) {
 // worker ended. The program pays for one fork; a worker copies only the helper's pages.
 [[noreturn]] void runHelper(int socket) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  std::signal(SIGCHLD, SIG_DFL);  // its workers are waited for, whatever the program set
   for (;;) {
     std::string bytes;
     int unused = -1;
@@ -220,7 +221,12 @@ class Helper {
     if (pid_ <= 0) start();
     ByteWriter w;
     w(const_cast<Request&>(request));
-    if (!sendMessage(socket_, w.bytes)) stopped(file, parser);
+    if (!sendMessage(socket_, w.bytes)) {
+      // The helper has gone since the last file (killed, say): a new one, once.
+      stop();
+      start();
+      if (!sendMessage(socket_, w.bytes)) stopped(file, parser);
+    }
     reply.clear();
     replyFd = -1;
     for (;;) {
@@ -261,12 +267,15 @@ class Helper {
   }
 
  private:
-  [[noreturn]] void stopped(const std::string& file, const std::string& parser) {
+  void stop() {
     ::close(socket_);
     ::kill(pid_, SIGKILL);
     while (::waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {
     }
     pid_ = -1;
+  }
+  [[noreturn]] void stopped(const std::string& file, const std::string& parser) {
+    stop();
     throw Error(file, "", "the helper process running " + parser + " stopped");
   }
   pid_t pid_ = -1;
