@@ -92,6 +92,9 @@ const bool kRegistered = [] {
   registerContainedParser("test-error", [](std::string_view) -> std::string {
     throw Error("mesh.ply", "header line 3", "a count too large");
   });
+  registerContainedParser("test-long-error", [](std::string_view) -> std::string {
+    throw Error("mesh.ply", "", "a reason of 100 KB: " + std::string(100000, 'x'));
+  });
   registerContainedParser("test-exception", [](std::string_view) -> std::string {
     throw std::runtime_error("vector::reserve");
   });
@@ -162,6 +165,14 @@ TEST(Contained, AnErrorTheWorkerThrowsComesBackAsThrown) {
   }
   expectContainedError("test-exception", "", limits(60, 64),
                        {"input.bin: the test parser failed on this file: vector::reserve"});
+  // A reason beyond what one message holds comes back cut, not lost.
+  try {
+    run("test-long-error");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.reason().size(), 4096u);
+    EXPECT_EQ(e.reason().rfind("a reason of 100 KB: xxx", 0), 0u);
+  }
   expectContainedError("test-unknown", "", limits(60, 64),
                        {"failed on this file: no parser \"test-unknown\""});
 }

@@ -137,16 +137,17 @@ void wireFields(Archive& a, Request& r) {
     if (parser == parsers().end()) throw std::logic_error("no parser \"" + request.id + "\"");
     reply = parser->second(request.arguments);
   } catch (const Error& e) {
+    // An error's text goes in one message, under the socket's limit: each part cut at 4 KB.
     kind = kError;
     ByteWriter w;
-    w(e.file(), e.place(), e.reason());
+    w(e.file().substr(0, 4096), e.place().substr(0, 4096), e.reason().substr(0, 4096));
     reply = std::move(w.bytes);
   } catch (const std::bad_alloc&) {
     kind = kOutOfMemory;
   } catch (const std::exception& e) {
     kind = kOther;
     ByteWriter w;
-    w(std::string(e.what()));
+    w(std::string(e.what()).substr(0, 4096));
     reply = std::move(w.bytes);
   }
   bool sent = false;
@@ -156,8 +157,6 @@ void wireFields(Archive& a, Request& r) {
     sent = memory >= 0 && writeAll(memory, reply) &&
            sendMessage(socket, std::string_view(&kind, 1), memory);
   } else {
-    // An error's text is short; a message keeps it under the socket's limit.
-    reply.resize(std::min<std::size_t>(reply.size(), 16384));
     sent = sendMessage(socket, kind + reply);
   }
   // _exit: the program's exit handlers and buffered streams are the program's.
