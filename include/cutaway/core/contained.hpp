@@ -44,8 +44,9 @@ ContainmentLimits importLimits();
 bool importsContained();
 
 // Starts the helper process now (else the first contained call does). A program calls it
-// first thing in main(): the helper is then a copy of a small process, and the program does
-// not pay for copying its pages back from a copy-on-write share with the helper later.
+// first thing in main(), before it starts threads (a fork copies the calling thread alone,
+// and any lock another one held): the helper is then a copy of a small process, and the
+// program does not pay later for pages it shares copy-on-write with the helper.
 // Never throws: where the helper cannot start, the first contained call says why.
 void startContainedHelper();
 
@@ -76,6 +77,7 @@ class ContainedReply {
 // result. `file` names the input in errors and `parser` the code that reads it ("the mesh
 // importer"). Throws the cutaway::Error that the parser threw, or an Error "FILE: PARSER
 // crashed on this file (…)", "…took longer than N s", "…needed more than N MB of memory".
+// Calls from several threads take turns.
 ContainedReply runContained(const std::string& file, const std::string& parser,
                             const std::string& id, const std::string& arguments,
                             const ContainmentLimits& limits);
