@@ -636,15 +636,72 @@ TEST(ClipSurfaceGpu, DiffuseMapTintsOnlyTheCaps) {
   EXPECT_LE(changedElsewhere, caps / 10);
 }
 
+namespace {
+
+// The torus (writeTorus) under one directional light towards −(0.3, 0.5, −1), seen from
+// above at an angle, cut by clip surface `surface` with caps; `style` is the style's JSON,
+// `object` and `clip` add keys to the object and the clip-surface options.
+Scene litTorusScene(const std::string& style, const std::string& object, const std::string& clip,
+                    const std::string& surface) {
+  writeTorus();
+  return parseScene(
+      R"({"resolution": [128, 96], "samples": 1, "style": )" + style +
+          R"(, "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
+          "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
+          "objects": [{"name": "torus", )" +
+          object + R"("file": ")" +
+          std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
+          R"("}], "cutters": {"clipSurfaces": {"caps": true, )" + clip + R"("surfaces": [)" +
+          surface + "]}}}",
+      "torus.json", kData);
+}
+
+// The light of litTorusScene, towards it.
+const glm::vec3 kTowardsLight = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
+
+// A flat cap's Blinn-Phong under that light (ambient 0.1; the cap's normal +z, towards the
+// eye, its specular weight 0.05 and shininess 16) at p, base colour kd.
+glm::vec3 flatCapShading(const glm::vec3& kd, const glm::vec3& p, const glm::vec3& eye) {
+  const glm::vec3 n(0.0f, 0.0f, 1.0f), l = kTowardsLight;
+  const glm::vec3 h = glm::normalize(l + glm::normalize(eye - p));
+  return 0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
+         glm::vec3(0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f));
+}
+
+// The scene rendered; the largest difference in levels of 255 between each cap pixel away
+// from the cap's anti-aliased rim and expected(world position), and how many there were.
+template <class Expected>
+std::pair<double, int> capPixelsAgainst(const Scene& scene, Expected expected) {
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const Rgba8Image color = renderer.readColor();
+  const auto aovs = renderer.readAovs();
+  const FloatImage &cap = aov(aovs, "capMask"), &position = aov(aovs, "position");
+  double worst = 0.0;
+  int caps = 0;
+  for (int y = 1; y + 1 < cap.height; ++y)
+    for (int x = 1; x + 1 < cap.width; ++x) {
+      bool inside = true;
+      for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+        inside = inside && cap.at(x + dx, y + dy)[0] == 1.0f;
+      if (!inside) continue;
+      ++caps;
+      const glm::vec3 e = glm::clamp(expected(glm::make_vec3(position.at(x, y))), 0.0f, 1.0f);
+      for (int k = 0; k < 3; ++k)
+        worst = std::max(worst, std::abs(color.at(x, y)[k] - 255.0 * e[k]));
+    }
+  return {worst, caps};
+}
+
+}  // namespace
+
 // Trapp13's caps are shaded by the style like any surface (their normal the flat surface's,
 // turned to the eye; specular weight 0.05, shininess 16) and emphasised by the capped object's
 // importance (Burns11 eqs. 3.1–3.4), each cap pixel against the formulas written out here:
 // with importance 0 and full shading suppression the cap is its colour greyed by E_c whatever
 // the light; otherwise Blinn-Phong of one directional light, then the equations.
 TEST(ClipSurfaceGpu, CapsAreShadedByTheStyleAndEmphasisedByImportance) {
-  writeTorus();
   const glm::vec3 kd(0.8f, 0.3f, 0.15f);
-  const glm::vec3 l = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
   struct Case {
     float importance, ec, es;
   };
@@ -656,42 +713,15 @@ TEST(ClipSurfaceGpu, CapsAreShadedByTheStyleAndEmphasisedByImportance) {
                   c.ec, c.es);
     const std::string surface =
         kFlatSurface.substr(0, kFlatSurface.size() - 1) + R"(, "capColor": [0.8, 0.3, 0.15]})";
-    const Scene scene = parseScene(
-        std::string(R"({"resolution": [128, 96], "samples": 1, "style": )") + style +
-            R"(, "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
-            "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
-            "objects": [{"name": "torus", "importance": )" +
-            std::to_string(c.importance) + R"(, "file": ")" +
-            std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
-            R"("}], "cutters": {"clipSurfaces": {"caps": true, "surfaces": [)" + surface + "]}}}",
-        "torus.json", kData);
-    Renderer renderer(scene, test::glContext().info());
-    renderer.render();
-    const Rgba8Image color = renderer.readColor();
-    const auto aovs = renderer.readAovs();
-    const FloatImage &cap = aov(aovs, "capMask"), &position = aov(aovs, "position");
+    const Scene scene = litTorusScene(
+        style, R"("importance": )" + std::to_string(c.importance) + ", ", "", surface);
     const glm::vec3 eye = scene.resolvedCamera().eye;
-    double worst = 0.0;
-    int caps = 0;
-    for (int y = 1; y + 1 < cap.height; ++y)
-      for (int x = 1; x + 1 < cap.width; ++x) {
-        bool inside = true;  // away from the cap's anti-aliased rim
-        for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
-          inside = inside && cap.at(x + dx, y + dy)[0] == 1.0f;
-        if (!inside) continue;
-        ++caps;
-        const glm::vec3 p = glm::make_vec3(position.at(x, y)), v = glm::normalize(eye - p);
-        const glm::vec3 n(0.0f, 0.0f, 1.0f);  // the surface's N is −ẑ; the cap faces the eye
-        const glm::vec3 h = glm::normalize(l + v);
-        const glm::vec3 shaded = 0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
-                                 glm::vec3(0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f));
-        const glm::vec3 suppressed = glm::mix(shaded, kd, c.es * (1.0f - c.importance));
-        const float luma = glm::dot(suppressed, glm::vec3(0.2126f, 0.7152f, 0.0722f));
-        const glm::vec3 expected = glm::clamp(
-            glm::mix(suppressed, glm::vec3(luma), c.ec * (1.0f - c.importance)), 0.0f, 1.0f);
-        for (int k = 0; k < 3; ++k)
-          worst = std::max(worst, std::abs(color.at(x, y)[k] - 255.0 * expected[k]));
-      }
+    const auto [worst, caps] = capPixelsAgainst(scene, [&](const glm::vec3& p) {
+      const glm::vec3 suppressed =
+          glm::mix(flatCapShading(kd, p, eye), kd, c.es * (1.0f - c.importance));
+      const float luma = glm::dot(suppressed, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+      return glm::mix(suppressed, glm::vec3(luma), c.ec * (1.0f - c.importance));
+    });
     EXPECT_GT(caps, 1000) << "importance " << c.importance;
     // 8-bit rounding; the half-float normal does not enter (the cap's is exact).
     EXPECT_LE(worst, 1.0) << "importance " << c.importance << ", E_c " << c.ec << ", E_s " << c.es;
@@ -704,54 +734,26 @@ TEST(ClipSurfaceGpu, CapsAreShadedByTheStyleAndEmphasisedByImportance) {
 // from its world position; S_x and S_y included), and k the strength; each pixel of the cap's
 // inside against that, for k = 1 and 0.5.
 TEST(ClipSurfaceGpu, TheOcclusionMapDarkensCapsByItsValueAtTheirTexel) {
-  writeTorus();
   const glm::vec3 kd(0.8f, 0.6f, 0.4f);
-  const glm::vec3 l = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
   for (const float strength : {1.0f, 0.5f}) {
     const std::string surface =
         kNoisySurface.substr(0, kNoisySurface.size() - 1) + R"(, "capColor": [0.8, 0.6, 0.4]})";
-    const Scene scene = parseScene(
-        R"({"resolution": [128, 96], "samples": 1,
-            "style": {"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}},
-            "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
-            "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
-            "objects": [{"name": "torus", "importance": 1, "file": ")" +
-            std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
-            R"("}], "cutters": {"clipSurfaces": {"caps": true, "capStyle": {"normalMap": false,
-            "occlusion": )" +
-            std::to_string(strength) + R"(}, "surfaces": [)" + surface + "]}}}",
-        "torus.json", kData);
+    const Scene scene = litTorusScene(
+        R"({"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}})",
+        R"("importance": 1, )",
+        R"("capStyle": {"normalMap": false, "occlusion": )" + std::to_string(strength) + "}, ",
+        surface);
     const ClipSurface& cs = scene.cutters.find<ClipSurfaceOptions>()->surfaces[0];
     const FloatImage relief = deriveReliefMaps(cs);
-    const auto occlusion = [&](glm::vec2 uv) {
-      return bilinearRepeat(relief.width, relief.height, uv,
-                            [&](int x, int y) { return relief.at(x, y)[3]; });
-    };
-    Renderer renderer(scene, test::glContext().info());
-    renderer.render();
-    const Rgba8Image color = renderer.readColor();
-    const auto aovs = renderer.readAovs();
-    const FloatImage &cap = aov(aovs, "capMask"), &position = aov(aovs, "position");
     const glm::vec3 eye = scene.resolvedCamera().eye;
-    double worst = 0.0, darkest = 1.0;
-    int caps = 0;
-    for (int y = 1; y + 1 < cap.height; ++y)
-      for (int x = 1; x + 1 < cap.width; ++x) {
-        bool inside = true;  // away from the cap's anti-aliased rim
-        for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
-          inside = inside && cap.at(x + dx, y + dy)[0] == 1.0f;
-        if (!inside) continue;
-        ++caps;
-        const glm::vec3 p = glm::make_vec3(position.at(x, y)), v = glm::normalize(eye - p);
-        const glm::vec3 n(0.0f, 0.0f, 1.0f), h = glm::normalize(l + v);
-        const glm::vec3 shaded = 0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
-                                 glm::vec3(0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f));
-        const float factor = glm::mix(1.0f, occlusion(clipSurfaceTexCoord(cs, p)), strength);
-        darkest = std::min(darkest, double(factor));
-        const glm::vec3 expected = glm::clamp(shaded * factor, 0.0f, 1.0f);
-        for (int k = 0; k < 3; ++k)
-          worst = std::max(worst, std::abs(color.at(x, y)[k] - 255.0 * expected[k]));
-      }
+    double darkest = 1.0;
+    const auto [worst, caps] = capPixelsAgainst(scene, [&](const glm::vec3& p) {
+      const float a = bilinearRepeat(relief.width, relief.height, clipSurfaceTexCoord(cs, p),
+                                     [&](int x, int y) { return relief.at(x, y)[3]; });
+      const float factor = glm::mix(1.0f, a, strength);
+      darkest = std::min(darkest, double(factor));
+      return flatCapShading(kd, p, eye) * factor;
+    });
     std::printf("occlusion %.1f: %d cap pixels, factor down to %.3f, worst %.2f levels\n", strength,
                 caps, darkest, worst);
     EXPECT_GT(caps, 1000);
@@ -832,59 +834,32 @@ TEST(ClipSurfaceGpu, TheSolidTextureStaysWithTheMaterialAsTheViewMoves) {
 // Blinn-Phong of the cap colour times the map's colour, read bilinearly with repeat at the
 // pixel's T (eq. 2), for a 4 × 3 map of unlike colours repeated 2 × 2 times.
 TEST(ClipSurfaceGpu, TheDiffuseMapTintsEachCapPixelByItsTexel) {
-  writeTorus();
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() / "cutaway-diffuse-4x3.png";
   Rgba8Image map(4, 3);
-  for (int i = 0; i < 12; ++i)
+  for (int i = 0; i < 12; ++i) {
     for (int k = 0; k < 3; ++k)
       map.pixels[std::size_t(i) * 4 + k] = std::uint8_t(60 + (i * 71 + k * 97) % 190);
-  for (int i = 0; i < 12; ++i) map.pixels[std::size_t(i) * 4 + 3] = 255;
+    map.pixels[std::size_t(i) * 4 + 3] = 255;
+  }
   writePng(file, map);
   const glm::vec3 color(0.9f, 0.85f, 0.8f);
-  const glm::vec3 l = -glm::normalize(glm::vec3(0.3f, 0.5f, -1.0f));
-  const Scene scene = parseScene(
-      R"({"resolution": [128, 96], "samples": 1,
-          "style": {"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}},
-          "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
-          "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
-          "objects": [{"name": "torus", "importance": 1, "file": ")" +
-          std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
-          R"("}], "cutters": {"clipSurfaces": {"caps": true, "surfaces": [
-          {"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0], "scale": [2, 2, 0],
-           "capColor": [0.9, 0.85, 0.8], "diffuseMap": ")" +
-          file.string() + R"("}]}}})",
-      "torus.json", kData);
+  const Scene scene = litTorusScene(
+      R"({"name": "blinn-phong", "lines": false, "blinnPhong": {"ambient": 0.1}})",
+      R"("importance": 1, )", "",
+      R"({"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0], "scale": [2, 2, 0],
+          "capColor": [0.9, 0.85, 0.8], "diffuseMap": ")" +
+          file.string() + R"("})");
   const ClipSurface& cs = scene.cutters.find<ClipSurfaceOptions>()->surfaces[0];
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  const Rgba8Image image = renderer.readColor();
-  const auto aovs = renderer.readAovs();
-  const FloatImage &cap = aov(aovs, "capMask"), &position = aov(aovs, "position");
   const glm::vec3 eye = scene.resolvedCamera().eye;
-  double worst = 0.0;
-  int caps = 0;
-  for (int y = 1; y + 1 < cap.height; ++y)
-    for (int x = 1; x + 1 < cap.width; ++x) {
-      bool inside = true;  // away from the cap's anti-aliased rim
-      for (const auto& [dx, dy] : {std::pair{0, 0}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
-        inside = inside && cap.at(x + dx, y + dy)[0] == 1.0f;
-      if (!inside) continue;
-      ++caps;
-      const glm::vec3 p = glm::make_vec3(position.at(x, y)), v = glm::normalize(eye - p);
-      const glm::vec3 tint = bilinearRepeat(cs.diffuseMap.width, cs.diffuseMap.height,
-                                            clipSurfaceTexCoord(cs, p), [&](int i, int j) {
-                                              const std::uint8_t* t = cs.diffuseMap.at(i, j);
-                                              return glm::vec3(t[0], t[1], t[2]) / 255.0f;
-                                            });
-      const glm::vec3 kd = color * tint, n(0.0f, 0.0f, 1.0f), h = glm::normalize(l + v);
-      const glm::vec3 expected =
-          glm::clamp(0.1f * kd + kd * std::max(glm::dot(n, l), 0.0f) +
-                         glm::vec3(0.05f * std::pow(std::max(glm::dot(n, h), 0.0f), 16.0f)),
-                     0.0f, 1.0f);
-      for (int k = 0; k < 3; ++k)
-        worst = std::max(worst, std::abs(image.at(x, y)[k] - 255.0 * expected[k]));
-    }
+  const auto [worst, caps] = capPixelsAgainst(scene, [&](const glm::vec3& p) {
+    const glm::vec3 tint = bilinearRepeat(cs.diffuseMap.width, cs.diffuseMap.height,
+                                          clipSurfaceTexCoord(cs, p), [&](int i, int j) {
+                                            const std::uint8_t* t = cs.diffuseMap.at(i, j);
+                                            return glm::vec3(t[0], t[1], t[2]) / 255.0f;
+                                          });
+    return flatCapShading(color * tint, p, eye);
+  });
   std::printf("diffuse map: %d cap pixels, worst %.2f levels\n", caps, worst);
   EXPECT_GT(caps, 1000);
   // 8-bit rounding, and the GPU filtering an 8-bit map with 8-bit weights (1/256 of a texel
