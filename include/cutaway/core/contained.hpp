@@ -132,9 +132,9 @@ class ByteWriter {
       put(v.string());
     } else if constexpr (wire::IsVector<T>::value) {
       put(std::uint64_t(v.size()));
-      if constexpr (wire::kAsBytes<typename T::value_type>)
-        raw(v.data(), v.size() * sizeof(typename T::value_type));
-      else
+      if constexpr (wire::kAsBytes<typename T::value_type>) {
+        if (!v.empty()) raw(v.data(), v.size() * sizeof(typename T::value_type));
+      } else
         for (const auto& e : v) put(e);
     } else if constexpr (wire::IsArray<T>::value) {
       for (const auto& e : v) put(e);
@@ -187,9 +187,9 @@ class ByteReader {
     } else if constexpr (wire::IsVector<T>::value) {
       using E = typename T::value_type;
       v.resize(count(wire::kAsBytes<E> ? sizeof(E) : 0));
-      if constexpr (wire::kAsBytes<E>)
-        std::memcpy(v.data(), take(v.size() * sizeof(E)), v.size() * sizeof(E));
-      else
+      if constexpr (wire::kAsBytes<E>) {
+        if (!v.empty()) std::memcpy(v.data(), take(v.size() * sizeof(E)), v.size() * sizeof(E));
+      } else
         for (auto& e : v) get(e);
     } else if constexpr (wire::IsArray<T>::value) {
       for (auto& e : v) get(e);
