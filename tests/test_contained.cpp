@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "cutaway/core/error.hpp"
@@ -335,10 +336,18 @@ TEST(Contained, GisLayersAndRastersReadInTheChildAreTheOnesReadHere) {
 // file starts a new one and is read.
 TEST(Contained, AKilledHelperIsStartedAgain) {
   run("test-pattern", "3");  // the helper is running
-  std::vector<pid_t> children;
-  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task")) {
-    std::ifstream in(task.path() / "children");
-    for (pid_t pid; in >> pid;) children.push_back(pid);
+  std::vector<pid_t> children;  // this process's, from /proc/PID/stat's ppid
+  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(entry.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    const std::size_t close = line.rfind(')');  // the name may hold spaces and parentheses
+    std::istringstream rest(close == std::string::npos ? "" : line.substr(close + 2));
+    char state = 0;
+    pid_t parent = 0;
+    if (rest >> state >> parent && parent == ::getpid()) children.push_back(pid_t(std::stol(name)));
   }
   ASSERT_FALSE(children.empty());
   for (const pid_t pid : children) ::kill(pid, SIGKILL);
