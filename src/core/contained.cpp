@@ -21,6 +21,7 @@
 #include <mutex>
 #include <new>
 #include <sstream>
+#include <vector>
 
 #include "cutaway/core/error.hpp"
 
@@ -38,6 +39,11 @@ constexpr char kEnded = 'S';        // the helper's word that the worker ended: 
 
 std::map<std::string, ContainedParser>& parsers() {
   static std::map<std::string, ContainedParser> registry;
+  return registry;
+}
+
+std::vector<void (*)()>& warmUps() {
+  static std::vector<void (*)()> registry;
   return registry;
 }
 
@@ -169,6 +175,13 @@ void wireFields(Archive& a, Request& r) {
 [[noreturn]] void runHelper(int socket) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   std::signal(SIGCHLD, SIG_DFL);  // its workers are waited for, whatever the program set
+  for (void (*warmUp)() : warmUps()) {
+    try {
+      warmUp();
+    } catch (...) {
+      // Each worker does it again, and reports what fails.
+    }
+  }
   for (;;) {
     std::string bytes;
     int unused = -1;
@@ -307,6 +320,11 @@ Helper& helper() {
 
 bool registerContainedParser(const std::string& id, ContainedParser parser) {
   return parsers().emplace(id, parser).second;
+}
+
+bool registerContainedWarmUp(void (*warmUp)()) {
+  warmUps().push_back(warmUp);
+  return true;
 }
 
 ContainedReply::~ContainedReply() {

@@ -439,7 +439,9 @@ GisPolygons importPolygonsHere(const std::filesystem::path& file, const GisImpor
 
 }  // namespace
 
-// GDAL runs in a worker process (cutaway/core/contained.hpp).
+// GDAL runs in a worker process (cutaway/core/contained.hpp), its drivers registered once by
+// the helper the workers are forked from.
+const bool kDriversWarm = registerContainedWarmUp(&gdal::registerDrivers);
 const ContainedReader<std::vector<GisLayerInfo>, &listLayersHere> containedLayers("gis-layers",
                                                                                   "GDAL");
 const ContainedReader<GisLines, &importLinesHere, GisImportOptions> containedLines("gis-lines",

@@ -299,6 +299,8 @@ void wireFields(Archive& a, ImportedNode& n) {
   a(n.name, n.id, n.mesh, n.color);
 }
 
+// Assimp's importers are made once by the helper the workers are forked from.
+const bool kImportersWarm = registerContainedWarmUp([] { Assimp::Importer importer; });
 const ContainedReader<std::vector<ImportedNode>, &importHere> containedImport("mesh",
                                                                               "the mesh importer");
 

@@ -54,6 +54,10 @@ void startContainedHelper();
 using ContainedParser = std::string (*)(std::string_view arguments);
 // Registers `parser` under `id` (false: the id was taken).
 bool registerContainedParser(const std::string& id, ContainedParser parser);
+// Registers work the helper does once when it starts, so that every worker inherits it
+// rather than doing it per file: a library's drivers registered, its symbols bound. A
+// warm-up that throws is left undone (each worker then does the work itself).
+bool registerContainedWarmUp(void (*warmUp)());
 
 // The bytes a worker handed back, mapped from its shared memory rather than copied.
 class ContainedReply {
