@@ -86,7 +86,12 @@ std::string pattern(std::size_t size) {
   return bytes;
 }
 
+bool warmed = false;  // set by the warm-up, in the helper
+
 const bool kRegistered = [] {
+  registerContainedWarmUp([] { warmed = true; });
+  registerContainedParser("test-warm",
+                          [](std::string_view) { return std::string(warmed ? "1" : "0"); });
   registerContainedParser("test-pattern",
                           [](std::string_view a) { return pattern(std::stoul(std::string(a))); });
   registerContainedParser("test-pid", [](std::string_view) { return std::to_string(::getpid()); });
@@ -147,6 +152,11 @@ TEST(Contained, TheWorkersBytesComeBackWhole) {
   EXPECT_TRUE(reply.bytes() == pattern(48u << 20));
   // An empty result is a result.
   EXPECT_EQ(run("test-pattern", "0").bytes().size(), 0u);
+}
+
+TEST(Contained, TheHelpersWarmUpIsEveryWorkersAndNotTheProgramsOwn) {
+  EXPECT_EQ(run("test-warm").bytes(), "1");
+  EXPECT_FALSE(warmed);
 }
 
 TEST(Contained, EachFileHasAFreshWorker) {
