@@ -240,10 +240,6 @@ std::vector<GisLayerInfo> listLayersHere(const std::filesystem::path& file) {
   return layers;
 }
 
-}  // namespace
-
-namespace {
-
 // A layer opened for import: the data source (which owns the layer), the checks shared by
 // lines and points, and the feature reader.
 struct OpenedLayer {
@@ -336,10 +332,6 @@ Out importParts(const std::filesystem::path& file, const GisImportOptions& optio
   return out;
 }
 
-}  // namespace
-
-namespace {
-
 GisLines importLinesHere(const std::filesystem::path& file, const GisImportOptions& options) {
   return importParts<OGRLineString, OGRMultiLineString>(
       file, options, wkbLineString, wkbMultiLineString, "line", &GisLines::polylines,
@@ -365,10 +357,6 @@ GisLines importLinesHere(const std::filesystem::path& file, const GisImportOptio
       });
 }
 
-}  // namespace
-
-namespace {
-
 GisPoints importPointsHere(const std::filesystem::path& file, const GisImportOptions& options) {
   return importParts<OGRPoint, OGRMultiPoint>(
       file, options, wkbPoint, wkbMultiPoint, "point", &GisPoints::points, "",
@@ -378,10 +366,6 @@ GisPoints importPointsHere(const std::filesystem::path& file, const GisImportOpt
             {fid, part, reader.place(point.getX(), point.getY(), point.getZ(), fid), attributes});
       });
 }
-
-}  // namespace
-
-namespace {
 
 // A ring's nodes without repeats (as float) and without the closing node, or empty when fewer
 // than three distinct nodes or no area are left: such a ring bounds nothing a triangulation or
@@ -410,10 +394,6 @@ std::vector<glm::vec3> readRing(const OGRLinearRing& ring, FeatureReader& reader
   }
   return nodes;
 }
-
-}  // namespace
-
-namespace {
 
 GisPolygons importPolygonsHere(const std::filesystem::path& file, const GisImportOptions& options) {
   return importParts<OGRPolygon, OGRMultiPolygon>(
