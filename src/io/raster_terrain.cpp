@@ -81,11 +81,7 @@ void smoothNormals(Mesh& mesh) {
   for (glm::vec3& n : mesh.normals) n = glm::normalize(n);
 }
 
-}  // namespace
-
 // The readers themselves, in whichever process runs them.
-namespace {
-
 bool isRasterHere(const std::filesystem::path& file) {
   gdal::registerDrivers();
   gdal::QuietErrors quiet;
