@@ -163,6 +163,11 @@ TEST_F(RasterTerrainTest, ErrorsNameTheFileAndTheReason) {
   const fs::path good = tiff("good.tif", 2, {1, 2, 3, 4}, {0, 1, 0, 2, 0, -1});
   expectError([&] { importRasterTerrain(good, {.targetCrs = "EPSG:999999"}); },
               {"good.tif", "unknown target CRS"});
+  // A header claiming 64752 × 65535 samples (34 GB of grid; fuzzing): refused before reading.
+  const fs::path huge =
+      fs::path(CUTAWAY_TEST_DATA) / "fuzz/raster/header-claims-64752-by-65535.tif";
+  expectError([&] { importRasterTerrain(huge); },
+              {"64752 × 65535 nodes is beyond the limit of 33554432", "larger \"step\""});
 }
 
 TEST_F(RasterTerrainTest, SyntheticDemReadsBackAsItsNoiseFunction) {

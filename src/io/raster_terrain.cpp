@@ -157,24 +157,32 @@ RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
                 "a terrain grid needs at least 2 × 2 nodes, got " + std::to_string(out.columns) +
                     " × " + std::to_string(out.rows) + " (raster " + std::to_string(width) + " × " +
                     std::to_string(height) + ", step " + std::to_string(options.step) + ")");
+  const std::size_t nodes = std::size_t(out.columns) * std::size_t(out.rows);
+  // About 80 bytes per node go into the grid and its mesh: a header claiming 64752 × 65535
+  // samples asked for 34 GB (fuzzing).
+  if (nodes > kMaxTerrainNodes)
+    throw Error(name, "",
+                "a terrain grid of " + std::to_string(out.columns) + " × " +
+                    std::to_string(out.rows) + " nodes is beyond the limit of " +
+                    std::to_string(kMaxTerrainNodes) + " (raster " + std::to_string(width) + " × " +
+                    std::to_string(height) + "); give a larger \"step\"");
   GDALRasterBand* band = dataset->GetRasterBand(1);
-  std::vector<double> samples(std::size_t(width) * std::size_t(height));
-  if (band->RasterIO(GF_Read, 0, 0, width, height, samples.data(), width, height, GDT_Float64, 0, 0,
-                     nullptr) != CE_None)
-    throw Error(name, "", "cannot read band 1" + gdal::QuietErrors::lastMessage());
   int hasNodata = 0;
   const double nodata = band->GetNoDataValue(&hasNodata);
 
-  const std::size_t nodes = std::size_t(out.columns) * std::size_t(out.rows);
-  std::vector<double> heights(nodes);
+  std::vector<double> heights(nodes), row(static_cast<std::size_t>(width));
   std::vector<bool> valid(nodes);
   out.minHeight = std::numeric_limits<double>::infinity();
   out.maxHeight = -out.minHeight;
   bool anyValid = false;
-  for (int r = 0; r < out.rows; ++r)
+  for (int r = 0; r < out.rows; ++r) {
+    // Only the rows the grid samples are read, one at a time.
+    if (band->RasterIO(GF_Read, 0, r * options.step, width, 1, row.data(), width, 1, GDT_Float64, 0,
+                       0, nullptr) != CE_None)
+      throw Error(name, "row " + std::to_string(r * options.step),
+                  "cannot read band 1" + gdal::QuietErrors::lastMessage());
     for (int c = 0; c < out.columns; ++c) {
-      const double h = samples[std::size_t(r * options.step) * std::size_t(width) +
-                               std::size_t(c * options.step)];
+      const double h = row[std::size_t(c * options.step)];
       const std::size_t i = out.node(c, r);
       valid[i] = std::isfinite(h) && !(hasNodata && h == nodata);
       if (!valid[i]) continue;
@@ -183,6 +191,7 @@ RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
       out.minHeight = std::min(out.minHeight, h);
       out.maxHeight = std::max(out.maxHeight, h);
     }
+  }
   if (!anyValid) throw Error(name, "", "band 1 holds no valid sample (all nodata)");
   out.filledNodata = fillNodata(heights, valid, out.columns, out.rows);
 

@@ -1570,8 +1570,11 @@ Volume loadVtk(const fs::path& file, const VolumeLimits& limits) {
     if (w.size() != n + 1)
       lines.here().fail(w[0] + ": expected " + std::to_string(n) + (n == 1 ? " value" : " values") +
                         ", got " + inQuotes(line));
+    // The words after the keyword, split as words() splits (a carriage return counts: fuzzing).
     const std::string t = trim(line);
-    return trim(t.substr(t.find_first_of(" \t")));
+    std::size_t end = 0;
+    while (end < t.size() && !isSpace(t[end])) ++end;
+    return trim(std::string_view(t).substr(end));
   };
 
   next("DATASET");

@@ -55,6 +55,9 @@ struct RasterTerrain {
   }
 };
 
+// A grid of more nodes than this is refused (it would take gigabytes); a larger step thins it.
+inline constexpr std::size_t kMaxTerrainNodes = std::size_t(1) << 25;
+
 RasterTerrain importRasterTerrain(const std::filesystem::path& file,
                                   const RasterTerrainOptions& options = {});
 
