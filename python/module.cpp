@@ -15,6 +15,7 @@
 #include <memory>
 #include <optional>
 
+#include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/geometry/mesh.hpp"
 #include "cutaway/gl/context.hpp"
@@ -216,6 +217,9 @@ void addMesh(Scene& s, const std::string& name, const py::handle& vertices, cons
 
 PYBIND11_MODULE(_cutaway, m) {
   m.doc() = "cutaway's native part; use the cutaway package";
+  // The file readers' helper, forked now rather than after the session has grown
+  // (cutaway/core/contained.hpp).
+  cutaway::startContainedHelper();
   py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
 
   py::class_<Scene>(m, "Scene")
