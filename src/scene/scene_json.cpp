@@ -238,7 +238,9 @@ class MeshCache {
     static std::map<Key, std::weak_ptr<const std::vector<ImportedNode>>> held;
     {
       const std::lock_guard lock(mutex);
-      if (auto nodes = held[key].lock()) return files_[file] = nodes;
+      const auto entry = held.find(key);
+      if (entry != held.end())
+        if (auto nodes = entry->second.lock()) return files_[file] = nodes;
     }
     auto nodes = import(file);
     const std::lock_guard lock(mutex);

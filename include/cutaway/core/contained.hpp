@@ -165,7 +165,6 @@ class ByteReader {
     get(v);
     return v;
   }
-  bool atEnd() const { return at_ == bytes_.size(); }
 
  private:
   const char* take(std::uint64_t n) {
