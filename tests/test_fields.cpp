@@ -86,7 +86,7 @@ double cone(double z, double mE, double mF, double fx, double fy, double dx, dou
   return z - ((1 - alpha) * mE + alpha * mF) * d;
 }
 
-// Jump flooding written as src/cutters/adaptive/jump_flooding.frag and cone.glsl write it:
+// Jump flooding written as src/cutters/adaptive/jump_flooding.comp and cone.glsl write it:
 // per pixel, an anchor index; the header's formula in float, with sqrt and the division.
 CutawayField shaderJumpFlooding(const SeedImage& s, float nearDepth, JumpFloodingVariant variant) {
   const int w = s.width, h = s.height;

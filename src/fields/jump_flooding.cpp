@@ -2,7 +2,7 @@
 // 2006): every step, each pixel keeps the anchor whose cone c(p, q) (Burns11 eq. 4.1 with the
 // directional slope of Burns08 §5.5 / Burns11 eq. 6.3) is deepest among its own and those of
 // its 8 neighbours at distance k. Same step order, candidate order and strict comparison as
-// src/cutters/adaptive/jump_flooding.frag, so CPU and GPU agree up to float rounding.
+// src/cutters/adaptive/jump_flooding.comp, so CPU and GPU agree up to float rounding.
 //
 // Speed (bench/bench_fields.cpp): a pixel's state is its anchor's whole cone (position, z,
 // slopes, floor direction) plus that cone's depth at the pixel, in structure-of-arrays rows,

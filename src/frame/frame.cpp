@@ -168,7 +168,7 @@ std::vector<std::string> Frame::passNames() const {
 }
 
 void Frame::prepare(Pass& pass) {
-  pass.framebuffer = gl::Framebuffer::create();
+  if (!pass.desc.compute) pass.framebuffer = gl::Framebuffer::create();
   std::vector<GLenum> drawBuffers;
   pass.width = width_;
   pass.height = height_;
@@ -180,6 +180,7 @@ void Frame::prepare(Pass& pass) {
     if (d.width != pass.width || d.height != pass.height)
       throw Error("frame", pass.desc.name, "writes render targets of different sizes");
     first = false;
+    if (pass.desc.compute) continue;
     if (isDepthFormat(d.format)) {
       const bool stencil = d.format == GL_DEPTH24_STENCIL8 || d.format == GL_DEPTH32F_STENCIL8;
       glNamedFramebufferTexture(pass.framebuffer.id(),
@@ -191,6 +192,7 @@ void Frame::prepare(Pass& pass) {
       drawBuffers.push_back(attachment);
     }
   }
+  if (pass.desc.compute) return;
   glNamedFramebufferDrawBuffers(pass.framebuffer.id(), GLsizei(drawBuffers.size()),
                                 drawBuffers.empty() ? nullptr : drawBuffers.data());
   if (!pass.desc.writes.empty()) {
@@ -221,9 +223,14 @@ void Frame::execute() {
   for (auto& pass : passes_) {
     const auto start = std::chrono::steady_clock::now();
     if (timed_) timer_.begin(pass.desc.name);
-    glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.id());
-    glViewport(0, 0, pass.width, pass.height);
-    pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
+    if (pass.desc.compute) {
+      pass.desc.run(PassContext{pass.width, pass.height, 0});
+      glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    } else {
+      glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.id());
+      glViewport(0, 0, pass.width, pass.height);
+      pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
+    }
     if (timed_) timer_.end();
     cpuMs_.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)

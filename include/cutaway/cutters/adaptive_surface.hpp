@@ -24,7 +24,8 @@
 // takes, for each cutaway-buffer texel, the farthest depth in its footprint. It puts back the
 // application's framebuffers, program, vertex array, viewport, colour mask, depth test, blend,
 // scissor, stencil, culling, rasteriser discard and pixel-transfer state (none of which
-// changes the result); it rebinds texture units 0–2, and runs no timer queries.
+// changes the result); it rebinds texture units 0–2 and (on the GPU path) image unit 0, and
+// runs no timer queries.
 #pragma once
 
 #include <memory>

@@ -57,14 +57,18 @@ class Target {
 };
 
 struct PassContext {
-  int width, height;  // viewport of this pass
-  GLuint framebuffer;
+  int width, height;  // viewport of this pass (a compute pass: the size of what it writes)
+  GLuint framebuffer;  // 0 for a compute pass
 };
 
 struct PassDesc {
   std::string name;
   std::vector<Target> reads, writes;
   std::function<void(const PassContext&)> run;
+  // A compute pass dispatches instead of drawing and writes its targets as images
+  // (imageStore): it gets no framebuffer, and the frame puts a memory barrier after it so
+  // that later passes and read-backs see what it wrote.
+  bool compute = false;
 };
 
 struct PassTiming {

@@ -116,7 +116,8 @@ void CutawaySurfacePasses::declareSurface() {
   anchorsB_ = frame.declare("anchorsB" + suffix_, {.format = GL_R32I, .width = n, .height = n});
   p.anchors = buildFullscreenProgram("cutters/adaptive/anchors.frag");
   p.jfaInit = buildFullscreenProgram("cutters/adaptive/jfa_init.frag");
-  p.jumpFlooding = buildFullscreenProgram("cutters/adaptive/jump_flooding.frag");
+  p.jumpFlooding =
+      gl::buildProgram({.stages = {{GL_COMPUTE_SHADER, "cutters/adaptive/jump_flooding.comp"}}});
   p.cutawayDepth = buildFullscreenProgram("cutters/adaptive/cutaway_depth.frag");
 }
 
@@ -184,19 +185,23 @@ void CutawaySurfacePasses::addGpuPasses() {
                    glDisable(GL_DEPTH_TEST);
                    programs_->fullscreen.draw();
                  }});
-  // One pass per step, ping-ponging the anchor buffers.
+  // One compute pass per step, ping-ponging the anchor buffers.
   Target current = anchorsA_, next = anchorsB_;
   for (int step : fields::stepSizes(bufferSize_, bufferSize_, variant_)) {
     frame_.addPass({.name = "jumpFlooding" + suffix_ + "/" + std::to_string(step),
                    .reads = {anchorCone_, anchorFloor_, current},
                    .writes = {next},
-                   .run = [this, bindCone, step, current](const PassContext&) {
-                     const GLuint program = programs_->jumpFlooding.id();
-                     bindCone(program);
-                     glBindTextureUnit(2, frame_.texture(current).id());
-                     glProgramUniform1i(program, 1, step);
-                     programs_->fullscreen.draw();
-                   }});
+                   .run =
+                       [this, bindCone, step, current, next](const PassContext& pass) {
+                         const GLuint program = programs_->jumpFlooding.id();
+                         bindCone(program);
+                         glBindTextureUnit(2, frame_.texture(current).id());
+                         glBindImageTexture(0, frame_.texture(next).id(), 0, GL_FALSE, 0,
+                                            GL_WRITE_ONLY, GL_R32I);
+                         glProgramUniform1i(program, 1, step);
+                         glDispatchCompute(GLuint(pass.width + 7) / 8, GLuint(pass.height + 7) / 8, 1);
+                       },
+                   .compute = true});
     std::swap(current, next);
   }
   frame_.addPass({.name = "cutawayDepth" + suffix_,
