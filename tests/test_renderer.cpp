@@ -13,6 +13,7 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "expect_error.hpp"
+#include "frame/fullscreen.hpp"
 #include "frame/scene_meshes.hpp"
 #include "gl_test_context.hpp"
 
@@ -174,6 +175,96 @@ TEST(Frame, RejectsReadBeforeWrite) {
               std::string::npos)
         << e.what();
   }
+}
+
+// An onRead pass runs when what it writes is read back, once per execute, and not at all in a
+// frame nobody reads; a pass of every frame may not read what only such a pass writes.
+TEST(Frame, AnOnReadPassRunsWhenItsTargetIsReadOnceAFrame) {
+  test::glContext();
+  Frame frame(4, 4, gl::ContextInfo{});
+  const Target picture = frame.declare("picture", {.format = GL_R32F});
+  const Target aov = frame.declare("aov", {.format = GL_R32F});
+  int frames = 0, resolves = 0;
+  frame.addPass({.name = "draw", .writes = {picture}, .run = [&](const PassContext& c) {
+                   const float value = float(++frames);
+                   glClearNamedFramebufferfv(c.framebuffer, GL_COLOR, 0, &value);
+                 }});
+  frame.addPass({.name = "resolve",
+                 .reads = {picture},
+                 .writes = {aov},
+                 .run =
+                     [&](const PassContext& c) {
+                       ++resolves;
+                       const float value = 10.0f * float(frames);
+                       glClearNamedFramebufferfv(c.framebuffer, GL_COLOR, 0, &value);
+                     },
+                 .onRead = true});
+  frame.execute();
+  frame.execute();
+  EXPECT_EQ(resolves, 0);
+  EXPECT_EQ(frame.read(aov, 1), std::vector<float>(16, 20.0f));
+  EXPECT_EQ(frame.read(aov, 1), std::vector<float>(16, 20.0f));
+  EXPECT_EQ(resolves, 1);
+  EXPECT_EQ(frame.read(picture, 1), std::vector<float>(16, 2.0f));
+  EXPECT_EQ(resolves, 1);
+  frame.execute();
+  (void)frame.texture(aov);
+  EXPECT_EQ(resolves, 2);
+  EXPECT_EQ(frame.timings().size(), 1u);  // the resolve is untimed
+
+  Frame wrong(4, 4, gl::ContextInfo{});
+  const Target a = wrong.declare("a", {.format = GL_R32F});
+  const Target b = wrong.declare("b", {.format = GL_R32F});
+  wrong.addPass(
+      {.name = "aovOnly", .writes = {a}, .run = [](const PassContext&) {}, .onRead = true});
+  wrong.addPass({.name = "user", .reads = {a}, .writes = {b}, .run = [](const PassContext&) {}});
+  test::expectError([&] { wrong.execute(); },
+                    {"user", "reads \"a\", which only a pass run on read-back writes"});
+}
+
+// A compute pass writes its target as an image; the next pass and the read-back see it.
+TEST(Frame, AComputePassWritesItsTargetAsAnImage) {
+  test::glContext();
+  Frame frame(5, 3, gl::ContextInfo{});
+  const Target computed = frame.declare("computed", {.format = GL_R32F});
+  const Target doubled = frame.declare("doubled", {.format = GL_R32F});
+  const gl::Program fill = gl::buildProgram(
+      {.stages = {{GL_COMPUTE_SHADER, "fill.comp"}}, .sources = {{"fill.comp", R"(#version 450 core
+layout(local_size_x = 1) in;
+layout(binding = 0, r32f) uniform writeonly image2D uOut;
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  imageStore(uOut, p, vec4(float(p.y * 5 + p.x)));
+})"}}});
+  const gl::Program twice = gl::buildProgram(
+      {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"}, {GL_FRAGMENT_SHADER, "twice.frag"}},
+       .sources = {{"twice.frag", R"(#version 450 core
+layout(binding = 0) uniform sampler2D uIn;
+layout(location = 0) out float outValue;
+void main() { outValue = 2.0 * texelFetch(uIn, ivec2(gl_FragCoord.xy), 0).r; })"}}});
+  frame.addPass({.name = "fill",
+                 .writes = {computed},
+                 .run =
+                     [&](const PassContext& c) {
+                       EXPECT_EQ(c.framebuffer, 0u);
+                       glUseProgram(fill.id());
+                       glBindImageTexture(0, frame.texture(computed).id(), 0, GL_FALSE, 0,
+                                          GL_WRITE_ONLY, GL_R32F);
+                       glDispatchCompute(GLuint(c.width), GLuint(c.height), 1);
+                     },
+                 .compute = true});
+  frame.addPass(
+      {.name = "twice", .reads = {computed}, .writes = {doubled}, .run = [&](const PassContext&) {
+         glUseProgram(twice.id());
+         glBindTextureUnit(0, frame.texture(computed).id());
+         FullscreenTriangle().draw();
+       }});
+  frame.execute();
+  std::vector<float> expected(15);
+  for (int i = 0; i < 15; ++i) expected[std::size_t(i)] = float(i);
+  EXPECT_EQ(frame.read(computed, 1), expected);
+  for (float& v : expected) v *= 2.0f;
+  EXPECT_EQ(frame.read(doubled, 1), expected);
 }
 
 // A handle names a target of the frame that declared it; another frame's, or a default one,

@@ -116,7 +116,9 @@ const Frame::TargetData& Frame::target(Target t, const std::string& user) const 
 }
 
 const gl::Texture& Frame::texture(Target t) const {
-  return target(t, "texture").texture;
+  const TargetData& data = target(t, "texture");
+  runOnRead(t);
+  return data.texture;
 }
 
 const TargetDesc& Frame::desc(Target t) const {
@@ -136,6 +138,7 @@ Target Frame::at(const std::string& name) const {
 
 std::vector<float> Frame::read(Target t, int channels) const {
   const TargetData& data = target(t, "read");
+  runOnRead(t);
   const TargetDesc& d = data.desc;
   std::vector<float> texels(std::size_t(d.width) * std::size_t(d.height) * std::size_t(channels));
   if (d.format == GL_R32UI) {  // counters and flags written by image stores
@@ -205,38 +208,69 @@ void Frame::prepare(Pass& pass) {
 
 void Frame::execute() {
   if (!prepared_) {
-    std::vector<bool> written(targets_.size(), false);
+    // Per target: written by a pass of every frame, or only by an `onRead` pass.
+    enum class Written : char { No, Always, OnRead };
+    std::vector<Written> written(targets_.size(), Written::No);
     for (auto& pass : passes_) {
       for (const Target r : pass.desc.reads) {
         const TargetData& t = target(r, pass.desc.name);
-        if (!written[std::size_t(r.index_)])
+        const Written w = written[std::size_t(r.index_)];
+        if (w == Written::No)
           throw Error("frame", pass.desc.name,
                       "reads \"" + t.name + "\" before any pass writes it");
+        if (w == Written::OnRead && !pass.desc.onRead)
+          throw Error("frame", pass.desc.name,
+                      "reads \"" + t.name + "\", which only a pass run on read-back writes");
       }
       prepare(pass);  // validates the written handles
-      for (const Target w : pass.desc.writes) written[std::size_t(w.index_)] = true;
+      for (const Target w : pass.desc.writes)
+        written[std::size_t(w.index_)] = pass.desc.onRead ? Written::OnRead : Written::Always;
     }
     prepared_ = true;
   }
   cpuMs_.clear();
   timer_.restart();
-  for (auto& pass : passes_) {
+  pending_.assign(passes_.size(), false);
+  for (std::size_t i = 0; i < passes_.size(); ++i) {
+    const Pass& pass = passes_[i];
+    if (pass.desc.onRead) {
+      pending_[i] = true;
+      continue;
+    }
     const auto start = std::chrono::steady_clock::now();
     if (timed_) timer_.begin(pass.desc.name);
-    if (pass.desc.compute) {
-      pass.desc.run(PassContext{pass.width, pass.height, 0});
-      glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    } else {
-      glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.id());
-      glViewport(0, 0, pass.width, pass.height);
-      pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
-    }
+    run(pass);
     if (timed_) timer_.end();
     cpuMs_.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count());
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Frame::run(const Pass& pass) const {
+  if (pass.desc.compute) {
+    pass.desc.run(PassContext{pass.width, pass.height, 0});
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  } else {
+    glBindFramebuffer(GL_FRAMEBUFFER, pass.framebuffer.id());
+    glViewport(0, 0, pass.width, pass.height);
+    pass.desc.run(PassContext{pass.width, pass.height, pass.framebuffer.id()});
+  }
+}
+
+void Frame::runOnRead(Target t) const {
+  bool ran = false;
+  for (std::size_t i = 0; i < pending_.size(); ++i) {
+    const PassDesc& desc = passes_[i].desc;
+    if (!pending_[i] || std::find(desc.writes.begin(), desc.writes.end(), t) == desc.writes.end())
+      continue;
+    pending_[i] = false;
+    for (const Target r : desc.reads) runOnRead(r);
+    run(passes_[i]);
+    ran = true;
+  }
+  if (ran) glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 std::vector<PassTiming> Frame::timings() {

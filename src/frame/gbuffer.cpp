@@ -8,9 +8,9 @@ namespace cutaway {
 
 namespace {
 
-// The composite's inputs: units 0–5 are the fixed buffers, then the overlays (composite.frag).
-constexpr int kFirstOverlayUnit = 6;
-constexpr int kFirstOverlayLocation = 8;
+// The composite's inputs: unit 0 is the colour, then the overlays (composite.frag).
+constexpr int kFirstOverlayUnit = 1;
+constexpr int kFirstOverlayLocation = 1;
 
 std::string upperFirst(std::string name) {
   if (!name.empty()) name[0] = char(std::toupper(static_cast<unsigned char>(name[0])));
@@ -145,12 +145,11 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
                             .meaning = "1 where a cut surface or cut wall is shown (a back face of "
                                        "a solid seen through the cut: Burns08 §4.1, Diepstraten03 "
                                        "rule 5), else 0; sample 0"});
-  std::vector<Target> reads{color_, normal_, position_, objectId_, depth_, cutMask_};
+  std::vector<Target> reads{color_};
   for (const Overlay& o : overlays_) reads.push_back(o.coverage);
-  const std::vector<Target> writes{color, normal, position, viewDepth, objectId, depth, cutMask};
   f.addPass({.name = "composite",
              .reads = reads,
-             .writes = writes,
+             .writes = {color},
              .run = [this, &f, reads](const PassContext&) {
                const GLuint program = compositeProgram_.id();
                glDisable(GL_DEPTH_TEST);
@@ -164,6 +163,23 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
                }
                fullscreen_.draw();
              }});
+  // Six full-size buffers that only AOVs and inspectors use: resolved when read.
+  aovsProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                                              {GL_FRAGMENT_SHADER, "frame/aovs.frag"}},
+                                   .defines = sampleDefines(samples_)});
+  const std::vector<Target> aovReads{normal_, position_, objectId_, depth_, cutMask_};
+  f.addPass({.name = "aovs",
+             .reads = aovReads,
+             .writes = {normal, position, viewDepth, objectId, depth, cutMask},
+             .run =
+                 [this, &f, aovReads](const PassContext&) {
+                   glDisable(GL_DEPTH_TEST);
+                   glUseProgram(aovsProgram_.id());
+                   for (std::size_t unit = 0; unit < aovReads.size(); ++unit)
+                     glBindTextureUnit(GLuint(unit), f.texture(aovReads[unit]).id());
+                   fullscreen_.draw();
+                 },
+             .onRead = true});
   addChannelsPass(f);
 }
 
@@ -186,13 +202,15 @@ void GBuffer::addChannelsPass(Frame& f) {
   f.addPass({.name = "channels",
              .reads = channelTargets_,
              .writes = channelAovs_,
-             .run = [this, &f](const PassContext&) {
-               glDisable(GL_DEPTH_TEST);
-               glUseProgram(channelsProgram_.id());
-               for (std::size_t unit = 0; unit < channelTargets_.size(); ++unit)
-                 glBindTextureUnit(GLuint(unit), f.texture(channelTargets_[unit]).id());
-               fullscreen_.draw();
-             }});
+             .run =
+                 [this, &f](const PassContext&) {
+                   glDisable(GL_DEPTH_TEST);
+                   glUseProgram(channelsProgram_.id());
+                   for (std::size_t unit = 0; unit < channelTargets_.size(); ++unit)
+                     glBindTextureUnit(GLuint(unit), f.texture(channelTargets_[unit]).id());
+                   fullscreen_.draw();
+                 },
+             .onRead = true});
 }
 
 }  // namespace cutaway

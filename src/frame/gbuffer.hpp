@@ -1,8 +1,9 @@
 // The scene's multisampled G-buffer and its resolve. Every program that draws visible surfaces
 // writes it through frame/gbuffer.glsl (colour, normal + line weight, position + view depth,
 // object id, cut mask, then the channels techniques add); the "composite" pass averages the
-// samples into the final colour, blends the overlays (feature lines, cut outlines, ghost
-// lines) over it, and copies sample 0 of every buffer into the single-sample AOVs.
+// samples into the final colour and blends the overlays (feature lines, cut outlines, ghost
+// lines) over it; the "aovs" and "channels" passes copy sample 0 of every other buffer into
+// the single-sample AOVs when those are read (Frame's onRead passes).
 //
 // Built in two steps: techniques add their channels first (a float per sample with a meaning,
 // e.g. Diepstraten03's signed distance), then `declare` makes the targets.
@@ -60,8 +61,8 @@ class GBuffer {
   std::string channelsGlsl() const;
   const std::vector<Channel>& channels() const { return channels_; }
 
-  // The composite pass: `overlays` in order, reading everything the G-buffer holds; then the
-  // channels' pass, which resolves them into their AOVs.
+  // The composite pass (the colour and `overlays` in order); then the passes that resolve the
+  // other buffers and the channels into their AOVs when they are read.
   void addCompositePass(Frame& frame, std::vector<Overlay> overlays);
   // The final colour (RGBA8, single sample).
   Target finalColor() const { return finalColor_; }
@@ -75,7 +76,7 @@ class GBuffer {
   int samples_ = 1;
   Target color_, normal_, position_, objectId_, cutMask_, depth_;
   Target finalColor_;
-  gl::Program backgroundProgram_, compositeProgram_, channelsProgram_;
+  gl::Program backgroundProgram_, compositeProgram_, aovsProgram_, channelsProgram_;
   FullscreenTriangle fullscreen_;
 };
 

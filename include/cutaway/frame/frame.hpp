@@ -69,6 +69,11 @@ struct PassDesc {
   // (imageStore): it gets no framebuffer, and the frame puts a memory barrier after it so
   // that later passes and read-backs see what it wrote.
   bool compute = false;
+  // Runs not in `execute` but when one of its targets is read back (`read`, `texture` from
+  // outside the passes), at most once per `execute`: for resolves that only AOVs and
+  // inspectors use, which a frame that only shows its picture skips. Untimed. Only other
+  // such passes may read what it writes.
+  bool onRead = false;
 };
 
 struct PassTiming {
@@ -100,10 +105,11 @@ class Frame {
   // The passes' names in execution order.
   std::vector<std::string> passNames() const;
 
+  // A target's texture, after the `onRead` passes that write it have run for this frame.
   const gl::Texture& texture(Target target) const;
   const TargetDesc& desc(Target target) const;
   // A single-sample target's texels as floats, `channels` (1: red, 3: RGB, 4: RGBA) per
-  // texel, rows bottom to top as OpenGL stores them.
+  // texel, rows bottom to top as OpenGL stores them; runs the `onRead` passes as `texture`.
   std::vector<float> read(Target target, int channels) const;
 
   // Lookup by name, for tools outside the frame's passes (AOV inspectors, tests).
@@ -133,6 +139,9 @@ class Frame {
   };
   const TargetData& target(Target t, const std::string& user) const;
   void prepare(Pass& pass);
+  void run(const Pass& pass) const;
+  // Runs the pending `onRead` passes (and those they read from) that write `t`.
+  void runOnRead(Target t) const;
 
   void checkLimits(const std::string& name, const TargetDesc& desc);
 
@@ -146,6 +155,7 @@ class Frame {
   std::vector<double> cpuMs_;
   bool prepared_ = false;
   bool timed_ = true;
+  mutable std::vector<bool> pending_;  // per pass: an `onRead` pass not run since `execute`
 };
 
 // Whether `format` is a depth format (attached as GL_DEPTH_ATTACHMENT).

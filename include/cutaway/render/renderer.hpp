@@ -21,6 +21,7 @@
 //   [lines]
 //   [ghostLines]
 //   composite
+//   aovs
 //   [channels]
 //   [volumes]
 //   [volumeLineSurfaces volumeLines]
@@ -28,7 +29,7 @@
 // clang-format on
 //
 // - cutawaySeed … cutawayDilate: the adaptive cutter (Burns08 §5): the region of interest's
-//   rear hulls, the cutaway surface by jump flooding on the CPU or in fragment passes (one per
+//   rear hulls, the cutaway surface by jump flooding on the CPU or in compute passes (one per
 //   step size N), dilated (src/cutters/adaptive/README.md).
 // - cutawayCpuC2 … cutawayDilateC2: the contextual structure's second surface C₂ from the same
 //   seed, every seed's angle raised to θ₂ (Burns11 §4.1.3, §5.2.3).
@@ -48,10 +49,11 @@
 //   front to back into layers with their own feature lines (frame/translucent_layers.hpp),
 //   blended over the final colour.
 // - lines: silhouettes, creases and cut outlines per sample (styles/lines).
-// - composite: the samples resolved, the line overlays blended, sample 0 of every
-//   intermediate buffer copied into single-sample AOVs.
+// - composite: the colour samples resolved, the line overlays blended.
+// - aovs: sample 0 of every other G-buffer buffer copied into single-sample AOVs, run only
+//   when an AOV is read (Frame's onRead passes: a frame that only shows its picture skips it).
 // - channels: the same for the cutters' G-buffer channels (the cutout's signed distance, the
-//   contextual structure's Ω and R).
+//   contextual structure's Ω and R), also when read.
 // - volumes: the scene's volumes ray cast over the final colour up to the opaque depth, each
 //   sample decided by the cutters (src/kinds/volumes).
 // - volumeLineSurfaces, volumeLines: the volumes' line drawings (Burns11 §2.4): what hides a
