@@ -448,6 +448,97 @@ TEST_F(VolumeTest, TheMaximumModeShowsTheLargestValueAlongEachRay) {
   EXPECT_LE(worst, bound);
 }
 
+// Emission–absorption against its closed form (Burns11 §5.2.5): through a box of uniform
+// material (one transfer-function colour and opacity α per opacityDistance d voxels) a ray
+// of length L keeps T = (1 − α)^(L/(d·s)), s the spacing, whatever the step, when the steps
+// tile L. An orthographic view along z sends every ray through the box's whole depth
+// L = n·s (its cell edges), so each pixel's accumulated opacity is 1 − T and, white over
+// black, its colour 255·(1 − T). With steps that do not tile L, a ray takes ⌈L/h − o⌉ samples
+// for its jitter offset o: 136 or 137 here, on average L/h over the pixels (unbiased), while
+// a fixed offset of ½ gives every ray 137. Early termination stops a ray at the first sample
+// past 0.995: its opacity lies in (0.995, 0.995 + 0.005·α′], α′ the step's opacity.
+class VolumeClosedForm : public VolumeTest {
+ protected:
+  struct Ray {
+    FloatImage opacity;
+    Rgba8Image color;
+  };
+  Ray render(float alpha, float sampleDistance, bool jitter) {
+    // Uniform but for one corner voxel (a value range for the table); the table is constant.
+    const fs::path file = volume("slab", kN, 1.0f, [](glm::vec3 p) {
+      return p.x < -0.99f && p.y < -0.99f && p.z < -0.99f ? 0.0f : 1.0f;
+    });
+    const std::string a = std::to_string(alpha);
+    const Scene s = parseScene(
+        R"({"resolution": [96, 96], "samples": 1, "background": [0, 0, 0],
+            "style": {"name": "gooch", "lines": false},
+            "camera": {"projection": "orthographic", "height": 1.6, "eye": [0, 0, 4],
+                       "target": [0, 0, 0]},
+            "volumes": [{"name": "slab", "file": ")" +
+            file.string() + R"(", "shading": false, "opacityDistance": 1, "sampleDistance": )" +
+            std::to_string(sampleDistance) + R"(, "jitter": )" + (jitter ? "true" : "false") +
+            R"(, "transferFunction": [{"value": 0, "color": [1, 1, 1], "opacity": )" + a +
+            R"(}, {"value": 1, "color": [1, 1, 1], "opacity": )" + a + R"(}]}]})",
+        "slab.json", dir_);
+    Renderer renderer(s, test::glContext().info());
+    renderer.render();
+    return {aov(renderer.readAovs(), "volumeOpacity"), renderer.readColor()};
+  }
+  static constexpr int kN = 41;  // voxels a side: spacing 0.05, L = 2.05
+};
+
+TEST_F(VolumeClosedForm, AUniformBoxKeepsTheTransmittanceOfItsDepth) {
+  const double alpha = 0.05, expected = 1.0 - std::pow(1.0 - alpha, kN);  // L/s = 41 voxels
+  for (const bool jitter : {false, true}) {
+    const Ray ray = render(float(alpha), 0.5f, jitter);
+    double worstOpacity = 0.0, worstColor = 0.0;
+    for (int y = 0; y < 96; ++y)
+      for (int x = 0; x < 96; ++x) {
+        worstOpacity = std::max(worstOpacity, std::abs(ray.opacity.at(x, y)[0] - expected));
+        worstColor = std::max(worstColor, std::abs(ray.color.at(x, y)[0] - 255.0 * expected));
+      }
+    std::printf("uniform box, jitter %d: opacity %.5f, worst %.2e; colour worst %.2f levels\n",
+                jitter, expected, worstOpacity, worstColor);
+    EXPECT_LE(worstOpacity, 1e-4);
+    EXPECT_LE(worstColor, 1.0);
+  }
+}
+
+TEST_F(VolumeClosedForm, JitteredStartsTakeLOverHSamplesOnAverage) {
+  const double alpha = 0.05, sampleDistance = 0.3, L = kN * 0.05, h = sampleDistance * 0.05;
+  const double stepAlpha = 1.0 - std::pow(1.0 - alpha, sampleDistance);  // opacityDistance 1
+  for (const bool jitter : {false, true}) {
+    const FloatImage opacity = render(float(alpha), float(sampleDistance), jitter).opacity;
+    double sum = 0.0, worstInteger = 0.0;
+    int lower = 0;
+    for (float a : opacity.data) {
+      const double samples = std::log(1.0 - a) / std::log(1.0 - stepAlpha);
+      sum += samples;
+      worstInteger = std::max(worstInteger, std::abs(samples - std::round(samples)));
+      lower += std::lround(samples) == std::lround(std::floor(L / h));
+    }
+    const double mean = sum / double(opacity.data.size());
+    std::printf("jitter %d: %.4f samples per ray on average (L/h = %.4f), %d rays of %ld\n", jitter,
+                mean, L / h, lower, std::lround(std::floor(L / h)));
+    EXPECT_LE(worstInteger, 0.02);  // each ray a whole number of samples
+    if (jitter)
+      EXPECT_NEAR(mean, L / h, 0.05);
+    else
+      EXPECT_NEAR(mean, std::ceil(L / h - 0.5), 0.02);
+  }
+}
+
+TEST_F(VolumeClosedForm, EarlyTerminationStopsAtTheFirstSamplePastTheThreshold) {
+  const double alpha = 0.3, stepAlpha = 1.0 - std::pow(1.0 - alpha, 0.5);
+  const Ray ray = render(float(alpha), 0.5f, true);
+  float least = 1.0f, most = 0.0f;
+  for (float a : ray.opacity.data) least = std::min(least, a), most = std::max(most, a);
+  std::printf("early termination: opacity in [%.6f, %.6f], bound (0.995, %.6f]; exact %.7f\n",
+              least, most, 0.995 + 0.005 * stepAlpha, 1.0 - std::pow(1.0 - alpha, kN));
+  EXPECT_GT(least, 0.995f);
+  EXPECT_LE(most, 0.995 + 0.005 * stepAlpha + 1e-6);
+}
+
 // A volume larger than the GPU's 3-D textures on one axis is refused when the renderer is
 // made, naming the file and the limit.
 TEST_F(VolumeTest, AVolumeBeyondTheGpusTextureSizeIsRefused) {
