@@ -36,6 +36,8 @@ const std::vector<Target>& targets() {
       {"geopackage", ".gpkg", "tests/data/fuzz/geopackage/*"},
       {"shapefile", ".shp", "tests/data/fuzz/shapefile/*", {".shx", ".dbf", ".prj"}},
       {"volume-raw", ".json", "tests/data/fuzz/volume-raw/*", {".raw"}},
+      // A DICOM series: a folder of slices (GDCM), here one or two.
+      {"volume-dicom", "/1.dcm", "tests/data/fuzz/volume-dicom/*", {"/2.dcm"}},
       {"png", ".png", "tests/golden/bunny.png tests/data/fuzz/png/*"},
   };
   return list;
@@ -74,6 +76,7 @@ std::filesystem::path scratchFile(const std::string& extension) {
 }
 
 void write(const std::filesystem::path& file, std::string_view bytes) {
+  std::filesystem::create_directories(file.parent_path());
   std::ofstream(file, std::ios::binary | std::ios::trunc)
       .write(bytes.data(), std::streamsize(bytes.size()));
 }
@@ -82,6 +85,8 @@ void load(const Target& target, const std::filesystem::path& file) {
   const std::string& n = target.name;
   if (n.starts_with("mesh-")) {
     importMeshNodes(file);
+  } else if (n == "volume-dicom") {
+    importVolume(file.parent_path());  // the series' folder
   } else if (n.starts_with("volume-")) {
     importVolume(file);
   } else if (n == "geojson" || n == "geopackage" || n == "shapefile") {

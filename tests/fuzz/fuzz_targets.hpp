@@ -15,7 +15,9 @@ namespace cutaway::fuzz {
 
 struct Target {
   std::string name;       // also the corpus folder's name
-  std::string extension;  // the file name's, which picks the reader ("" for the scene text)
+  // The file name's, which picks the reader ("" for the scene text); "/name" puts the file in
+  // a folder of its own, which the reader is given (a DICOM series).
+  std::string extension;
   std::string seeds;      // what scripts/fuzz starts its corpus from (globs under the source)
   // A file set (a Shapefile's .shp/.shx/.dbf, a raw volume's header and data): the input is
   // split at kPartSeparator, its first part written with `extension`, the next ones with
