@@ -17,7 +17,9 @@
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/io/raster_terrain.hpp"
+#include "cutaway/io/volume_import.hpp"
 #include "expect_error.hpp"
+#include "fuzz/fuzz_targets.hpp"
 
 using namespace cutaway;
 
@@ -344,6 +346,33 @@ TEST(Contained, GisLayersAndRastersReadInTheChildAreTheOnesReadHere) {
 
 // The helper killed between two files (by the user, or the kernel out of memory): the next
 // file starts a new one and is read.
+// GDCM reads a DICOM series in a worker: two slices (the fuzz corpus's seed, split into its
+// files), rescaled by slope 2 and intercept −1024, are the same volume read here and there.
+TEST(Contained, ADicomSeriesReadInTheChildIsTheOneReadHere) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("cutaway-dicom-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  std::ifstream in(CUTAWAY_TEST_DATA "/fuzz/volume-dicom/valid-two-slices-explicit",
+                   std::ios::binary);
+  const std::string seed{std::istreambuf_iterator<char>(in), {}};
+  const std::size_t split = seed.find(fuzz::kPartSeparator);
+  ASSERT_NE(split, std::string::npos);
+  std::ofstream(folder / "1.dcm", std::ios::binary) << seed.substr(0, split);
+  std::ofstream(folder / "2.dcm", std::ios::binary)
+      << seed.substr(split + fuzz::kPartSeparator.size());
+  const auto [here, there] = hereAndThere([&] { return importVolume(folder); });
+  std::filesystem::remove_all(folder);
+  EXPECT_EQ(here.dims, glm::ivec3(4, 3, 2));
+  ASSERT_EQ(here.values.size(), 24u);
+  EXPECT_EQ(here.values[1], 2.0f * 1.0f - 1024.0f);
+  EXPECT_EQ(here.dims, there.dims);
+  EXPECT_EQ(here.values, there.values);
+  EXPECT_EQ(here.indexToWorld, there.indexToWorld);
+  EXPECT_EQ(here.voxelType, there.voxelType);
+  EXPECT_EQ(here.minValue, there.minValue);
+  EXPECT_EQ(here.maxValue, there.maxValue);
+}
+
 TEST(Contained, AKilledHelperIsStartedAgain) {
   run("test-pattern", "3");  // the helper is running
   std::vector<pid_t> children;  // this process's, from /proc/PID/stat's ppid

@@ -34,7 +34,9 @@
 #include <vector>
 
 #include "core/json_reader.hpp"
+#include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
+#include "io/wire_fields.hpp"
 
 namespace cutaway {
 
@@ -2153,6 +2155,14 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 
 }  // namespace
 
+// GDCM is the one third-party reader among the volumes': a series is read in a worker, as
+// Assimp and GDAL read theirs (cutaway/core/contained.hpp). Its data dictionary is loaded
+// once, by the helper the workers are forked from.
+const bool kDicomDictionaryWarm =
+    registerContainedWarmUp([] { (void)gdcm::Global::GetInstance().GetDicts(); });
+const ContainedReader<Volume, &loadDicomSeries, VolumeLimits> containedDicomSeries(
+    "dicom-series", "the DICOM reader");
+
 Volume volumeFromMemory(const MemoryVoxels& voxels, const std::string& source,
                         const std::string& place, const VolumeLimits& limits) {
   const Where where{source, place};
@@ -2197,7 +2207,7 @@ Volume importVolume(const std::filesystem::path& file) {
 Volume importVolume(const std::filesystem::path& file, const VolumeLimits& limits) {
   std::error_code ec;
   if (fs::is_directory(file, ec)) {
-    Volume v = loadDicomSeries(file, limits);
+    Volume v = containedDicomSeries(file, limits);
     v.updateRange();
     return v;
   }

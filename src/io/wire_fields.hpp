@@ -3,7 +3,9 @@
 #pragma once
 
 #include "cutaway/geometry/mesh.hpp"
+#include "cutaway/geometry/volume.hpp"
 #include "cutaway/io/gis_import.hpp"
+#include "cutaway/io/volume_import.hpp"
 
 namespace cutaway {
 
@@ -16,6 +18,16 @@ void wireFields(Archive& a, MeshReport& r) {
 template <class Archive>
 void wireFields(Archive& a, Mesh& m) {
   a(m.positions, m.normals, m.triangles, m.report);
+}
+
+template <class Archive>
+void wireFields(Archive& a, Volume& v) {
+  a(v.dims, v.values, v.indexToWorld, v.voxelType, v.minValue, v.maxValue);
+}
+
+template <class Archive>
+void wireFields(Archive& a, VolumeLimits& l) {
+  a(l.maxVoxels);
 }
 
 template <class Archive>

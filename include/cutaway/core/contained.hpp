@@ -1,7 +1,7 @@
 // cutaway/core/contained.hpp — third-party parsers run on untrusted files in child
 // processes, under a memory and a time limit.
 //
-// Assimp and GDAL have bugs this project cannot fix in their Debian packages: a file may
+// Assimp, GDAL and GDCM have bugs this project cannot fix in their Debian packages: a file may
 // crash them, make them loop forever or allocate without bound. A contained parser runs in a
 // fresh worker process per file, forked by a helper process that the first call starts; its
 // result comes back through shared memory, an Error it throws comes back as thrown, and a
