@@ -74,6 +74,22 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
   // "end_header" in another case ends nothing for Assimp, which read on and looped at the end
   // of the file (fuzzing).
   refuse("upper.ply", "ply\nformat ascii 1.0\nend_headEr\n", {"upper.ply", "end_header line"});
+  // A second vertex or face element: Assimp sized its arrays by the first and wrote the second
+  // past their end (valgrind: invalid writes; fuzzing: ASan's heap checks failed later).
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  const std::string indices = "property list uchar int vertex_indices\n";
+  refuse("two-vertex.ply",
+         "ply\nformat ascii 1.0\nelement vertex 2\n" + xyz + "element vertex 6\n" + xyz +
+             "end_header\n0 0 0\n1 0 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n2 2 2\n",
+         {"two-vertex.ply", "header line 7", "a second vertex element"});
+  refuse("two-face.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\n" + xyz + "element face 1\n" + indices +
+             "element Face 5\n" + indices + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+         {"two-face.ply", "header line 9", "a second face element"});
+  refuse("strips-and-faces.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\n" + xyz + "element tristrips 1\n" + indices +
+             "element face 5\n" + indices + "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+         {"strips-and-faces.ply", "header line 9", "a second face element"});
   // Faces cut off by the end of the file after a garbled header line: Assimp's reader
   // returns them empty, called polygons, and its triangulation aborted on an assertion
   // (fuzzing; tests/data/fuzz/mesh-ply/empty-faces-called-polygons.ply).

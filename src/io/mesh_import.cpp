@@ -55,7 +55,10 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
 // without an "end_header" line and allocates what an element count claims. Each element takes
 // at least one byte of the file, so a count beyond its size is a lie. "element" is compared
 // without case, as a header Assimp still parses ("elemeNt", found by fuzzing) must be checked;
-// "end_header" with it, as Assimp reads nothing else as the header's end.
+// "end_header" with it, as Assimp reads nothing else as the header's end. Assimp 5.2 sizes
+// its vertex and face arrays by the first element of each kind and writes a later one's into
+// them past their end (heap overflows under valgrind; a corrupted heap when fuzzing): one
+// vertex element and one face or tristrips element at most.
 void checkPlyHeader(const std::filesystem::path& file, const char* data, std::size_t size) {
   const std::string head(data, std::min<std::size_t>(size, 1 << 16));
   if (head.rfind("ply", 0) != 0) throw Error(file.string(), "", "not a PLY file (no \"ply\" line)");
@@ -65,6 +68,7 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
   };
   std::istringstream lines(head);
   std::string line;
+  bool vertices = false, faces = false;
   for (int number = 1; std::getline(lines, line); ++number) {
     std::istringstream words(line);
     std::string keyword, name, countText;
@@ -83,6 +87,15 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
       throw Error(file.string(), "header line " + std::to_string(number),
                   "claims " + countText.substr(0, 40) + " " + name.substr(0, 40) +
                       " elements in a file of " + std::to_string(size) + " bytes");
+    const std::string kind = lower(name);
+    bool& seen = kind == "vertex" ? vertices : faces;
+    if (kind == "vertex" || kind == "face" || kind == "tristrips") {
+      if (seen)
+        throw Error(file.string(), "header line " + std::to_string(number),
+                    "a second " + std::string(kind == "vertex" ? "vertex" : "face") +
+                        " element (one of each is read)");
+      seen = true;
+    }
   }
   throw Error(file.string(), "header", "the PLY header has no end_header line (truncated?)");
 }
