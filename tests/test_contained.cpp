@@ -344,19 +344,17 @@ TEST(Contained, GisLayersAndRastersReadInTheChildAreTheOnesReadHere) {
   EXPECT_FALSE(isRaster(ss + "ss64ne_Water_Line.shp"));
 }
 
-// The helper killed between two files (by the user, or the kernel out of memory): the next
-// file starts a new one and is read.
 // GDCM reads a DICOM series in a worker: two slices (the fuzz corpus's seed, split into its
 // files), rescaled by slope 2 and intercept −1024, are the same volume read here and there.
 TEST(Contained, ADicomSeriesReadInTheChildIsTheOneReadHere) {
-  const std::filesystem::path folder =
-      std::filesystem::temp_directory_path() / ("cutaway-dicom-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(folder);
   std::ifstream in(CUTAWAY_TEST_DATA "/fuzz/volume-dicom/valid-two-slices-explicit",
                    std::ios::binary);
   const std::string seed{std::istreambuf_iterator<char>(in), {}};
   const std::size_t split = seed.find(fuzz::kPartSeparator);
   ASSERT_NE(split, std::string::npos);
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("cutaway-dicom-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
   std::ofstream(folder / "1.dcm", std::ios::binary) << seed.substr(0, split);
   std::ofstream(folder / "2.dcm", std::ios::binary)
       << seed.substr(split + fuzz::kPartSeparator.size());
@@ -373,6 +371,8 @@ TEST(Contained, ADicomSeriesReadInTheChildIsTheOneReadHere) {
   EXPECT_EQ(here.maxValue, there.maxValue);
 }
 
+// The helper killed between two files (by the user, or the kernel out of memory): the next
+// file starts a new one and is read.
 TEST(Contained, AKilledHelperIsStartedAgain) {
   run("test-pattern", "3");  // the helper is running
   std::vector<pid_t> children;  // this process's, from /proc/PID/stat's ppid

@@ -208,8 +208,17 @@ TEST(Frame, AnOnReadPassRunsWhenItsTargetIsReadOnceAFrame) {
   EXPECT_EQ(frame.read(picture, 1), std::vector<float>(16, 2.0f));
   EXPECT_EQ(resolves, 1);
   frame.execute();
+  const gl::Framebuffer mine = gl::Framebuffer::create();  // the caller's, kept
+  glBindFramebuffer(GL_FRAMEBUFFER, mine.id());
+  glViewport(1, 2, 3, 4);
   (void)frame.texture(aov);
   EXPECT_EQ(resolves, 2);
+  GLint bound = 0, viewport[4];
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  EXPECT_EQ(GLuint(bound), mine.id());
+  EXPECT_EQ(viewport[2], 3);
   EXPECT_EQ(frame.timings().size(), 1u);  // the resolve is untimed
 
   Frame wrong(4, 4, gl::ContextInfo{});
@@ -220,9 +229,23 @@ TEST(Frame, AnOnReadPassRunsWhenItsTargetIsReadOnceAFrame) {
   wrong.addPass({.name = "user", .reads = {a}, .writes = {b}, .run = [](const PassContext&) {}});
   test::expectError([&] { wrong.execute(); },
                     {"user", "reads \"a\", which only a pass run on read-back writes"});
+  Frame later(4, 4, gl::ContextInfo{});
+  const Target c = later.declare("c", {.format = GL_R32F});
+  const Target d = later.declare("d", {.format = GL_R32F});
+  later.addPass({.name = "draw", .writes = {c}, .run = [](const PassContext&) {}});
+  later.addPass({.name = "aov",
+                 .reads = {c},
+                 .writes = {d},
+                 .run = [](const PassContext&) {},
+                 .onRead = true});
+  later.addPass({.name = "over", .writes = {c}, .run = [](const PassContext&) {}});
+  test::expectError([&] { later.execute(); },
+                    {"over", "writes \"c\", which an earlier pass run on read-back uses"});
 }
 
-// A compute pass writes its target as an image; the next pass and the read-back see it.
+// A compute pass writes its target as an image; the next pass and the read-back see it. (On
+// llvmpipe, which runs each dispatch to its end, a missing barrier would still pass; the GPU
+// jump flooding tests run the same path on a GPU.)
 TEST(Frame, AComputePassWritesItsTargetAsAnImage) {
   test::glContext();
   Frame frame(5, 3, gl::ContextInfo{});

@@ -11,7 +11,8 @@
 //   texture units   0–7 belong to the pass that is drawing (a full-screen pass's inputs, bound
 //                   right before its draw); 8 and up are allocated here, for what programs of
 //                   several techniques read in the same draw (the geometry pass).
-//   image units     all allocated here.
+//   image units     0 belongs to the pass that is running (a compute pass's output, bound
+//                   right before its dispatch); 1 and up are allocated here.
 //   uniform blocks  0 is the frame's (frame/frame_uniforms.glsl); the rest allocated here.
 //   storage blocks  all allocated here.
 //   uniform locations  0–63 belong to the program's own stages (a geometry kind's vertex and
@@ -48,7 +49,7 @@ class Bindings {
   GLuint allocate(const std::string& prefix, const std::string& name, GLuint& next, int count,
                   GLint limit);
   std::map<std::string, std::string> defines_;
-  GLuint nextTextureUnit_ = 8, nextImageUnit_ = 0, nextUniformBlock_ = 1, nextStorageBlock_ = 0,
+  GLuint nextTextureUnit_ = 8, nextImageUnit_ = 1, nextUniformBlock_ = 1, nextStorageBlock_ = 0,
          nextLocation_ = 64;
 };
 

@@ -211,6 +211,7 @@ void Frame::execute() {
     // Per target: written by a pass of every frame, or only by an `onRead` pass.
     enum class Written : char { No, Always, OnRead };
     std::vector<Written> written(targets_.size(), Written::No);
+    std::vector<bool> usedOnRead(targets_.size(), false);  // by an onRead pass so far
     for (auto& pass : passes_) {
       for (const Target r : pass.desc.reads) {
         const TargetData& t = target(r, pass.desc.name);
@@ -223,8 +224,16 @@ void Frame::execute() {
                       "reads \"" + t.name + "\", which only a pass run on read-back writes");
       }
       prepare(pass);  // validates the written handles
-      for (const Target w : pass.desc.writes)
+      for (const Target w : pass.desc.writes) {
+        if (!pass.desc.onRead && usedOnRead[std::size_t(w.index_)])
+          throw Error("frame", pass.desc.name,
+                      "writes \"" + targets_[std::size_t(w.index_)].name +
+                          "\", which an earlier pass run on read-back uses");
         written[std::size_t(w.index_)] = pass.desc.onRead ? Written::OnRead : Written::Always;
+      }
+      if (pass.desc.onRead)
+        for (const auto& list : {pass.desc.reads, pass.desc.writes})
+          for (const Target t : list) usedOnRead[std::size_t(t.index_)] = true;
     }
     prepared_ = true;
   }
@@ -260,17 +269,21 @@ void Frame::run(const Pass& pass) const {
 }
 
 void Frame::runOnRead(Target t) const {
-  bool ran = false;
   for (std::size_t i = 0; i < pending_.size(); ++i) {
     const PassDesc& desc = passes_[i].desc;
     if (!pending_[i] || std::find(desc.writes.begin(), desc.writes.end(), t) == desc.writes.end())
       continue;
     pending_[i] = false;
     for (const Target r : desc.reads) runOnRead(r);
+    GLint draw = 0, read = 0, viewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    glGetIntegerv(GL_VIEWPORT, viewport);
     run(passes_[i]);
-    ran = true;
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read));
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
   }
-  if (ran) glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 std::vector<PassTiming> Frame::timings() {

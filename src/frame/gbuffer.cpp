@@ -183,7 +183,7 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
   addChannelsPass(f);
 }
 
-// The channels' AOVs in a pass of their own: with the composite's seven outputs they would
+// The channels' AOVs in a pass of their own: with the aovs pass's six outputs they would
 // exceed the eight draw buffers an implementation may stop at (llvmpipe does).
 void GBuffer::addChannelsPass(Frame& f) {
   if (channels_.empty()) return;

@@ -235,7 +235,8 @@ void Renderer::Impl::buildFrame() {
                                       true);
                    }});
   }
-  // 6. The composite: the samples resolved, the overlays blended, the AOVs copied.
+  // 6. The composite: the colour samples resolved, the overlays blended (the AOVs are copied
+  //    when read).
   gbuffer.addCompositePass(frame, std::move(overlays));
   // 7. The kinds' passes over the final colour (volumes ray cast up to the opaque depth), then
   //    the translucent layers, lines of what lies behind them included.

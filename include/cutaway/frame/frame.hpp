@@ -72,7 +72,8 @@ struct PassDesc {
   // Runs not in `execute` but when one of its targets is read back (`read`, `texture` from
   // outside the passes), at most once per `execute`: for resolves that only AOVs and
   // inspectors use, which a frame that only shows its picture skips. Untimed. Only other
-  // such passes may read what it writes.
+  // such passes may read what it writes, and no later pass of every frame may write what it
+  // reads or writes (it would see that pass's result, not the one before).
   bool onRead = false;
 };
 
@@ -105,7 +106,10 @@ class Frame {
   // The passes' names in execution order.
   std::vector<std::string> passNames() const;
 
-  // A target's texture, after the `onRead` passes that write it have run for this frame.
+  // A target's texture, after the `onRead` passes that write it have run for this frame. Running
+  // one changes what a pass changes (program, texture units, switches) but the framebuffer
+  // bindings and the viewport, which come back; a pass that draws may not call it for a target
+  // it did not declare.
   const gl::Texture& texture(Target target) const;
   const TargetDesc& desc(Target target) const;
   // A single-sample target's texels as floats, `channels` (1: red, 3: RGB, 4: RGBA) per

@@ -7,7 +7,7 @@
 #include "cone.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 2) uniform isampler2D uAnchors;
-layout(binding = 0, r32i) uniform writeonly iimage2D uNext;
+layout(binding = 0, r32i) uniform writeonly iimage2D uNext;  // the pass's own unit (frame/bindings.hpp)
 layout(location = 1) uniform int uStep;
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);

@@ -1,6 +1,6 @@
 // The cutaway surface from a seed (Burns08 §5, Burns11 §5.1): the region of interest's rear
 // hull as window depth and local angles in two n×n targets, turned into C(p) (eq. 4.2) by
-// jump flooding, in fragment passes or on the CPU, then dilated by one pixel for back faces
+// jump flooding, in compute passes or on the CPU, then dilated by one pixel for back faces
 // (Burns08 §4.2). The adaptive cutter seeds it from the scene's objects of interest; the
 // public AdaptiveCutawaySurface (cutaway/cutters/adaptive_surface.hpp) from another
 // application's depth texture.
