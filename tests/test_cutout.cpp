@@ -3,12 +3,14 @@
 // against the texture method, and the breakaway clip depth against CPU ray casting.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <random>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/core/noise.hpp"
 #include "cutaway/cutters/breakaway.hpp"
 #include "cutaway/cutters/cutout.hpp"
 #include "cutaway/geometry/main_axis.hpp"
@@ -187,6 +189,71 @@ TEST(CutoutJitter, PatternsStayInRangeAndSawtoothIsATriangleWave) {
   EXPECT_NEAR(cutoutPerturbation(w, saw, {0, 0, 0}), 1.0f, 1e-6f);
   EXPECT_NEAR(cutoutPerturbation(w, saw, {0.5f, 0, 0}), 0.0f, 1e-6f);
   EXPECT_NEAR(cutoutPerturbation(w, saw, {0.25f, 0, 0}), 0.5f, 1e-6f);
+}
+
+// The noise pattern's base (cutaway/core/noise.hpp) against what value noise is: lattice values
+// uniform in [0, 1) and independent of their neighbours (over 200² lattice points: mean ½ and
+// variance 1/12 within 4σ, neighbour correlations under 4/√N, a χ² of ten bins under its
+// 0.1 % point), interpolated through them exactly, and C¹ across the cells (smoothstep's
+// slope vanishes on the lattice lines: a step ε off a line changes the value by ≤ 3ε²).
+TEST(CutoutJitter, TheNoiseIsSmoothValueNoiseOfIndependentUniformLatticeValues) {
+  constexpr int n = 200;
+  std::vector<double> v(n * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) v[std::size_t(j * n + i)] = latticeValue(i - n / 2, j - n / 2);
+  double mean = 0.0;
+  std::array<int, 10> bins{};
+  for (double x : v) {
+    mean += x;
+    ASSERT_GE(x, 0.0);
+    ASSERT_LT(x, 1.0);
+    ++bins[std::size_t(x * 10.0)];
+  }
+  mean /= double(v.size());
+  double variance = 0.0;
+  for (double x : v) variance += (x - mean) * (x - mean);
+  variance /= double(v.size());
+  auto correlation = [&](int di, int dj) {
+    double sum = 0.0;
+    int count = 0;
+    for (int j = 0; j + dj < n; ++j)
+      for (int i = 0; i + di < n; ++i, ++count)
+        sum += (v[std::size_t(j * n + i)] - mean) * (v[std::size_t((j + dj) * n + i + di)] - mean);
+    return sum / count / variance;
+  };
+  double chi2 = 0.0;
+  const double expected = double(v.size()) / 10.0;
+  for (int b : bins) chi2 += (b - expected) * (b - expected) / expected;
+  const double sigma = std::sqrt(1.0 / 12.0 / double(v.size()));
+  std::printf(
+      "lattice values: mean %.5f, variance %.5f (1/12 = %.5f), chi2 %.2f, correlations "
+      "%.4f %.4f %.4f\n",
+      mean, variance, 1.0 / 12.0, chi2, correlation(1, 0), correlation(0, 1), correlation(1, 1));
+  EXPECT_NEAR(mean, 0.5, 4.0 * sigma);
+  EXPECT_NEAR(variance, 1.0 / 12.0, 0.003);
+  EXPECT_LT(chi2, 27.88);  // χ²(9) at p = 0.001
+  for (const auto [di, dj] : {std::pair{1, 0}, {0, 1}, {1, 1}, {2, 0}, {0, 2}})
+    EXPECT_LT(std::abs(correlation(di, dj)), 4.0 / n) << di << "," << dj;
+
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-50.0f, 50.0f);
+  const float eps = 0.01f;
+  double worstOnLattice = 0.0, worstSlope = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    const int i = int(std::floor(u(rng))), j = int(std::floor(u(rng)));
+    const float y = u(rng);
+    worstOnLattice = std::max(
+        worstOnLattice, double(std::abs(valueNoise(float(i), float(j)) - latticeValue(i, j))));
+    const float at = valueNoise(float(i), y);
+    worstSlope = std::max({worstSlope, double(std::abs(valueNoise(float(i) + eps, y) - at)),
+                           double(std::abs(valueNoise(float(i) - eps, y) - at))});
+  }
+  std::printf(
+      "value noise: on the lattice off by %.2e; a step of %.2f off a lattice line "
+      "changes it by %.2e (3ε² = %.2e)\n",
+      worstOnLattice, eps, worstSlope, 3.0 * eps * eps);
+  EXPECT_EQ(worstOnLattice, 0.0);
+  EXPECT_LE(worstSlope, 3.0 * eps * eps + 1e-5);
 }
 
 namespace {
