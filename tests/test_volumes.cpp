@@ -68,6 +68,17 @@ class VolumeTest : public ::testing::Test {
     return dir_ / (name + ".json");
   }
 
+  // One volume on black, 96² pixels seen orthographically along −z over [−0.8, 0.8]², no
+  // feature lines: what the closed-form checks look at.
+  Scene alongZ(const std::string& volume) {
+    return parseScene(R"({"resolution": [96, 96], "samples": 1, "background": [0, 0, 0],
+      "style": {"name": "gooch", "lines": false},
+      "camera": {"projection": "orthographic", "height": 1.6, "eye": [0, 0, 4], "target": [0, 0, 0]},
+      "volumes": [)" + volume +
+                          "]}",
+                      "along-z.json", dir_);
+  }
+
   Scene scene(const std::string& volumes, const std::string& rest = "") {
     const std::string text = R"({"resolution": [96, 72], "samples": 1, "background": [0, 0, 0],
       "style": {"name": "gooch", "lines": false},
@@ -411,16 +422,10 @@ TEST_F(VolumeTest, TheMaximumModeShowsTheLargestValueAlongEachRay) {
   const fs::path file = volume("gauss", 48, 1.0f, [&](glm::vec3 p) {
     return std::exp(-k * glm::dot(p - centre, p - centre));
   });
-  const Scene s = parseScene(
-      R"({"resolution": [96, 96], "samples": 1, "background": [0, 0, 0],
-          "style": {"name": "gooch", "lines": false},
-          "camera": {"projection": "orthographic", "height": 1.6, "eye": [0, 0, 4],
-                     "target": [0, 0, 0]},
-          "volumes": [{"name": "gauss", "file": ")" +
-          file.string() + R"(", "mode": "maximum", "shading": false, "transferFunction": [
-            {"value": 0, "color": [1, 1, 1], "opacity": 0},
-            {"value": 1, "color": [1, 1, 1], "opacity": 1}]}]})",
-      "mip.json", dir_);
+  const Scene s = alongZ(R"({"name": "gauss", "file": ")" + file.string() +
+                         R"(", "mode": "maximum", "shading": false, "transferFunction": [
+                           {"value": 0, "color": [1, 1, 1], "opacity": 0},
+                           {"value": 1, "color": [1, 1, 1], "opacity": 1}]})");
   Renderer renderer(s, test::glContext().info());
   renderer.render();
   const Rgba8Image color = renderer.readColor();
@@ -469,17 +474,12 @@ class VolumeClosedForm : public VolumeTest {
       return p.x < -0.99f && p.y < -0.99f && p.z < -0.99f ? 0.0f : 1.0f;
     });
     const std::string a = std::to_string(alpha);
-    const Scene s = parseScene(
-        R"({"resolution": [96, 96], "samples": 1, "background": [0, 0, 0],
-            "style": {"name": "gooch", "lines": false},
-            "camera": {"projection": "orthographic", "height": 1.6, "eye": [0, 0, 4],
-                       "target": [0, 0, 0]},
-            "volumes": [{"name": "slab", "file": ")" +
-            file.string() + R"(", "shading": false, "opacityDistance": 1, "sampleDistance": )" +
-            std::to_string(sampleDistance) + R"(, "jitter": )" + (jitter ? "true" : "false") +
-            R"(, "transferFunction": [{"value": 0, "color": [1, 1, 1], "opacity": )" + a +
-            R"(}, {"value": 1, "color": [1, 1, 1], "opacity": )" + a + R"(}]}]})",
-        "slab.json", dir_);
+    const Scene s =
+        alongZ(R"({"name": "slab", "file": ")" + file.string() +
+               R"(", "shading": false, "opacityDistance": 1, "sampleDistance": )" +
+               std::to_string(sampleDistance) + R"(, "jitter": )" + (jitter ? "true" : "false") +
+               R"(, "transferFunction": [{"value": 0, "color": [1, 1, 1], "opacity": )" + a +
+               R"(}, {"value": 1, "color": [1, 1, 1], "opacity": )" + a + R"(}]})");
     Renderer renderer(s, test::glContext().info());
     renderer.render();
     return {aov(renderer.readAovs(), "volumeOpacity"), renderer.readColor()};
