@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
+
 #include <unistd.h>
+#include <cstring>
 
 #include <filesystem>
 #include <fstream>
@@ -40,6 +42,57 @@ const std::string kPlyHeader =
     "0 0 0\n1 0 0\n0 1 0\n";
 
 }  // namespace
+
+// The lists in a PLY's data against the bytes left: Assimp allocated what a face's count
+// claimed (34 GB for an ASCII "9999…3"; fuzzing). Binary files of either byte order, with
+// normals and an element Assimp does not read, still load.
+TEST(MeshImport, PlyListsLongerThanTheFileAreRefused) {
+  const auto refuse = [](const std::string& name, const std::string& text,
+                         std::initializer_list<std::string> parts) {
+    const std::filesystem::path file = plyFile(name, text);
+    test::expectError([&] { importMeshNodes(file); }, parts);
+    std::filesystem::remove(file);
+  };
+  refuse("long-ascii.ply", kPlyHeader + "99999999999999999999 0 1 2\n",
+         {"long-ascii.ply", "face 0", "a list of 1e+20 values in the"});
+  refuse("negative.ply", kPlyHeader + "-3 0 1 2\n", {"negative.ply", "face 0", "a list of -3"});
+  // Binary: four vertices of x, y, z and normals, an edge, four faces; little- and big-endian.
+  const auto binary = [](bool big, std::uint32_t secondCount) {
+    std::string out = std::string("ply\nformat binary_") + (big ? "big" : "little") +
+                      "_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                      "element edge 1\nproperty int vertex1\nproperty int vertex2\n"
+                      "element face 4\nproperty list uint int vertex_indices\nend_header\n";
+    const auto put = [&](std::uint32_t v) {
+      for (int b = 0; b < 4; ++b) out += char(v >> (8 * (big ? 3 - b : b)) & 0xFF);
+    };
+    const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (const auto& c : corners)
+      for (int k = 0; k < 6; ++k) {
+        const float f = k < 3 ? c[k] : 0.0f;
+        std::uint32_t bits;
+        std::memcpy(&bits, &f, 4);
+        put(bits);
+      }
+    put(0), put(1);
+    const std::uint32_t faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (int f = 0; f < 4; ++f) {
+      put(f == 1 ? secondCount : 3);
+      for (std::uint32_t v : faces[f]) put(v);
+    }
+    return out;
+  };
+  for (const bool big : {false, true}) {
+    const std::filesystem::path file = plyFile(big ? "big.ply" : "little.ply", binary(big, 3));
+    const auto nodes = importMeshNodes(file);
+    std::filesystem::remove(file);
+    ASSERT_EQ(nodes.size(), 1u);
+    EXPECT_EQ(nodes[0].mesh.triangles.size(), 4u) << big;
+  }
+  refuse("long-binary.ply", binary(false, 0xFFFFFFF0u),
+         {"long-binary.ply", "face 1", "a list of 4294967280 values in the 44 bytes left"});
+  refuse("long-big.ply", binary(true, 1000u), {"long-big.ply", "face 1", "a list of 1000 values"});
+}
 
 // Issue 16's crashes and hangs in Assimp's PLY path and its gzip messages: each a one-line
 // error naming the file.

@@ -312,7 +312,8 @@ struct DicomSpec {
   std::string orientation = "0\\1\\0\\0\\0\\-1";  // along a row +y, down a column −z
   std::string spacing = "0.5\\0.75";              // between rows, between columns
   std::string slope = "2", intercept = "-1024";
-  std::string frames;  // NumberOfFrames, when not empty
+  std::string frames;       // NumberOfFrames, when not empty
+  std::string recognition;  // ACR-NEMA's RecognitionCode (0008,0010), when not empty
   std::uint16_t rows = 6, columns = 8;
   bool implicit = false;  // Implicit VR Little Endian instead of Explicit
   bool image = true;      // false: no image pixel module, like a structured report
@@ -343,6 +344,7 @@ void writeDicom(const fs::path& file, const DicomSpec& s, int instance) {
   putDicom(ds, 0x0008, 0x0016, "UI", "1.2.840.10008.5.1.4.1.1.2");  // CT Image Storage
   putDicom(ds, 0x0008, 0x0018, "UI", s.series + "." + std::to_string(instance));
   putDicom(ds, 0x0008, 0x0060, "CS", "CT");
+  if (!s.recognition.empty()) putDicom(ds, 0x0008, 0x0010, "SH", s.recognition);
   putDicom(ds, 0x0020, 0x000D, "UI", "1.2.826.0.1.3680043.2.1125.0");
   if (!s.series.empty()) putDicom(ds, 0x0020, 0x000E, "UI", s.series);
   putDicom(ds, 0x0020, 0x0013, "IS", std::to_string(instance));
@@ -1666,6 +1668,12 @@ TEST_F(VolumeImportTest, DicomBadInput) {
               {"2 series", "(none) (1 image)"});
   expectError([&] { importVolume(series([](DicomSpec&) {}), {.maxVoxels = 100}); },
               {"8×6×3 = 144 voxels exceed the limit of 100"});
+  // A RecognitionCode that is not ACR-NEMA's: GDCM asserted and aborted (fuzzing;
+  // tests/data/fuzz/volume-dicom). ACR-NEMA's own is read.
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.recognition = "CT-SCAN"; })); },
+              {"s1.dcm", "(0008,0010) RecognitionCode \"CT-SCAN \" is not ACR-NEMA's"});
+  EXPECT_EQ(importVolume(series([](DicomSpec& s) { s.recognition = "ACR-NEMA 2.0"; })).dims,
+            glm::ivec3(8, 6, 3));
 
   // No images at all.
   fs::create_directories(dir_ / "empty");

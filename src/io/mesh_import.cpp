@@ -51,6 +51,87 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
                                   m.c4, m.d1, m.d2, m.d3, m.d4));
 }
 
+// The layout a PLY header declares, as far as the list counts in its data need it.
+struct PlyProperty {
+  int bytes = 0;       // a scalar's size, or a list's items' (0: a type Assimp rejects)
+  int countBytes = 0;  // a list's count's size; 0 for a scalar
+  bool signedCount = false;
+};
+struct PlyElement {
+  std::string name;
+  double count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+// The size of a PLY type; `integer`: of an integer type only (a list's count).
+int plyTypeBytes(const std::string& type, bool integer = false) {
+  static const std::pair<const char*, int> kTypes[] = {
+      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  for (const auto& [name, bytes] : kTypes)
+    if (type == name) return integer && (type[0] == 'f' || type[0] == 'd') ? 0 : bytes;
+  return 0;
+}
+
+// Assimp allocates what each list in the data claims before reading it ("9999…3" indices in
+// an ASCII face: 34 GB; fuzzing). In ASCII a list item takes at least a byte, in binary its
+// type's size, so a list longer than the bytes left is a lie. Walks the elements the header
+// declared; stops, leaving the rest to Assimp, where the data ends or a type is not known.
+void checkPlyLists(const std::filesystem::path& file, const char* data, std::size_t size,
+                   std::size_t at, const std::string& format,
+                   const std::vector<PlyElement>& elements) {
+  const bool ascii = format == "ascii", big = format == "binary_big_endian";
+  if (!ascii && !big && format != "binary_little_endian") return;
+  auto refuse = [&](const PlyElement& e, double instance, double count) {
+    char claimed[32];
+    std::snprintf(claimed, sizeof claimed, "%.15g", count);
+    throw Error(file.string(), e.name.substr(0, 40) + " " + std::to_string(std::uint64_t(instance)),
+                "a list of " + std::string(claimed) + " values in the " +
+                    std::to_string(size - at) + " bytes left");
+  };
+  std::size_t begin = 0;
+  auto token = [&] {  // past the next ASCII word, which starts at `begin`; false at the end
+    while (at < size && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
+    begin = at;
+    while (at < size && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
+    return at > begin;
+  };
+  for (const PlyElement& e : elements)
+    for (double i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        if (p.bytes == 0) return;
+        if (p.countBytes == 0) {  // a scalar
+          if (ascii ? !token() : size - at < std::size_t(p.bytes)) return;
+          if (!ascii) at += std::size_t(p.bytes);
+          continue;
+        }
+        double count = 0;
+        if (ascii) {
+          if (!token()) return;
+          count = std::strtod(
+              std::string(data + begin, std::min<std::size_t>(at - begin, 400)).c_str(), nullptr);
+        } else {
+          if (size - at < std::size_t(p.countBytes)) return;
+          std::uint32_t raw = 0;
+          for (int b = 0; b < p.countBytes; ++b)
+            raw |= std::uint32_t(static_cast<unsigned char>(data[at + std::size_t(b)]))
+                   << (8 * (big ? p.countBytes - 1 - b : b));
+          at += std::size_t(p.countBytes);
+          count = raw;
+          if (p.signedCount && raw >> (8 * p.countBytes - 1))
+            count = double(raw) - std::ldexp(1.0, 8 * p.countBytes);
+        }
+        if (!(count >= 0) || count * (ascii ? 1 : p.bytes) > double(size - at)) refuse(e, i, count);
+        if (ascii) {
+          for (double k = 0; k < count; ++k)
+            if (!token()) return;
+        } else {
+          at += std::size_t(count) * std::size_t(p.bytes);
+        }
+      }
+}
+
 // A PLY file's header, checked before Assimp reads it: Assimp's reader loops forever on a header
 // without an "end_header" line and allocates what an element count claims. Each element takes
 // at least one byte of the file, so a count beyond its size is a lie. "element" is compared
@@ -58,7 +139,7 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
 // "end_header" with it, as Assimp reads nothing else as the header's end. Assimp 5.2 sizes
 // its vertex and face arrays by the first element of each kind and writes a later one's into
 // them past their end (heap overflows under valgrind; a corrupted heap when fuzzing): one
-// vertex element and one face or tristrips element at most.
+// vertex element and one face or tristrips element at most. Then the data's lists.
 void checkPlyHeader(const std::filesystem::path& file, const char* data, std::size_t size) {
   const std::string head(data, std::min<std::size_t>(size, 1 << 16));
   if (head.rfind("ply", 0) != 0) throw Error(file.string(), "", "not a PLY file (no \"ply\" line)");
@@ -67,7 +148,8 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
     return w;
   };
   std::istringstream lines(head);
-  std::string line;
+  std::string line, format;
+  std::vector<PlyElement> elements;
   bool vertices = false, faces = false;
   for (int number = 1; std::getline(lines, line); ++number) {
     std::istringstream words(line);
@@ -75,7 +157,25 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
     if (!(words >> keyword)) continue;
     // Assimp ends the header only at "end_header" as written ("end_headEr" made it read on
     // and loop at the end of the file; fuzzing), but takes "elemeNt" for an element.
-    if (keyword == "end_header" && !(words >> name)) return;
+    if (keyword == "end_header" && !(words >> name)) {
+      const std::streamoff end = lines.tellg();
+      checkPlyLists(file, data, size, end < 0 ? size : std::size_t(end), format, elements);
+      return;
+    }
+    if (lower(keyword) == "format") words >> format;
+    if (lower(keyword) == "property" && !elements.empty()) {
+      std::string type, countType, itemType;
+      words >> type;
+      PlyProperty p;
+      if (lower(type) == "list" && words >> countType >> itemType) {
+        p.countBytes = plyTypeBytes(countType, true);
+        p.signedCount = countType.find('u') == std::string::npos;
+        p.bytes = p.countBytes ? plyTypeBytes(itemType) : 0;
+      } else {
+        p.bytes = plyTypeBytes(type);
+      }
+      elements.back().properties.push_back(p);
+    }
     if (lower(keyword) != "element") continue;
     // The count as written: its value may be beyond every integer type (fuzzing).
     char* end = nullptr;
@@ -87,6 +187,7 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
       throw Error(file.string(), "header line " + std::to_string(number),
                   "claims " + countText.substr(0, 40) + " " + name.substr(0, 40) +
                       " elements in a file of " + std::to_string(size) + " bytes");
+    elements.push_back({name, count, {}});
     const std::string kind = lower(name);
     bool& seen = kind == "vertex" ? vertices : faces;
     if (kind == "vertex" || kind == "face" || kind == "tristrips") {

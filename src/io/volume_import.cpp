@@ -1703,7 +1703,8 @@ class DicomWalker {
  private:
   static constexpr std::uint32_t kUndefined = 0xFFFFFFFFu;
   static constexpr std::uint32_t kItem = 0xFFFEE000u, kItemEnd = 0xFFFEE00Du,
-                                 kSequenceEnd = 0xFFFEE0DDu, kPixelData = 0x7FE00010u;
+                                 kSequenceEnd = 0xFFFEE0DDu, kPixelData = 0x7FE00010u,
+                                 kRecognitionCode = 0x00080010u;
   struct Element {
     std::uint32_t tag, length;
     bool sequence;  // SQ, or UN / implicit of undefined length: items follow
@@ -1791,6 +1792,19 @@ class DicomWalker {
       if (e.tag == kPixelData && depth == 0) {
         encapsulated = e.length == kUndefined;
         if (!encapsulated) nativePixelData = e.length;
+      }
+      // GDCM reads a Recognition Code as text and asserts (aborts) unless it is ACR-NEMA's.
+      if (e.tag == kRecognitionCode && depth == 0 && e.length != 0) {
+        if (e.sequence || e.length == kUndefined)
+          where_.fail("(0008,0010) RecognitionCode is not a text value");
+        bound(e.length, end);
+        std::string code(std::min<std::uint32_t>(e.length, 8), '\0');
+        read(code.data(), code.size());
+        if (code.rfind("ACR-NEMA", 0) != 0 && code.rfind("ACRNEMA", 0) != 0)
+          where_.fail("(0008,0010) RecognitionCode " + inQuotes(code) +
+                      " is not ACR-NEMA's (\"ACR-NEMA\" or \"ACRNEMA\")");
+        skip(e.length - code.size(), end);
+        continue;
       }
       if (e.length == kUndefined) {
         if (e.sequence)
