@@ -1,8 +1,11 @@
 // libFuzzer's entry for the fuzz targets (fuzz_targets.hpp), the target named by the
-// environment variable CUTAWAY_FUZZ_TARGET (scripts/fuzz sets it).
+// environment variable CUTAWAY_FUZZ_TARGET (scripts/fuzz sets it). A target's dictionary is
+// tests/fuzz/<target>.dict when there is one (JSON for the scene and GeoJSON, glTF for GLB).
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "fuzz_targets.hpp"
 
@@ -26,14 +29,25 @@ const cutaway::fuzz::Target& target() {
 }  // namespace
 
 // CUTAWAY_FUZZ_TARGET=list: the targets and their seeds, one per line (for scripts/fuzz).
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
+// Otherwise the target's dictionary joins the arguments, which libFuzzer parses after this.
+extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
   const char* name = std::getenv("CUTAWAY_FUZZ_TARGET");
   if (name && std::string(name) == "list") {
     for (const auto& t : cutaway::fuzz::targets())
       std::printf("%s\t%s\n", t.name.c_str(), t.seeds.c_str());
     std::exit(0);
   }
-  target();
+  const std::string dictionary = CUTAWAY_FUZZ_DIR "/" + target().name + ".dict";
+  bool given = false;
+  for (int i = 1; i < *argc; ++i) given = given || std::string((*argv)[i]).starts_with("-dict=");
+  if (!given && std::filesystem::exists(dictionary)) {
+    static std::vector<char*> arguments(*argv, *argv + *argc);
+    static std::string flag = "-dict=" + dictionary;
+    arguments.push_back(flag.data());
+    arguments.push_back(nullptr);
+    *argc += 1;
+    *argv = arguments.data();
+  }
   return 0;
 }
 
