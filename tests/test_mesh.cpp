@@ -56,6 +56,13 @@ TEST(MeshImport, PlyListsLongerThanTheFileAreRefused) {
   refuse("long-ascii.ply", kPlyHeader + "99999999999999999999 0 1 2\n",
          {"long-ascii.ply", "face 0", "a list of 1e+20 values in the"});
   refuse("negative.ply", kPlyHeader + "-3 0 1 2\n", {"negative.ply", "face 0", "a list of -3"});
+  // A property of a type Assimp does not know: Assimp ends the element's layout there and still
+  // reads the faces (fuzzing).
+  refuse("unknown-type.ply",
+         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property flo@t z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+         "0 0 0\n1 0 0\n0 1 0\n99999999999 0 1 2\n",
+         {"unknown-type.ply", "face 0", "a list of 99999999999 values"});
   // Binary: four vertices of x, y, z and normals, an edge, four faces; little- and big-endian.
   const auto binary = [](bool big, std::uint32_t secondCount) {
     std::string out = std::string("ply\nformat binary_") + (big ? "big" : "little") +

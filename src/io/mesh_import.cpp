@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -53,7 +54,7 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
 
 // The layout a PLY header declares, as far as the list counts in its data need it.
 struct PlyProperty {
-  int bytes = 0;       // a scalar's size, or a list's items' (0: a type Assimp rejects)
+  int bytes = 0;       // a scalar's size, or a list's items'
   int countBytes = 0;  // a list's count's size; 0 for a scalar
   bool signedCount = false;
 };
@@ -61,6 +62,7 @@ struct PlyElement {
   std::string name;
   double count = 0;
   std::vector<PlyProperty> properties;
+  bool closed = false;  // past a property of a type Assimp does not know
 };
 
 // The size of a PLY type; `integer`: of an integer type only (a list's count).
@@ -77,7 +79,7 @@ int plyTypeBytes(const std::string& type, bool integer = false) {
 // Assimp allocates what each list in the data claims before reading it ("9999…3" indices in
 // an ASCII face: 34 GB; fuzzing). In ASCII a list item takes at least a byte, in binary its
 // type's size, so a list longer than the bytes left is a lie. Walks the elements the header
-// declared; stops, leaving the rest to Assimp, where the data ends or a type is not known.
+// declared, laid out as Assimp takes them, until the data ends.
 void checkPlyLists(const std::filesystem::path& file, const char* data, std::size_t size,
                    std::size_t at, const std::string& format,
                    const std::vector<PlyElement>& elements) {
@@ -90,25 +92,30 @@ void checkPlyLists(const std::filesystem::path& file, const char* data, std::siz
                 "a list of " + std::string(claimed) + " values in the " +
                     std::to_string(size - at) + " bytes left");
   };
-  std::size_t begin = 0;
-  auto token = [&] {  // past the next ASCII word, which starts at `begin`; false at the end
-    while (at < size && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
+  // ASCII: one instance per line, as Assimp reads them; `token` moves past the line's next word.
+  std::size_t begin = 0, lineEnd = 0;
+  auto token = [&] {
+    while (at < lineEnd && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
     begin = at;
-    while (at < size && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
+    while (at < lineEnd && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
     return at > begin;
   };
   for (const PlyElement& e : elements)
-    for (double i = 0; i < e.count; ++i)
+    for (double i = 0; i < e.count; ++i) {
+      if (ascii) {
+        if (at >= size) return;
+        const void* newline = std::memchr(data + at, '\n', size - at);
+        lineEnd = newline ? std::size_t(static_cast<const char*>(newline) - data) : size;
+      }
       for (const PlyProperty& p : e.properties) {
-        if (p.bytes == 0) return;
         if (p.countBytes == 0) {  // a scalar
-          if (ascii ? !token() : size - at < std::size_t(p.bytes)) return;
+          if (ascii ? !token() : size - at < std::size_t(p.bytes)) break;
           if (!ascii) at += std::size_t(p.bytes);
           continue;
         }
         double count = 0;
         if (ascii) {
-          if (!token()) return;
+          if (!token()) break;
           count = std::strtod(
               std::string(data + begin, std::min<std::size_t>(at - begin, 400)).c_str(), nullptr);
         } else {
@@ -124,12 +131,14 @@ void checkPlyLists(const std::filesystem::path& file, const char* data, std::siz
         }
         if (!(count >= 0) || count * (ascii ? 1 : p.bytes) > double(size - at)) refuse(e, i, count);
         if (ascii) {
-          for (double k = 0; k < count; ++k)
-            if (!token()) return;
+          for (double k = 0; k < count && token(); ++k) {
+          }
         } else {
           at += std::size_t(count) * std::size_t(p.bytes);
         }
       }
+      if (ascii) at = lineEnd + 1;
+    }
 }
 
 // A PLY file's header, checked before Assimp reads it: Assimp's reader loops forever on a header
@@ -163,7 +172,9 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
       return;
     }
     if (lower(keyword) == "format") words >> format;
-    if (lower(keyword) == "property" && !elements.empty()) {
+    // A property of a type Assimp does not know ends its element's properties, as Assimp
+    // skips that line and takes the element's layout to end there.
+    if (lower(keyword) == "property" && !elements.empty() && !elements.back().closed) {
       std::string type, countType, itemType;
       words >> type;
       PlyProperty p;
@@ -174,7 +185,10 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
       } else {
         p.bytes = plyTypeBytes(type);
       }
-      elements.back().properties.push_back(p);
+      if (p.bytes == 0)
+        elements.back().closed = true;
+      else
+        elements.back().properties.push_back(p);
     }
     if (lower(keyword) != "element") continue;
     // The count as written: its value may be beyond every integer type (fuzzing).
