@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 
 #include <filesystem>
 #include <fstream>
@@ -63,6 +65,24 @@ TEST(MeshImport, PlyListsLongerThanTheFileAreRefused) {
          "property flo@t z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
          "0 0 0\n1 0 0\n0 1 0\n99999999999 0 1 2\n",
          {"unknown-type.ply", "face 0", "a list of 99999999999 values"});
+  // Data that ends early: Assimp parses its last line again for every instance left, so that
+  // line's first word became the face's count (fuzzing).
+  refuse("stale.ply",
+         "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+         "0 0 0\n99999999999 1 0\n",
+         {"stale.ply", "face 0", "a list of 99999999999 values"});
+  // Lines ended by carriage returns alone, as Assimp cuts them too: the tetrahedron loads.
+  {
+    std::ifstream in(CUTAWAY_TEST_DATA "/fuzz/mesh-ply/valid-tetra.ply", std::ios::binary);
+    std::string text{std::istreambuf_iterator<char>(in), {}};
+    std::replace(text.begin(), text.end(), '\n', '\r');
+    const std::filesystem::path file = plyFile("cr.ply", text);
+    const auto nodes = importMeshNodes(file);
+    std::filesystem::remove(file);
+    ASSERT_EQ(nodes.size(), 1u);
+    EXPECT_EQ(nodes[0].mesh.triangles.size(), 4u);
+  }
   // Binary: four vertices of x, y, z and normals, an edge, four faces; little- and big-endian.
   const auto binary = [](bool big, std::uint32_t secondCount) {
     std::string out = std::string("ply\nformat binary_") + (big ? "big" : "little") +

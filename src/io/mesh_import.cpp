@@ -76,6 +76,32 @@ int plyTypeBytes(const std::string& type, bool integer = false) {
   return 0;
 }
 
+// Lines as Assimp's IOStreamBuffer::getNextLine cuts them: a line ends at \n, \r, \0 or \f, and
+// a call that starts on such a character first skips past the next \n (so \r\n is one break).
+// Past the end there is no next line (Assimp then parses its last line again).
+class PlyLines {
+ public:
+  PlyLines(const char* data, std::size_t size, std::size_t at = 0)
+      : data_(data), size_(size), at_(at) {}
+  bool next(std::size_t& begin, std::size_t& end) {
+    if (at_ < size_ && isEnd(data_[at_])) {
+      while (at_ < size_ && data_[at_] != '\n') ++at_;
+      ++at_;
+    }
+    if (at_ >= size_) return false;
+    begin = at_;
+    while (at_ < size_ && !isEnd(data_[at_])) ++at_;
+    end = at_++;
+    return true;
+  }
+  std::size_t at() const { return std::min(at_, size_); }
+
+ private:
+  static bool isEnd(char c) { return c == '\n' || c == '\r' || c == '\0' || c == '\f'; }
+  const char* data_;
+  std::size_t size_, at_;
+};
+
 // Assimp allocates what each list in the data claims before reading it ("9999…3" indices in
 // an ASCII face: 34 GB; fuzzing). In ASCII a list item takes at least a byte, in binary its
 // type's size, so a list longer than the bytes left is a lie. Walks the elements the header
@@ -93,19 +119,32 @@ void checkPlyLists(const std::filesystem::path& file, const char* data, std::siz
                     std::to_string(size - at) + " bytes left");
   };
   // ASCII: one instance per line, as Assimp reads them; `token` moves past the line's next word.
-  std::size_t begin = 0, lineEnd = 0;
+  // Assimp parses the lists of the elements it knows; it skips the others' lines.
+  std::size_t begin = 0, lineBegin = 0, lineEnd = 0;
   auto token = [&] {
     while (at < lineEnd && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
     begin = at;
     while (at < lineEnd && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
     return at > begin;
   };
-  for (const PlyElement& e : elements)
+  PlyLines lines(data, size, at);
+  bool read = false;
+  for (const PlyElement& e : elements) {
+    std::string kind = e.name;
+    for (char& c : kind) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const bool parsed = kind == "vertex" || kind == "face" || kind == "tristrips" ||
+                        kind == "edge" || kind == "material" || kind == "texturefile";
     for (double i = 0; i < e.count; ++i) {
+      bool stale = false;
       if (ascii) {
-        if (at >= size) return;
-        const void* newline = std::memchr(data + at, '\n', size - at);
-        lineEnd = newline ? std::size_t(static_cast<const char*>(newline) - data) : size;
+        stale = !lines.next(lineBegin, lineEnd);
+        if (stale && !read) return;
+        read = true;
+        at = lineBegin;
+        if (!parsed) {
+          if (stale) break;
+          continue;
+        }
       }
       for (const PlyProperty& p : e.properties) {
         if (p.countBytes == 0) {  // a scalar
@@ -137,8 +176,9 @@ void checkPlyLists(const std::filesystem::path& file, const char* data, std::siz
           at += std::size_t(count) * std::size_t(p.bytes);
         }
       }
-      if (ascii) at = lineEnd + 1;
+      if (stale) break;  // the later instances parse the same line again
     }
+  }
 }
 
 // A PLY file's header, checked before Assimp reads it: Assimp's reader loops forever on a header
@@ -156,19 +196,19 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
     for (char& c : w) c = char(std::tolower(static_cast<unsigned char>(c)));
     return w;
   };
-  std::istringstream lines(head);
-  std::string line, format;
+  PlyLines lines(head.data(), head.size());
+  std::string format;
   std::vector<PlyElement> elements;
   bool vertices = false, faces = false;
-  for (int number = 1; std::getline(lines, line); ++number) {
-    std::istringstream words(line);
+  std::size_t lineBegin = 0, lineEnd = 0;
+  for (int number = 1; lines.next(lineBegin, lineEnd); ++number) {
+    std::istringstream words(head.substr(lineBegin, lineEnd - lineBegin));
     std::string keyword, name, countText;
     if (!(words >> keyword)) continue;
     // Assimp ends the header only at "end_header" as written ("end_headEr" made it read on
     // and loop at the end of the file; fuzzing), but takes "elemeNt" for an element.
     if (keyword == "end_header" && !(words >> name)) {
-      const std::streamoff end = lines.tellg();
-      checkPlyLists(file, data, size, end < 0 ? size : std::size_t(end), format, elements);
+      checkPlyLists(file, data, size, lines.at(), format, elements);
       return;
     }
     if (lower(keyword) == "format") words >> format;
