@@ -1660,6 +1660,9 @@ TEST_F(VolumeImportTest, DicomBadInput) {
               {"(0028,0030) PixelSpacing", "not positive"});
   expectError([&] { importVolume(series([](DicomSpec& s) { s.slope = "two"; })); },
               {"(0028,1053) RescaleSlope", "expected 1 finite number, got \"two\""});
+  // GDCM asserted (aborted) on a slope of 0 (fuzzing; tests/data/fuzz/volume-dicom).
+  expectError([&] { importVolume(series([](DicomSpec& s) { s.slope = "0.0"; })); },
+              {"s1.dcm", "(0028,1053) RescaleSlope", "is 0"});
   expectError(
       [&] { importVolume(series([](DicomSpec& s) { s.frames = "2"; })); },
       {"s1.dcm", "(0028,0008) NumberOfFrames", "\"2\" frames: only single-frame images are read"});

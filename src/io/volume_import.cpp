@@ -2004,6 +2004,8 @@ std::optional<DicomSlice> readDicomHeader(const fs::path& path, const std::strin
   if (!(ps[0] > 0.0 && ps[1] > 0.0)) kSpacing.at(file).fail("not positive");
   s.pixelSpacing = {ps[0], ps[1]};
   if (dicomText(ds, kSlope)) s.scaling.slope = dicomNumbers(ds, kSlope, 1, file)[0];
+  // Every value would be the intercept; GDCM asserts (aborts) on it (fuzzing).
+  if (s.scaling.slope == 0.0) kSlope.at(file).fail("is 0");
   if (dicomText(ds, kIntercept)) s.scaling.inter = dicomNumbers(ds, kIntercept, 1, file)[0];
   return s;
 }
