@@ -365,7 +365,7 @@ void writeDicom(const fs::path& file, const DicomSpec& s, int instance) {
   putDicom(ds, 0x0028, 0x0102, "US", us(15));
   putDicom(ds, 0x0028, 0x0103, "US", us(1));
   putDicom(ds, 0x0028, 0x1052, "DS", s.intercept);
-  putDicom(ds, 0x0028, 0x1053, "DS", s.slope);
+  if (!s.slope.empty()) putDicom(ds, 0x0028, 0x1053, "DS", s.slope);
   std::vector<std::int16_t> pixels = s.pixels;
   pixels.resize(std::size_t(s.rows) * s.columns);
   putDicom(ds, 0x7FE0, 0x0010, "OW", encode(pixels));
@@ -1663,6 +1663,9 @@ TEST_F(VolumeImportTest, DicomBadInput) {
   // GDCM asserted (aborted) on a slope of 0 (fuzzing; tests/data/fuzz/volume-dicom).
   expectError([&] { importVolume(series([](DicomSpec& s) { s.slope = "0.0"; })); },
               {"s1.dcm", "(0028,1053) RescaleSlope", "is 0"});
+  expectError(
+      [&] { importVolume(series([](DicomSpec& s) { s.slope = ""; })); },
+      {"s1.dcm", "(0028,1053) RescaleSlope", "missing beside (0028,1052) RescaleIntercept"});
   expectError(
       [&] { importVolume(series([](DicomSpec& s) { s.frames = "2"; })); },
       {"s1.dcm", "(0028,0008) NumberOfFrames", "\"2\" frames: only single-frame images are read"});

@@ -2003,8 +2003,12 @@ std::optional<DicomSlice> readDicomHeader(const fs::path& path, const std::strin
   const std::vector<double> ps = dicomNumbers(ds, kSpacing, 2, file);
   if (!(ps[0] > 0.0 && ps[1] > 0.0)) kSpacing.at(file).fail("not positive");
   s.pixelSpacing = {ps[0], ps[1]};
+  // The two come as a pair (PS3.3 C.11.1, Modality LUT); GDCM asserts (aborts) on a slope of
+  // 0, which also makes every value the intercept, and on an MR image's intercept without its
+  // slope (fuzzing).
+  if (dicomText(ds, kIntercept) && !dicomText(ds, kSlope))
+    kSlope.at(file).fail("missing beside (0028,1052) RescaleIntercept");
   if (dicomText(ds, kSlope)) s.scaling.slope = dicomNumbers(ds, kSlope, 1, file)[0];
-  // Every value would be the intercept; GDCM asserts (aborts) on it (fuzzing).
   if (s.scaling.slope == 0.0) kSlope.at(file).fail("is 0");
   if (dicomText(ds, kIntercept)) s.scaling.inter = dicomNumbers(ds, kIntercept, 1, file)[0];
   return s;
