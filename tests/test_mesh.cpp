@@ -38,6 +38,14 @@ std::filesystem::path plyFile(const std::string& name, const std::string& text) 
   return path;
 }
 
+// Importing the file `name` holding `text` fails with an error mentioning every one of `parts`.
+void refuse(const std::string& name, const std::string& text,
+            std::initializer_list<std::string> parts) {
+  const std::filesystem::path file = plyFile(name, text);
+  test::expectError([&] { importMeshNodes(file); }, parts);
+  std::filesystem::remove(file);
+}
+
 const std::string kPlyHeader =
     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
     "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
@@ -49,12 +57,6 @@ const std::string kPlyHeader =
 // claimed (34 GB for an ASCII "9999…3"; fuzzing). Binary files of either byte order, with
 // normals and an element Assimp does not read, still load.
 TEST(MeshImport, PlyListsLongerThanTheFileAreRefused) {
-  const auto refuse = [](const std::string& name, const std::string& text,
-                         std::initializer_list<std::string> parts) {
-    const std::filesystem::path file = plyFile(name, text);
-    test::expectError([&] { importMeshNodes(file); }, parts);
-    std::filesystem::remove(file);
-  };
   refuse("long-ascii.ply", kPlyHeader + "99999999999999999999 0 1 2\n",
          {"long-ascii.ply", "face 0", "a list of 1e+20 values in the"});
   refuse("negative.ply", kPlyHeader + "-3 0 1 2\n", {"negative.ply", "face 0", "a list of -3"});
@@ -124,12 +126,6 @@ TEST(MeshImport, PlyListsLongerThanTheFileAreRefused) {
 // Issue 16's crashes and hangs in Assimp's PLY path and its gzip messages: each a one-line
 // error naming the file.
 TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
-  const auto refuse = [](const std::string& name, const std::string& text,
-                         std::initializer_list<std::string> parts) {
-    const std::filesystem::path file = plyFile(name, text);
-    test::expectError([&] { importMeshNodes(file); }, parts);
-    std::filesystem::remove(file);
-  };
   // A face index beyond the vertices (crashed in Assimp's post-processing and in our normals).
   refuse("index.ply", kPlyHeader + "3 0 1 100000\n", {"index.ply"});
   // The first two header lines alone (Assimp's reader looped forever).
