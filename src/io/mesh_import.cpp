@@ -148,8 +148,12 @@ void checkPlyLists(const std::filesystem::path& file, const char* data, std::siz
       }
       for (const PlyProperty& p : e.properties) {
         if (p.countBytes == 0) {  // a scalar
-          if (ascii ? !token() : size - at < std::size_t(p.bytes)) break;
-          if (!ascii) at += std::size_t(p.bytes);
+          if (!ascii) {
+            if (size - at < std::size_t(p.bytes)) return;  // the data ends
+            at += std::size_t(p.bytes);
+          } else if (!token()) {
+            break;
+          }
           continue;
         }
         double count = 0;
