@@ -150,6 +150,9 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
   // "end_header" in another case ends nothing for Assimp, which read on and looped at the end
   // of the file (fuzzing).
   refuse("upper.ply", "ply\nformat ascii 1.0\nend_headEr\n", {"upper.ply", "end_header line"});
+  // Nor does "end_header" followed by a vertical tab (Assimp hung; fuzzing).
+  refuse("vtab.ply", kPlyHeader.substr(0, kPlyHeader.find("end_header")) + "end_header\v\n0 0 0\n",
+         {"vtab.ply", "end_header line"});
   // A second vertex or face element: Assimp sized its arrays by the first and wrote the second
   // past their end (valgrind: invalid writes; fuzzing: ASan's heap checks failed later).
   const std::string xyz = "property float x\nproperty float y\nproperty float z\n";

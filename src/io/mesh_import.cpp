@@ -206,12 +206,15 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
   bool vertices = false, faces = false;
   std::size_t lineBegin = 0, lineEnd = 0;
   for (int number = 1; lines.next(lineBegin, lineEnd); ++number) {
-    std::istringstream words(head.substr(lineBegin, lineEnd - lineBegin));
+    const std::string text = head.substr(lineBegin, lineEnd - lineBegin);
+    std::istringstream words(text);
     std::string keyword, name, countText;
     if (!(words >> keyword)) continue;
-    // Assimp ends the header only at "end_header" as written ("end_headEr" made it read on
-    // and loop at the end of the file; fuzzing), but takes "elemeNt" for an element.
-    if (keyword == "end_header" && !(words >> name)) {
+    // Assimp ends the header only at "end_header" as written, between spaces and tabs alone
+    // ("end_headEr" and "end_header\v" made it read on and loop at the end of the file;
+    // fuzzing), but takes "elemeNt" for an element.
+    const std::size_t first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
+    if (first != std::string::npos && text.substr(first, last - first + 1) == "end_header") {
       checkPlyLists(file, data, size, lines.at(), format, elements);
       return;
     }
