@@ -150,6 +150,10 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
   // "end_header" in another case ends nothing for Assimp, which read on and looped at the end
   // of the file (fuzzing).
   refuse("upper.ply", "ply\nformat ascii 1.0\nend_headEr\n", {"upper.ply", "end_header line"});
+  // An element whose name Assimp does not know takes its count from the name's digits.
+  refuse("digits.ply",
+         "ply\nformat ascii 1.0\nelement 66666666666666face 8\nproperty float x\nend_header\n0\n",
+         {"digits.ply", "header line 3", "an element named \"66666666666666face\""});
   // Nor does "end_header" followed by a vertical tab (Assimp hung; fuzzing).
   refuse("vtab.ply", kPlyHeader.substr(0, kPlyHeader.find("end_header")) + "end_header\v\n0 0 0\n",
          {"vtab.ply", "end_header line"});

@@ -248,7 +248,19 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
       throw Error(file.string(), "header line " + std::to_string(number),
                   "claims " + countText.substr(0, 40) + " " + name.substr(0, 40) +
                       " elements in a file of " + std::to_string(size) + " bytes");
-    elements.push_back({name, count, {}});
+    // Assimp's parser does not move past a name it does not know, and reads that element's
+    // count from the name's first digits ("666…face 8": 2³² − 1 faces, 68 GB; fuzzing).
+    double counted = count;
+    if (name != "vertex" && name != "face" && name != "tristrips" && name != "edge" &&
+        name != "material" && name != "TextureFile") {
+      const std::size_t digits = name.find_first_not_of("0123456789");
+      counted = std::strtod(name.substr(0, std::min<std::size_t>(digits, 400)).c_str(), nullptr);
+      if (counted > double(size))
+        throw Error(file.string(), "header line " + std::to_string(number),
+                    "an element named \"" + name.substr(0, 40) +
+                        "\", whose count Assimp reads from its name's digits");
+    }
+    elements.push_back({name, counted, {}});
     const std::string kind = lower(name);
     bool& seen = kind == "vertex" ? vertices : faces;
     if (kind == "vertex" || kind == "face" || kind == "tristrips") {
