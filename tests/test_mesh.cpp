@@ -67,6 +67,12 @@ TEST(MeshImport, PlyListsLongerThanTheFileAreRefused) {
          "property flo@t z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
          "0 0 0\n1 0 0\n0 1 0\n99999999999 0 1 2\n",
          {"unknown-type.ply", "face 0", "a list of 99999999999 values"});
+  // A number beyond 64 bits: Assimp's parser stopped inside it and read its other digits as the
+  // next word, a list's count (fuzzing).
+  refuse("long-number.ply",
+         kPlyHeader.substr(0, kPlyHeader.find("0 0 0")) +
+             "133333333333333333333333 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+         {"long-number.ply", "vertex 0", "a number of 24 digits, beyond 64 bits"});
   // Data that ends early: Assimp parses its last line again for every instance left, so that
   // line's first word became the face's count (fuzzing).
   refuse("stale.ply",

@@ -119,12 +119,23 @@ void checkPlyLists(const std::filesystem::path& file, const char* data, std::siz
                     std::to_string(size - at) + " bytes left");
   };
   // ASCII: one instance per line, as Assimp reads them; `token` moves past the line's next word.
-  // Assimp parses the lists of the elements it knows; it skips the others' lines.
+  // Assimp parses the lists of the elements it knows; it skips the others' lines. Its number
+  // parser stops inside an integer beyond 64 bits and takes the rest of the digits for the
+  // next word (a vertex's 24-digit x made its list count 333…; fuzzing): such numbers are
+  // refused.
   std::size_t begin = 0, lineBegin = 0, lineEnd = 0;
+  const PlyElement* element = nullptr;
+  double instance = 0;
   auto token = [&] {
     while (at < lineEnd && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
     begin = at;
     while (at < lineEnd && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
+    std::size_t digits = begin + (at > begin && (data[begin] == '-' || data[begin] == '+'));
+    while (digits < at && std::isdigit(static_cast<unsigned char>(data[digits]))) ++digits;
+    if (digits - begin > 20)
+      throw Error(file.string(),
+                  element->name.substr(0, 40) + " " + std::to_string(std::uint64_t(instance)),
+                  "a number of " + std::to_string(digits - begin) + " digits, beyond 64 bits");
     return at > begin;
   };
   PlyLines lines(data, size, at);
@@ -134,7 +145,9 @@ void checkPlyLists(const std::filesystem::path& file, const char* data, std::siz
     for (char& c : kind) c = char(std::tolower(static_cast<unsigned char>(c)));
     const bool parsed = kind == "vertex" || kind == "face" || kind == "tristrips" ||
                         kind == "edge" || kind == "material" || kind == "texturefile";
+    element = &e;
     for (double i = 0; i < e.count; ++i) {
+      instance = i;
       bool stale = false;
       if (ascii) {
         stale = !lines.next(lineBegin, lineEnd);
