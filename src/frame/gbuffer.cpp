@@ -167,20 +167,26 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
   aovsProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                                               {GL_FRAGMENT_SHADER, "frame/aovs.frag"}},
                                    .defines = sampleDefines(samples_)});
-  const std::vector<Target> aovReads{normal_, position_, objectId_, depth_, cutMask_};
-  f.addPass({.name = "aovs",
-             .reads = aovReads,
-             .writes = {normal, position, viewDepth, objectId, depth, cutMask},
+  addResolvePass(f, "aovs", aovsProgram_, {normal_, position_, objectId_, depth_, cutMask_},
+                 {normal, position, viewDepth, objectId, depth, cutMask});
+  addChannelsPass(f);
+}
+
+// A full-screen pass run when its outputs are read: `reads` on texture units 0, 1, … in order.
+void GBuffer::addResolvePass(Frame& f, const std::string& name, const gl::Program& program,
+                             std::vector<Target> reads, std::vector<Target> writes) {
+  f.addPass({.name = name,
+             .reads = reads,
+             .writes = std::move(writes),
              .run =
-                 [this, &f, aovReads](const PassContext&) {
+                 [this, &f, &program, reads](const PassContext&) {
                    glDisable(GL_DEPTH_TEST);
-                   glUseProgram(aovsProgram_.id());
-                   for (std::size_t unit = 0; unit < aovReads.size(); ++unit)
-                     glBindTextureUnit(GLuint(unit), f.texture(aovReads[unit]).id());
+                   glUseProgram(program.id());
+                   for (std::size_t unit = 0; unit < reads.size(); ++unit)
+                     glBindTextureUnit(GLuint(unit), f.texture(reads[unit]).id());
                    fullscreen_.draw();
                  },
              .onRead = true});
-  addChannelsPass(f);
 }
 
 // The channels' AOVs in a pass of their own: with the aovs pass's six outputs they would
@@ -199,18 +205,7 @@ void GBuffer::addChannelsPass(Frame& f) {
                                                   {GL_FRAGMENT_SHADER, "frame/channels.frag"}},
                                        .defines = sampleDefines(samples_),
                                        .sources = {{"frame/channel_parts.glsl", parts + copy}}});
-  f.addPass({.name = "channels",
-             .reads = channelTargets_,
-             .writes = channelAovs_,
-             .run =
-                 [this, &f](const PassContext&) {
-                   glDisable(GL_DEPTH_TEST);
-                   glUseProgram(channelsProgram_.id());
-                   for (std::size_t unit = 0; unit < channelTargets_.size(); ++unit)
-                     glBindTextureUnit(GLuint(unit), f.texture(channelTargets_[unit]).id());
-                   fullscreen_.draw();
-                 },
-             .onRead = true});
+  addResolvePass(f, "channels", channelsProgram_, channelTargets_, channelAovs_);
 }
 
 }  // namespace cutaway

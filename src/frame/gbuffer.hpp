@@ -69,6 +69,8 @@ class GBuffer {
 
  private:
   void addChannelsPass(Frame& frame);
+  void addResolvePass(Frame& frame, const std::string& name, const gl::Program& program,
+                      std::vector<Target> reads, std::vector<Target> writes);
 
   std::vector<Channel> channels_;
   std::vector<Target> channelTargets_, channelAovs_;
