@@ -17,6 +17,7 @@
 #include "cutters/clip_surfaces/clip_surfaces.hpp"
 #include "gl_test_context.hpp"
 #include "render_aovs.hpp"
+#include "run_command.hpp"
 
 using namespace cutaway;
 using test::aov;
@@ -185,8 +186,7 @@ TEST(OffsetMap, DerivedGradientsAndOcclusion) {
 }
 
 TEST(OffsetMap, SixteenBitPngKeepsItsLevels) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "cutaway-offset16.png";
+  const std::filesystem::path file = test::scratchPath("clip", "offset16.png");
   std::vector<std::uint16_t> levels{0, 1, 257, 65535, 40000, 12345};
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
@@ -270,20 +270,24 @@ TEST(DepthSprite, ParityMatchesRayParityOnRandomPoints) {
 
 namespace {
 
+// Where writeTorus writes the torus: this test process's own file, as tests run in parallel.
+std::filesystem::path torusFile() {
+  return test::scratchPath("clip", "torus.obj");
+}
+
 // A torus (watertight, non-convex) clipped by a surface through its middle, seen from above.
 std::string torusScene(const std::string& surface, bool caps) {
   return R"({"resolution": [128, 96], "samples": 1, "style": {"name": "gooch", "lines": false},
     "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
     "objects": [{"name": "torus", "file": ")" +
-         std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") + R"("}],
+         torusFile().string() + R"("}],
     "cutters": {"clipSurfaces": {"caps": )" +
          (caps ? "true" : "false") + R"(, "surfaces": [)" + surface + "]}}}";
 }
 
 void writeTorus() {
   const Mesh m = torus();
-  std::FILE* f =
-      std::fopen((std::filesystem::temp_directory_path() / "cutaway-torus.obj").c_str(), "w");
+  std::FILE* f = std::fopen(torusFile().c_str(), "w");
   for (const auto& p : m.positions) std::fprintf(f, "v %.7g %.7g %.7g\n", p.x, p.y, p.z);
   for (const auto& t : m.triangles) std::fprintf(f, "f %u %u %u\n", t.x + 1, t.y + 1, t.z + 1);
   std::fclose(f);
@@ -604,7 +608,7 @@ TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {
 // §6.1: a diffuse map multiplies the cap colour where the cap shows, and nowhere else.
 TEST(ClipSurfaceGpu, DiffuseMapTintsOnlyTheCaps) {
   writeTorus();
-  const std::filesystem::path red = std::filesystem::temp_directory_path() / "cutaway-red.png";
+  const std::filesystem::path red = test::scratchPath("clip", "red.png");
   Rgba8Image img(2, 2);
   for (int i = 0; i < 4; ++i)
     img.pixels[std::size_t(i) * 4] = 255, img.pixels[std::size_t(i) * 4 + 3] = 255;
@@ -649,8 +653,7 @@ Scene litTorusScene(const std::string& style, const std::string& object, const s
           R"(, "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
           "camera": {"eye": [0.4, -2.2, 2.6], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 45},
           "objects": [{"name": "torus", )" +
-          object + R"("file": ")" +
-          std::string(std::filesystem::temp_directory_path() / "cutaway-torus.obj") +
+          object + R"("file": ")" + torusFile().string() +
           R"("}], "cutters": {"clipSurfaces": {"caps": true, )" + clip + R"("surfaces": [)" +
           surface + "]}}}",
       "torus.json", kData);
@@ -785,8 +788,7 @@ TEST(ClipSurfaceGpu, TheSolidTextureStaysWithTheMaterialAsTheViewMoves) {
             "lights": [{"type": "directional", "direction": [0.3, 0.5, -1], "space": "world"}],
             "camera": )") + camera + R"(,
             "objects": [{"name": "torus", "importance": 1, "file": ")" +
-                                       std::string(std::filesystem::temp_directory_path() /
-                                                   "cutaway-torus.obj") +
+                                       torusFile().string() +
                                        R"("}], "cutters": {"clipSurfaces": {"caps": true,
             "capStyle": {"solidTexture": true, "solidTextureScale": 6, "occlusion": 0},
             "surfaces": [)" + surface + "]}}}",
@@ -834,8 +836,7 @@ TEST(ClipSurfaceGpu, TheSolidTextureStaysWithTheMaterialAsTheViewMoves) {
 // Blinn-Phong of the cap colour times the map's colour, read bilinearly with repeat at the
 // pixel's T (eq. 2), for a 4 × 3 map of unlike colours repeated 2 × 2 times.
 TEST(ClipSurfaceGpu, TheDiffuseMapTintsEachCapPixelByItsTexel) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "cutaway-diffuse-4x3.png";
+  const std::filesystem::path file = test::scratchPath("clip", "diffuse-4x3.png");
   Rgba8Image map(4, 3);
   for (int i = 0; i < 12; ++i) {
     for (int k = 0; k < 3; ++k)

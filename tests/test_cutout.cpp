@@ -17,6 +17,7 @@
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
 #include "render_aovs.hpp"
+#include "run_command.hpp"
 
 using namespace cutaway;
 using test::aov;
@@ -288,8 +289,7 @@ class CutoutGpuCpu : public ::testing::TestWithParam<std::string> {};
 // GPU's distance AOV equals the C++ one at its position.
 TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
   const std::string jitter = GetParam();
-  const std::filesystem::path pattern =
-      std::filesystem::temp_directory_path() / "cutaway-test-perturbation.png";
+  const std::filesystem::path pattern = test::scratchPath("cutout", "test-perturbation.png");
   if (jitter == "image") {  // a small made-up pattern: diagonal gradient with a bright blob
     Rgba8Image img(8, 6);
     for (int y = 0; y < 6; ++y)
@@ -364,8 +364,7 @@ INSTANTIATE_TEST_SUITE_P(Patterns, CutoutGpuCpu,
 // plain frame is removed exactly where the displaced distance is positive; within 1% of L of
 // zero either way.
 TEST(Cutout, AnImageJitterDisplacesTheWedgeByItsGreyLevelAlongTheAxis) {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "cutaway-test-black-white.png";
+  const std::filesystem::path file = test::scratchPath("cutout", "test-black-white.png");
   Rgba8Image img(2, 1);
   img.at(1, 0)[0] = img.at(1, 0)[1] = img.at(1, 0)[2] = 255;
   img.at(0, 0)[3] = img.at(1, 0)[3] = 255;
