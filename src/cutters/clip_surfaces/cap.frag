@@ -52,24 +52,46 @@ float marble(vec3 p) {
   return 0.5 + 0.5 * sin(p.x + 6.0 * turbulence);
 }
 
+// The grid is linear between its vertices while the clip test of eq. 1 samples the map
+// bilinearly, so the two surfaces part by the map's curvature within a cell. Where a view ray
+// grazes the solid's rim, the grid's point can then lie outside the solid where the surface
+// that clipped the solid lies inside it: a pinhole in the cap. Two Newton steps along the view
+// ray onto f = 0 of eq. 1 (the relief's gradient gives f's), each at most the relief's depth
+// S_z, take the point that the clip test agrees with.
+vec3 onClipSurface(int i, vec3 x) {
+  vec3 d = normalize(x - viewRayOrigin(x)), n = clipSurfaceNormal(i);
+  vec3 u = uClipU[i].xyz, v = uClipV[i].xyz;
+  vec3 perS = uClipScale[i].x * u / dot(u, u), perT = uClipScale[i].y * v / dot(v, v);
+  for (int k = 0; k < 2; ++k) {
+    vec4 relief = clipRelief(i, clipSurfaceTexCoord(i, x));
+    float f = dot(x - uClipOrigin[i].xyz, n) + relief.r * uClipScale[i].z;
+    vec3 gradient = n + uClipScale[i].z * (relief.g * perS + relief.b * perT);
+    float slope = dot(gradient, d);
+    if (abs(slope) < 1e-6) break;
+    x -= clamp(f / slope, -uClipScale[i].z, uClipScale[i].z) * d;
+  }
+  return x;
+}
+
 void main() {
+  int i = uCapSurface;
+  vec3 x = onClipSurface(i, vWorldPosition);
   // The other cutters cut the cap with its object (an adaptive cutaway removes it in front of
   // its surface); the cap faces the viewer.
   vec3 cutPosition, cutNormal;
   int cutter;
-  CutFragment f = CutFragment(vWorldPosition, -clipSurfaceNormal(uCapSurface), true);
+  CutFragment f = CutFragment(x, -clipSurfaceNormal(i), true);
   if (cutFragment(uCutBy, f, cutPosition, cutNormal, cutter) == kDiscard) discard;
-  vec4 t = uCapToTexture * vec4(vWorldPosition, 1.0);
+  vec4 t = uCapToTexture * vec4(x, 1.0);
   bool inside = volumetricParityTest(t.xyz / t.w, uDepthComplexity);
   imageAtomicMax(uCapParity, ivec2(gl_FragCoord.xy), inside ? 2u : 1u);
   if (!inside) discard;
   // The cap of surface i bounds the clipped region where the other surfaces leave it: under a
   // union where none of them clips, under an intersection where all of them do.
   if (uClipCount.x > 1) {
-    bool others = clippedBySurfaces(vWorldPosition, uCapSurface);
+    bool others = clippedBySurfaces(x, i);
     if (uClipCount.y == 1 ? !others : others) discard;
   }
-  int i = uCapSurface;
   vec3 n = clipSurfaceNormal(i);
   vec4 relief = clipRelief(i, vST * uClipScale[i].xy);
   vec3 normal = -n;  // the cap faces the clipped side
@@ -80,13 +102,13 @@ void main() {
     normal = normalize(cross(ds, dt));
     if (dot(normal, n) > 0.0) normal = -normal;
   }
-  vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - vWorldPosition);
+  vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - x);
   if (dot(normal, toEye) < 0.0) normal = -normal;  // seen from the kept side through a gap
   vec3 base = uCapColor;
   if (uHasDiffuse != 0) base *= texture(uCapDiffuse, vST * uClipScale[i].xy).rgb;
-  if (uCapStyle.y != 0.0) base *= mix(0.55, 1.1, marble(vWorldPosition * uCapStyle.z));
+  if (uCapStyle.y != 0.0) base *= mix(0.55, 1.1, marble(x * uCapStyle.z));
   SurfacePoint s;
-  s.position = vWorldPosition;
+  s.position = x;
   s.normal = normal;
   s.toEye = toEye;
   s.baseColor = base;

@@ -2,6 +2,7 @@
 // relief maps, and the CPU side of the volumetric parity test (§5.3) with its ray-parity
 // reference. src/cutters/clip_surfaces/*.glsl evaluate the same per fragment.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "cutaway/core/noise.hpp"
@@ -153,13 +154,31 @@ bool volumetricParityTest(const VolumetricDepthSprite& vds, const glm::vec3& p) 
   const glm::vec4 t = vds.toTexture * glm::vec4(p, 1.0f);
   if (t.x < 0.0f || t.x >= 1.0f || t.y < 0.0f || t.y >= 1.0f || t.z < 0.0f || t.z >= 1.0f)
     return false;
-  const int x = std::min(int(t.x * float(vds.width)), vds.width - 1);
-  const int y = std::min(int(t.y * float(vds.height)), vds.height - 1);
-  int crossings = 0;
+  const auto layer = [&](int i, int x, int y) {
+    x = std::clamp(x, 0, vds.width - 1), y = std::clamp(y, 0, vds.height - 1);
+    return vds.layers[(std::size_t(i) * std::size_t(vds.height) + std::size_t(y)) *
+                          std::size_t(vds.width) +
+                      std::size_t(x)];
+  };
+  // Each layer bilinearly between the four texel centres around T where their rays cross as
+  // many layers (parity.glsl says why), else the texel containing T.
+  const float tx = t.x * float(vds.width) - 0.5f, ty = t.y * float(vds.height) - 0.5f;
+  const int x0 = int(std::floor(tx)), y0 = int(std::floor(ty));
+  const float wx = tx - float(x0), wy = ty - float(y0);
+  const int nx = std::min(int(t.x * float(vds.width)), vds.width - 1);
+  const int ny = std::min(int(t.y * float(vds.height)), vds.height - 1);
+  std::array<int, 4> count{};
   for (int i = 0; i < vds.depthComplexity; ++i)
-    crossings += vds.layers[(std::size_t(i) * std::size_t(vds.height) + std::size_t(y)) *
-                                std::size_t(vds.width) +
-                            std::size_t(x)] <= t.z;
+    for (int k = 0; k < 4; ++k) count[k] += layer(i, x0 + (k & 1), y0 + (k >> 1)) < 1.0f;
+  const bool sameSheets = count[0] == count[1] && count[0] == count[2] && count[0] == count[3];
+  int crossings = 0;
+  for (int i = 0; i < vds.depthComplexity; ++i) {
+    float depth = layer(i, nx, ny);
+    if (sameSheets && i < count[0])
+      depth = glm::mix(glm::mix(layer(i, x0, y0), layer(i, x0 + 1, y0), wx),
+                       glm::mix(layer(i, x0, y0 + 1), layer(i, x0 + 1, y0 + 1), wx), wy);
+    crossings += depth <= t.z;
+  }
   return crossings % 2 == 1;
 }
 

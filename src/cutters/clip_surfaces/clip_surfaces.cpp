@@ -133,6 +133,9 @@ DepthSpriteGpu buildDepthSprite(GLuint peelProgram, const GpuMesh& mesh, const g
   glTextureStorage3D(out.layers.id(), 1, GL_R32F, n, n, std::max(1, s.depthComplexity));
   glTextureParameteri(out.layers.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(out.layers.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  // The parity test gathers 2×2 texels; at the border it takes the edge's (the CPU mirror's clamp).
+  glTextureParameteri(out.layers.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(out.layers.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   if (layers.empty()) glClearTexImage(out.layers.id(), 0, GL_RED, GL_FLOAT, &empty);
   for (int i = 0; i < s.depthComplexity; ++i)
     glCopyImageSubData(layers[std::size_t(i)].id(), GL_TEXTURE_2D, 0, 0, 0, 0, out.layers.id(),
