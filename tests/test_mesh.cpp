@@ -163,6 +163,11 @@ TEST(MeshImport, BadPlyFilesAreRefusedWithoutCrashingOrHanging) {
   // Nor does "end_header" followed by a vertical tab (Assimp hung; fuzzing).
   refuse("vtab.ply", kPlyHeader.substr(0, kPlyHeader.find("end_header")) + "end_header\v\n0 0 0\n",
          {"vtab.ply", "end_header line"});
+  // A file that ends at "end_header" with no line end: after an unknown header line longer
+  // than it, Assimp read that line's tail with it, never matched it and looped (fuzzing).
+  refuse("ends-at-header.ply",
+         kPlyHeader.substr(0, kPlyHeader.find("end_header")) + "c xxxxxxxxx\nc\nend_header",
+         {"ends-at-header.ply", "the file ends at end_header"});
   // A second vertex or face element: Assimp sized its arrays by the first and wrote the second
   // past their end (valgrind: invalid writes; fuzzing: ASan's heap checks failed later).
   const std::string xyz = "property float x\nproperty float y\nproperty float z\n";

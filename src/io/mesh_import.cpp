@@ -228,6 +228,11 @@ void checkPlyHeader(const std::filesystem::path& file, const char* data, std::si
     // fuzzing), but takes "elemeNt" for an element.
     const std::size_t first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
     if (first != std::string::npos && text.substr(first, last - first + 1) == "end_header") {
+      // Assimp reads a last line without a line end over the line before it: after some
+      // unknown header lines it never matched "end_header" and looped (fuzzing).
+      if (lineEnd >= size)
+        throw Error(file.string(), "header line " + std::to_string(number),
+                    "the file ends at end_header, with no line end and no data (truncated?)");
       checkPlyLists(file, data, size, lines.at(), format, elements);
       return;
     }
