@@ -11,16 +11,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <regex>
-#include <sstream>
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
+#include "io/ply_reader.hpp"
 #include "io/wire_fields.hpp"
 
 namespace cutaway {
@@ -52,251 +50,26 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
                                   m.c4, m.d1, m.d2, m.d3, m.d4));
 }
 
-// The layout a PLY header declares, as far as the list counts in its data need it.
-struct PlyProperty {
-  int bytes = 0;       // a scalar's size, or a list's items'
-  int countBytes = 0;  // a list's count's size; 0 for a scalar
-  bool signedCount = false;
-};
-struct PlyElement {
-  std::string name;
-  double count = 0;
-  std::vector<PlyProperty> properties;
-  bool closed = false;  // past a property of a type Assimp does not know
-};
-
-// The size of a PLY type; `integer`: of an integer type only (a list's count).
-int plyTypeBytes(const std::string& type, bool integer = false) {
-  static const std::pair<const char*, int> kTypes[] = {
-      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (const auto& [name, bytes] : kTypes)
-    if (type == name) return integer && (type[0] == 'f' || type[0] == 'd') ? 0 : bytes;
-  return 0;
-}
-
-// Lines as Assimp's IOStreamBuffer::getNextLine cuts them: a line ends at \n, \r, \0 or \f, and
-// a call that starts on such a character first skips past the next \n (so \r\n is one break).
-// Past the end there is no next line (Assimp then parses its last line again).
-class PlyLines {
- public:
-  PlyLines(const char* data, std::size_t size, std::size_t at = 0)
-      : data_(data), size_(size), at_(at) {}
-  bool next(std::size_t& begin, std::size_t& end) {
-    if (at_ < size_ && isEnd(data_[at_])) {
-      while (at_ < size_ && data_[at_] != '\n') ++at_;
-      ++at_;
-    }
-    if (at_ >= size_) return false;
-    begin = at_;
-    while (at_ < size_ && !isEnd(data_[at_])) ++at_;
-    end = at_++;
-    return true;
-  }
-  std::size_t at() const { return std::min(at_, size_); }
-
- private:
-  static bool isEnd(char c) { return c == '\n' || c == '\r' || c == '\0' || c == '\f'; }
-  const char* data_;
-  std::size_t size_, at_;
-};
-
-// Assimp allocates what each list in the data claims before reading it ("9999…3" indices in
-// an ASCII face: 34 GB; fuzzing). In ASCII a list item takes at least a byte, in binary its
-// type's size, so a list longer than the bytes left is a lie. Walks the elements the header
-// declared, laid out as Assimp takes them, until the data ends.
-void checkPlyLists(const std::filesystem::path& file, const char* data, std::size_t size,
-                   std::size_t at, const std::string& format,
-                   const std::vector<PlyElement>& elements) {
-  const bool ascii = format == "ascii", big = format == "binary_big_endian";
-  if (!ascii && !big && format != "binary_little_endian") return;
-  auto refuse = [&](const PlyElement& e, double instance, double count) {
-    char claimed[32];
-    std::snprintf(claimed, sizeof claimed, "%.15g", count);
-    throw Error(file.string(), e.name.substr(0, 40) + " " + std::to_string(std::uint64_t(instance)),
-                "a list of " + std::string(claimed) + " values in the " +
-                    std::to_string(size - at) + " bytes left");
-  };
-  // ASCII: one instance per line, as Assimp reads them; `token` moves past the line's next word.
-  // Assimp parses the lists of the elements it knows; it skips the others' lines. Its number
-  // parser stops inside an integer beyond 64 bits and takes the rest of the digits for the
-  // next word (a vertex's 24-digit x made its list count 333…; fuzzing): such numbers are
-  // refused.
-  std::size_t begin = 0, lineBegin = 0, lineEnd = 0;
-  const PlyElement* element = nullptr;
-  double instance = 0;
-  auto token = [&] {
-    while (at < lineEnd && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
-    begin = at;
-    while (at < lineEnd && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
-    std::size_t digits = begin + (at > begin && (data[begin] == '-' || data[begin] == '+'));
-    while (digits < at && std::isdigit(static_cast<unsigned char>(data[digits]))) ++digits;
-    if (digits - begin > 20)
-      throw Error(file.string(),
-                  element->name.substr(0, 40) + " " + std::to_string(std::uint64_t(instance)),
-                  "a number of " + std::to_string(digits - begin) + " digits, beyond 64 bits");
-    return at > begin;
-  };
-  PlyLines lines(data, size, at);
-  bool read = false;
-  for (const PlyElement& e : elements) {
-    std::string kind = e.name;
-    for (char& c : kind) c = char(std::tolower(static_cast<unsigned char>(c)));
-    const bool parsed = kind == "vertex" || kind == "face" || kind == "tristrips" ||
-                        kind == "edge" || kind == "material" || kind == "texturefile";
-    element = &e;
-    for (double i = 0; i < e.count; ++i) {
-      instance = i;
-      bool stale = false;
-      if (ascii) {
-        stale = !lines.next(lineBegin, lineEnd);
-        if (stale && !read) return;
-        read = true;
-        at = lineBegin;
-        if (!parsed) {
-          if (stale) break;
-          continue;
-        }
-      }
-      for (const PlyProperty& p : e.properties) {
-        if (p.countBytes == 0) {  // a scalar
-          if (!ascii) {
-            if (size - at < std::size_t(p.bytes)) return;  // the data ends
-            at += std::size_t(p.bytes);
-          } else if (!token()) {
-            break;
-          }
-          continue;
-        }
-        double count = 0;
-        if (ascii) {
-          if (!token()) break;
-          count = std::strtod(
-              std::string(data + begin, std::min<std::size_t>(at - begin, 400)).c_str(), nullptr);
-        } else {
-          if (size - at < std::size_t(p.countBytes)) return;
-          std::uint32_t raw = 0;
-          for (int b = 0; b < p.countBytes; ++b)
-            raw |= std::uint32_t(static_cast<unsigned char>(data[at + std::size_t(b)]))
-                   << (8 * (big ? p.countBytes - 1 - b : b));
-          at += std::size_t(p.countBytes);
-          count = raw;
-          if (p.signedCount && raw >> (8 * p.countBytes - 1))
-            count = double(raw) - std::ldexp(1.0, 8 * p.countBytes);
-        }
-        if (!(count >= 0) || count * (ascii ? 1 : p.bytes) > double(size - at)) refuse(e, i, count);
-        if (ascii) {
-          for (double k = 0; k < count && token(); ++k) {
-          }
-        } else {
-          at += std::size_t(count) * std::size_t(p.bytes);
-        }
-      }
-      if (stale) break;  // the later instances parse the same line again
-    }
-  }
-}
-
-// A PLY file's header, checked before Assimp reads it: Assimp's reader loops forever on a header
-// without an "end_header" line and allocates what an element count claims. Each element takes
-// at least one byte of the file, so a count beyond its size is a lie. "element" is compared
-// without case, as a header Assimp still parses ("elemeNt", found by fuzzing) must be checked;
-// "end_header" with it, as Assimp reads nothing else as the header's end. Assimp 5.2 sizes
-// its vertex and face arrays by the first element of each kind and writes a later one's into
-// them past their end (heap overflows under valgrind; a corrupted heap when fuzzing): one
-// vertex element and one face or tristrips element at most. Then the data's lists.
-void checkPlyHeader(const std::filesystem::path& file, const char* data, std::size_t size) {
-  const std::string head(data, std::min<std::size_t>(size, 1 << 16));
-  if (head.rfind("ply", 0) != 0) throw Error(file.string(), "", "not a PLY file (no \"ply\" line)");
-  const auto lower = [](std::string w) {
-    for (char& c : w) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return w;
-  };
-  PlyLines lines(head.data(), head.size());
-  std::string format;
-  std::vector<PlyElement> elements;
-  bool vertices = false, faces = false;
-  std::size_t lineBegin = 0, lineEnd = 0;
-  for (int number = 1; lines.next(lineBegin, lineEnd); ++number) {
-    const std::string text = head.substr(lineBegin, lineEnd - lineBegin);
-    std::istringstream words(text);
-    std::string keyword, name, countText;
-    if (!(words >> keyword)) continue;
-    // Assimp ends the header only at "end_header" as written, between spaces and tabs alone
-    // ("end_headEr" and "end_header\v" made it read on and loop at the end of the file;
-    // fuzzing), but takes "elemeNt" for an element.
-    const std::size_t first = text.find_first_not_of(" \t"), last = text.find_last_not_of(" \t");
-    if (first != std::string::npos && text.substr(first, last - first + 1) == "end_header") {
-      // Assimp reads a last line without a line end over the line before it: after some
-      // unknown header lines it never matched "end_header" and looped (fuzzing).
-      if (lineEnd >= size)
-        throw Error(file.string(), "header line " + std::to_string(number),
-                    "the file ends at end_header, with no line end and no data (truncated?)");
-      checkPlyLists(file, data, size, lines.at(), format, elements);
-      return;
-    }
-    if (lower(keyword) == "format") words >> format;
-    // A property of a type Assimp does not know ends its element's properties, as Assimp
-    // skips that line and takes the element's layout to end there.
-    if (lower(keyword) == "property" && !elements.empty() && !elements.back().closed) {
-      std::string type, countType, itemType;
-      words >> type;
-      PlyProperty p;
-      if (lower(type) == "list" && words >> countType >> itemType) {
-        p.countBytes = plyTypeBytes(countType, true);
-        p.signedCount = countType.find('u') == std::string::npos;
-        p.bytes = p.countBytes ? plyTypeBytes(itemType) : 0;
-      } else {
-        p.bytes = plyTypeBytes(type);
-      }
-      if (p.bytes == 0)
-        elements.back().closed = true;
-      else
-        elements.back().properties.push_back(p);
-    }
-    if (lower(keyword) != "element") continue;
-    // The count as written: its value may be beyond every integer type (fuzzing).
-    char* end = nullptr;
-    const double count = words >> name >> countText ? std::strtod(countText.c_str(), &end) : -1.0;
-    if (countText.empty() || *end != '\0' || !(count >= 0.0))
-      throw Error(file.string(), "header line " + std::to_string(number),
-                  "an element needs a name and a count");
-    if (count > double(size))
-      throw Error(file.string(), "header line " + std::to_string(number),
-                  "claims " + countText.substr(0, 40) + " " + name.substr(0, 40) +
-                      " elements in a file of " + std::to_string(size) + " bytes");
-    // Assimp's parser does not move past a name it does not know, and reads that element's
-    // count from the name's first digits ("666…face 8": 2³² − 1 faces, 68 GB; fuzzing).
-    double counted = count;
-    if (name != "vertex" && name != "face" && name != "tristrips" && name != "edge" &&
-        name != "material" && name != "TextureFile") {
-      const std::size_t digits = name.find_first_not_of("0123456789");
-      counted = std::strtod(name.substr(0, std::min<std::size_t>(digits, 400)).c_str(), nullptr);
-      if (counted > double(size))
-        throw Error(file.string(), "header line " + std::to_string(number),
-                    "an element named \"" + name.substr(0, 40) +
-                        "\", whose count Assimp reads from its name's digits");
-    }
-    elements.push_back({name, counted, {}});
-    const std::string kind = lower(name);
-    bool& seen = kind == "vertex" ? vertices : faces;
-    if (kind == "vertex" || kind == "face" || kind == "tristrips") {
-      if (seen)
-        throw Error(file.string(), "header line " + std::to_string(number),
-                    "a second " + std::string(kind == "vertex" ? "vertex" : "face") +
-                        " element (one of each is read)");
-      seen = true;
-    }
-  }
-  throw Error(file.string(), "header", "the PLY header has no end_header line (truncated?)");
-}
-
 std::vector<char> readFile(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw Error(file.string(), "", "cannot read");
   return data;
+}
+
+// Keeps a mesh's normals from its file when each is finite and not zero (normalised), else
+// computes them all; whether it computed them.
+bool useOrComputeNormals(Mesh& m) {
+  bool valid = !m.normals.empty() && m.normals.size() == m.positions.size();
+  for (std::size_t i = 0; i < m.normals.size() && valid; ++i) {
+    const float len = glm::length(m.normals[i]);
+    valid = std::isfinite(len) && len > 1e-6f;
+    m.normals[i] /= len;
+  }
+  if (valid) return false;
+  m.normals.clear();
+  computeVertexNormals(m);
+  return true;
 }
 
 // One aiMesh as a cutaway Mesh: triangles only (points and lines were sorted out), normals
@@ -316,20 +89,10 @@ Mesh convert(const std::filesystem::path& file, const aiMesh& in, bool& normalsC
                         std::to_string(in.mNumVertices) + " vertices)");
     m.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
   }
-  bool valid = in.HasNormals();
-  if (valid) {
-    m.normals.reserve(in.mNumVertices);
-    for (unsigned i = 0; i < in.mNumVertices && valid; ++i) {
-      const glm::vec3 n(in.mNormals[i].x, in.mNormals[i].y, in.mNormals[i].z);
-      const float len = glm::length(n);
-      valid = std::isfinite(len) && len > 1e-6f;
-      m.normals.push_back(valid ? n / len : n);
-    }
-  }
-  if (!valid) {
-    computeVertexNormals(m);
-    normalsComputed = true;
-  }
+  if (in.HasNormals())
+    for (unsigned i = 0; i < in.mNumVertices; ++i)
+      m.normals.emplace_back(in.mNormals[i].x, in.mNormals[i].y, in.mNormals[i].z);
+  normalsComputed |= useOrComputeNormals(m);
   return m;
 }
 
@@ -404,9 +167,21 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   if (!format.empty()) format.erase(0, 1);
   std::transform(format.begin(), format.end(), format.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
-  if (gzip || format == "ply") {
+  if (format == "ply") {
     const std::vector<char> data = gzip ? readGzip(file) : readFile(file);
-    if (format == "ply") checkPlyHeader(file, data.data(), data.size());
+    ImportedNode node;
+    // "bunny.ply.gz" → "bunny"
+    node.name = (gzip ? file.stem().stem() : file.stem()).string();
+    node.mesh = readPly(file, data.data(), data.size());
+    node.mesh.report.normalsComputed = useOrComputeNormals(node.mesh);
+    node.mesh.report.droppedDegenerate = dropDegenerateTriangles(node.mesh);
+    if (node.mesh.triangles.empty())
+      throw Error(file.string(), "", "the file contains no triangles");
+    analyzeTopology(node.mesh);
+    return {std::move(node)};
+  }
+  if (gzip) {
+    const std::vector<char> data = readGzip(file);
     scene = importer.ReadFileFromMemory(data.data(), data.size(), flags, format.c_str());
   } else {
     if (format == "glb") checkGlbHeader(file);
