@@ -6,10 +6,12 @@
 #include <memory>
 
 #include "cutaway/gl/context.hpp"
+#include "test_label.hpp"
 
 namespace cutaway::test {
 
 inline gl::HeadlessContext& glContext() {
+  usesGl();
   static std::unique_ptr<gl::HeadlessContext> context = gl::HeadlessContext::create();
   return *context;
 }

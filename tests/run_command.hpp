@@ -12,6 +12,8 @@
 #include <iterator>
 #include <string>
 
+#include "test_label.hpp"
+
 namespace cutaway::test {
 
 struct Result {
@@ -20,6 +22,7 @@ struct Result {
 };
 
 inline Result runCommand(const std::string& command) {
+  usesGl();  // the programs render
   namespace fs = std::filesystem;
   const fs::path errFile =
       fs::temp_directory_path() / ("cutaway-test-err-" + std::to_string(::getpid()));

@@ -69,13 +69,14 @@ std::vector<std::string_view> words(std::string_view line) {
 }
 
 // Reads the data section value by value: ASCII as whitespace-separated words, binary in the
-// file's byte order. `place` names the instance being read in errors.
+// file's byte order. Errors name the element and instance being read.
 class DataReader {
  public:
   DataReader(const std::filesystem::path& file, Format format, const char* data, std::size_t size)
       : file_(file), format_(format), data_(data), size_(size) {}
 
-  std::string place;
+  const std::string* element = nullptr;
+  std::uint64_t instance = 0;
   std::size_t left() const { return size_ - at_; }
 
   double read(const ScalarType& t) {
@@ -104,7 +105,7 @@ class DataReader {
   }
 
   [[noreturn]] void fail(const std::string& reason) const {
-    throw Error(file_.string(), place, reason);
+    throw Error(file_.string(), element->substr(0, 40) + " " + std::to_string(instance), reason);
   }
 
  private:
@@ -118,7 +119,8 @@ class DataReader {
     if (at_ == begin) fail("the file ends early");
     const std::string_view word(data_ + begin, at_ - begin);
     double value = 0.0;
-    const char* first = word.data() + (word.front() == '+');
+    // from_chars takes no '+' sign.
+    const char* first = word.data() + (word.size() > 1 && word[0] == '+' && word[1] != '-');
     const auto [end, ec] = std::from_chars(first, word.data() + word.size(), value);
     if (ec == std::errc::result_out_of_range)
       fail("the number \"" + shorten(word) + "\" is out of range");
@@ -263,7 +265,7 @@ Mesh readPly(const std::filesystem::path& file, const char* data, std::size_t si
     if (e.properties.empty()) continue;  // instances of nothing: no bytes to read
     std::array<double, 6> v{};
     for (std::uint64_t n = 0; n < e.count; ++n) {
-      in.place = e.name.substr(0, 40) + " " + std::to_string(n);
+      in.element = &e.name, in.instance = n;
       for (std::size_t i = 0; i < e.properties.size(); ++i) {
         const Property& p = e.properties[i];
         if (!p.countType) {
