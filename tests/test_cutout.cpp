@@ -480,10 +480,14 @@ TEST(Cutout, WallsAreShownAndInteriorIsWhole) {
 // Rule 5's wall where the view ray leaves the wedge: each wall pixel's position is the ray's
 // exit from the intersection of the wedge's half-spaces (clipped here in the test's own
 // terms: the camera's ray through the pixel centre), its normal that exit plane's, and the
-// point lies within the cube.
-TEST(Cutout, TheWallLiesWhereTheViewRayLeavesTheWedge) {
-  const Scene cut =
-      parseScene(cubeScene(R"("cutout": {"angle": 100, "rotation": 20})"), "cube.json", kData);
+// point lies within the cube. With a set rotation (two planes), and with an axial range too
+// (four planes: the wedge's end walls as well).
+class CutoutWall : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(CutoutWall, LiesWhereTheViewRayLeavesTheWedge) {
+  const Scene cut = parseScene(cubeScene(R"("cutout": )" + GetParam()), "cube.json", kData);
+  ASSERT_EQ(cubeWedge(cut).planes.size(),
+            GetParam().find("axialRange") != std::string::npos ? 4u : 2u);
   const auto aovs = renderAovs(cut);
   const FloatImage &id = aov(aovs, "objectId"), &mask = aov(aovs, "cutMask"),
                    &position = aov(aovs, "position"), &normal = aov(aovs, "normal");
@@ -491,7 +495,7 @@ TEST(Cutout, TheWallLiesWhereTheViewRayLeavesTheWedge) {
   const Camera camera = cut.resolvedCamera();
   const glm::mat4 inverse =
       glm::inverse(camera.projectionMatrix(float(cut.width) / float(cut.height)) * camera.view());
-  int walls = 0, off = 0, turned = 0, outside = 0;
+  int walls = 0, endWalls = 0, off = 0, turned = 0, outside = 0;
   for (int y = 0; y < id.height; ++y)
     for (int x = 0; x < id.width; ++x) {
       if (id.at(x, y)[0] != 0.0f || mask.at(x, y)[0] != 1.0f) continue;
@@ -512,18 +516,28 @@ TEST(Cutout, TheWallLiesWhereTheViewRayLeavesTheWedge) {
       ASSERT_LT(exit, 1e29f) << "a wall pixel whose ray never leaves the wedge at " << x << ","
                              << y;
       const glm::vec3 p = glm::make_vec3(position.at(x, y));
+      endWalls += std::abs(glm::dot(exitNormal, wedge.axis)) > 0.99f;
       off += glm::length(p - (from + exit * dir)) > 2e-3f;
       turned += glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), exitNormal) < 0.999f;
       // The cube spans [0, 1.6] × [0, 1]².
       outside += glm::any(glm::lessThan(p, glm::vec3(-1e-3f))) ||
                  glm::any(glm::greaterThan(p, glm::vec3(1.6f, 1.0f, 1.0f) + 1e-3f));
     }
-  EXPECT_GT(walls, 150);
+  EXPECT_GT(walls, 100);
+  // An axial range's end planes show as walls too.
+  if (wedge.planes.size() == 4) EXPECT_GT(endWalls, 20);
   // Pixels whose ray grazes the wedge's edge may take the other plane.
   EXPECT_LE(off, walls / 100) << off << " of " << walls << " wall pixels off the exit point";
   EXPECT_LE(turned, walls / 100) << turned << " of " << walls << " wall normals off the exit plane";
   EXPECT_EQ(outside, 0);
+  std::printf("%s: %d wall pixels (%d end walls), %d off the exit point, %d turned\n",
+              GetParam().c_str(), walls, endWalls, off, turned);
 }
+
+INSTANTIATE_TEST_SUITE_P(Wedges, CutoutWall,
+                         ::testing::Values(R"({"angle": 100, "rotation": 20})",
+                                           R"({"angle": 100, "rotation": 20,
+                                               "axialRange": [0.25, 0.7]})"));
 
 // Diepstraten03 §4.3: the exterior drawn once per plane with a hardware clip plane shows the
 // same objects as the per-fragment method (which adds only the walls' shading).
