@@ -4,6 +4,8 @@
 // generated benchmark city of Table 1.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
@@ -14,6 +16,7 @@
 #include "cutaway/scene/scene.hpp"
 #include "gl_test_context.hpp"
 #include "render_aovs.hpp"
+#include "run_command.hpp"
 
 using namespace cutaway;
 using test::aov;
@@ -423,6 +426,52 @@ TEST(PipeRendering, WaterLiesAtItsLevelInItsFillColour) {
   EXPECT_EQ(outsideBore, 0);
   EXPECT_LE(worst, 1.0) << "expected " << expected.r * 255 << ", " << expected.g * 255 << ", "
                         << expected.b * 255;
+}
+
+// A GIS field mapped to radius and water level, end to end: a GeoJSON layer of two pipes
+// whose DIAM and LEVEL fields (millimetres, scale 0.001) give radii 0.5 and 0.4 and water
+// depths 0.3 and 0.12; every water pixel of each opened pipe lies on its own level, inside
+// its own bore's chord (§6.4).
+TEST(PipeRendering, RadiusAndWaterLevelFromGisFieldsShowInTheFrame) {
+  const std::filesystem::path layer = test::scratchPath("pipes", "levels.geojson");
+  std::ofstream(layer) << R"({"type": "FeatureCollection", "features": [
+     {"type": "Feature", "properties": {"DIAM": 1000, "LEVEL": 300},
+      "geometry": {"type": "LineString", "coordinates": [[-4, 0], [4, 0]]}},
+     {"type": "Feature", "properties": {"DIAM": 800, "LEVEL": 120},
+      "geometry": {"type": "LineString", "coordinates": [[-4, 3], [4, 3]]}}]})";
+  const Scene scene = parseScene(R"({"resolution": [240, 180], "samples": 1,
+    "style": {"name": "blinn-phong", "lines": false},
+    "camera": {"projection": "orthographic", "height": 7, "eye": [1, 8, 6], "target": [0, -2, 0]},
+    "networks": [{"name": "n", "wallThickness": 0.1, "cut": {"from": 0.3, "to": 0.7},
+                  "radius": {"field": "DIAM", "scale": 0.0005},
+                  "waterLevel": {"field": "LEVEL", "scale": 0.001},
+                  "pipes": [{"file": ")" +
+                                     layer.string() + R"("}]}]})",
+                                 "levels.json", kSource);
+  const auto& pipes = scene.networks.at(0).pipes;
+  ASSERT_EQ(pipes.size(), 2u);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &cls = aov(aovs, "pipeClass"), &position = aov(aovs, "position");
+  for (const Pipe& pipe : pipes) {
+    const float innerR = pipe.radius - 0.1f, expected = pipe.radius == 0.5f ? 0.3f : 0.12f;
+    EXPECT_NEAR(pipe.waterLevel, expected, 1e-6f);
+    const glm::vec3 axis = pipe.nodes.front();
+    const float level = axis.y - innerR + pipe.waterLevel;
+    const float halfChord = std::sqrt(innerR * innerR - (level - axis.y) * (level - axis.y));
+    int water = 0, offPlane = 0, outsideBore = 0;
+    for (int y = 0; y < cls.height; ++y)
+      for (int x = 0; x < cls.width; ++x) {
+        const glm::vec3 p = glm::make_vec3(position.at(x, y));
+        if (std::lround(cls.at(x, y)[0] * 4.0f) != 4 || std::abs(p.z - axis.z) > 1.0f) continue;
+        ++water;
+        offPlane += std::abs(p.y - level) > 1e-4f;
+        outsideBore += std::abs(p.z - axis.z) > halfChord + 1e-4f;
+      }
+    std::printf("pipe r %.2f: %d water pixels, level %.3f\n", pipe.radius, water, level);
+    EXPECT_GT(water, 200) << pipe.radius;
+    EXPECT_EQ(offPlane, 0) << pipe.radius;
+    EXPECT_EQ(outsideBore, 0) << pipe.radius;
+  }
 }
 
 TEST(PipeRendering, BillboardsCastTheOutlineOfTubesAndTroughs) {
