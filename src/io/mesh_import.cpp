@@ -15,6 +15,7 @@
 #include <iterator>
 #include <map>
 #include <regex>
+#include <string_view>
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
@@ -229,17 +230,23 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
       if (name.empty() || isStandIn(name)) {
         const aiMesh* first = scene->mMeshes[node->mMeshes[0]];
         const std::string candidates[] = {
-            first->mName.C_Str(), node->mParent ? node->mParent->mName.C_Str() : "",
+            first->mName.C_Str(),
+            // Assimp's glTF reader joins a scene's top-level nodes under a root it names "ROOT".
+            node->mParent && !(node->mParent == scene->mRootNode &&
+                               std::string_view(node->mParent->mName.C_Str()) == "ROOT")
+                ? node->mParent->mName.C_Str()
+                : "",
             first->mMaterialIndex < scene->mNumMaterials
                 ? scene->mMaterials[first->mMaterialIndex]->GetName().C_Str()
                 : ""};
+        std::string named = "node";
         for (const std::string& c : candidates)
           if (!c.empty() && !isStandIn(c) && c != AI_DEFAULT_MATERIAL_NAME) {
-            out.id = name;
-            name = c;
+            named = c;
             break;
           }
-        if (name.empty()) name = "node";
+        out.id = name;
+        name = named;
       }
       const int seen = nameCount[name]++;
       out.name = seen ? name + "#" + std::to_string(seen + 1) : name;
