@@ -416,7 +416,9 @@ namespace {
 // A 4-unit watertight cube shell (`shell`: extra keys of it) around a point-like proxy seed at
 // depth −0.5, seen orthographically down −z (160², 4.4 units high); `adaptive`: the cutter's
 // keys besides those that keep the cone exact (512² buffer, no edge compression or ghosts).
-Scene pointSeedInAShell(const std::string& adaptive, const std::string& shell) {
+Scene pointSeedInAShell(const std::string& adaptive, const std::string& shell,
+                        const glm::vec2& seedHalfSide = glm::vec2(0.01f)) {
+  const std::string x = std::to_string(seedHalfSide.x), y = std::to_string(seedHalfSide.y);
   return parseScene(
       R"({"resolution": [160, 160], "samples": 1, "style": {"name": "gooch", "lines": false},
         "camera": {"projection": "orthographic", "height": 4.4, "eye": [0, 0, 10],
@@ -426,14 +428,18 @@ Scene pointSeedInAShell(const std::string& adaptive, const std::string& shell) {
           adaptive + R"(}},
         "objects": [{"name": "shell", "file": "meshes/cube.obj", )" +
           shell + R"("transform": {"translate": [-2, -2, -2], "scale": 4}}],
-        "proxies": [{"name": "seed", "box": {"min": [-0.01, -0.01, -0.52], "max": [0.01, 0.01, -0.5]}}]})",
+        "proxies": [{"name": "seed", "box": {"min": [-)" +
+          x + ", -" + y + R"(, -0.52], "max": [)" + x + ", " + y + R"(, -0.5]}}]})",
       "cone.json", kData);
 }
 
 // Degrees between `normal` and the inner normal (−cos θ ρ̂, sin θ) at p of the cone of
 // half-angle θ about the view axis.
-double degreesFromConeNormal(const glm::vec3& normal, const glm::vec3& p, float theta) {
-  const glm::vec2 out = glm::normalize(glm::vec2(p));
+double degreesFromConeNormal(const glm::vec3& normal, const glm::vec3& p, float theta,
+                             const glm::vec2& seedHalfSide = glm::vec2(0.0f)) {
+  // From the nearest point of the seed's footprint: a cone about a point, a wedge along a side.
+  const glm::vec2 out =
+      glm::normalize(glm::vec2(p) - glm::clamp(glm::vec2(p), -seedHalfSide, seedHalfSide));
   const glm::vec3 expected(-std::cos(theta) * out, std::sin(theta));
   return glm::degrees(
       std::acos(std::clamp(double(glm::dot(glm::normalize(normal), expected)), -1.0, 1.0)));
@@ -474,6 +480,91 @@ TEST(AdaptiveCutaway, CutSurfaceNormalsAreTheConesNormal) {
     // The normal comes from the cutaway-depth buffer's neighbouring texels.
     EXPECT_LE(worst, 2.0) << "θ " << theta;
     std::printf("θ %g: worst cut normal %.3f°\n", theta, worst);
+  }
+}
+
+// Burns08 §5.3 local angles: two point seeds in one shell, at x = −1 with the object's own
+// cutawayAngle of 25° and at x = +1 with the cutter's 45°. The cutaway surface is the lower of
+// the two cones z = z₀ + ρᵢ/tan θᵢ; each cut pixel's normal is that cone's (its wall meets the
+// view axis at its own θ) within 2°, away from the ridge where the two meet.
+TEST(AdaptiveCutaway, ALocalAngleSetsItsOwnConesWallOnly) {
+  const Scene scene = parseScene(
+      R"({"resolution": [160, 160], "samples": 1, "style": {"name": "gooch", "lines": false},
+        "camera": {"projection": "orthographic", "height": 4.4, "eye": [0, 0, 10],
+                   "target": [0, 0, 0]},
+        "cutters": {"adaptive": {"angle": 45, "bufferSize": 512, "edgeCompression": false,
+                                 "ghostLines": false}},
+        "objects": [{"name": "shell", "file": "meshes/cube.obj",
+                     "transform": {"translate": [-2, -2, -2], "scale": 4}}],
+        "proxies": [
+          {"name": "narrow", "box": {"min": [-1.01, -0.01, -0.52], "max": [-0.99, 0.01, -0.5]},
+           "params": {"cutawayAngle": 25}},
+          {"name": "wide", "box": {"min": [0.99, -0.01, -0.52], "max": [1.01, 0.01, -0.5]}}]})",
+      "local.json", kData);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &mask = aov(aovs, "cutMask"), &normal = aov(aovs, "normal"),
+                   &position = aov(aovs, "position");
+  const glm::vec2 apex[2] = {{-1.0f, 0.0f}, {1.0f, 0.0f}};
+  const float theta[2] = {glm::radians(25.0f), glm::radians(45.0f)};
+  int compared[2] = {0, 0};
+  double worst[2] = {0.0, 0.0};
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x) {
+      if (mask.at(x, y)[0] < 0.5f) continue;
+      const glm::vec3 p = glm::make_vec3(position.at(x, y));
+      if (std::max(std::abs(p.x), std::abs(p.y)) > 1.9f) continue;
+      float height[2], rho[2];
+      for (int i = 0; i < 2; ++i) {
+        rho[i] = glm::length(glm::vec2(p) - apex[i]);
+        height[i] = -0.5f + rho[i] / std::tan(theta[i]);
+      }
+      const int i = height[0] < height[1] ? 0 : 1;
+      if (rho[i] < 0.25f || std::abs(height[0] - height[1]) < 0.1f) continue;
+      const glm::vec3 local = p - glm::vec3(apex[i], 0.0f);
+      worst[i] = std::max(worst[i],
+                          degreesFromConeNormal(glm::make_vec3(normal.at(x, y)), local, theta[i]));
+      ++compared[i];
+    }
+  std::printf("25° cone: %d pixels, worst %.3f°; 45° cone: %d pixels, worst %.3f°\n", compared[0],
+              worst[0], compared[1], worst[1]);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_GT(compared[i], 1000) << i;
+    EXPECT_LE(worst[i], 2.0) << i;
+  }
+}
+
+// The same for a box seed of footprint 1.2 × 0.6: its cutaway surface z₀ + d(p)/tan θ, d the
+// distance to the footprint, is a wedge of inner normal (−cos θ n̂, sin θ) along each side (n̂
+// the side's outward normal) and a cone about each corner, joined smoothly.
+TEST(AdaptiveCutaway, CutSurfaceNormalsOfABoxSeedAreItsWedgesAndCornerCones) {
+  const glm::vec2 half(0.6f, 0.3f);
+  for (const float theta : {30.0f, 45.0f}) {
+    const Scene scene = pointSeedInAShell(R"("angle": )" + std::to_string(theta), "", half);
+    const auto aovs = renderAovs(scene);
+    const FloatImage &mask = aov(aovs, "cutMask"), &normal = aov(aovs, "normal"),
+                     &position = aov(aovs, "position");
+    const float t = glm::radians(theta);
+    int compared = 0, corners = 0;
+    double worst = 0.0;
+    for (int y = 0; y < mask.height; ++y)
+      for (int x = 0; x < mask.width; ++x) {
+        if (mask.at(x, y)[0] < 0.5f) continue;
+        const glm::vec3 p = glm::make_vec3(position.at(x, y));
+        const glm::vec2 out = glm::vec2(p) - glm::clamp(glm::vec2(p), -half, half);
+        const float d = glm::length(out);
+        if (d < 0.25f || std::max(std::abs(p.x), std::abs(p.y)) > 1.9f) continue;
+        const double error = degreesFromConeNormal(glm::make_vec3(normal.at(x, y)), p, t, half);
+        if (error > worst) worst = error;
+        ++compared;
+        corners += std::abs(p.x) > half.x && std::abs(p.y) > half.y;
+        EXPECT_LE(p.z, -0.5f + d / std::tan(t) + 1e-3f) << x << "," << y;
+        EXPECT_GE(p.z, -0.5f + (d - 0.03f) / std::tan(t) - 1e-3f) << x << "," << y;
+      }
+    EXPECT_GT(compared, 2000) << "θ " << theta;
+    EXPECT_GT(corners, 500) << "θ " << theta;
+    EXPECT_LE(worst, 2.0) << "θ " << theta;
+    std::printf("box seed, θ %g: %d cut pixels (%d by the corners), worst cut normal %.3f°\n",
+                theta, compared, corners, worst);
   }
 }
 
