@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <optional>
 #include <set>
@@ -635,6 +636,116 @@ TEST(LineRender, ACubesLinesAreItsVisibleEdges) {
   EXPECT_GT(linePixels, 300);
   EXPECT_EQ(stray, 0) << "line pixels farther than 1.5 px from every visible edge";
   EXPECT_GE(drawn, samples * 98 / 100) << drawn << " of " << samples << " edge points drawn";
+}
+
+// The same against a smooth surface: a capped cylinder (radius ½, y ∈ [−0.6, 0.6], 96 sides
+// with smooth normals, flat caps) seen from above at a slant. Its lines, worked out on the CPU:
+// the two silhouette generators, where the side's normal n = (cos φ, 0, sin φ) is at right
+// angles to the view (E_x cos φ + E_z sin φ = ½); the top rim all round (the cap faces the
+// eye: a 90° crease in front, a silhouette behind); the bottom rim between the generators, on
+// the near side (the side faces the eye, the bottom does not). Nothing else: the side's
+// facets meet at 3.75°, under the 45° crease angle, and fold away from the eye smoothly.
+TEST(LineRender, ACylindersLinesAreItsRimsAndSilhouetteGenerators) {
+  const std::filesystem::path obj = std::filesystem::temp_directory_path() /
+                                    ("cutaway-cylinder-" + std::to_string(::getpid()) + ".obj");
+  constexpr int kSides = 96;
+  constexpr float kR = 0.5f, kH = 0.6f;
+  {
+    std::ofstream out(obj);
+    for (int i = 0; i < kSides; ++i) {
+      const float phi = 2.0f * glm::pi<float>() * float(i) / kSides;
+      out << "v " << kR * std::cos(phi) << " " << -kH << " " << kR * std::sin(phi) << "\n"
+          << "v " << kR * std::cos(phi) << " " << kH << " " << kR * std::sin(phi) << "\n"
+          << "vn " << std::cos(phi) << " 0 " << std::sin(phi) << "\n";
+    }
+    out << "vn 0 1 0\nvn 0 -1 0\n";
+    for (int i = 0; i < kSides; ++i) {
+      const int a = 2 * i + 1, b = 2 * i + 2, c = 2 * ((i + 1) % kSides) + 1, d = c + 1;
+      const int na = i + 1, nc = (i + 1) % kSides + 1;
+      out << "f " << a << "//" << na << " " << b << "//" << na << " " << d << "//" << nc << "\n"
+          << "f " << a << "//" << na << " " << d << "//" << nc << " " << c << "//" << nc << "\n";
+      if (i > 0 && i + 1 < kSides) {  // the caps as fans
+        out << "f 2//" << kSides + 1 << " " << d << "//" << kSides + 1 << " " << b << "//"
+            << kSides + 1 << "\n";
+        out << "f 1//" << kSides + 2 << " " << a << "//" << kSides + 2 << " " << c << "//"
+            << kSides + 2 << "\n";
+      }
+    }
+  }
+  const glm::vec3 eye(2.4f, 1.6f, 3.0f);
+  const Scene scene = parseScene(
+      R"({"resolution": [128, 128], "samples": 1, "background": [1, 1, 1],
+      "style": {"name": "gooch", "lines": {"silhouettes": true, "creases": true,
+                                           "creaseAngle": 45, "width": 1}},
+      "camera": {"eye": [2.4, 1.6, 3.0], "target": [0, 0, 0], "fov": 35},
+      "objects": [{"name": "cylinder", "file": ")" +
+          obj.string() + R"("}]})",
+      "cylinder.json", kData);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  std::filesystem::remove(obj);
+  const FloatImage& lines = findAov(renderer.readAovs(), "lines").image;  // rows top down
+  const Camera camera = scene.resolvedCamera();
+  const glm::mat4 viewProjection = camera.projectionMatrix(1.0f) * camera.view();
+  const auto pixel = [&](glm::vec3 p) {
+    const glm::vec4 c = viewProjection * glm::vec4(p, 1.0f);
+    return glm::vec2((c.x / c.w + 1.0f) * 0.5f * lines.width,
+                     (1.0f - c.y / c.w) * 0.5f * lines.height);
+  };
+  const auto onCircle = [&](float phi, float y) {
+    return glm::vec3(kR * std::cos(phi), y, kR * std::sin(phi));
+  };
+  // E_x cos φ + E_z sin φ = R: φ = atan2(E_z, E_x) ± acos(R / |E_xz|).
+  const float towardsEye = std::atan2(eye.z, eye.x);
+  const float spread = std::acos(kR / glm::length(glm::vec2(eye.x, eye.z)));
+  std::vector<std::pair<glm::vec2, glm::vec2>> expected;  // segments in pixels
+  for (const float phi : {towardsEye - spread, towardsEye + spread})
+    expected.push_back({pixel(onCircle(phi, -kH)), pixel(onCircle(phi, kH))});
+  constexpr int kSteps = 720;
+  for (int k = 0; k < kSteps; ++k) {
+    const float a = 2.0f * glm::pi<float>() * float(k) / kSteps,
+                b = 2.0f * glm::pi<float>() * float(k + 1) / kSteps;
+    expected.push_back({pixel(onCircle(a, kH)), pixel(onCircle(b, kH))});
+    const float sa = towardsEye - spread + 2.0f * spread * float(k) / kSteps,
+                sb = towardsEye - spread + 2.0f * spread * float(k + 1) / kSteps;
+    expected.push_back({pixel(onCircle(sa, -kH)), pixel(onCircle(sb, -kH))});
+  }
+  const auto distance = [](glm::vec2 p, const std::pair<glm::vec2, glm::vec2>& e) {
+    const glm::vec2 d = e.second - e.first;
+    const float t = glm::clamp(glm::dot(p - e.first, d) / glm::dot(d, d), 0.0f, 1.0f);
+    return glm::length(p - (e.first + t * d));
+  };
+  int linePixels = 0, stray = 0;
+  for (int y = 0; y < lines.height; ++y)
+    for (int x = 0; x < lines.width; ++x) {
+      if (lines.at(x, y)[0] < 0.5f) continue;
+      ++linePixels;
+      float nearest = 1e30f;
+      for (const auto& e : expected) nearest = std::min(nearest, distance({x + 0.5f, y + 0.5f}, e));
+      if (nearest > 1.5f) {
+        ++stray;
+        ADD_FAILURE() << "line pixel " << x << "," << y << " is " << nearest
+                      << " px from the nearest expected line";
+      }
+    }
+  // Every expected line drawn along its length: a line pixel within a pixel of each point.
+  int points = 0, drawn = 0;
+  for (const auto& e : expected) {
+    const glm::vec2 p = 0.5f * (e.first + e.second);
+    bool near = false;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int x = int(p.x) + dx, y = int(p.y) + dy;
+        near = near || (x >= 0 && y >= 0 && x < lines.width && y < lines.height &&
+                        lines.at(x, y)[0] >= 0.5f);
+      }
+    ++points, drawn += near;
+  }
+  std::printf("cylinder: %d line pixels, %d stray; %d of %d expected points drawn\n", linePixels,
+              stray, drawn, points);
+  EXPECT_GT(linePixels, 200);
+  EXPECT_EQ(stray, 0);
+  EXPECT_GE(drawn, points * 98 / 100) << drawn << " of " << points;
 }
 
 // Hatching tone (Praun01 §4): the key light's Lambert lightness L gives the darkness 1 − L,
