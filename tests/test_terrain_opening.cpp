@@ -271,6 +271,76 @@ TEST(TerrainOpening, EdgeOverAStraightPipeIsStraightWithinAPixel) {
   }
 }
 
+// The trench wall (beyond the paper) over a straight line along x at z₀ = −50, with t = w·s
+// constant: the opening is the strip |z − z₀| < h, h = t · 255 texels (100/64 scene units
+// each), and its far wall the vertical plane z = z₀ − h from the ground down to the depth
+// wall · h. Each pixel against a ray cast of that geometry alone: where the view ray meets the
+// ground outside the strip, terrain; inside it, the wall where the ray meets the plane
+// within that depth (at that point, facing the line), else nothing (discarded).
+TEST(TerrainOpening, TheTrenchWallIsThePlaneAtTheOpeningsHalfWidth) {
+  const Scene scene = parseScene(
+      R"({"resolution": [200, 150], "samples": 1, "style": {"name": "gooch", "lines": false},
+    "camera": {"eye": [30, 22, -20], "target": [55, -2, -52], "fov": 50},
+    "objects": [{"name": "ground", "file": ")" +
+          kSource + R"(/examples/data/tile.obj", "transform": {"scale": [100, 1, 100]}}],
+    "cutters": {"terrainOpening": {"terrain": "ground", "resolution": 64, "metric": "euclidean",
+      "w": 0.02, "s": 1, "cameraDistance": false, "wall": 1,
+      "lines": [[[-20, -50], [120, -50]]]}}})",
+      "trench.json", kSource);
+  const auto aovs = renderAovs(scene);
+  const FloatImage &fate = aov(aovs, "terrainClass"), &position = aov(aovs, "position"),
+                   &normal = aov(aovs, "normal");
+  const float z0 = -50.0f, h = 0.02f * 255.0f * 100.0f / 64.0f, depth = h;
+  const Camera camera = scene.resolvedCamera();
+  const glm::mat4 inverse = glm::inverse(
+      camera.projectionMatrix(float(scene.width) / float(scene.height)) * camera.view());
+  int counts[4] = {0, 0, 0, 0}, wrongFate = 0, off = 0, turned = 0;
+  double worst = 0.0;
+  for (int y = 0; y < fate.height; ++y)
+    for (int x = 0; x < fate.width; ++x) {
+      const glm::vec2 ndc((x + 0.5f) / fate.width * 2 - 1, 1 - (y + 0.5f) / fate.height * 2);
+      const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
+      const glm::vec3 from = glm::vec3(a) / a.w, dir = glm::normalize(glm::vec3(b) / b.w - from);
+      if (dir.y >= 0.0f) continue;
+      const glm::vec3 ground = from - (from.y / dir.y) * dir;
+      if (ground.x < 2.0f || ground.x > 98.0f || ground.z < -98.0f || ground.z > -2.0f) continue;
+      const float across = std::abs(ground.z - z0);
+      if (std::abs(across - h) < 0.05f) continue;  // on the opening's edge: either way
+      int expected = 1;
+      glm::vec3 hit(0.0f);
+      if (across < h) {
+        expected = 3;
+        if (dir.z < 0.0f) {
+          hit = from + ((z0 - h - from.z) / dir.z) * dir;
+          if (std::abs(-hit.y - depth) < 0.1f) continue;  // at the wall's foot: either way
+          if (-hit.y < depth) expected = 2;
+        }
+      }
+      const int shown = int(std::lround(fate.at(x, y)[0]));
+      ++counts[expected];
+      if (shown != expected) {
+        ++wrongFate;
+        continue;
+      }
+      if (expected != 2) continue;
+      const double distance = glm::length(glm::make_vec3(position.at(x, y)) - hit);
+      worst = std::max(worst, distance);
+      off += distance > 0.05;
+      turned += glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), glm::vec3(0, 0, 1)) <
+                std::cos(glm::radians(2.0f));
+    }
+  std::printf(
+      "terrain %d, wall %d, opened %d pixels; %d fates wrong; wall points off by %.4f at "
+      "most\n",
+      counts[1], counts[2], counts[3], wrongFate, worst);
+  EXPECT_GT(counts[1], 2000);
+  EXPECT_GT(counts[2], 500);
+  EXPECT_GT(counts[3], 200);
+  EXPECT_EQ(wrongFate, 0);
+  EXPECT_EQ(off, 0) << "worst " << worst;
+  EXPECT_EQ(turned, 0);
+}
+
 // TerrainField::at by hand on a 2×2 field: the value at a texel's centre, the mean midway
 // between centres, the edge texels beyond them; the rough field's nearest texel.
 TEST(TerrainOpening, FieldIsBilinearBetweenTexelCentres) {
