@@ -15,6 +15,7 @@
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "mismatches.hpp"
 #include "render_aovs.hpp"
 
 using namespace cutaway;
@@ -301,7 +302,8 @@ TEST(AdaptiveCutaway, SeedIsTheRearHullOfTheObjectsOfInterest) {
     for (glm::vec3& p : m.positions) p = glm::vec3(o.transformAt(0.0f) * glm::vec4(p, 1.0f));
     interest.push_back({m, o.name == "cube" ? glm::radians(50.0f) : glm::radians(30.0f)});
   }
-  int seeded = 0, wrongDepth = 0, wrongAngle = 0, grazing = 0;
+  int seeded = 0, grazing = 0;
+  test::Mismatches wrongDepth, wrongAngle;
   for (int y = 0; y < seed.height; ++y)
     for (int x = 0; x < seed.width; ++x) {
       const glm::vec2 ndc((x + 0.5f) / seed.width * 2 - 1, 1 - (y + 0.5f) / seed.height * 2);
@@ -324,13 +326,14 @@ TEST(AdaptiveCutaway, SeedIsTheRearHullOfTheObjectsOfInterest) {
         continue;
       }
       if (expected == 0.0f) continue;
-      wrongDepth += std::abs(got - expected) > 1e-5f;
-      wrongAngle += std::abs(angle.at(x, y)[0] - theta) > 1e-4f;
+      if (std::abs(got - expected) > 1e-5f) wrongDepth.add(x, y, expected, got);
+      if (std::abs(angle.at(x, y)[0] - theta) > 1e-4f)
+        wrongAngle.add(x, y, theta, angle.at(x, y)[0]);
     }
   EXPECT_GT(seeded, 800);
   EXPECT_LE(grazing, seeded / 50);
-  EXPECT_LE(wrongDepth, seeded / 100);
-  EXPECT_LE(wrongAngle, seeded / 100);
+  EXPECT_LE(wrongDepth.count(), seeded / 100) << "window depth: " << wrongDepth;
+  EXPECT_LE(wrongAngle.count(), seeded / 100) << "θ (radians): " << wrongAngle;
 }
 
 // Burns08 §4.3: a ghost line's weight fades with the removed surface's distance in front of
@@ -397,18 +400,21 @@ TEST(Renderer, TheCompositeIsTheColourWithItsOverlaysBlendedInOrder) {
                            outlines = frame.read("cutOutlines", 1), final = frame.read("color", 3);
   const glm::vec3 lineColor(0.2f, 0.1f, 0.6f), outlineColor(0.9f, 0.6f, 0.1f);
   int lined = 0, outlined = 0;
-  double worst = 0.0;
+  test::Mismatches wrong;  // in levels of 255, per channel
   for (std::size_t i = 0; i < lines.size(); ++i) {
     glm::vec3 c = glm::make_vec3(&color[3 * i]);
     c = glm::mix(c, lineColor, lines[i]);
     c = glm::mix(c, outlineColor, outlines[i]);
     lined += lines[i] > 0.5f, outlined += outlines[i] > 0.5f;
-    for (int k = 0; k < 3; ++k) worst = std::max(worst, double(std::abs(final[3 * i + k] - c[k])));
+    // The final colour is 8-bit: half a level, and the R16F coverages' rounding.
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(final[3 * i + k] - c[k]) * 255.0f > 0.75f)
+        wrong.add(int(i) % scene.width, int(i) / scene.width, 255.0 * c[k],
+                  255.0 * final[3 * i + k]);
   }
   EXPECT_GT(lined, 30);
   EXPECT_GT(outlined, 10);
-  // The final colour is 8-bit: half a level, and the R16F coverages' rounding.
-  EXPECT_LE(worst * 255.0, 0.75);
+  EXPECT_EQ(wrong.count(), 0) << "(rows bottom up) " << wrong;
 }
 
 namespace {

@@ -16,6 +16,7 @@
 #include "cutaway/geometry/main_axis.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "mismatches.hpp"
 #include "render_aovs.hpp"
 #include "run_command.hpp"
 
@@ -365,7 +366,8 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
   const float tolerance = 2e-5f * wedge.axisLength +
                           (jitter == "image" ? 0.02f * j.amplitude * wedge.axisLength : 0.0f);
   const float margin = 0.01f * wedge.axisLength;
-  int removed = 0, kept = 0, compared = 0, wrong = 0;
+  int removed = 0, kept = 0, compared = 0;
+  test::Mismatches wrong;  // expected and got: 1 removed, 0 kept
   for (int y = 0; y < plainId.height; ++y)
     for (int x = 0; x < plainId.width; ++x) {
       const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
@@ -375,8 +377,9 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
         const float d = cutoutDistance(wedge, j, p);
         const bool same = cutId.at(x, y)[0] == 0.0f && cutMask.at(x, y)[0] == 0.0f &&
                           glm::length(glm::make_vec3(cutPos.at(x, y)) - p) < 1e-4f;
-        if (d > margin) ++removed, wrong += same;
-        if (d < -margin) ++kept, wrong += !same;
+        if (d > margin) ++removed;
+        if (d < -margin) ++kept;
+        if ((d > margin && same) || (d < -margin && !same)) wrong.add(x, y, d > margin, !same);
       }
       if (cutId.at(x, y)[0] == 0.0f && cutMask.at(x, y)[0] == 0.0f) {
         const float gpu = distance.at(x, y)[0];
@@ -388,7 +391,7 @@ TEST_P(CutoutGpuCpu, SignedDistanceAndRemovalAgree) {
         EXPECT_TRUE(std::isnan(distance.at(x, y)[0]) || cutId.at(x, y)[0] == 0.0f);
       }
     }
-  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(wrong.count(), 0) << wrong;
   EXPECT_GT(removed, 300) << "the wedge should open the cube";
   EXPECT_GT(kept, 300);
   EXPECT_GT(compared, 1000);
@@ -425,7 +428,8 @@ TEST(Cutout, AnImageJitterDisplacesTheWedgeByItsGreyLevelAlongTheAxis) {
                    &cutPos = aov(cutAovs, "position"), &cutMask = aov(cutAovs, "cutMask");
   const glm::vec3 eye = cut.resolvedCamera().eye;
   const float L = wedge.axisLength;
-  int removed = 0, kept = 0, wrong = 0, shifted = 0;
+  int removed = 0, kept = 0, shifted = 0;
+  test::Mismatches wrong;  // expected and got: 1 removed, 0 kept
   for (int y = 0; y < plainId.height; ++y)
     for (int x = 0; x < plainId.width; ++x) {
       const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
@@ -445,13 +449,13 @@ TEST(Cutout, AnImageJitterDisplacesTheWedgeByItsGreyLevelAlongTheAxis) {
       const bool same = cutId.at(x, y)[0] == 0.0f && cutMask.at(x, y)[0] == 0.0f &&
                         glm::length(glm::make_vec3(cutPos.at(x, y)) - p) < 1e-4f;
       d > 0.0f ? ++removed : ++kept;
-      wrong += (d > 0.0f) == same;
+      if ((d > 0.0f) == same) wrong.add(x, y, d > 0.0f, !same);
       shifted += (d > 0.0f) != (planes > 0.0f);
     }
   EXPECT_GT(removed, 300);
   EXPECT_GT(kept, 300);
   EXPECT_GT(shifted, 100) << "the jitter should move the boundary";
-  EXPECT_EQ(wrong, 0) << "of " << removed + kept;
+  EXPECT_EQ(wrong.count(), 0) << "of " << removed + kept << ": " << wrong;
 }
 
 // Rule 5: through the wedge the cube's inside shows as its cut wall, in the wall colour, and

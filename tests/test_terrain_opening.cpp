@@ -10,6 +10,7 @@
 #include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "mismatches.hpp"
 #include "render_aovs.hpp"
 
 using namespace cutaway;
@@ -187,7 +188,8 @@ TEST(TerrainOpening, BuildingsAreOpenedByTheTerrainsRuleOnlyWhenAsked) {
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position"),
                    &wholeId = aov(c, "objectId"), &wholePos = aov(c, "position");
-  int pixels = 0, opened = 0, wrong = 0, touched = 0;
+  int pixels = 0, opened = 0, touched = 0;
+  test::Mismatches wrong;  // expected and got: 1 opened, 0 drawn
   for (int y = 0; y < plainId.height; ++y)
     for (int x = 0; x < plainId.width; ++x) {
       if (plainId.at(x, y)[0] != house) continue;
@@ -196,15 +198,16 @@ TEST(TerrainOpening, BuildingsAreOpenedByTheTerrainsRuleOnlyWhenAsked) {
       const bool same =
           id.at(x, y)[0] == house && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-3f;
       const TerrainFate f = terrainFate(field, o, p, camera.eye, p - camera.eye);
-      if (f == TerrainFate::Discard) ++opened, wrong += same;
-      if (f == TerrainFate::Terrain) wrong += !same;
+      if (f == TerrainFate::Discard) ++opened;
+      if ((f == TerrainFate::Discard && same) || (f == TerrainFate::Terrain && !same))
+        wrong.add(x, y, f == TerrainFate::Discard, !same);
       touched += wholeId.at(x, y)[0] != house ||
                  glm::length(glm::make_vec3(wholePos.at(x, y)) - p) >= 1e-3f;
     }
   EXPECT_GT(pixels, 300);
   EXPECT_GT(opened, 50);
   // Points where D_p is t to rounding (or on a texel border, rough) may go either way.
-  EXPECT_LE(wrong, pixels / 100) << wrong << " of " << pixels;
+  EXPECT_LE(wrong.count(), pixels / 100) << "of " << pixels << ": " << wrong;
   EXPECT_EQ(touched, 0);
 }
 
