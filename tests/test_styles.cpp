@@ -684,7 +684,8 @@ TEST(LineRender, ACylindersLinesAreItsRimsAndSilhouetteGenerators) {
   Renderer renderer(scene, test::glContext().info());
   renderer.render();
   std::filesystem::remove(obj);
-  const FloatImage& lines = findAov(renderer.readAovs(), "lines").image;  // rows top down
+  const auto aovs = renderer.readAovs();
+  const FloatImage& lines = findAov(aovs, "lines").image;  // rows top down
   const Camera camera = scene.resolvedCamera();
   const glm::mat4 viewProjection = camera.projectionMatrix(1.0f) * camera.view();
   const auto pixel = [&](glm::vec3 p) {
