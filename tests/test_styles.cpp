@@ -561,6 +561,15 @@ namespace {
 // A line in pixels (rows top down).
 using Segment = std::pair<glm::vec2, glm::vec2>;
 
+// Where the scene's camera shows world point p, in pixels of its frame (rows top down).
+glm::vec2 projectToPixel(const Scene& scene, const glm::vec3& p) {
+  const Camera camera = scene.resolvedCamera();
+  const glm::vec4 c = camera.projectionMatrix(float(scene.width) / float(scene.height)) *
+                      camera.view() * glm::vec4(p, 1.0f);
+  return glm::vec2((c.x / c.w + 1.0f) * 0.5f * float(scene.width),
+                   (1.0f - c.y / c.w) * 0.5f * float(scene.height));
+}
+
 // The lines AOV against the lines expected: every line pixel within 1.5 px of one (each
 // other is reported), and the points every half pixel along them, `inset` px in from their
 // ends, within a pixel of a line pixel. Returns the line pixels, the points and those drawn.
@@ -624,12 +633,7 @@ TEST(LineRender, ACubesLinesAreItsVisibleEdges) {
   const auto aovs = renderer.readAovs();
   const FloatImage& lines = findAov(aovs, "lines").image;  // rows top down
   const Camera camera = scene.resolvedCamera();
-  const glm::mat4 viewProjection = camera.projectionMatrix(1.0f) * camera.view();
-  const auto pixel = [&](glm::vec3 p) {
-    const glm::vec4 c = viewProjection * glm::vec4(p, 1.0f);
-    return glm::vec2((c.x / c.w + 1.0f) * 0.5f * lines.width,
-                     (1.0f - c.y / c.w) * 0.5f * lines.height);
-  };
+  const auto pixel = [&](glm::vec3 p) { return projectToPixel(scene, p); };
   // The cube [−½, ½]³: its twelve edges, each with the outward normals of its two faces.
   std::vector<Segment> visible;
   for (int axis = 0; axis < 3; ++axis)
@@ -701,13 +705,7 @@ TEST(LineRender, ACylindersLinesAreItsRimsAndSilhouetteGenerators) {
   std::filesystem::remove(obj);
   const auto aovs = renderer.readAovs();
   const FloatImage& lines = findAov(aovs, "lines").image;  // rows top down
-  const Camera camera = scene.resolvedCamera();
-  const glm::mat4 viewProjection = camera.projectionMatrix(1.0f) * camera.view();
-  const auto pixel = [&](glm::vec3 p) {
-    const glm::vec4 c = viewProjection * glm::vec4(p, 1.0f);
-    return glm::vec2((c.x / c.w + 1.0f) * 0.5f * lines.width,
-                     (1.0f - c.y / c.w) * 0.5f * lines.height);
-  };
+  const auto pixel = [&](glm::vec3 p) { return projectToPixel(scene, p); };
   const auto onCircle = [&](float phi, float y) {
     return glm::vec3(kR * std::cos(phi), y, kR * std::sin(phi));
   };
