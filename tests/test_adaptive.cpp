@@ -254,17 +254,18 @@ TEST(AdaptiveCutaway, CutOutlinesAreTheBorderOfTheCutSurfaces) {
       return mask.at(std::clamp(x, 0, mask.width - 1), std::clamp(y, 0, mask.height - 1))[0] >=
              0.5f;
     };
-    int expectedPixels = 0, wrong = 0;
+    int expectedPixels = 0;
+    test::Mismatches wrong;  // 1 an outline pixel, 0 not
     for (int y = 0; y < mask.height; ++y)
       for (int x = 0; x < mask.width; ++x) {
         bool border = false;
         for (int r = 1; r <= width && cut(x, y); ++r)
           border = border || !cut(x + r, y) || !cut(x - r, y) || !cut(x, y + r) || !cut(x, y - r);
         expectedPixels += border;
-        wrong += border != (outlines.at(x, y)[0] == 1.0f);
+        if (border != (outlines.at(x, y)[0] == 1.0f)) wrong.add(x, y, border, outlines.at(x, y)[0]);
       }
     EXPECT_GT(expectedPixels, 40 * width);
-    EXPECT_EQ(wrong, 0) << "of " << expectedPixels << " outline pixels";
+    EXPECT_EQ(wrong.count(), 0) << "of " << expectedPixels << " outline pixels: " << wrong;
   }
 }
 

@@ -13,6 +13,7 @@
 #include "cutaway/cutters/adaptive_surface.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "gl_test_context.hpp"
+#include "mismatches.hpp"
 #include "render_aovs.hpp"
 
 using namespace cutaway;
@@ -176,13 +177,17 @@ TEST_P(SurfaceFromAScreen, PoolsTheDepthAndGrowsTheReferenceSurface) {
   const fields::CutawayField reference = fields::jumpFlooding(
       makeSeedImage(seedDepth, seedAngle, n, defaults, {projection, glm::mat3(view), false}),
       -1.0f, defaults.variant);
-  int cut = 0, mismatched = 0;
+  int cut = 0;
+  test::Mismatches cpuWrong, gpuWrong;  // window depths
   for (std::size_t i = 0; i < seedDepth.size(); ++i) {
     const float expected = reference.depth[i] * 0.5f + 0.5f;
-    mismatched += cpuCut[i] != expected || std::abs(gpuCut[i] - expected) > 2e-6f;
+    const int x = int(i % std::size_t(n)), y = int(i / std::size_t(n));
+    if (cpuCut[i] != expected) cpuWrong.add(x, y, expected, cpuCut[i]);
+    if (std::abs(gpuCut[i] - expected) > 2e-6f) gpuWrong.add(x, y, expected, gpuCut[i]);
     cut += expected > 0.0f;
   }
-  EXPECT_EQ(mismatched, 0);
+  EXPECT_EQ(cpuWrong.count(), 0) << "CPU path: " << cpuWrong;
+  EXPECT_EQ(gpuWrong.count(), 0) << "GPU path: " << gpuWrong;
   EXPECT_GT(cut, n * n / 10);
 }
 

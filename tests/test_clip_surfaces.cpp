@@ -315,7 +315,8 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position"), &mask = aov(b, "clipMask");
   const ClipSurface& cs = clipped.cutters.find<ClipSurfaceOptions>()->surfaces[0];
-  int removed = 0, kept = 0, wrong = 0, visible = 0;
+  int removed = 0, kept = 0, visible = 0;
+  test::Mismatches wrong;  // 1 removed (and in the clip mask), 0 kept
   for (int y = 0; y < plainId.height; ++y)
     for (int x = 0; x < plainId.width; ++x) {
       if (id.at(x, y)[0] == 0.0f) {  // what the clipped frame shows is never clipped
@@ -327,10 +328,12 @@ TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
       const float f = clipSurfaceFunction(cs, p);
       const bool same =
           id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-5f;
-      if (f < -1e-3f) ++removed, wrong += same, wrong += mask.at(x, y)[0] != 1.0f;
-      if (f > 1e-3f) ++kept, wrong += !same;
+      if (f < -1e-3f) ++removed;
+      if (f > 1e-3f) ++kept;
+      if (f < -1e-3f && (same || mask.at(x, y)[0] != 1.0f)) wrong.add(x, y, 1.0, !same);
+      if (f > 1e-3f && !same) wrong.add(x, y, 0.0, 1.0);
     }
-  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(wrong.count(), 0) << wrong;
   EXPECT_GT(removed, 500);
   EXPECT_GT(kept, 300);
   EXPECT_GT(visible, 500);
@@ -355,7 +358,8 @@ TEST(ClipSurfaceGpu, ASawtoothReliefClipsWhereItsTriangleWaveSays) {
   const auto a = renderAovs(plain), b = renderAovs(clipped);
   const FloatImage &plainId = aov(a, "objectId"), &plainPos = aov(a, "position"),
                    &id = aov(b, "objectId"), &pos = aov(b, "position");
-  int removed = 0, kept = 0, wrong = 0;
+  int removed = 0, kept = 0;
+  test::Mismatches wrong;  // 1 removed, 0 kept
   for (int y = 0; y < plainId.height; ++y)
     for (int x = 0; x < plainId.width; ++x) {
       if (plainId.at(x, y)[0] != 0.0f) continue;
@@ -369,12 +373,10 @@ TEST(ClipSurfaceGpu, ASawtoothReliefClipsWhereItsTriangleWaveSays) {
       if (std::abs(f) < 1e-3) continue;
       const bool same =
           id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-5f;
-      if (f < 0.0)
-        ++removed, wrong += same;
-      else
-        ++kept, wrong += !same;
+      f < 0.0 ? ++removed : ++kept;
+      if ((f < 0.0) == same) wrong.add(x, y, f < 0.0, !same);
     }
-  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(wrong.count(), 0) << wrong;
   EXPECT_GT(removed, 500);
   EXPECT_GT(kept, 300);
 }

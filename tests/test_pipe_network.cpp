@@ -15,6 +15,7 @@
 #include "cutaway/scene/benchmark_city.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "gl_test_context.hpp"
+#include "mismatches.hpp"
 #include "render_aovs.hpp"
 #include "run_command.hpp"
 
@@ -577,7 +578,8 @@ TEST(PipeRendering, TheShaftWedgeRemovesWhereNormalAndViewMeet) {
   const FloatImage &wholeId = aov(a, "objectId"), &wholePos = aov(a, "position"),
                    &wholeNormal = aov(a, "normal"), &id = aov(b, "objectId"),
                    &pos = aov(b, "position"), &normal = aov(b, "normal"), &cut = aov(b, "cutMask");
-  int removed = 0, kept = 0, wrong = 0, cutPixels = 0, wrongCut = 0;
+  int removed = 0, kept = 0, cutPixels = 0;
+  test::Mismatches wrong, wrongCut;  // 1 removed, 0 kept; 1 a side wall, 0 not
   for (int y = 0; y < id.height; ++y)
     for (int x = 0; x < id.width; ++x) {
       if (wholeId.at(x, y)[0] == outerId) {
@@ -594,7 +596,7 @@ TEST(PipeRendering, TheShaftWedgeRemovesWhereNormalAndViewMeet) {
           const bool same =
               id.at(x, y)[0] == outerId && glm::length(glm::make_vec3(pos.at(x, y)) - p) < 1e-4f;
           gone ? ++removed : ++kept;
-          wrong += gone == same;
+          if (gone == same) wrong.add(x, y, gone, !same);
         }
       }
       const float k = id.at(x, y)[0];
@@ -606,14 +608,14 @@ TEST(PipeRendering, TheShaftWedgeRemovesWhereNormalAndViewMeet) {
       const bool side = std::abs(n.y) < 1e-3f &&
                         std::abs(glm::dot(glm::vec2(n.x, n.z), radial)) < 0.09f &&
                         glm::dot(glm::vec2(n.x, n.z), glm::vec2(eye.x - p.x, eye.z - p.z)) >= 0.0f;
-      wrongCut += !side;
+      if (!side) wrongCut.add(x, y, 1.0, 0.0);
     }
   EXPECT_GT(removed, 100);
   EXPECT_GT(kept, 100);
-  EXPECT_EQ(wrong, 0) << "of " << removed + kept;
+  EXPECT_EQ(wrong.count(), 0) << "of " << removed + kept << ": " << wrong;
   EXPECT_GT(cutPixels, 30);
   // The cylinders' normals are interpolated between facets: within 5° of the true radius.
-  EXPECT_EQ(wrongCut, 0) << "of " << cutPixels;
+  EXPECT_EQ(wrongCut.count(), 0) << "of " << cutPixels << ": " << wrongCut;
 }
 
 // Konev18 §7: the cut surface colour goes on the outer cylinder's back faces and the inner
@@ -648,7 +650,8 @@ TEST(PipeRendering, TheShaftsCutColourIsOnOuterBackAndInnerFrontFaces) {
   }
   const glm::vec3 eye = scene.resolvedCamera().eye;
   const FloatImage &id = aov(aovs, "objectId"), &pos = aov(aovs, "position");
-  int cut = 0, plain = 0, wrong = 0;
+  int cut = 0, plain = 0;
+  test::Mismatches wrong;  // 1 recoloured, 0 not
   for (int y = 0; y < id.height; ++y)
     for (int x = 0; x < id.width; ++x) {
       const float k = id.at(x, y)[0];
@@ -668,11 +671,11 @@ TEST(PipeRendering, TheShaftsCutColourIsOnOuterBackAndInnerFrontFaces) {
       const auto* b = blue.at(x, y);
       const bool changed = a[0] != b[0] || a[2] != b[2];
       expected ? ++cut : ++plain;
-      wrong += changed != expected;
+      if (changed != expected) wrong.add(x, y, expected, changed);
     }
   EXPECT_GT(cut, 100);
   EXPECT_GT(plain, 1000);
-  EXPECT_EQ(wrong, 0) << "of " << cut + plain;
+  EXPECT_EQ(wrong.count(), 0) << "of " << cut + plain << ": " << wrong;
 }
 
 // Konev18 Fig. 10: an end triangle of a cut stretch seen from behind resets its area to the
@@ -753,7 +756,8 @@ TEST(PipeRendering, TheEndTriangleMarksWallAndBoreByTheirDistanceFromTheAxis) {
   const glm::mat4 inverse = glm::inverse(camera.projectionMatrix(1.0f) * camera.view());
   const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
   const float pixel = 1.6f / float(stencil.height), margin = 1.5f * pixel;
-  int wall = 0, bore = 0, corners = 0, wrong = 0, notCut = 0, notInside = 0;
+  int wall = 0, bore = 0, corners = 0, notCut = 0, notInside = 0;
+  test::Mismatches wrong;  // stencil values
   for (int y = 0; y < stencil.height; ++y)
     for (int x = 0; x < stencil.width; ++x) {
       const glm::vec2 ndc((x + 0.5f) / float(stencil.width) * 2.0f - 1.0f,
@@ -768,14 +772,14 @@ TEST(PipeRendering, TheEndTriangleMarksWallAndBoreByTheirDistanceFromTheAxis) {
       const float expected = rho < rIn ? 1.0f : rho < rOut ? 2.0f : 0.0f;
       wall += expected == 2.0f, bore += expected == 1.0f, corners += expected == 0.0f;
       const float s = stencil.at(x, y)[0];
-      wrong += s != expected;
+      if (s != expected) wrong.add(x, y, expected, s);
       if (expected == 2.0f) notCut += std::abs(cls.at(x, y)[0] - 0.75f) > 0.01f;
       if (expected == 1.0f) notInside += std::abs(cls.at(x, y)[0] - 0.5f) > 0.01f;
     }
   EXPECT_GT(wall, 300);
   EXPECT_GT(bore, 3000);
   EXPECT_GT(corners, 300);
-  EXPECT_EQ(wrong, 0) << "of " << wall + bore + corners;
+  EXPECT_EQ(wrong.count(), 0) << "of " << wall + bore + corners << ": " << wrong;
   EXPECT_EQ(notCut, 0) << "of " << wall;
   EXPECT_EQ(notInside, 0) << "of " << bore;
 }
@@ -797,7 +801,8 @@ TEST(PipeRendering, TheCutQuadMarksWallsAndBoreFromAbove) {
   const auto aovs = renderAovs(scene);
   const FloatImage& stencil = aov(aovs, "pipeStencil");
   const float pixel = 2.0f / float(stencil.height);  // scene units per pixel
-  int walls = 0, bore = 0, wrong = 0;
+  int walls = 0, bore = 0;
+  test::Mismatches wrong;  // stencil values
   for (int y = 0; y < stencil.height; ++y)
     for (int x = 0; x < stencil.width; ++x) {
       // Up is −z: row 0 (the top) at z = −1; columns from x = −1.
@@ -807,9 +812,9 @@ TEST(PipeRendering, TheCutQuadMarksWallsAndBoreFromAbove) {
       if (std::abs(z - rIn) < margin || std::abs(z - rOut) < margin) continue;
       const float expected = z < rIn ? 1.0f : z < rOut ? 2.0f : 0.0f;
       walls += expected == 2.0f, bore += expected == 1.0f;
-      wrong += stencil.at(x, y)[0] != expected;
+      if (stencil.at(x, y)[0] != expected) wrong.add(x, y, expected, stencil.at(x, y)[0]);
     }
   EXPECT_GT(walls, 1000);
   EXPECT_GT(bore, 5000);
-  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(wrong.count(), 0) << wrong;
 }

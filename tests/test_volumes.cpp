@@ -26,6 +26,7 @@
 #include "cutaway/scene/scene.hpp"
 #include "expect_error.hpp"
 #include "gl_test_context.hpp"
+#include "mismatches.hpp"
 #include "render_aovs.hpp"
 
 namespace fs = std::filesystem;
@@ -1390,23 +1391,24 @@ TEST_F(VolumeTest, AHaloBreaksALineFarBehindANearerOneAndNothingElse) {
   const std::vector<glm::vec2> onA = points(true), onB = points(false);
   ASSERT_GT(onA.size(), 200u);
   ASSERT_GT(onB.size(), 200u);
-  int broken = 0, drawn = 0, wrong = 0, aMissing = 0;
+  int broken = 0, drawn = 0, aMissing = 0;
+  test::Mismatches wrong;  // line coverage around a point of B: 0 where broken, 1 where drawn
   for (const glm::vec2& q : onB) {
     float toA = 1e9f;
     for (const glm::vec2& p : onA) toA = std::min(toA, glm::distance(p, q));
     const float edge = 0.5f + 8.0f;  // A's half width and the halo
     if (toA > 3.0f && toA < edge - 1.5f) {
       ++broken;
-      wrong += around(q) > 0.1f;
+      if (around(q) > 0.1f) wrong.add(int(q.x), int(q.y), 0.0, around(q));
     } else if (toA > edge + 1.5f) {
       ++drawn;
-      wrong += around(q) < 0.5f;
+      if (around(q) < 0.5f) wrong.add(int(q.x), int(q.y), 1.0, around(q));
     }
   }
   for (const glm::vec2& q : onA) aMissing += around(q) < 0.5f;
   EXPECT_GT(broken, 10);
   EXPECT_GT(drawn, 200);
-  EXPECT_EQ(wrong, 0) << "of " << broken + drawn;
+  EXPECT_EQ(wrong.count(), 0) << "of " << broken + drawn << ": " << wrong;
   EXPECT_EQ(aMissing, 0) << "of " << onA.size();
 }
 
