@@ -219,7 +219,8 @@ TEST(CapTiles, EveryTileTheCutMeetsIsKeptAndTheHoleAndCornersAreNot) {
     ASSERT_EQ(keep.size(), std::size_t(kTiles * kTiles));
     const float inner = 1.0f - std::sqrt(0.35f * 0.35f - 0.01f * relief.y), outer = 1.0f + 0.35f;
     const float margin = 0.125f * std::sqrt(2.0f) + 0.15f;  // a grown tile, a triangle
-    int kept = 0, farTiles = 0, wrong = 0;
+    int kept = 0, farTiles = 0;
+    test::Mismatches wrong;  // tiles (column, row): 1 drawn, 0 dropped
     for (int y = 0; y < kTiles; ++y)
       for (int x = 0; x < kTiles; ++x) {
         const glm::vec2 lo(-1.5f + 0.125f * float(x), -1.5f + 0.125f * float(y)), hi = lo + 0.125f;
@@ -229,9 +230,9 @@ TEST(CapTiles, EveryTileTheCutMeetsIsKeptAndTheHoleAndCornersAreNot) {
         const bool far = nearest > outer + margin || farthest < 0.65f - margin;
         const bool k = keep[std::size_t(y * kTiles + x)] != 0;
         kept += k, farTiles += far;
-        wrong += (meets && !k) || (far && k);
+        if ((meets && !k) || (far && k)) wrong.add(x, y, meets, k);
       }
-    EXPECT_EQ(wrong, 0) << "relief " << relief.y;
+    EXPECT_EQ(wrong.count(), 0) << "relief " << relief.y << ": " << wrong;
     EXPECT_GE(farTiles, 50);  // the hole and the corners, all dropped
     EXPECT_GT(kept, 300);
   }
