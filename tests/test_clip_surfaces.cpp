@@ -268,6 +268,7 @@ TEST(DepthSprite, ParityMatchesRayParityOnRandomPoints) {
     EXPECT_GT(inside, kPoints / 20);
     // Only points within a texel of the surface may land on the wrong side.
     EXPECT_LE(wrong, kPoints / 200) << wrong << " of " << kPoints;
+    std::printf("%d of %d points on the wrong side\n", wrong, kPoints);
   }
 }
 

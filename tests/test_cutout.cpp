@@ -611,15 +611,17 @@ HullHits rayCastHull(const Scene& scene, const Mesh& hull) {
   return hits;
 }
 
-// Pixels where `clip` differs from the ray cast's depth by more than 1e-5; `covered` counts
-// the pixels the hull covers.
-int clipDepthMismatches(const FloatImage& clip, const HullHits& hits, int& covered) {
-  int mismatched = 0;
+// Pixels where `clip` differs from the ray cast's depth by more than 1e-5 (window depths);
+// `covered` counts the pixels the hull covers.
+test::Mismatches clipDepthMismatches(const FloatImage& clip, const HullHits& hits, int& covered) {
+  test::Mismatches mismatched;
   covered = 0;
-  for (std::size_t i = 0; i < clip.data.size(); ++i) {
-    covered += hits.depth.data[i] > 0.0f;
-    mismatched += std::abs(clip.data[i] - hits.depth.data[i]) > 1e-5f;
-  }
+  for (int y = 0; y < clip.height; ++y)
+    for (int x = 0; x < clip.width; ++x) {
+      const float expected = hits.depth.at(x, y)[0], got = clip.at(x, y)[0];
+      covered += expected > 0.0f;
+      if (std::abs(got - expected) > 1e-5f) mismatched.add(x, y, expected, got);
+    }
   return mismatched;
 }
 
@@ -638,7 +640,7 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
   ASSERT_EQ(clusters.size(), 1u);
   const HullHits hits = rayCastHull(scene, clusters[0].outerHull);
   int covered = 0, removed = 0, wrong = 0;
-  const int mismatched = clipDepthMismatches(clip, hits, covered);
+  const test::Mismatches mismatched = clipDepthMismatches(clip, hits, covered);
   const FloatImage &plainId = aov(plainAovs, "objectId"), &plainDepth = aov(plainAovs, "depth"),
                    &id = aov(aovs, "objectId"), &depth = aov(aovs, "depth");
   for (int y = 0; y < clip.height; ++y)
@@ -653,7 +655,7 @@ TEST(Breakaway, ClipDepthMatchesRayCastHullAndRemovesWhatHidesTheInterior) {
     }
   EXPECT_GT(covered, 200);
   // Pixels whose centre grazes the hull's silhouette may round either way.
-  EXPECT_LE(mismatched, covered / 50) << mismatched << " of " << covered;
+  EXPECT_LE(mismatched.count(), covered / 50) << "of " << covered << ": " << mismatched;
   EXPECT_GT(removed, 100);
   EXPECT_EQ(wrong, 0);
 }
@@ -688,9 +690,9 @@ TEST(Breakaway, TwoGroupsOpenTwoHoles) {
   EXPECT_GT(onlyA, 100);  // two holes, apart
   EXPECT_GT(onlyB, 100);
   int covered = 0;
-  const int mismatched =
+  const test::Mismatches mismatched =
       clipDepthMismatches(aov(renderAovs(scene), "breakawayClipDepth"), nearer, covered);
-  EXPECT_LE(mismatched, covered / 50) << mismatched << " of " << covered;
+  EXPECT_LE(mismatched.count(), covered / 50) << "of " << covered << ": " << mismatched;
 }
 
 // The wall's two hulls (Diepstraten03 §5): the outer grown by the offset, the inner by the
@@ -730,9 +732,10 @@ TEST(Breakaway, TheWallLiesBetweenTheOuterAndTheInnerHull) {
   const auto aovs = renderAovs(scene);
   const HullHits innerHits = rayCastHull(scene, clusters[0].innerHull);
   int covered = 0;
-  const int mismatched = clipDepthMismatches(aov(aovs, "breakawayInnerDepth"), innerHits, covered);
+  const test::Mismatches mismatched =
+      clipDepthMismatches(aov(aovs, "breakawayInnerDepth"), innerHits, covered);
   EXPECT_GT(covered, 100);
-  EXPECT_LE(mismatched, covered / 50) << mismatched << " of " << covered;
+  EXPECT_LE(mismatched.count(), covered / 50) << "of " << covered << ": " << mismatched;
   // The cut wall: the cube's inside seen through the hole, shown at the outer hull's surface.
   const HullHits outerHits = rayCastHull(scene, clusters[0].outerHull);
   const FloatImage &id = aov(aovs, "objectId"), &mask = aov(aovs, "cutMask"),
