@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <random>
+#include <sstream>
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
@@ -258,16 +259,20 @@ TEST(DepthSprite, ParityMatchesRayParityOnRandomPoints) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     int inside = 0, wrong = 0;
+    std::ostringstream firstWrong;  // the first few, with both answers
     constexpr int kPoints = 5000;
     for (int i = 0; i < kPoints; ++i) {
       const glm::vec3 p = b.min + (b.max - b.min) * glm::vec3(u(rng), u(rng), u(rng));
       const bool reference = insideMesh(mesh, p);
       inside += reference;
-      wrong += volumetricParityTest(vds, p) != reference;
+      if (volumetricParityTest(vds, p) == reference) continue;
+      if (++wrong <= 5)
+        firstWrong << "; (" << p.x << ", " << p.y << ", " << p.z << ") expected "
+                   << (reference ? "inside" : "outside") << ", got the other";
     }
     EXPECT_GT(inside, kPoints / 20);
     // Only points within a texel of the surface may land on the wrong side.
-    EXPECT_LE(wrong, kPoints / 200) << wrong << " of " << kPoints;
+    EXPECT_LE(wrong, kPoints / 200) << wrong << " of " << kPoints << firstWrong.str();
     std::printf("%d of %d points on the wrong side\n", wrong, kPoints);
   }
 }
