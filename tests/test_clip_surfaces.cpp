@@ -609,10 +609,11 @@ TEST(ClipSurfaceGpu, CapsCoverExactlyTheCut) {
 
 // What each pixel of a relief-capped solid shows, against a CPU ray cast: along the pixel's
 // view ray the first point inside the torus (between its entry and exit hits) that the
-// surface keeps (eq. 1: f ≥ 0, found by steps of 1e-3 and bisection). No pixel may show a
-// point behind it (a pinhole in the cap at its rim, where the grid's linear cells part from
-// the bilinear relief or the parity test read its texel's depth) or in front of it (a cap
-// outside the solid), at the small size where these showed as dotted cap outlines.
+// surface keeps (eq. 1: f ≥ 0, found by steps of 1e-3 and bisection), or nothing where there is
+// none. No pixel may show a point behind it or nothing (a pinhole in the cap at its rim, where
+// the grid's linear cells part from the bilinear relief or the parity test read its texel's
+// depth), nor one in front of it or where there is none (a cap outside the solid), at the
+// small size where these showed as dotted cap outlines.
 TEST(ClipSurfaceGpu, EachPixelOfARelievedCapShowsTheRayCastsFirstKeptPointInside) {
   writeTorus();
   const Scene scene = parseScene(torusScene(kNoisySurface, true), "torus.json", kData);
@@ -623,7 +624,8 @@ TEST(ClipSurfaceGpu, EachPixelOfARelievedCapShowsTheRayCastsFirstKeptPointInside
   const Camera camera = scene.resolvedCamera();
   const glm::mat4 inverse = glm::inverse(
       camera.projectionMatrix(float(scene.width) / float(scene.height)) * camera.view());
-  int seen = 0, pinholes = 0, specks = 0;
+  int seen = 0;
+  test::Mismatches pinholes, specks;  // distances along the view ray; −1: nothing
   for (int y = 0; y < pos.height; ++y)
     for (int x = 0; x < pos.width; ++x) {
       const glm::vec2 ndc((x + 0.5f) / pos.width * 2 - 1, 1 - (y + 0.5f) / pos.height * 2);
@@ -638,23 +640,26 @@ TEST(ClipSurfaceGpu, EachPixelOfARelievedCapShowsTheRayCastsFirstKeptPointInside
           first = hits[k];
           break;
         }
-        for (float t = hits[k]; t < hits[k + 1]; t += 1e-3f) {
-          if (!kept(t)) continue;
-          float lo = t - 1e-3f, hi = t;
+        // Steps of 1e-3 up to the exit, the exit included.
+        for (float t = hits[k] + 1e-3f; t < hits[k + 1] + 1e-3f; t += 1e-3f) {
+          const float at = std::min(t, hits[k + 1]);
+          if (!kept(at)) continue;
+          float lo = t - 1e-3f, hi = at;
           for (int i = 0; i < 20; ++i) (kept(0.5f * (lo + hi)) ? hi : lo) = 0.5f * (lo + hi);
           first = hi;
           break;
         }
       }
-      if (first < 0.0f || id.at(x, y)[0] != 0.0f) continue;
-      ++seen;
-      const float shown = glm::dot(glm::make_vec3(pos.at(x, y)) - from, dir);
-      pinholes += shown > first + 0.02f;
-      specks += shown < first - 0.02f;
+      // Distances along the ray, −1 for nothing shown.
+      const bool torus = id.at(x, y)[0] == 0.0f;
+      const float shown = torus ? glm::dot(glm::make_vec3(pos.at(x, y)) - from, dir) : -1.0f;
+      seen += first >= 0.0f;
+      if (first >= 0.0f && (!torus || shown > first + 0.02f)) pinholes.add(x, y, first, shown);
+      if (torus && (first < 0.0f || shown < first - 0.02f)) specks.add(x, y, first, shown);
     }
   EXPECT_GT(seen, 3000);
-  EXPECT_EQ(pinholes, 0) << "of " << seen;
-  EXPECT_EQ(specks, 0) << "of " << seen;
+  EXPECT_EQ(pinholes.count(), 0) << "of " << seen << ": " << pinholes;
+  EXPECT_EQ(specks.count(), 0) << "of " << seen << ": " << specks;
 }
 
 TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {

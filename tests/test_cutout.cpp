@@ -484,8 +484,9 @@ TEST(Cutout, WallsAreShownAndInteriorIsWhole) {
 // Rule 5's wall where the view ray leaves the wedge: each wall pixel's position is the ray's
 // exit from the intersection of the wedge's half-spaces (clipped here in the test's own
 // terms: the camera's ray through the pixel centre), its normal that exit plane's, and the
-// point lies within the cube. With a set rotation (two planes), and with an axial range too
-// (four planes: the wedge's end walls as well).
+// point lies within the cube; and the outside the plain frame shows removed exactly inside
+// the half-spaces. With a set rotation (two planes), and with an axial range too (four
+// planes: the wedge's end walls as well).
 class CutoutWall : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CutoutWall, LiesWhereTheViewRayLeavesTheWedge) {
@@ -499,7 +500,32 @@ TEST_P(CutoutWall, LiesWhereTheViewRayLeavesTheWedge) {
   const Camera camera = cut.resolvedCamera();
   const glm::mat4 inverse =
       glm::inverse(camera.projectionMatrix(float(cut.width) / float(cut.height)) * camera.view());
-  int walls = 0, endWalls = 0, off = 0, turned = 0, outside = 0;
+  // The plain frame: each point of the cube's outside it shows is removed exactly where it
+  // lies inside every half-space (n·x + w > 0), by the test's own plane tests, so a plane the
+  // GPU dropped shows here even where no wall is seen on it.
+  Scene plain = cut;
+  plain.cutters.disable<CutoutOptions>();
+  const auto plainAovs = renderAovs(plain);
+  const FloatImage &plainId = aov(plainAovs, "objectId"), &plainPos = aov(plainAovs, "position");
+  int removed = 0;
+  test::Mismatches removal;  // 1 removed, 0 kept
+  for (int y = 0; y < id.height; ++y)
+    for (int x = 0; x < id.width; ++x) {
+      if (plainId.at(x, y)[0] != 0.0f) continue;
+      const glm::vec3 p = glm::make_vec3(plainPos.at(x, y));
+      float inside = 1e30f;
+      for (const glm::vec4& plane : wedge.planes)
+        inside = std::min(inside, glm::dot(glm::vec3(plane), p) + plane.w);
+      if (std::abs(inside) < 1e-3f) continue;  // on a plane: either way
+      const bool same =
+          id.at(x, y)[0] == 0.0f && glm::length(glm::make_vec3(position.at(x, y)) - p) < 1e-4f;
+      removed += inside > 0.0f;
+      if ((inside > 0.0f) == same) removal.add(x, y, inside > 0.0f, !same);
+    }
+  EXPECT_GT(removed, 300);
+  EXPECT_EQ(removal.count(), 0) << removal;
+  int walls = 0, endWalls = 0, outside = 0;
+  test::Mismatches off, turned;  // distances to the exit point; cosines to the exit plane's normal
   for (int y = 0; y < id.height; ++y)
     for (int x = 0; x < id.width; ++x) {
       if (id.at(x, y)[0] != 0.0f || mask.at(x, y)[0] != 1.0f) continue;
@@ -521,8 +547,10 @@ TEST_P(CutoutWall, LiesWhereTheViewRayLeavesTheWedge) {
                              << y;
       const glm::vec3 p = glm::make_vec3(position.at(x, y));
       endWalls += std::abs(glm::dot(exitNormal, wedge.axis)) > 0.99f;
-      off += glm::length(p - (from + exit * dir)) > 2e-3f;
-      turned += glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), exitNormal) < 0.999f;
+      const float distance = glm::length(p - (from + exit * dir));
+      if (distance > 2e-3f) off.add(x, y, 0.0, distance);
+      const float cosine = glm::dot(glm::normalize(glm::make_vec3(normal.at(x, y))), exitNormal);
+      if (cosine < 0.999f) turned.add(x, y, 1.0, cosine);
       // The cube spans [0, 1.6] × [0, 1]².
       outside += glm::any(glm::lessThan(p, glm::vec3(-1e-3f))) ||
                  glm::any(glm::greaterThan(p, glm::vec3(1.6f, 1.0f, 1.0f) + 1e-3f));
@@ -531,11 +559,12 @@ TEST_P(CutoutWall, LiesWhereTheViewRayLeavesTheWedge) {
   // An axial range's end planes show as walls too.
   if (wedge.planes.size() == 4) EXPECT_GT(endWalls, 20);
   // Pixels whose ray grazes the wedge's edge may take the other plane.
-  EXPECT_LE(off, walls / 100) << off << " of " << walls << " wall pixels off the exit point";
-  EXPECT_LE(turned, walls / 100) << turned << " of " << walls << " wall normals off the exit plane";
+  EXPECT_LE(off.count(), walls / 100)
+      << "of " << walls << " wall pixels, off the exit point: " << off;
+  EXPECT_LE(turned.count(), walls / 100) << "of " << walls << " wall normals, turned: " << turned;
   EXPECT_EQ(outside, 0);
-  std::printf("%s: %d wall pixels (%d end walls), %d off the exit point, %d turned\n",
-              GetParam().c_str(), walls, endWalls, off, turned);
+  std::printf("%s: %d removed; %d wall pixels (%d end walls), %d off the exit point, %d turned\n",
+              GetParam().c_str(), removed, walls, endWalls, off.count(), turned.count());
 }
 
 INSTANTIATE_TEST_SUITE_P(Wedges, CutoutWall,

@@ -453,25 +453,36 @@ TEST(PipeRendering, RadiusAndWaterLevelFromGisFieldsShowInTheFrame) {
   ASSERT_EQ(pipes.size(), 2u);
   const auto aovs = renderAovs(scene);
   const FloatImage &cls = aov(aovs, "pipeClass"), &position = aov(aovs, "position");
+  // Each feature's values from its fields: DIAM × 0.0005 and LEVEL × 0.001.
+  struct Feature {
+    float radius, water;
+  };
+  const Feature fields[2] = {{1000 * 0.0005f, 300 * 0.001f}, {800 * 0.0005f, 120 * 0.001f}};
   for (const Pipe& pipe : pipes) {
-    const float innerR = pipe.radius - 0.1f, expected = pipe.radius == 0.5f ? 0.3f : 0.12f;
-    EXPECT_NEAR(pipe.waterLevel, expected, 1e-6f);
+    ASSERT_TRUE(pipe.featureId == 0 || pipe.featureId == 1) << pipe.featureId;
+    const Feature& f = fields[pipe.featureId];
+    EXPECT_NEAR(pipe.radius, f.radius, 1e-6f);
+    EXPECT_NEAR(pipe.waterLevel, f.water, 1e-6f);
+    // The axis at the feature's line, 3 apart; its height the network's own.
     const glm::vec3 axis = pipe.nodes.front();
-    const float level = axis.y - innerR + pipe.waterLevel;
+    const float innerR = f.radius - 0.1f, level = axis.y - innerR + f.water;
     const float halfChord = std::sqrt(innerR * innerR - (level - axis.y) * (level - axis.y));
-    int water = 0, offPlane = 0, outsideBore = 0;
+    int water = 0;
+    test::Mismatches offPlane, outsideBore;  // heights; distances from the axis
     for (int y = 0; y < cls.height; ++y)
       for (int x = 0; x < cls.width; ++x) {
         const glm::vec3 p = glm::make_vec3(position.at(x, y));
         if (std::lround(cls.at(x, y)[0] * 4.0f) != 4 || std::abs(p.z - axis.z) > 1.0f) continue;
         ++water;
-        offPlane += std::abs(p.y - level) > 1e-4f;
-        outsideBore += std::abs(p.z - axis.z) > halfChord + 1e-4f;
+        if (std::abs(p.y - level) > 1e-4f) offPlane.add(x, y, level, p.y);
+        if (std::abs(p.z - axis.z) > halfChord + 1e-4f)
+          outsideBore.add(x, y, halfChord, std::abs(p.z - axis.z));
       }
-    std::printf("pipe r %.2f: %d water pixels, level %.3f\n", pipe.radius, water, level);
-    EXPECT_GT(water, 200) << pipe.radius;
-    EXPECT_EQ(offPlane, 0) << pipe.radius;
-    EXPECT_EQ(outsideBore, 0) << pipe.radius;
+    std::printf("feature %lld: %d water pixels, level %.3f\n",
+                static_cast<long long>(pipe.featureId), water, level);
+    EXPECT_GT(water, 200) << pipe.featureId;
+    EXPECT_EQ(offPlane.count(), 0) << pipe.featureId << ": " << offPlane;
+    EXPECT_EQ(outsideBore.count(), 0) << pipe.featureId << ": " << outsideBore;
   }
 }
 

@@ -1423,8 +1423,9 @@ TEST(SceneNames, UnnamedGltfNodesTakeTheirMeshNamesAndKeepTheirPlaceAsAnAlias) {
 
 // An unnamed glTF node takes its mesh's name, else its parent's, else its material's, and
 // keeps its place as the alias (tests/data/meshes/unnamed-nodes.gltf: node 1 under the named
-// "assembly", node 2 with the mesh "bolt", node 3 at the top with the material "brass",
-// node 4 with nothing named: "node"). The root Assimp puts over a scene's top-level nodes ("ROOT")
+// "assembly", node 2 with the mesh "bolt", node 5 under "assembly" with the material "brass"
+// (the parent first), node 3 at the top with "brass", node 4 with nothing named: "node").
+// The root Assimp puts over a scene's top-level nodes ("ROOT")
 // is no name of the file's.
 TEST(SceneNames, UnnamedGltfNodesTakeTheirMeshParentOrMaterialName) {
   const Scene s =
@@ -1433,7 +1434,8 @@ TEST(SceneNames, UnnamedGltfNodesTakeTheirMeshParentOrMaterialName) {
   std::vector<std::string> names;
   for (const SceneObject& o : s.objects) names.push_back(o.name + " = " + o.alias);
   EXPECT_EQ(names, (std::vector<std::string>{"a/assembly = a/nodes[1]", "a/bolt = a/nodes[2]",
-                                             "a/brass = a/nodes[3]", "a/node = a/nodes[4]"}));
+                                             "a/assembly#2 = a/nodes[5]", "a/brass = a/nodes[3]",
+                                             "a/node = a/nodes[4]"}));
 }
 
 // A reload while the last scene is held (the viewer's way) imports no mesh file again; a file
