@@ -505,6 +505,83 @@ TEST_F(VolumeClosedForm, AUniformBoxKeepsTheTransmittanceOfItsDepth) {
   }
 }
 
+// A label volume (Burns11 §7.1) in three bands along x, labels 1, 2 and 3; 1 and 2 listed
+// with their own colour and opacity, 3 not (clear). Seen along z, each ray stays in one band,
+// so each pixel is the uniform box's closed form for its label: opacity 1 − (1 − α)^41,
+// colour the label's colour times it; the unlisted band clear.
+TEST_F(VolumeClosedForm, ALabelVolumesBandsAreEachTheirMaterialsClosedForm) {
+  const fs::path file = volume("bands", kN, 1.0f, [](glm::vec3 p) {
+    return p.x < -0.25f ? 1.0f : p.x < 0.25f ? 2.0f : 3.0f;
+  });
+  const Scene s = alongZ(R"({"name": "bands", "file": ")" + file.string() +
+                         R"(", "labels": true, "shading": false, "opacityDistance": 1,
+                         "sampleDistance": 0.5, "transferFunction": [
+                           {"value": 1, "color": [1, 0, 0], "opacity": 0.05},
+                           {"value": 2, "color": [0, 1, 0], "opacity": 0.1}]})");
+  Renderer renderer(s, test::glContext().info());
+  renderer.render();
+  const FloatImage opacity = aov(renderer.readAovs(), "volumeOpacity");
+  const Rgba8Image color = renderer.readColor();
+  const double expected[3] = {1.0 - std::pow(0.95, kN), 1.0 - std::pow(0.9, kN), 0.0};
+  int counted[3] = {0, 0, 0};
+  test::Mismatches wrongOpacity, wrongColor;  // opacity; the label's channel in levels
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const float wx = (x + 0.5f) / float(s.width) * 1.6f - 0.8f;  // the view is 1.6 wide
+      if (std::abs(std::abs(wx) - 0.25f) < 0.1f) continue;         // near a band's edge
+      const int band = wx < -0.25f ? 0 : wx < 0.25f ? 1 : 2;
+      ++counted[band];
+      const double o = opacity.at(x, y)[0], want = expected[band];
+      if (std::abs(o - want) > 1e-4) wrongOpacity.add(x, y, want, o);
+      const int channel = band == 2 ? 0 : band;  // red, green; the clear band: all black
+      if (std::abs(color.at(x, y)[channel] - 255.0 * want) > 1.0)
+        wrongColor.add(x, y, 255.0 * want, color.at(x, y)[channel]);
+    }
+  for (int band = 0; band < 3; ++band) EXPECT_GT(counted[band], 500) << band;
+  EXPECT_EQ(wrongOpacity.count(), 0) << wrongOpacity;
+  EXPECT_EQ(wrongColor.count(), 0) << wrongColor;
+}
+
+// A mesh inside a volume stops its rays: a plane at z = 0 (scaled to 0.02 of its 20 units:
+// x, y in [−0.2, 0.2]) in the uniform box seen along z. A ray onto the plane crosses only the
+// box's front half, L/2 = 20.5 voxels, so it keeps T = (1 − α)^20.5; the rays beside it the
+// whole depth, (1 − α)^41.
+TEST_F(VolumeClosedForm, AMeshInsideStopsTheRaysAtItsDepth) {
+  const double alpha = 0.05;
+  const fs::path file = volume("slab", kN, 1.0f, [](glm::vec3 p) {
+    return p.x < -0.99f && p.y < -0.99f && p.z < -0.99f ? 0.0f : 1.0f;
+  });
+  const Scene s =
+      parseScene(R"({"resolution": [96, 96], "samples": 1, "background": [0, 0, 0],
+      "style": {"name": "gooch", "lines": false},
+      "camera": {"projection": "orthographic", "height": 1.6, "eye": [0, 0, 4], "target": [0, 0, 0]},
+      "objects": [{"name": "plane", "file": ")" +
+                     kData + R"(/render/plane.obj", "transform": {"scale": 0.02}}],
+      "volumes": [{"name": "slab", "file": ")" +
+                     file.string() +
+                     R"(", "shading": false, "opacityDistance": 1, "sampleDistance": 0.5,
+                   "jitter": false, "transferFunction": [{"value": 0, "opacity": 0.05},
+                   {"value": 1, "opacity": 0.05}]}]})",
+                 "mesh-in-volume.json", dir_);
+  const auto aovs = renderAovs(s);
+  const FloatImage &opacity = aov(aovs, "volumeOpacity"), &ids = aov(aovs, "objectId");
+  const double onPlane = 1.0 - std::pow(1.0 - alpha, 20.5),
+               beside = 1.0 - std::pow(1.0 - alpha, kN);
+  int planePixels = 0;
+  test::Mismatches wrong;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const bool plane = ids.at(x, y)[0] == 0.0f;
+      planePixels += plane;
+      const double want = plane ? onPlane : beside;
+      if (std::abs(opacity.at(x, y)[0] - want) > 1e-4) wrong.add(x, y, want, opacity.at(x, y)[0]);
+    }
+  std::printf("mesh in a volume: %d pixels on the plane, opacity %.5f there, %.5f beside\n",
+              planePixels, onPlane, beside);
+  EXPECT_GT(planePixels, 500);  // 24 × 24
+  EXPECT_EQ(wrong.count(), 0) << wrong;
+}
+
 TEST_F(VolumeClosedForm, JitteredStartsTakeLOverHSamplesOnAverage) {
   const double alpha = 0.05, sampleDistance = 0.3, L = kN * 0.05, h = sampleDistance * 0.05;
   const double stepAlpha = 1.0 - std::pow(1.0 - alpha, sampleDistance);  // opacityDistance 1
