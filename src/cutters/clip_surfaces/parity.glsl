@@ -20,6 +20,6 @@ bool volumetricParityTest(vec3 t, int depthComplexity) {
     if (mix(mix(depth.w, depth.z, w.x), mix(depth.x, depth.y, w.x), w.y) <= t.z) ++crossings;
     if (depth[nearest] <= t.z) ++crossingsNearest;
   }
-  bool sameSheets = all(equal(count, count.xxxx));
+  bool sameSheets = all(equal(count, ivec4(count.x)));
   return ((sameSheets ? crossings : crossingsNearest) & 1) == 1;
 }
