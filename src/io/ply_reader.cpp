@@ -258,8 +258,15 @@ Mesh readPly(const std::filesystem::path& file, const char* data, std::size_t si
     const bool isVertex = &e == vertex, isFace = e.name == "face", isStrip = e.name == "tristrips";
     const int indices = vertexIndices(e);
     if (isVertex) {
-      // At least a byte per instance: the reservation never exceeds the file.
-      mesh.positions.reserve(std::size_t(std::min<std::uint64_t>(e.count, in.left())));
+      // No more than the bytes left can hold: a vertex takes its properties' bytes in binary,
+      // and a character and a separator per property in ASCII.
+      std::uint64_t least = 0;
+      for (const Property& p : e.properties)
+        least += *format == Format::Ascii
+                     ? 2
+                     : std::uint64_t((p.countType ? *p.countType : p.type).bytes);
+      mesh.positions.reserve(std::size_t(
+          std::min<std::uint64_t>(e.count, in.left() / std::max<std::uint64_t>(least, 1) + 1)));
       if (normals) mesh.normals.reserve(mesh.positions.capacity());
     }
     if (e.properties.empty()) continue;  // instances of nothing: no bytes to read
