@@ -154,14 +154,6 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
     throw Error(file.string(), "", "mesh file not found");
-  Assimp::Importer importer;
-  // Points and lines carry no surface: drop them rather than fail.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
-                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  // Validation first: the later steps index vertices the file claims without checking. They
-  // run once the primitive types are corrected (below).
-  const unsigned flags = aiProcess_ValidateDataStructure;
-  const aiScene* scene = nullptr;
   const bool gzip = file.extension() == ".gz";
   // "room.stl.gz" → "stl"
   std::string format = (gzip ? file.stem().extension() : file.extension()).string();
@@ -181,6 +173,14 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     analyzeTopology(node.mesh);
     return {std::move(node)};
   }
+  Assimp::Importer importer;
+  // Points and lines carry no surface: drop them rather than fail.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  // Validation first: the later steps index vertices the file claims without checking. They
+  // run once the primitive types are corrected (below).
+  const unsigned flags = aiProcess_ValidateDataStructure;
+  const aiScene* scene = nullptr;
   if (gzip) {
     const std::vector<char> data = readGzip(file);
     scene = importer.ReadFileFromMemory(data.data(), data.size(), flags, format.c_str());
