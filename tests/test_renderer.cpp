@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
@@ -11,11 +13,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "expect_error.hpp"
 #include "frame/fullscreen.hpp"
 #include "frame/scene_meshes.hpp"
 #include "gl_test_context.hpp"
+#include "golden.hpp"
+#include "run_command.hpp"
 
 using namespace cutaway;
 
@@ -415,4 +420,45 @@ TEST(Timer, PassTimesAddUpToWallClock) {
   EXPECT_LE(gpu, wall * 1.25 + 2.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
   if (test::glContext().info().software)
     EXPECT_GE(gpu, wall / 5.0) << "gpu " << gpu << " ms, wall " << wall << " ms";
+}
+
+// A raster terrain is a grid mesh: drawn at the detail its pixel error allows (Scene::pixelError,
+// cutaway/geometry/grid_lod.hpp), with far fewer triangles and the same picture up to edges
+// moved by a pixel and the shading's small changes; at 0, every triangle.
+TEST(Renderer, ARasterTerrainIsDrawnAtTheDetailItsPixelErrorAllows) {
+  const std::filesystem::path dem = test::scratchPath("lod", "dem.tif");
+  writeSyntheticDem(dem, {.min = {500000, 4000000},
+                          .max = {502560, 4002560},
+                          .crs = "EPSG:32633",
+                          .cell = 10,
+                          .base = 100,
+                          .relief = 120,
+                          .wavelength = 900});
+  const auto render = [&](float pixelError, std::size_t& triangles) {
+    Scene scene = parseScene(R"({"geo": {"crs": "EPSG:32633", "offset": [501280, 4001280, 0]},
+        "resolution": [320, 240], "samples": 1, "style": {"name": "blinn-phong", "lines": false},
+        "objects": [{"name": "ground", "raster": {"file": "dem.tif"}}],
+        "camera": {"eye": [-1500, 900, 1500], "target": [0, 100, 0], "fov": 45}})",
+                             "lod.json", dem.parent_path());
+    EXPECT_TRUE(scene.objects[0].mesh->grid);
+    scene.pixelError = pixelError;
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    triangles = renderer.meshTriangles();
+    return renderer.readColor();
+  };
+  std::size_t full = 0, half = 0, four = 0;
+  const Rgba8Image whole = render(0.0f, full);
+  EXPECT_EQ(full, 2u * 255u * 255u);
+  const Rgba8Image coarser = render(0.5f, half);
+  (void)render(4.0f, four);
+  EXPECT_LT(half, full / 2);
+  EXPECT_LT(four, half);
+  const test::ImageDifference d = test::compareImages(whole, coarser, 16);
+  EXPECT_EQ(d.unexplained, 0) << "max difference " << d.maxDifference;
+  // The shading follows the kept nodes' normals, interpolated over larger triangles: a
+  // difference of a few levels here and there (0.61 on average here).
+  EXPECT_LT(d.meanDifference, 1.0);
+  std::printf("triangles at 0, 0.5 and 4 px: %zu, %zu, %zu; mean difference %.3f\n", full, half,
+              four, d.meanDifference);
 }

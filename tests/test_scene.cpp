@@ -98,6 +98,7 @@ const BadScene kBadScenes[] = {
     {"resolution_zero.json", "/resolution/0", "value 0 is outside [1, 16384]"},
     {"resolution_not_integer.json", "/resolution/0", "expected an integer, got number"},
     {"samples_three.json", "/samples", "samples must be 1, 2, 4, 8 or 16"},
+    {"pixel_error_negative.json", "/pixelError", "value -1 is outside [0, 100]"},
     {"background_missing_bottom.json", "/background", "missing required key \"bottom\""},
     // Objects.
     {"unknown_object_key.json", "/objects/0/material", "unknown key \"material\""},

@@ -79,6 +79,7 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (!o.style.empty()) scene.style.name = o.style;
   if (o.shadows) scene.style.shadows.enabled = true;
   if (o.samples) scene.samples = *o.samples;
+  if (o.pixelError) scene.pixelError = *o.pixelError;
   if (o.noCutaway && o.cutawayAngle)
     throw Error("--no-cutaway", "", "cannot be combined with --cutaway-angle");
   if (o.noCutaway) scene.cutters.clear();  // the plain model: no cutter at all
@@ -554,6 +555,7 @@ struct Measurement {
   // GPU (or CPU, for the CPU path) time of the cutaway-surface computation alone.
   double cutawaySurfaceMs = 0;
   std::size_t plain = 0;  // index of the run it is compared with
+  std::size_t triangles = 0;  // of the scene's meshes, as drawn (grid meshes at their detail)
 };
 
 // Renders `frames` frames (after a warm-up) and gathers per-pass and whole-frame times.
@@ -581,6 +583,7 @@ Measurement measure(const std::string& label, const Scene& scene, const gl::Cont
     }
   }
   Measurement m{label, renderer.cutawayComputePath(), {}, stats(frameTimes)};
+  m.triangles = renderer.meshTriangles();
   for (const auto& name : order) {
     PassStats p{name, stats(times[name].first), stats(times[name].second)};
     if (name == "cutawayCpu")
@@ -830,7 +833,8 @@ int bench(const BenchOptions& options) {
       nlohmann::json entry = {{"label", m.label},
                               {"passes", passes},
                               {"frame", statsJson(m.frame)},
-                              {"frameRatioToPlain", m.frame.median / runs[m.plain].frame.median}};
+                              {"frameRatioToPlain", m.frame.median / runs[m.plain].frame.median},
+                              {"meshTriangles", m.triangles}};
       if (m.computePath)
         entry["cutawaySurfaceMs"] = m.cutawaySurfaceMs, entry["computePath"] = m.computePath;
       list.push_back(entry);
@@ -866,13 +870,14 @@ int bench(const BenchOptions& options) {
                 m.frame.max);
   }
   if (!scene.networks.empty()) {
-    std::printf("\nKonev18 Table 1 (frame ms, median):\n%-12s %12s %12s\n", "feature", "L 1280x960",
-                "H 1920x1200");
+    std::printf(
+        "\nKonev18 Table 1 (frame ms, median; mesh triangles drawn):\n%-12s %12s %12s %12s %12s\n",
+        "feature", "L 1280x960", "H 1920x1200", "L triangles", "H triangles");
     const std::size_t half = runs.size() / 2;
     for (std::size_t i = 0; i < half; ++i)
-      std::printf("%-12s %12.3f %12.3f\n",
+      std::printf("%-12s %12.3f %12.3f %12zu %12zu\n",
                   runs[i].label.substr(0, runs[i].label.size() - 2).c_str(), runs[i].frame.median,
-                  runs[i + half].frame.median);
+                  runs[i + half].frame.median, runs[i].triangles, runs[i + half].triangles);
   } else if (runs.size() > 1) {
     // Each run against the plain run of its group (its style, its image size).
     std::printf("\n%-28s %12s %12s", "summary", "frame ms", "× plain");

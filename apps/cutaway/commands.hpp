@@ -18,6 +18,7 @@ struct SceneOverrides {
   bool fit = false;
   std::string style;
   std::optional<int> samples;
+  std::optional<float> pixelError;
   std::optional<float> cutawayAngle;  // adaptive cutter θ, degrees
   bool noCutaway = false;
   bool shadows = false;  // turn on style.shadows

@@ -69,6 +69,12 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
       ->check(CLI::IsMember({1, 2, 4, 8, 16}));
   command
       ->add_option_function<float>(
+          "--pixel-error", [&o](float e) { o.pixelError = e; },
+          "Screen-space error in pixels a terrain grid may show where drawn coarser (0: every "
+          "triangle)")
+      ->check(CLI::Range(0.0f, 100.0f));
+  command
+      ->add_option_function<float>(
           "--cutaway-angle", [&o](float a) { o.cutawayAngle = a; },
           "Adaptive cutaway angle θ in degrees (adds the cutter if the scene has none)")
       ->check(CLI::Range(0.0f, 90.0f));

@@ -1,41 +1,81 @@
 #include "frame/scene_meshes.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "cutaway/core/error.hpp"
 
 namespace cutaway {
 
-GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles) {
+GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles)
+    : source_(&mesh), lod_(GridLod::build(mesh)) {
   // glDrawElements counts indices in a GLsizei.
   if (mesh.triangles.size() > maxTriangles)
     throw Error(std::to_string(mesh.triangles.size()) + " triangles exceed the limit of " +
                 std::to_string(maxTriangles) + " per mesh");
-  std::vector<float> interleaved;
-  interleaved.reserve(mesh.positions.size() * 6);
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const auto& p = mesh.positions[i];
-    const auto& n = mesh.normals[i];
-    interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
-  }
-  if (gl::outOfMemory([&] {
-        vertices_ =
-            gl::Buffer::create(GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
-        indices_ = gl::Buffer::create(GLsizeiptr(mesh.triangles.size() * sizeof(glm::uvec3)),
-                                      mesh.triangles.data());
-      }))
-    throw Error("the device is out of memory for its " + std::to_string(mesh.triangles.size()) +
-                " triangles");
-  indexCount_ = GLsizei(mesh.triangles.size() * 3);
   vertexArray_ = gl::VertexArray::create();
   const GLuint vao = vertexArray_.id();
-  glVertexArrayVertexBuffer(vao, 0, vertices_.id(), 0, 6 * sizeof(float));
-  glVertexArrayElementBuffer(vao, indices_.id());
   for (GLuint attribute : {0u, 1u}) {
     glEnableVertexArrayAttrib(vao, attribute);
     glVertexArrayAttribFormat(vao, attribute, 3, GL_FLOAT, GL_FALSE, attribute * 3 * sizeof(float));
     glVertexArrayAttribBinding(vao, attribute, 0);
   }
+  if (lod_) {
+    levels_.assign(std::size_t(lod_->chunkCount()), GridLod::kLevels - 1);
+    upload(lod_->triangles(levels_), true);
+  } else {
+    upload(mesh.triangles, false);
+  }
+}
+
+// A grid mesh's buffers hold only the nodes its drawn triangles use, renumbered, so that the
+// device's memory follows the detail drawn, not the terrain's size.
+void GpuMesh::upload(std::vector<glm::uvec3> triangles, bool compact) {
+  const cutaway::Mesh& mesh = *source_;
+  std::vector<std::uint32_t> nodes;  // the vertex buffer's nodes, in order
+  if (compact) {
+    std::vector<std::uint32_t> slot(mesh.positions.size(), ~0u);
+    for (glm::uvec3& t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        if (slot[t[k]] == ~0u) slot[t[k]] = std::uint32_t(nodes.size()), nodes.push_back(t[k]);
+        t[k] = slot[t[k]];
+      }
+  }
+  const std::size_t count = compact ? nodes.size() : mesh.positions.size();
+  constexpr std::size_t kStride = 6 * sizeof(float);
+  if (gl::outOfMemory([&] {
+        vertices_ = gl::Buffer::create(GLsizeiptr(std::max<std::size_t>(count, 1) * kStride),
+                                       nullptr, GL_DYNAMIC_STORAGE_BIT);
+        indices_ =
+            gl::Buffer::create(GLsizeiptr(triangles.size() * sizeof(glm::uvec3)), triangles.data());
+      }))
+    throw Error("the device is out of memory for its " + std::to_string(triangles.size()) +
+                " triangles");
+  // Interleaved a block at a time: a copy of a large mesh's vertices would double them.
+  constexpr std::size_t kBlock = std::size_t(1) << 16;
+  std::vector<float> interleaved;
+  for (std::size_t begin = 0; begin < count; begin += kBlock) {
+    interleaved.clear();
+    for (std::size_t i = begin; i < std::min(count, begin + kBlock); ++i) {
+      const std::size_t node = compact ? nodes[i] : i;
+      const glm::vec3& p = mesh.positions[node];
+      const glm::vec3& n = mesh.normals[node];
+      interleaved.insert(interleaved.end(), {p.x, p.y, p.z, n.x, n.y, n.z});
+    }
+    glNamedBufferSubData(vertices_.id(), GLintptr(begin * kStride),
+                         GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
+  }
+  indexCount_ = GLsizei(triangles.size() * 3);
+  glVertexArrayVertexBuffer(vertexArray_.id(), 0, vertices_.id(), 0, kStride);
+  glVertexArrayElementBuffer(vertexArray_.id(), indices_.id());
+}
+
+void GpuMesh::selectDetail(const GridLod::View& view) {
+  if (!lod_) return;
+  std::vector<std::uint8_t> levels = lod_->select(view);
+  if (levels == levels_) return;
+  levels_ = std::move(levels);
+  upload(lod_->triangles(levels_), true);
 }
 
 void GpuMesh::draw() const {
@@ -51,6 +91,23 @@ SceneMeshes::SceneMeshes(const Scene& scene) : scene_(scene) {
       throw Error(object.name, "", e.reason());
     }
   }
+}
+
+void SceneMeshes::selectDetail(const glm::mat4& viewProjection, const glm::mat4& projection,
+                               const glm::vec3& eye, float viewportHeight, float pixelError) {
+  for (std::size_t i = 0; i < scene_.objects.size(); ++i)
+    meshes_[i].selectDetail({.model = scene_.objects[i].transformAt(time_),
+                             .viewProjection = viewProjection,
+                             .projection = projection,
+                             .eye = eye,
+                             .viewportHeight = viewportHeight,
+                             .pixelError = pixelError});
+}
+
+std::size_t SceneMeshes::triangles() const {
+  std::size_t n = 0;
+  for (const GpuMesh& m : meshes_) n += m.triangles();
+  return n;
 }
 
 void SceneMeshes::draw(GLuint program, const Filter& which,

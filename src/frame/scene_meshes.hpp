@@ -6,8 +6,10 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <vector>
 
+#include "cutaway/geometry/grid_lod.hpp"
 #include "cutaway/gl/objects.hpp"
 #include "cutaway/scene/scene.hpp"
 
@@ -19,7 +21,9 @@ constexpr GLint kModel = 0, kNormalMatrix = 4;
 }
 
 // One triangle mesh on the GPU: interleaved positions and normals (attributes 0 and 1 of
-// frame/mesh.vert) and indices.
+// frame/mesh.vert) and indices. A grid mesh (Mesh::grid) is drawn with a level of detail: its
+// buffers hold the chunks' levels the last view selected (the coarsest until then); the grid
+// mesh must outlive it.
 class GpuMesh {
  public:
   GpuMesh() = default;
@@ -27,11 +31,20 @@ class GpuMesh {
   static constexpr std::size_t kMaxTriangles = std::size_t(1) << 29;
   explicit GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles = kMaxTriangles);
   void draw() const;
+  // Grid meshes: the chunks' levels for `view` (GridLod::select); the indices are rebuilt only
+  // when the levels change. Other meshes ignore it.
+  void selectDetail(const GridLod::View& view);
+  std::size_t triangles() const { return std::size_t(indexCount_) / 3; }
 
  private:
+  void upload(std::vector<glm::uvec3> triangles, bool compact);
+
+  const cutaway::Mesh* source_ = nullptr;  // read again by selectDetail for grid meshes
   gl::VertexArray vertexArray_;
   gl::Buffer vertices_, indices_;
   GLsizei indexCount_ = 0;
+  std::optional<GridLod> lod_;
+  std::vector<std::uint8_t> levels_;
 };
 
 class SceneMeshes {
@@ -46,6 +59,11 @@ class SceneMeshes {
   const Scene& scene() const { return scene_; }
   const GpuMesh& mesh(std::size_t object) const { return meshes_[object]; }
   float time() const { return time_; }
+  std::size_t triangles() const;  // of every mesh, grid meshes at their selected detail
+  // The detail of the grid meshes for a view of `viewportHeight` pixels whose screen-space
+  // error may reach `pixelError` (Scene::pixelError), each at its object's transform.
+  void selectDetail(const glm::mat4& viewProjection, const glm::mat4& projection,
+                    const glm::vec3& eye, float viewportHeight, float pixelError);
   // The animation time at which objects are drawn (SceneObject::transformAt).
   void setTime(float time) { time_ = time; }
 

@@ -25,6 +25,7 @@ Bounds Mesh::bounds() const {
 }
 
 void Mesh::append(const Mesh& other, const glm::mat4& m) {
+  grid.reset();
   const auto base = unsigned(positions.size());
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
   // A mirroring transform flips the winding; restore outward-facing orientation.

@@ -274,7 +274,9 @@ RasterInfo describeRaster(const std::filesystem::path& file) {
 
 RasterTerrain importRasterTerrain(const std::filesystem::path& file,
                                   const RasterTerrainOptions& options) {
-  return containedTerrain(file, options);
+  RasterTerrain terrain = containedTerrain(file, options);
+  terrain.mesh.grid = GridLayout{terrain.columns, terrain.rows};
+  return terrain;
 }
 
 double syntheticDemHeight(const SyntheticDemOptions& o, double easting, double northing) {

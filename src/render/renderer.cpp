@@ -274,6 +274,10 @@ const char* Renderer::cutawayComputePath() const {
   return nullptr;
 }
 
+std::size_t Renderer::meshTriangles() const {
+  return impl_->meshes.triangles();
+}
+
 void Renderer::render(const Camera& camera, float time) {
   Impl& g = *impl_;
   g.meshes.setTime(time);
@@ -324,6 +328,8 @@ void Renderer::render(const Camera& camera, float time) {
       glNamedBufferSubData(g.shadowMap->lightUniforms(), 0, sizeof fromLight, &fromLight);
     }
   }
+  g.meshes.selectDetail(u.viewProjection, u.projection, camera.eye, float(scene_.height),
+                        scene_.pixelError);
   glNamedBufferSubData(g.frameUniforms.id(), 0, sizeof u, &u);
   glBindBufferBase(GL_UNIFORM_BUFFER, Bindings::kFrameUniformBlock, g.frameUniforms.id());
   const FrameState state{camera, aspect, time, u};

@@ -53,6 +53,7 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
   const int n = int(std::lround(std::sqrt(kTerrainTriangles * scale / 2.0)));
   auto terrain = std::make_shared<Mesh>();
   terrain->positions.reserve(std::size_t(n + 1) * std::size_t(n + 1));
+  terrain->normals.reserve(terrain->positions.capacity());
   const float cell = side / float(n);
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) {
@@ -72,6 +73,7 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
       terrain->triangles.emplace_back(a, b, c);
       terrain->triangles.emplace_back(b, d, c);
     }
+  terrain->grid = GridLayout{n + 1, n + 1};
   scene.objects.push_back(generatedObject("terrain", {0.62f, 0.72f, 0.5f}, terrain));
   // What the openings show below the pipes: one quad of soil under the whole city (two
   // triangles; the terrain row's count stays the paper's).

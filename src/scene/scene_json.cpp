@@ -933,6 +933,8 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
     if (scene.samples & (scene.samples - 1))
       ctx.fail("/samples", "samples must be 1, 2, 4, 8 or 16");
   }
+  if (const json* v = r.take("pixelError"))
+    scene.pixelError = float(number(ctx, *v, "/pixelError", 0.0, 100.0));
   if (const json* v = r.take("background")) {
     if (v->is_array()) {
       scene.backgroundTop = scene.backgroundBottom = color(ctx, *v, "/background");

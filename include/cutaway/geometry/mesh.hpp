@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,14 +41,23 @@ struct MeshReport {
   bool watertight = false;
 };
 
+// A mesh whose nodes form a grid: `columns × rows` positions row by row, and two triangles
+// per cell, cell by cell, every cell split and wound alike (terrains). Renderers then draw it
+// with a level of detail (cutaway/geometry/grid_lod.hpp).
+struct GridLayout {
+  int columns = 0, rows = 0;
+};
+
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // one per position
   std::vector<glm::uvec3> triangles;
   MeshReport report;
+  std::optional<GridLayout> grid;  // checked where it is used: edits may have broken it
 
   Bounds bounds() const;
-  // Appends `other` transformed by `m` (normals by its inverse transpose).
+  // Appends `other` transformed by `m` (normals by its inverse transpose); the result is no
+  // grid.
   void append(const Mesh& other, const glm::mat4& m);
 };
 

@@ -108,6 +108,9 @@ class Renderer {
   VolumeLineDrawing volumeLineDrawing() const;
   // Where the adaptive cutter's jump flooding runs ("gpu" or "cpu"), or null without it.
   const char* cutawayComputePath() const;
+  // Triangles of the scene's meshes as the last frame drew them: grid meshes (terrains) at
+  // the detail its view selected (Scene::pixelError).
+  std::size_t meshTriangles() const;
 
  private:
   struct Impl;

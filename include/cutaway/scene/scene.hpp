@@ -236,6 +236,9 @@ struct Scene {
   glm::vec3 backgroundTop{1.0f}, backgroundBottom{1.0f};
   int width = 800, height = 600;
   int samples = 4;  // MSAA samples of the final image
+  // Pixels of screen-space error a grid mesh (a terrain) may show where its chunks are drawn
+  // coarser (cutaway/geometry/grid_lod.hpp); 0 draws every triangle.
+  float pixelError = 0.5f;
   Style style;
   GeoFrame geo;                                         // "geo": {"crs": …, "offset": […]}
   // "cutters": {…}: each enabled cutter's options (cutaway/cutters/<name>.hpp) by its key.
