@@ -645,12 +645,24 @@ TEST(Cli, BenchOfANetworkSceneGivesTable1sRows) {
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto result = nlohmann::json::parse(r.out);
   std::vector<std::string> labels;
-  for (const auto& row : result["runs"]) labels.push_back(row["label"]);
+  std::map<std::string, std::size_t> triangles;
+  for (const auto& row : result["runs"]) {
+    labels.push_back(row["label"]);
+    triangles[labels.back()] = row["meshTriangles"];
+  }
   std::vector<std::string> expected;
   for (const char* size : {"L", "H"})
-    for (const char* row : {"Empty", "Terrain", "Shafts", "Pipes (B)", "Pipes (M)"})
+    for (const char* row : {"Empty", "Terrain", "Shafts", "Pipes (B)", "Pipes (M)", "City"})
       expected.push_back(std::string(row) + " " + size);
   EXPECT_EQ(labels, expected);
+  // The whole city draws the terrain's and the shafts' triangles, the terrain at the detail
+  // the same view selects; billboard pipes are no mesh.
+  for (const std::string size : {" L", " H"}) {
+    EXPECT_EQ(triangles["Empty" + size], 0u);
+    EXPECT_EQ(triangles["Pipes (B)" + size], 0u);
+    EXPECT_GT(triangles["Terrain" + size], 0u);
+    EXPECT_EQ(triangles["City" + size], triangles["Terrain" + size] + triangles["Shafts" + size]);
+  }
 }
 
 // The generated city renders as a lit ground seen from above (green, not the black of a

@@ -30,26 +30,29 @@ GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles)
 
 // A grid mesh's buffers hold only the nodes its drawn triangles use, renumbered, so that the
 // device's memory follows the detail drawn, not the terrain's size.
-void GpuMesh::upload(std::vector<glm::uvec3> triangles, bool compact) {
+void GpuMesh::upload(const std::vector<glm::uvec3>& triangles, bool compact) {
   const cutaway::Mesh& mesh = *source_;
   std::vector<std::uint32_t> nodes;  // the vertex buffer's nodes, in order
+  std::vector<glm::uvec3> renumbered;
   if (compact) {
     std::vector<std::uint32_t> slot(mesh.positions.size(), ~0u);
-    for (glm::uvec3& t : triangles)
+    renumbered = triangles;
+    for (glm::uvec3& t : renumbered)
       for (int k = 0; k < 3; ++k) {
         if (slot[t[k]] == ~0u) slot[t[k]] = std::uint32_t(nodes.size()), nodes.push_back(t[k]);
         t[k] = slot[t[k]];
       }
   }
+  const std::vector<glm::uvec3>& indices = compact ? renumbered : triangles;
   const std::size_t count = compact ? nodes.size() : mesh.positions.size();
   constexpr std::size_t kStride = 6 * sizeof(float);
   if (gl::outOfMemory([&] {
         vertices_ = gl::Buffer::create(GLsizeiptr(std::max<std::size_t>(count, 1) * kStride),
                                        nullptr, GL_DYNAMIC_STORAGE_BIT);
         indices_ =
-            gl::Buffer::create(GLsizeiptr(triangles.size() * sizeof(glm::uvec3)), triangles.data());
+            gl::Buffer::create(GLsizeiptr(indices.size() * sizeof(glm::uvec3)), indices.data());
       }))
-    throw Error("the device is out of memory for its " + std::to_string(triangles.size()) +
+    throw Error("the device is out of memory for its " + std::to_string(indices.size()) +
                 " triangles");
   // Interleaved a block at a time: a copy of a large mesh's vertices would double them.
   constexpr std::size_t kBlock = std::size_t(1) << 16;
@@ -65,7 +68,7 @@ void GpuMesh::upload(std::vector<glm::uvec3> triangles, bool compact) {
     glNamedBufferSubData(vertices_.id(), GLintptr(begin * kStride),
                          GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data());
   }
-  indexCount_ = GLsizei(triangles.size() * 3);
+  indexCount_ = GLsizei(indices.size() * 3);
   glVertexArrayVertexBuffer(vertexArray_.id(), 0, vertices_.id(), 0, kStride);
   glVertexArrayElementBuffer(vertexArray_.id(), indices_.id());
 }
@@ -75,7 +78,11 @@ void GpuMesh::selectDetail(const GridLod::View& view) {
   std::vector<std::uint8_t> levels = lod_->select(view);
   if (levels == levels_) return;
   levels_ = std::move(levels);
-  upload(lod_->triangles(levels_), true);
+  // Full detail everywhere is the mesh itself (pixelError 0): no copy, no renumbering.
+  if (std::all_of(levels_.begin(), levels_.end(), [](std::uint8_t l) { return l == 0; }))
+    upload(source_->triangles, false);
+  else
+    upload(lod_->triangles(levels_), true);
 }
 
 void GpuMesh::draw() const {

@@ -37,7 +37,7 @@ class GpuMesh {
   std::size_t triangles() const { return std::size_t(indexCount_) / 3; }
 
  private:
-  void upload(std::vector<glm::uvec3> triangles, bool compact);
+  void upload(const std::vector<glm::uvec3>& triangles, bool compact);
 
   const cutaway::Mesh* source_ = nullptr;  // read again by selectDetail for grid meshes
   gl::VertexArray vertexArray_;
