@@ -10,9 +10,11 @@
 #include <limits>
 #include <string>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/geometry/pipe_network.hpp"
 #include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "expect_error.hpp"
@@ -461,4 +463,49 @@ TEST(Renderer, ARasterTerrainIsDrawnAtTheDetailItsPixelErrorAllows) {
   EXPECT_LT(d.meanDifference, 1.0);
   std::printf("triangles at 0, 0.5 and 4 px: %zu, %zu, %zu; mean difference %.3f\n", full, half,
               four, d.meanDifference);
+}
+
+// A mesh with coarser versions (SceneObject::coarser; a network's shafts with 16, 8 and 4
+// sides) is drawn as the coarsest whose error r (1 − cos(π/n)) spans at most the pixel error at
+// the mesh's nearest point (K / d pixels per unit); outside the view, the coarsest; at a pixel
+// error of 0, the mesh itself.
+TEST(Frame, AMeshWithCoarserVersionsIsDrawnAsTheCoarsestWithinThePixelError) {
+  test::glContext();
+  PipeNetwork net;
+  net.shafts.push_back(Shaft{.bottom = {0, -3, 0}, .top = 0.0f, .radius = 1.0f});
+  const SceneObject shafts = shaftObject(net, 0, false);
+  ASSERT_EQ(shafts.coarser.size(), 3u);
+  std::vector<std::size_t> triangles = {shafts.mesh->triangles.size()};
+  for (int k = 0; k < 3; ++k) {
+    const int sides = 16 >> k;
+    EXPECT_FLOAT_EQ(shafts.coarser[std::size_t(k)].error,
+                    1.0f - std::cos(glm::pi<float>() / float(sides)));
+    triangles.push_back(shafts.coarser[std::size_t(k)].mesh->triangles.size());
+    EXPECT_EQ(triangles.back(), std::size_t(2 * sides));
+  }
+  GpuMesh mesh(*shafts.mesh, shafts.coarser);
+  EXPECT_EQ(mesh.triangles(), 64u);
+  GridLod::View view;
+  view.projection = glm::perspective(glm::radians(45.0f), 1.0f, 0.1f, 1e5f);
+  view.viewportHeight = 1000.0f;
+  view.pixelError = 0.5f;
+  const float k = 500.0f / std::tan(glm::radians(22.5f));
+  // Eyes along +z, the shaft's nearest point at distance d − 1 (its radius).
+  for (const float d : {20.0f, 100.0f, 400.0f, 2000.0f, 20000.0f}) {
+    view.eye = {0.0f, -1.5f, d};
+    view.viewProjection =
+        view.projection * glm::lookAt(view.eye, glm::vec3(0, -1.5f, 0), glm::vec3(0, 1, 0));
+    std::size_t expected = 0;
+    while (expected < 3 && shafts.coarser[expected].error * k / (d - 1.0f) <= view.pixelError)
+      ++expected;
+    mesh.selectDetail(view);
+    EXPECT_EQ(mesh.triangles(), triangles[expected]) << "at distance " << d;
+  }
+  view.pixelError = 0.0f;
+  mesh.selectDetail(view);
+  EXPECT_EQ(mesh.triangles(), 64u);
+  view.viewProjection =
+      view.projection * glm::lookAt(view.eye, view.eye + glm::vec3(0, 0, 1), glm::vec3(0, 1, 0));
+  mesh.selectDetail(view);
+  EXPECT_EQ(mesh.triangles(), 8u) << "turned away";
 }

@@ -22,16 +22,22 @@ GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles)
   }
   if (lod_) {
     levels_.assign(std::size_t(lod_->chunkCount()), GridLod::kLevels - 1);
-    upload(lod_->triangles(levels_), true);
+    upload(mesh, lod_->triangles(levels_), true);
   } else {
-    upload(mesh.triangles, false);
+    upload(mesh, mesh.triangles, false);
   }
+}
+
+GpuMesh::GpuMesh(const cutaway::Mesh& mesh, const std::vector<SceneObject::Coarser>& coarser)
+    : GpuMesh(mesh) {
+  coarser_ = coarser;
+  if (!coarser_.empty()) bounds_ = mesh.bounds();
 }
 
 // A grid mesh's buffers hold only the nodes its drawn triangles use, renumbered, so that the
 // device's memory follows the detail drawn, not the terrain's size.
-void GpuMesh::upload(const std::vector<glm::uvec3>& triangles, bool compact) {
-  const cutaway::Mesh& mesh = *source_;
+void GpuMesh::upload(const cutaway::Mesh& mesh, const std::vector<glm::uvec3>& triangles,
+                     bool compact) {
   std::vector<std::uint32_t> nodes;  // the vertex buffer's nodes, in order
   std::vector<glm::uvec3> renumbered;
   if (compact) {
@@ -74,15 +80,28 @@ void GpuMesh::upload(const std::vector<glm::uvec3>& triangles, bool compact) {
 }
 
 void GpuMesh::selectDetail(const GridLod::View& view) {
+  if (!coarser_.empty()) {
+    // The coarsest version within the pixel error where the mesh comes nearest.
+    const float pixels = GridLod::pixelsPerUnit(view, bounds_);
+    std::size_t version = 0;
+    while (version < coarser_.size() && (view.pixelError > 0.0f || pixels == 0.0f) &&
+           coarser_[version].error * pixels <= view.pixelError)
+      ++version;
+    if (version == version_) return;
+    version_ = version;
+    const cutaway::Mesh& mesh = version == 0 ? *source_ : *coarser_[version - 1].mesh;
+    upload(mesh, mesh.triangles, false);
+    return;
+  }
   if (!lod_) return;
   std::vector<std::uint8_t> levels = lod_->select(view);
   if (levels == levels_) return;
   levels_ = std::move(levels);
   // Full detail everywhere is the mesh itself (pixelError 0): no copy, no renumbering.
   if (std::all_of(levels_.begin(), levels_.end(), [](std::uint8_t l) { return l == 0; }))
-    upload(source_->triangles, false);
+    upload(*source_, source_->triangles, false);
   else
-    upload(lod_->triangles(levels_), true);
+    upload(*source_, lod_->triangles(levels_), true);
 }
 
 void GpuMesh::draw() const {
@@ -93,7 +112,7 @@ void GpuMesh::draw() const {
 SceneMeshes::SceneMeshes(const Scene& scene) : scene_(scene) {
   for (const auto& object : scene.objects) {
     try {
-      meshes_.emplace_back(*object.mesh);
+      meshes_.emplace_back(*object.mesh, object.coarser);
     } catch (const Error& e) {
       throw Error(object.name, "", e.reason());
     }

@@ -30,14 +30,17 @@ class GpuMesh {
   // Throws cutaway::Error beyond `maxTriangles` or when the device has no memory for it.
   static constexpr std::size_t kMaxTriangles = std::size_t(1) << 29;
   explicit GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles = kMaxTriangles);
+  // Coarser versions of the mesh (SceneObject::coarser), which must outlive this.
+  GpuMesh(const cutaway::Mesh& mesh, const std::vector<SceneObject::Coarser>& coarser);
   void draw() const;
-  // Grid meshes: the chunks' levels for `view` (GridLod::select); the indices are rebuilt only
-  // when the levels change. Other meshes ignore it.
+  // The detail for `view`: a grid mesh's chunk levels (GridLod::select), else the coarsest
+  // version whose error projects to at most view.pixelError pixels at the mesh's nearest
+  // point. The buffers are rebuilt only when the choice changes.
   void selectDetail(const GridLod::View& view);
   std::size_t triangles() const { return std::size_t(indexCount_) / 3; }
 
  private:
-  void upload(const std::vector<glm::uvec3>& triangles, bool compact);
+  void upload(const cutaway::Mesh& mesh, const std::vector<glm::uvec3>& triangles, bool compact);
 
   const cutaway::Mesh* source_ = nullptr;  // read again by selectDetail for grid meshes
   gl::VertexArray vertexArray_;
@@ -45,6 +48,9 @@ class GpuMesh {
   GLsizei indexCount_ = 0;
   std::optional<GridLod> lod_;
   std::vector<std::uint8_t> levels_;
+  std::vector<SceneObject::Coarser> coarser_;
+  Bounds bounds_;            // of the mesh, object space (with coarser versions)
+  std::size_t version_ = 0;  // 0 the mesh, k coarser_[k − 1]
 };
 
 class SceneMeshes {

@@ -129,37 +129,41 @@ GridLod::Extent GridLod::extent(int chunk) const {
           std::min((j + 1) * kChunkCells, rows_ - 1)};
 }
 
-std::vector<std::uint8_t> GridLod::select(const View& view) const {
+float GridLod::pixelsPerUnit(const View& view, const Bounds& local) {
+  // Outside when all eight corners lie beyond one plane of the clip volume.
   const glm::mat4 toClip = view.viewProjection * view.model;
+  int outside[6] = {0, 0, 0, 0, 0, 0};
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec4 p =
+        toClip * glm::vec4((i & 1) ? local.max.x : local.min.x, (i & 2) ? local.max.y : local.min.y,
+                           (i & 4) ? local.max.z : local.min.z, 1.0f);
+    outside[0] += p.x<-p.w, outside[1] += p.x> p.w, outside[2] += p.y < -p.w;
+    outside[3] += p.y > p.w, outside[4] += p.z<-p.w, outside[5] += p.z> p.w;
+  }
+  if (std::find(std::begin(outside), std::end(outside), 8) != std::end(outside)) return 0.0f;
+  // K of a unit at distance 1 (perspective) or anywhere (orthographic), times the model's
+  // largest scale.
   const glm::mat3 m(view.model);
   const float scale = std::max({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
-  // Pixels per world unit at distance 1 (perspective) or anywhere (orthographic).
-  const bool perspective = view.projection[2][3] != 0.0f;
   const float k = 0.5f * view.viewportHeight * std::abs(view.projection[1][1]) * scale;
+  if (view.projection[2][3] == 0.0f) return k;
+  const Bounds w = local.transformed(view.model);
+  const float d = glm::length(glm::max(glm::max(w.min - view.eye, view.eye - w.max), 0.0f));
+  return d > 0.0f ? k / d : INFINITY;
+}
+
+std::vector<std::uint8_t> GridLod::select(const View& view) const {
   std::vector<std::uint8_t> levels(std::size_t(chunkCount()), 0);
   for (int chunk = 0; chunk < chunkCount(); ++chunk) {
-    const Bounds& b = bounds_[std::size_t(chunk)];
-    // Outside when all eight corners lie beyond one plane of the clip volume.
-    int outside[6] = {0, 0, 0, 0, 0, 0};
-    for (int i = 0; i < 8; ++i) {
-      const glm::vec4 p =
-          toClip * glm::vec4((i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                             (i & 4) ? b.max.z : b.min.z, 1.0f);
-      outside[0] += p.x<-p.w, outside[1] += p.x> p.w, outside[2] += p.y < -p.w;
-      outside[3] += p.y > p.w, outside[4] += p.z<-p.w, outside[5] += p.z> p.w;
-    }
+    const float pixels = pixelsPerUnit(view, bounds_[std::size_t(chunk)]);
     std::uint8_t& level = levels[std::size_t(chunk)];
-    if (std::find(std::begin(outside), std::end(outside), 8) != std::end(outside)) {
+    if (pixels == 0.0f) {
       level = kLevels - 1;
-      continue;
+    } else if (view.pixelError > 0.0f) {
+      while (level + 1 < kLevels &&
+             errors_[std::size_t(chunk)][std::size_t(level + 1)] * pixels <= view.pixelError)
+        ++level;
     }
-    if (!(view.pixelError > 0.0f)) continue;
-    const Bounds w = b.transformed(view.model);
-    const float d = glm::length(glm::max(glm::max(w.min - view.eye, view.eye - w.max), 0.0f));
-    const float pixelsPerUnit = perspective ? (d > 0.0f ? k / d : INFINITY) : k;
-    while (level + 1 < kLevels &&
-           errors_[std::size_t(chunk)][std::size_t(level + 1)] * pixelsPerUnit <= view.pixelError)
-      ++level;
   }
   return levels;
 }

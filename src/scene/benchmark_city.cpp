@@ -131,9 +131,7 @@ Scene benchmarkCity(const BenchmarkCityOptions& options) {
   }
   resolveCutIntersections(net, 0.0f);
   trimAtShafts(net);
-  for (const bool inner : {false, true})
-    scene.objects.push_back(networkObject(
-        net, 0, inner ? NetworkPart::ShaftInner : NetworkPart::ShaftOuter, shaftMesh(net, inner)));
+  for (const bool inner : {false, true}) scene.objects.push_back(shaftObject(net, 0, inner));
   scene.networks.push_back(std::move(net));
 
   TerrainOpeningOptions opening;

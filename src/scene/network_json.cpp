@@ -330,8 +330,9 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       if (!mesh.triangles.empty())
         scene.objects.push_back(networkObject(net, index, part, std::move(mesh)));
     };
-    add(NetworkPart::ShaftOuter, shaftMesh(net, false));
-    add(NetworkPart::ShaftInner, shaftMesh(net, true));
+    if (!net.shafts.empty())
+      for (const bool inner : {false, true})
+        scene.objects.push_back(shaftObject(net, index, inner));
     add(NetworkPart::Joints, jointMesh(joints));
     if (net.mode == PipeNetwork::Mode::Mesh) add(NetworkPart::MeshedPipes, pipeMesh(net));
     scene.networks.push_back(std::move(net));

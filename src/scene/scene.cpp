@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <numbers>
 #include <regex>
 
 #include "core/name_pattern.hpp"
@@ -176,6 +177,22 @@ SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part,
   o.material.color = part == NetworkPart::ShaftInner ? net.cutColor : net.color;
   analyzeTopology(mesh);
   o.mesh = std::make_shared<Mesh>(std::move(mesh));
+  return o;
+}
+
+SceneObject shaftObject(const PipeNetwork& net, int network, bool inner) {
+  constexpr int kSides = 32;
+  SceneObject o =
+      networkObject(net, network, inner ? NetworkPart::ShaftInner : NetworkPart::ShaftOuter,
+                    shaftMesh(net, inner, kSides));
+  float radius = 0.0f;
+  for (const Shaft& shaft : net.shafts) radius = std::max(radius, shaft.radius);
+  for (int sides = kSides / 2; sides >= 4; sides /= 2) {
+    Mesh coarser = shaftMesh(net, inner, sides);
+    analyzeTopology(coarser);
+    o.coarser.push_back({radius * (1.0f - std::cos(std::numbers::pi_v<float> / float(sides))),
+                         std::make_shared<Mesh>(std::move(coarser))});
+  }
   return o;
 }
 

@@ -44,6 +44,10 @@ class GridLod {
     float viewportHeight = 1.0f;  // pixels
     float pixelError = 0.5f;      // τ; 0 keeps every triangle
   };
+  // Pixels on screen per unit of the object's space at the nearest point of `local` (a box in
+  // the object's space): K / d times the model's largest scale; 0 when the box lies wholly
+  // outside the view frustum.
+  static float pixelsPerUnit(const View& view, const Bounds& local);
   // A level per chunk (row by row): the coarsest whose projected error is at most τ. Chunks
   // wholly outside the view frustum take the coarsest level (they still cast shadows).
   std::vector<std::uint8_t> select(const View& view) const;

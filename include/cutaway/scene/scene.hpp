@@ -99,7 +99,16 @@ struct SceneObject {
   // pipes below must leave to Konev18's opening.
   std::optional<std::vector<std::string>> cutBy;
   std::shared_ptr<const Mesh> mesh;  // in object space
-  glm::mat4 transform{1.0f};         // object → world
+  // Coarser versions of `mesh` for far views (a network's shafts with fewer sides), finest
+  // first, each with its geometric error: how far its surface may lie from the mesh's, in
+  // object space. The renderer draws the coarsest whose error spans at most
+  // Scene::pixelError pixels at the object's nearest point.
+  struct Coarser {
+    float error = 0.0f;
+    std::shared_ptr<const Mesh> mesh;
+  };
+  std::vector<Coarser> coarser;
+  glm::mat4 transform{1.0f};  // object → world
   // Motion, applied on top of `transform`: world = K(t)·transform, with K interpolated
   // between keyframes (translation and scale linearly, rotation by slerp), held at the ends.
   std::vector<Keyframe> animation;
@@ -270,6 +279,10 @@ struct Scene {
 // "NAME/joints", "NAME/pipes"): an object of interest in the network's colours (the shaft
 // insides in its cut colour, §7), its topology analysed; `network` is its index.
 SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part, Mesh mesh);
+// The shafts' outer or inner cylinders as networkObject gives them (32 sides), with coarser
+// versions of 16, 8 and 4 sides for far views: an n-gon strays r (1 − cos(π/n)) from the
+// circle through its corners.
+SceneObject shaftObject(const PipeNetwork& net, int network, bool inner);
 
 // Loads and validates a scene file and imports its meshes; throws cutaway::Error naming the
 // file, the JSON pointer and the reason.
