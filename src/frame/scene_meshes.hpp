@@ -23,14 +23,14 @@ constexpr GLint kModel = 0, kNormalMatrix = 4;
 // One triangle mesh on the GPU: interleaved positions and normals (attributes 0 and 1 of
 // frame/mesh.vert) and indices. A grid mesh (Mesh::grid) is drawn with a level of detail: its
 // buffers hold the chunks' levels the last view selected (the coarsest until then); the grid
-// mesh must outlive it.
+// mesh must outlive it. A mesh with coarser versions holds the one the last view selected.
 class GpuMesh {
  public:
   GpuMesh() = default;
   // Throws cutaway::Error beyond `maxTriangles` or when the device has no memory for it.
   static constexpr std::size_t kMaxTriangles = std::size_t(1) << 29;
   explicit GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles = kMaxTriangles);
-  // Coarser versions of the mesh (SceneObject::coarser), which must outlive this.
+  // With coarser versions of the mesh (SceneObject::coarser); the mesh must outlive this.
   GpuMesh(const cutaway::Mesh& mesh, const std::vector<SceneObject::Coarser>& coarser);
   void draw() const;
   // The detail for `view`: a grid mesh's chunk levels (GridLod::select), else the coarsest
@@ -42,7 +42,7 @@ class GpuMesh {
  private:
   void upload(const cutaway::Mesh& mesh, const std::vector<glm::uvec3>& triangles, bool compact);
 
-  const cutaway::Mesh* source_ = nullptr;  // read again by selectDetail for grid meshes
+  const cutaway::Mesh* source_ = nullptr;  // read again by selectDetail (grids, versions)
   gl::VertexArray vertexArray_;
   gl::Buffer vertices_, indices_;
   GLsizei indexCount_ = 0;
