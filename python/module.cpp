@@ -271,6 +271,7 @@ PYBIND11_MODULE(_cutaway, m) {
       .def_property_readonly("width", [](const Scene& s) { return s.width; })
       .def_property_readonly("height", [](const Scene& s) { return s.height; })
       .def_property_readonly("samples", [](const Scene& s) { return s.samples; })
+      .def_property_readonly("pixel_error", [](const Scene& s) { return s.pixelError; })
       .def_property_readonly("objects",
                              [](const Scene& s) {
                                std::vector<std::string> names;

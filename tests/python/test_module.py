@@ -96,6 +96,13 @@ def test_bad_input_raises_the_clis_messages(tmp_path):
     assert issubclass(cutaway.Error, RuntimeError)
 
 
+def test_the_pixel_error_comes_from_the_scene():
+    assert cutaway.from_dict(cube_scene()).pixel_error == 0.5
+    assert cutaway.from_dict(dict(cube_scene(), pixelError=2)).pixel_error == 2.0
+    with pytest.raises(cutaway.Error, match=r"/pixelError: value -1 is outside \[0, 100\]"):
+        cutaway.from_dict(dict(cube_scene(), pixelError=-1))
+
+
 def test_the_context_goes_with_the_last_renderer():
     scene = cutaway.from_dict(cube_scene(cutters={}))
     fds = len(os.listdir("/proc/self/fd"))
