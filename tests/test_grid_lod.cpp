@@ -137,7 +137,7 @@ void expectClosedCover(const GridLod& lod, const Mesh& m, const std::vector<std:
 
 TEST(GridLod, EveryMixOfLevelsLeavesTheSurfaceClosed) {
   std::mt19937 random(7);
-  // Chunks of 64 cells and partial ones of 21, 32, 1, 2, 5 and 35 cells.
+  // Chunks of 64 cells and partial ones of 21, 33, 1, 2, 5 and 35 cells.
   const std::pair<int, int> sizes[] = {{150, 98}, {130, 66}, {67, 70}, {100, 100}};
   for (const auto& [columns, rows] : sizes)
     for (const Pattern& p : {kCity, kRaster, kMainDiagonal}) {
