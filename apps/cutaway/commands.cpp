@@ -555,7 +555,7 @@ struct Measurement {
   // GPU (or CPU, for the CPU path) time of the cutaway-surface computation alone.
   double cutawaySurfaceMs = 0;
   std::size_t plain = 0;  // index of the run it is compared with
-  std::size_t triangles = 0;  // of the scene's meshes, as drawn (grid meshes at their detail)
+  std::size_t triangles = 0;  // of the scene's meshes, as drawn (at their selected detail)
 };
 
 // Renders `frames` frames (after a warm-up) and gathers per-pass and whole-frame times.

@@ -70,8 +70,8 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
   command
       ->add_option_function<float>(
           "--pixel-error", [&o](float e) { o.pixelError = e; },
-          "Screen-space error in pixels a terrain grid may show where drawn coarser (0: every "
-          "triangle)")
+          "Screen-space error in pixels that terrain grids and shafts may show where drawn "
+          "coarser (0: every triangle)")
       ->check(CLI::Range(0.0f, 100.0f));
   command
       ->add_option_function<float>(

@@ -122,12 +122,13 @@ SceneMeshes::SceneMeshes(const Scene& scene) : scene_(scene) {
 void SceneMeshes::selectDetail(const glm::mat4& viewProjection, const glm::mat4& projection,
                                const glm::vec3& eye, float viewportHeight, float pixelError) {
   for (std::size_t i = 0; i < scene_.objects.size(); ++i)
-    meshes_[i].selectDetail({.model = scene_.objects[i].transformAt(time_),
-                             .viewProjection = viewProjection,
-                             .projection = projection,
-                             .eye = eye,
-                             .viewportHeight = viewportHeight,
-                             .pixelError = pixelError});
+    if (meshes_[i].hasDetail())
+      meshes_[i].selectDetail({.model = scene_.objects[i].transformAt(time_),
+                               .viewProjection = viewProjection,
+                               .projection = projection,
+                               .eye = eye,
+                               .viewportHeight = viewportHeight,
+                               .pixelError = pixelError});
 }
 
 std::size_t SceneMeshes::triangles() const {

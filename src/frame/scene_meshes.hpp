@@ -38,6 +38,8 @@ class GpuMesh {
   // point. The buffers are rebuilt only when the choice changes.
   void selectDetail(const GridLod::View& view);
   std::size_t triangles() const { return std::size_t(indexCount_) / 3; }
+  // Whether selectDetail can change what is drawn (a grid, or coarser versions).
+  bool hasDetail() const { return lod_ || !coarser_.empty(); }
 
  private:
   void upload(const cutaway::Mesh& mesh, const std::vector<glm::uvec3>& triangles, bool compact);
@@ -66,8 +68,9 @@ class SceneMeshes {
   const GpuMesh& mesh(std::size_t object) const { return meshes_[object]; }
   float time() const { return time_; }
   std::size_t triangles() const;  // of every mesh, grid meshes at their selected detail
-  // The detail of the grid meshes for a view of `viewportHeight` pixels whose screen-space
-  // error may reach `pixelError` (Scene::pixelError), each at its object's transform.
+  // The detail of the grid meshes and of the meshes with coarser versions for a view of
+  // `viewportHeight` pixels whose screen-space error may reach `pixelError`
+  // (Scene::pixelError), each at its object's transform.
   void selectDetail(const glm::mat4& viewProjection, const glm::mat4& projection,
                     const glm::vec3& eye, float viewportHeight, float pixelError);
   // The animation time at which objects are drawn (SceneObject::transformAt).

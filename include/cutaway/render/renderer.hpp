@@ -108,8 +108,8 @@ class Renderer {
   VolumeLineDrawing volumeLineDrawing() const;
   // Where the adaptive cutter's jump flooding runs ("gpu" or "cpu"), or null without it.
   const char* cutawayComputePath() const;
-  // Triangles of the scene's meshes as the last frame drew them: grid meshes (terrains) at
-  // the detail its view selected (Scene::pixelError).
+  // Triangles of the scene's meshes as the last frame drew them: grid meshes (terrains) and
+  // objects with coarser versions (shafts) at the detail its view selected (Scene::pixelError).
   std::size_t meshTriangles() const;
 
  private:

@@ -246,7 +246,8 @@ struct Scene {
   int width = 800, height = 600;
   int samples = 4;  // MSAA samples of the final image
   // Pixels of screen-space error a grid mesh (a terrain) may show where its chunks are drawn
-  // coarser (cutaway/geometry/grid_lod.hpp); 0 draws every triangle.
+  // coarser (cutaway/geometry/grid_lod.hpp), and an object with coarser versions
+  // (SceneObject::coarser) where one is drawn instead; 0 draws every triangle.
   float pixelError = 0.5f;
   Style style;
   GeoFrame geo;                                         // "geo": {"crs": …, "offset": […]}
