@@ -178,7 +178,7 @@ TEST(Cli, BenchPrintsJsonAndTable) {
     EXPECT_LE(p["gpuMinMs"].get<double>(), p["gpuMedianMs"].get<double>());
     EXPECT_LE(p["gpuMedianMs"].get<double>(), p["gpuMaxMs"].get<double>());
   }
-  EXPECT_EQ(passes, (std::vector<std::string>{"geometry", "lines", "composite"}));
+  EXPECT_EQ(passes, (std::vector<std::string>{"geometry", "visibleObjects", "lines", "composite"}));
   const Result table = run("bench " + scene + " --frames 2");
   ASSERT_EQ(table.exitCode, 0) << table.err;
   EXPECT_NE(table.out.find("frame (wall ms)"), std::string::npos) << table.out;

@@ -8,7 +8,7 @@
 namespace cutaway {
 
 GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles)
-    : source_(&mesh), lod_(GridLod::build(mesh)) {
+    : source_(&mesh), lod_(GridLod::build(mesh)), bounds_(mesh.bounds()) {
   // glDrawElements counts indices in a GLsizei.
   if (mesh.triangles.size() > maxTriangles)
     throw Error(std::to_string(mesh.triangles.size()) + " triangles exceed the limit of " +
@@ -31,7 +31,7 @@ GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles)
 GpuMesh::GpuMesh(const cutaway::Mesh& mesh, const std::vector<SceneObject::Coarser>& coarser)
     : GpuMesh(mesh) {
   coarser_ = coarser;
-  if (!coarser_.empty()) bounds_ = mesh.bounds();
+  for (const SceneObject::Coarser& c : coarser_) bounds_.extend(c.mesh->bounds());
 }
 
 // A grid mesh's buffers hold only the nodes its drawn triangles use, renumbered, so that the

@@ -38,6 +38,8 @@ class GpuMesh {
   // point. The buffers are rebuilt only when the choice changes.
   void selectDetail(const GridLod::View& view);
   std::size_t triangles() const { return std::size_t(indexCount_) / 3; }
+  // Object space, of every version (a grid's levels keep a subset of its nodes).
+  const Bounds& bounds() const { return bounds_; }
   // Whether selectDetail can change what is drawn (a grid, or coarser versions).
   bool hasDetail() const { return lod_ || !coarser_.empty(); }
 
@@ -51,7 +53,7 @@ class GpuMesh {
   std::optional<GridLod> lod_;
   std::vector<std::uint8_t> levels_;
   std::vector<SceneObject::Coarser> coarser_;
-  Bounds bounds_;            // of the mesh, object space (with coarser versions)
+  Bounds bounds_;            // of the mesh and its coarser versions, object space
   std::size_t version_ = 0;  // 0 the mesh, k coarser_[k − 1]
 };
 

@@ -41,6 +41,7 @@ struct Renderer::Impl {
   gl::Buffer frameUniforms;
   std::vector<ActiveCutter> cutters;
   std::vector<std::unique_ptr<GeometryKind>> kinds;
+  MeshKind* meshKind = nullptr;         // among the kinds, for its occlusion culling
   const VolumeKind* volumes = nullptr;  // among the kinds, for its line drawing
   std::unique_ptr<ShadingStyle> style;
   std::unique_ptr<ShadowMap> shadowMap;
@@ -75,7 +76,9 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
       c.channels.push_back(int(k));
     g.cutters.push_back(std::move(c));
   }
-  g.kinds.push_back(std::make_unique<MeshKind>(setup));
+  auto meshKind = std::make_unique<MeshKind>(setup);
+  g.meshKind = meshKind.get();
+  g.kinds.push_back(std::move(meshKind));
   if (PipeKind::present(scene)) g.kinds.push_back(std::make_unique<PipeKind>(setup));
   if (VolumeKind::present(scene)) {
     auto volumes = std::make_unique<VolumeKind>(setup);
@@ -265,6 +268,14 @@ const Frame& Renderer::frame() const {
 
 std::vector<PassTiming> Renderer::timings() {
   return impl_->frame.timings();
+}
+
+void Renderer::setOcclusionCulling(bool on) {
+  impl_->meshKind->culling().setEnabled(on);
+}
+
+std::size_t Renderer::culledObjects() const {
+  return impl_->meshKind->culling().culled();
 }
 
 const char* Renderer::cutawayComputePath() const {

@@ -14,6 +14,7 @@
 //   [clipSurfaceSprites]
 //   [shadowMap]
 //   geometry
+//   visibleObjects
 //   [pipeOwners pipes pipeAovs]
 //   [ghostGeometry]
 //   [capMask]
@@ -41,6 +42,8 @@
 // - geometry: the background, every kind's objects with the style and the cutters' clipping
 //   composed, Trapp13's caps, into the multisampled G-buffer (colour, normal, world position
 //   + view depth, object id, cut mask, depth, and the cutters' channels).
+// - visibleObjects: the objects with a sample in the G-buffer, which the next frame's geometry
+//   pass draws before it tests the others' boxes (src/kinds/meshes/occlusion_culling.hpp).
 // - pipeOwners, pipes, pipeAovs: Konev18 §6's billboard pipes into the same G-buffer.
 // - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines.
 // - capMask: Trapp13's cap coverage AOV.
@@ -106,6 +109,11 @@ class Renderer {
   // The last frame's volume lines (a volume's "lines") as drawn, each run of segments the
   // cutters keep, visible or hidden, for vector output (writeVolumeLineSvg).
   VolumeLineDrawing volumeLineDrawing() const;
+  // Occlusion culling of the scene's meshes by the last frame's visibility (on by default):
+  // the same images, exactly so for a still view (src/kinds/meshes/occlusion_culling.hpp).
+  void setOcclusionCulling(bool on);
+  // Scene objects the last frame's geometry pass did not draw, found hidden by that culling.
+  std::size_t culledObjects() const;
   // Where the adaptive cutter's jump flooding runs ("gpu" or "cpu"), or null without it.
   const char* cutawayComputePath() const;
   // Triangles of the scene's meshes as the last frame drew them: grid meshes (terrains) and

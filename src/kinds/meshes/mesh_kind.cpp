@@ -1,6 +1,7 @@
 #include "kinds/meshes/mesh_kind.hpp"
 
 #include <algorithm>
+#include <functional>
 
 namespace cutaway {
 
@@ -15,8 +16,17 @@ void MeshKind::prepare(const std::vector<ActiveCutter>&) {
   const std::vector<std::pair<GLenum, std::string>> stages{
       {GL_VERTEX_SHADER, "frame/mesh.vert"}, {GL_FRAGMENT_SHADER, "kinds/meshes/mesh.frag"}};
   program_ = gl::buildProgram(setup_.geometryProgram(stages));
+  culling_ = std::make_unique<OcclusionCulling>(setup_);
   if (setup_.translucentLayers)
     layerProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"TRANSLUCENT_LAYER", "1"}}));
+}
+
+void MeshKind::addPassesAfterGeometry(Frame& frame) {
+  culling_->addPass(frame);
+}
+
+void MeshKind::beginFrame(const FrameState& state) {
+  culling_->beginFrame(state);
 }
 
 std::vector<ObjectCut> MeshKind::objectCuts(const std::vector<ActiveCutter>& cutters) const {
@@ -41,7 +51,8 @@ void MeshKind::setObjectUniforms(GLuint program, const std::vector<ActiveCutter>
                  o.material.color);
 }
 
-void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const GeometryDraw&) const {
+void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
+                            const GeometryDraw& draw) const {
   const GLuint program = program_.id();
   for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
   const std::vector<ObjectCut> cuts = objectCuts(cutters);
@@ -50,36 +61,48 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters, const Geom
   auto setUniforms = [&](const SceneObject& o, std::size_t i) {
     setObjectUniforms(program, cutters, cuts[i], o, i);
   };
-  // Secondary objects first, cut; then the objects of interest, whole (Burns08 §4.1).
-  setup_.meshes.draw(
-      program,
-      [&](const SceneObject& o, std::size_t i) {
-        return !o.proxy && o.role != Role::Interest && cuts[i].clipPasses == 0;
-      },
-      setUniforms);
-  if (clipPasses > 0) {
-    // Diepstraten03 §4.3: each pass keeps the far side of one plane; their union is the object
-    // outside the cut.
-    glEnable(GL_CLIP_DISTANCE0);
-    for (int k = 0; k < clipPasses; ++k)
-      setup_.meshes.draw(
-          program,
-          [&](const SceneObject& o, std::size_t i) { return !o.proxy && cuts[i].clipPasses > k; },
-          [&](const SceneObject& o, std::size_t i) {
-            setUniforms(o, i);
-            glm::vec4 keep(0, 0, 0, -1);
-            for (const ActiveCutter& c : cutters)
-              if (k < c.cutter->clipPasses(i)) keep = c.cutter->clipPlane(i, k);
-            glProgramUniform4fv(program, kClipPlane, 1, &keep[0]);
-          });
-    glDisable(GL_CLIP_DISTANCE0);
-  }
-  setup_.meshes.draw(
-      program,
-      [&](const SceneObject& o, std::size_t i) {
-        return !o.proxy && o.role == Role::Interest && cuts[i].clipPasses == 0;
-      },
-      setUniforms);
+  // The objects of `batch` (occlusion_culling.hpp), in the order below.
+  auto drawBatch = [&](const std::function<bool(std::size_t)>& batch) {
+    // Secondary objects first, cut; then the objects of interest, whole (Burns08 §4.1).
+    setup_.meshes.draw(
+        program,
+        [&](const SceneObject& o, std::size_t i) {
+          return !o.proxy && o.role != Role::Interest && cuts[i].clipPasses == 0 && batch(i);
+        },
+        setUniforms);
+    if (clipPasses > 0) {
+      // Diepstraten03 §4.3: each pass keeps the far side of one plane; their union is the
+      // object outside the cut.
+      glEnable(GL_CLIP_DISTANCE0);
+      for (int k = 0; k < clipPasses; ++k)
+        setup_.meshes.draw(
+            program,
+            [&](const SceneObject& o, std::size_t i) {
+              return !o.proxy && cuts[i].clipPasses > k && batch(i);
+            },
+            [&](const SceneObject& o, std::size_t i) {
+              setUniforms(o, i);
+              glm::vec4 keep(0, 0, 0, -1);
+              for (const ActiveCutter& c : cutters)
+                if (k < c.cutter->clipPasses(i)) keep = c.cutter->clipPlane(i, k);
+              glProgramUniform4fv(program, kClipPlane, 1, &keep[0]);
+            });
+      glDisable(GL_CLIP_DISTANCE0);
+    }
+    setup_.meshes.draw(
+        program,
+        [&](const SceneObject& o, std::size_t i) {
+          return !o.proxy && o.role == Role::Interest && cuts[i].clipPasses == 0 && batch(i);
+        },
+        setUniforms);
+  };
+  drawBatch([this](std::size_t i) { return culling_->shown(i); });
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
+    if (!setup_.scene.objects[i].proxy && !culling_->shown(i)) candidates.push_back(i);
+  if (candidates.empty()) return;
+  const std::vector<bool> mayBeVisible = culling_->mayBeVisible(candidates, draw.time);
+  drawBatch([&](std::size_t i) { return mayBeVisible[i]; });
 }
 
 void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw&,

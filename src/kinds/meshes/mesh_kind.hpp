@@ -3,10 +3,15 @@
 // order: the secondary objects first, cut; the objects of interest after, whole. An object a
 // cutter clips with hardware clip planes (Diepstraten03 §4.3) is drawn once per plane. The
 // objects a grading cutter cuts are drawn again, for each translucent layer, by the layer
-// variant of the program (frame/translucent_layers.hpp).
+// variant of the program (frame/translucent_layers.hpp). The geometry pass draws the objects
+// the last frame showed first, then those of the rest whose boxes pass the depth test
+// (occlusion_culling.hpp).
 #pragma once
 
+#include <memory>
+
 #include "kinds/kind.hpp"
+#include "kinds/meshes/occlusion_culling.hpp"
 
 namespace cutaway {
 
@@ -18,6 +23,10 @@ class MeshKind : public GeometryKind {
                     const GeometryDraw& draw) const override;
   void drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw& draw,
                             bool first) const override;
+  void addPassesAfterGeometry(Frame& frame) override;
+  void beginFrame(const FrameState& state) override;
+  OcclusionCulling& culling() { return *culling_; }
+  const OcclusionCulling& culling() const { return *culling_; }
 
  private:
   std::vector<ObjectCut> objectCuts(const std::vector<ActiveCutter>& cutters) const;
@@ -26,6 +35,7 @@ class MeshKind : public GeometryKind {
 
   FrameSetup& setup_;
   gl::Program program_, layerProgram_;
+  std::unique_ptr<OcclusionCulling> culling_;  // of the geometry pass's draws
   mutable std::vector<ObjectCut> layerCuts_;  // this frame's, from its first translucent layer
 };
 

@@ -1,0 +1,141 @@
+#include "kinds/meshes/occlusion_culling.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace cutaway {
+
+namespace {
+
+// Depth units (glPolygonOffset) the boxes come nearer by: more than the rounding of the
+// depths interpolated over the object's triangles and over the box's faces.
+constexpr float kDepthUnits = 4.0f;
+
+// The view depth of a world point's nearest and farthest box corners.
+std::pair<float, float> viewDepthRange(const Bounds& b, const glm::mat4& view) {
+  float nearest = std::numeric_limits<float>::max(), farthest = -nearest;
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec3 corner{(i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
+                           (i & 4) ? b.max.z : b.min.z};
+    const float depth = -(view * glm::vec4(corner, 1.0f)).z;
+    nearest = std::min(nearest, depth);
+    farthest = std::max(farthest, depth);
+  }
+  return {nearest, farthest};
+}
+
+}  // namespace
+
+OcclusionCulling::OcclusionCulling(FrameSetup& setup) : setup_(setup) {
+  setup_.bindings.storageBlock("VISIBLE_OBJECTS");
+  boxProgram_ =
+      setup_.bindings.build({.stages = {{GL_VERTEX_SHADER, "kinds/meshes/occlusion_box.vert"},
+                                        {GL_FRAGMENT_SHADER, "kinds/meshes/occlusion_box.frag"}}});
+  markProgram_ =
+      setup_.bindings.build({.stages = {{GL_COMPUTE_SHADER, "kinds/meshes/visible_objects.comp"}},
+                             .defines = sampleDefines(setup_.scene.samples)});
+  noAttributes_ = gl::VertexArray::create();
+  const std::size_t objects = std::max<std::size_t>(setup_.scene.objects.size(), 1);
+  visible_ = gl::Buffer::create(GLsizeiptr(objects * sizeof(GLuint)), nullptr, 0);
+}
+
+void OcclusionCulling::beginFrame(const FrameState& state) {
+  culled_ = 0;
+  if (!enabled_) {
+    shown_.clear();
+    marked_ = false;
+    return;
+  }
+  if (marked_) {
+    shown_.resize(setup_.scene.objects.size());
+    glGetNamedBufferSubData(visible_.id(), 0, GLsizeiptr(shown_.size() * sizeof(GLuint)),
+                            shown_.data());
+  }
+  const FrameUniforms& u = state.uniforms;
+  view_ = u.view;
+  orthographic_ = u.counts.y == 1;
+  near_ = state.camera.near;
+  // A pixel spans 2 / (size · P₀₀) (or P₁₁) view-plane units at depth 1, or anywhere orthographic.
+  worldPerPixel_ = {2.0f / (u.viewport.x * u.projection[0][0]),
+                    2.0f / (u.viewport.y * u.projection[1][1])};
+}
+
+std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>& candidates,
+                                                 float time) const {
+  std::vector<bool> passed(setup_.scene.objects.size(), false);
+  if (candidates.empty()) return passed;
+  const GLuint program = boxProgram_.id();
+  glUseProgram(program);
+  glBindVertexArray(noAttributes_.id());
+  glDepthMask(GL_FALSE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  // The eye is outside every box tested: the front faces cover every sample the box does.
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(0.0f, -kDepthUnits);
+  std::vector<std::size_t> tested;
+  for (const std::size_t i : candidates) {
+    const Bounds local = setup_.meshes.mesh(i).bounds();
+    if (local.empty()) {
+      ++culled_;  // nothing to draw
+      continue;
+    }
+    Bounds box = local.transformed(setup_.scene.objects[i].transformAt(time));
+    // Half a pixel where the box is farthest (its margin is more pixels everywhere nearer), so
+    // rasterisation's snapping cannot put one of the object's samples outside the box.
+    const float farthest = viewDepthRange(box, view_).second;
+    const float pixel = std::max(worldPerPixel_.x, worldPerPixel_.y) *
+                        (orthographic_ ? 1.0f : std::max(farthest, 0.0f));
+    const float grow = std::max(1e-4f * glm::length(box.max - box.min), 0.5f * pixel);
+    box.min -= glm::vec3(grow);
+    box.max += glm::vec3(grow);
+    if (viewDepthRange(box, view_).first <= near_ * (1.0f + 1e-3f)) {
+      passed[i] = true;  // cut by the near plane, or around the eye
+      continue;
+    }
+    if (tested.size() == queries_.size())
+      queries_.push_back(gl::Query::create(GL_ANY_SAMPLES_PASSED));
+    glBeginQuery(GL_ANY_SAMPLES_PASSED, queries_[tested.size()].id());
+    glProgramUniform3fv(program, 0, 1, &box.min[0]);
+    glProgramUniform3fv(program, 1, 1, &box.max[0]);
+    glDrawArrays(GL_TRIANGLES, 0, 36);
+    glEndQuery(GL_ANY_SAMPLES_PASSED);
+    tested.push_back(i);
+  }
+  for (std::size_t k = 0; k < tested.size(); ++k) {
+    GLuint samples = 0;
+    glGetQueryObjectuiv(queries_[k].id(), GL_QUERY_RESULT, &samples);
+    passed[tested[k]] = samples != 0;
+    culled_ += samples == 0 ? 1 : 0;
+  }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_CULL_FACE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  return passed;
+}
+
+void OcclusionCulling::addPass(Frame& frame) {
+  frame.addPass(
+      {.name = "visibleObjects",
+       .reads = {setup_.gbuffer.objectId()},
+       .run =
+           [this, &frame](const PassContext& pass) {
+             if (!enabled_) return;
+             const GLuint none = 0, program = markProgram_.id();
+             glClearNamedBufferData(visible_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                    &none);
+             glUseProgram(program);
+             glBindTextureUnit(0, frame.texture(setup_.gbuffer.objectId()).id());
+             glProgramUniform1i(program, 0, setup_.scene.samples);
+             glBindBufferBase(GL_SHADER_STORAGE_BUFFER,
+                              setup_.bindings.storageBlock("VISIBLE_OBJECTS"), visible_.id());
+             glDispatchCompute(GLuint(pass.width + 7) / 8, GLuint(pass.height + 7) / 8, 1);
+             marked_ = true;
+           },
+       .compute = true});
+}
+
+}  // namespace cutaway

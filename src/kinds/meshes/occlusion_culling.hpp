@@ -1,0 +1,66 @@
+// Occlusion culling of the geometry pass's scene meshes by the last frame's visibility
+// (temporal coherence, as in Bittner et al. 2004, "Coherent Hierarchical Culling", with one
+// batch of tests): the objects the last frame showed are drawn first; every other object is
+// drawn only if its box passes the depth test against them (an occlusion query), so an object
+// hidden behind them costs its box's front faces, not its triangles. Frustum culling comes with
+// it: a box outside the view has no sample to pass.
+//
+// Exact, not a heuristic: the box is the object's world-space bounds grown by half a pixel
+// (and 1e-4 of their size) and pulled towards the eye by a few depth units, so where any
+// fragment of the object could pass the depth test LESS, the box's front face passes before it
+// at the same sample (the depth buffer only comes nearer as the pass goes on; discarded or
+// clipped fragments and depths a cutter moves back only make the object fail more). A box the
+// near plane cuts, or one around the eye, counts as passing. Drawn or not, a hidden object
+// writes nothing, so the G-buffer is the same bit for bit; the one difference is order: an
+// object that comes into view is drawn after those shown last frame, so an exact depth tie
+// between the two may go the other way for that one frame. A still view (every frame from the
+// second on) draws exactly what drawing everything draws.
+//
+// The objects shown are read from the G-buffer's object ids by the visibleObjects pass (all
+// samples), into a buffer that the next frame reads back.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "frame/frame_setup.hpp"
+#include "frame/frame_uniforms.hpp"
+
+namespace cutaway {
+
+class OcclusionCulling {
+ public:
+  explicit OcclusionCulling(FrameSetup& setup);
+  // Off: every object is drawn in the first batch (on by default).
+  void setEnabled(bool on) { enabled_ = on; }
+  // The last frame's visible objects, and this frame's view.
+  void beginFrame(const FrameState& state);
+  // Whether object i is drawn in the first batch: shown by the last frame (every object in the
+  // first frame, and while culling is off).
+  bool shown(std::size_t i) const { return !enabled_ || shown_.empty() || shown_[i] != 0; }
+  // For each object of `candidates` (indices), whether its box passes the depth test of the
+  // bound framebuffer, the boxes drawn at the objects' transforms at `time`; indexed by object.
+  std::vector<bool> mayBeVisible(const std::vector<std::size_t>& candidates, float time) const;
+  // Objects this frame's geometry pass did not draw: their boxes failed the depth test.
+  std::size_t culled() const { return culled_; }
+  // The visibleObjects pass, after the geometry pass: marks the objects with a sample.
+  void addPass(Frame& frame);
+
+ private:
+  FrameSetup& setup_;
+  bool enabled_ = true;
+  gl::Program boxProgram_, markProgram_;
+  gl::VertexArray noAttributes_;
+  gl::Buffer visible_;         // one uint per object, set by visibleObjects
+  std::vector<GLuint> shown_;  // visible_ of the last frame; empty before the first
+  bool marked_ = false;        // visible_ holds a frame's marks
+  mutable std::vector<gl::Query> queries_;
+  mutable std::size_t culled_ = 0;
+  // This frame's view.
+  glm::mat4 view_{1.0f};
+  glm::vec2 worldPerPixel_{0.0f};  // at view depth 1 (perspective) or anywhere (orthographic)
+  bool orthographic_ = false;
+  float near_ = 0.0f;
+};
+
+}  // namespace cutaway
