@@ -41,11 +41,6 @@ OcclusionCulling::OcclusionCulling(FrameSetup& setup) : setup_(setup) {
 
 void OcclusionCulling::beginFrame(const FrameState& state) {
   culled_ = 0;
-  if (!enabled_) {
-    shown_.clear();
-    marked_ = false;
-    return;
-  }
   if (marked_) {
     shown_.resize(setup_.scene.objects.size());
     glGetNamedBufferSubData(visible_.id(), 0, GLsizeiptr(shown_.size() * sizeof(GLuint)),

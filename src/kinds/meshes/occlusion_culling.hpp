@@ -31,7 +31,8 @@ namespace cutaway {
 class OcclusionCulling {
  public:
   explicit OcclusionCulling(FrameSetup& setup);
-  // Off: every object is drawn in the first batch (on by default).
+  // Off: every object is drawn in the first batch (on by default); the visible objects are
+  // still marked, for the next frame culled.
   void setEnabled(bool on) { enabled_ = on; }
   // The last frame's visible objects, and this frame's view.
   void beginFrame(const FrameState& state);
