@@ -480,7 +480,7 @@ void Viewer::update(bool full) {
 void Viewer::renderFull() {
   const auto start = std::chrono::steady_clock::now();
   // A resting view draws every object in scene order: an object that came into view would
-  // otherwise be drawn after the others (exact depth ties), src/kinds/meshes/occlusion_culling.hpp.
+  // otherwise be drawn after the others (exact depth ties), src/frame/occlusion_culling.hpp.
   renderer_->setOcclusionCulling(moving());
   renderer_->render(viewCamera(state_), state_.time);
   state_.timings = renderer_->timings();  // waits for the frame's timer queries

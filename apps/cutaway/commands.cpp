@@ -556,6 +556,7 @@ struct Measurement {
   double cutawaySurfaceMs = 0;
   std::size_t plain = 0;  // index of the run it is compared with
   std::size_t triangles = 0;  // of the scene's meshes, as drawn (at their selected detail)
+  std::size_t culled = 0;     // objects the last frame found hidden and did not draw
 };
 
 // Renders `frames` frames (after a warm-up) and gathers per-pass and whole-frame times.
@@ -584,6 +585,7 @@ Measurement measure(const std::string& label, const Scene& scene, const gl::Cont
   }
   Measurement m{label, renderer.cutawayComputePath(), {}, stats(frameTimes)};
   m.triangles = renderer.meshTriangles();
+  m.culled = renderer.culledObjects();
   for (const auto& name : order) {
     PassStats p{name, stats(times[name].first), stats(times[name].second)};
     if (name == "cutawayCpu")
@@ -835,7 +837,8 @@ int bench(const BenchOptions& options) {
                               {"passes", passes},
                               {"frame", statsJson(m.frame)},
                               {"frameRatioToPlain", m.frame.median / runs[m.plain].frame.median},
-                              {"meshTriangles", m.triangles}};
+                              {"meshTriangles", m.triangles},
+                              {"culledObjects", m.culled}};
       if (m.computePath)
         entry["cutawaySurfaceMs"] = m.cutawaySurfaceMs, entry["computePath"] = m.computePath;
       list.push_back(entry);
@@ -862,8 +865,10 @@ int bench(const BenchOptions& options) {
   for (const auto& m : runs) {
     // CPU: wall time inside the pass's own code. On a software rasteriser a pass's commands
     // run when the next pass flushes, so a GPU pass's CPU time holds the previous pass's work.
-    std::printf("\n[%s]\n%-26s %10s %10s %10s %10s\n", m.label.c_str(), "pass (ms)", "GPU median",
-                "GPU min", "GPU max", "CPU wall");
+    std::printf("\n[%s]", m.label.c_str());
+    if (m.culled > 0) std::printf(" %zu hidden objects not drawn", m.culled);
+    std::printf("\n%-26s %10s %10s %10s %10s\n", "pass (ms)", "GPU median", "GPU min", "GPU max",
+                "CPU wall");
     for (const auto& p : m.passes)
       std::printf("%-26s %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), p.gpu.median, p.gpu.min,
                   p.gpu.max, p.cpu.median);

@@ -118,6 +118,9 @@ class Cutter {
   virtual void drawGeometry(const GeometryDraw&) const {}
   // Its passes after the geometry passes (e.g. an AOV made from the G-buffer).
   virtual void addPassesAfterGeometry(Frame&) {}
+  // Occlusion culling of its own passes' scene meshes (frame/occlusion_culling.hpp), as the
+  // renderer's (Renderer::setOcclusionCulling).
+  virtual void setOcclusionCulling(bool) {}
   // Whether the line pass outlines the cut surfaces it makes (Burns08 §4.2), and in which
   // colour.
   virtual std::optional<glm::vec3> cutOutlineColor() const { return std::nullopt; }

@@ -272,6 +272,7 @@ std::vector<PassTiming> Renderer::timings() {
 
 void Renderer::setOcclusionCulling(bool on) {
   impl_->meshKind->culling().setEnabled(on);
+  for (ActiveCutter& c : impl_->cutters) c.cutter->setOcclusionCulling(on);
 }
 
 std::size_t Renderer::culledObjects() const {

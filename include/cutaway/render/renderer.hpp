@@ -16,7 +16,7 @@
 //   geometry
 //   visibleObjects
 //   [pipeOwners pipes pipeAovs]
-//   [ghostGeometry]
+//   [ghostGeometry visibleGhosts]
 //   [capMask]
 //   [translucentLayers]
 //   [lines]
@@ -43,9 +43,10 @@
 //   composed, Trapp13's caps, into the multisampled G-buffer (colour, normal, world position
 //   + view depth, object id, cut mask, depth, and the cutters' channels).
 // - visibleObjects: the objects with a sample in the G-buffer, which the next frame's geometry
-//   pass draws before it tests the others' boxes (src/kinds/meshes/occlusion_culling.hpp).
+//   pass draws before it tests the others' boxes (src/frame/occlusion_culling.hpp).
 // - pipeOwners, pipes, pipeAovs: Konev18 §6's billboard pipes into the same G-buffer.
-// - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines.
+// - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines; visibleGhosts
+//   marks the objects the ghost geometry shows, culled as the geometry pass's.
 // - capMask: Trapp13's cap coverage AOV.
 // - translucentLayers, translucentComposite: Burns11 ch. 2's occlusion reduction by
 //   translucency, edge highlights or lines: the material a cutter reduces only partly, peeled
@@ -110,7 +111,7 @@ class Renderer {
   // cutters keep, visible or hidden, for vector output (writeVolumeLineSvg).
   VolumeLineDrawing volumeLineDrawing() const;
   // Occlusion culling of the scene's meshes by the last frame's visibility (on by default):
-  // the same images, exactly so for a still view (src/kinds/meshes/occlusion_culling.hpp).
+  // the same images, exactly so for a still view (src/frame/occlusion_culling.hpp).
   void setOcclusionCulling(bool on);
   // Scene objects the last frame's geometry pass did not draw, found hidden by that culling.
   std::size_t culledObjects() const;

@@ -1,5 +1,7 @@
 #include "cutters/adaptive/adaptive_cutaway.hpp"
 
+#include <functional>
+
 #include "frame/fullscreen.hpp"
 
 namespace cutaway {
@@ -65,6 +67,7 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
     ghostPosition_ = frame.declare("ghostPosition", {.format = GL_RGBA32F, .samples = samples});
     ghostObjectId_ = frame.declare("ghostObjectId", {.format = GL_R32I, .samples = samples});
     ghostDepth_ = frame.declare("ghostDepth", {.format = GL_DEPTH_COMPONENT32F, .samples = samples});
+    ghostCulling_ = std::make_unique<OcclusionCulling>(setup);
   }
   Programs& p = *programs_;
   p.seed = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
@@ -131,6 +134,7 @@ void AdaptiveCutaway::beginFrame(const FrameState& state) {
   const CutawayProjection camera = cutawayProjection(state.camera, state.aspect);
   surface_.setCamera(camera);
   if (transition_) transition_->setCamera(camera);
+  if (ghostCulling_) ghostCulling_->beginFrame(state);
 }
 
 std::vector<Target> AdaptiveCutaway::geometryInputs() const {
@@ -251,6 +255,7 @@ void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {
                  .reads = {surface_.cutawayDepth(), surface_.cutawayDilated()},
                  .writes = {ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_},
                  .run = [this](const PassContext& pass) { drawGhostGeometry(pass.framebuffer); }});
+  ghostCulling_->addPass(frame, "visibleGhosts", ghostObjectId_);
 }
 
 void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
@@ -275,13 +280,26 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
                                                                      : 0.05f * setup_.sceneBounds.radius();
   glProgramUniform1f(program, 17, distance);
   setProgramUniforms(program);
-  setup_.meshes.draw(
-      program,
-      [](const SceneObject& o, std::size_t) { return !o.proxy && o.role != Role::Interest; },
-      [&](const SceneObject&, std::size_t i) {
-        glProgramUniform1i(program, 11, int(i));
-        setObjectUniforms(program, i);
-      });
+  // The objects the last frame showed, then those of the others whose boxes pass
+  // (frame/occlusion_culling.hpp).
+  const auto ghost = [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; };
+  const auto drawBatch = [&](const std::function<bool(std::size_t)>& batch) {
+    setup_.meshes.draw(
+        program, [&](const SceneObject& o, std::size_t i) { return ghost(o) && batch(i); },
+        [&](const SceneObject&, std::size_t i) {
+          glProgramUniform1i(program, 11, int(i));
+          setObjectUniforms(program, i);
+        });
+  };
+  drawBatch([this](std::size_t i) { return ghostCulling_->shown(i); });
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
+    if (ghost(setup_.scene.objects[i]) && !ghostCulling_->shown(i)) candidates.push_back(i);
+  if (!candidates.empty()) {
+    const std::vector<bool> mayBeVisible =
+        ghostCulling_->mayBeVisible(candidates, setup_.meshes.time());
+    drawBatch([&](std::size_t i) { return mayBeVisible[i]; });
+  }
   glDisable(GL_CULL_FACE);
 }
 

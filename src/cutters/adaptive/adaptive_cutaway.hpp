@@ -10,6 +10,7 @@
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutters/adaptive/surface_passes.hpp"
 #include "cutters/cutter.hpp"
+#include "frame/occlusion_culling.hpp"
 
 namespace cutaway {
 
@@ -33,6 +34,9 @@ class AdaptiveCutaway : public Cutter {
   bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   void addPassesAfterGeometry(Frame& frame) override;
+  void setOcclusionCulling(bool on) override {
+    if (ghostCulling_) ghostCulling_->setEnabled(on);
+  }
   std::optional<glm::vec3> cutOutlineColor() const override;
   std::optional<GhostBuffers> ghosts() const override;
   std::vector<std::pair<std::string, std::string>> facts() const override;
@@ -67,6 +71,7 @@ class AdaptiveCutaway : public Cutter {
   bool graded_ = false;
   Target seedDepthTest_;
   Target ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_;
+  std::unique_ptr<OcclusionCulling> ghostCulling_;  // of the ghost geometry's draws
   struct Programs;
   std::unique_ptr<Programs> programs_;
 };

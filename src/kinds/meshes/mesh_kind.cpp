@@ -22,7 +22,7 @@ void MeshKind::prepare(const std::vector<ActiveCutter>&) {
 }
 
 void MeshKind::addPassesAfterGeometry(Frame& frame) {
-  culling_->addPass(frame);
+  culling_->addPass(frame, "visibleObjects", setup_.gbuffer.objectId());
 }
 
 void MeshKind::beginFrame(const FrameState& state) {

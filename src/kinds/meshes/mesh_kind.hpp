@@ -10,8 +10,8 @@
 
 #include <memory>
 
+#include "frame/occlusion_culling.hpp"
 #include "kinds/kind.hpp"
-#include "kinds/meshes/occlusion_culling.hpp"
 
 namespace cutaway {
 

@@ -1,4 +1,4 @@
-// Occlusion culling of the geometry pass's scene meshes by the last frame's visibility
+// Occlusion culling of a pass's scene meshes by the last frame's visibility
 // (temporal coherence, as in Bittner et al. 2004, "Coherent Hierarchical Culling", with one
 // batch of tests): the objects the last frame showed are drawn first; every other object is
 // drawn only if its box passes the depth test against them (an occlusion query), so an object
@@ -16,11 +16,13 @@
 // between the two may go the other way for that one frame. A still view (every frame from the
 // second on) draws exactly what drawing everything draws.
 //
-// The objects shown are read from the G-buffer's object ids by the visibleObjects pass (all
-// samples), into a buffer that the next frame reads back.
+// The objects shown are read from the pass's object ids (all samples) by a compute pass after
+// it, into a buffer that the next frame reads back. The mesh kind culls the geometry pass
+// (visibleObjects), the adaptive cutter its ghost geometry (visibleGhosts).
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "frame/frame_setup.hpp"
@@ -39,13 +41,15 @@ class OcclusionCulling {
   // Whether object i is drawn in the first batch: shown by the last frame (every object in the
   // first frame, and while culling is off).
   bool shown(std::size_t i) const { return !enabled_ || shown_.empty() || shown_[i] != 0; }
-  // For each object of `candidates` (indices), whether its box passes the depth test of the
-  // bound framebuffer, the boxes drawn at the objects' transforms at `time`; indexed by object.
+  // For each object of `candidates` (indices), whether its box passes the depth test LESS of
+  // the bound framebuffer, the boxes drawn at the objects' transforms at `time`; indexed by
+  // object. Leaves face culling and depth writes as it found them, and colour writes on.
   std::vector<bool> mayBeVisible(const std::vector<std::size_t>& candidates, float time) const;
   // Objects this frame's geometry pass did not draw: their boxes failed the depth test.
   std::size_t culled() const { return culled_; }
-  // The visibleObjects pass, after the geometry pass: marks the objects with a sample.
-  void addPass(Frame& frame);
+  // The pass `name`, after the pass culled: marks the objects with a sample in `objectIds`
+  // (a per-sample R32I target, −1 where none).
+  void addPass(Frame& frame, const std::string& name, Target objectIds);
 
  private:
   FrameSetup& setup_;

@@ -1,4 +1,4 @@
-#include "kinds/meshes/occlusion_culling.hpp"
+#include "frame/occlusion_culling.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -29,10 +29,10 @@ std::pair<float, float> viewDepthRange(const Bounds& b, const glm::mat4& view) {
 OcclusionCulling::OcclusionCulling(FrameSetup& setup) : setup_(setup) {
   setup_.bindings.storageBlock("VISIBLE_OBJECTS");
   boxProgram_ =
-      setup_.bindings.build({.stages = {{GL_VERTEX_SHADER, "kinds/meshes/occlusion_box.vert"},
-                                        {GL_FRAGMENT_SHADER, "kinds/meshes/occlusion_box.frag"}}});
+      setup_.bindings.build({.stages = {{GL_VERTEX_SHADER, "frame/occlusion_box.vert"},
+                                        {GL_FRAGMENT_SHADER, "frame/occlusion_box.frag"}}});
   markProgram_ =
-      setup_.bindings.build({.stages = {{GL_COMPUTE_SHADER, "kinds/meshes/visible_objects.comp"}},
+      setup_.bindings.build({.stages = {{GL_COMPUTE_SHADER, "frame/visible_objects.comp"}},
                              .defines = sampleDefines(setup_.scene.samples)});
   noAttributes_ = gl::VertexArray::create();
   const std::size_t objects = std::max<std::size_t>(setup_.scene.objects.size(), 1);
@@ -62,6 +62,9 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
   const GLuint program = boxProgram_.id();
   glUseProgram(program);
   glBindVertexArray(noAttributes_.id());
+  const GLboolean cullFace = glIsEnabled(GL_CULL_FACE);
+  GLboolean depthWrites = GL_TRUE;
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
   glDepthMask(GL_FALSE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   // The eye is outside every box tested: the front faces cover every sample the box does.
@@ -106,24 +109,23 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
     culled_ += samples == 0 ? 1 : 0;
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
-  glDisable(GL_CULL_FACE);
+  if (!cullFace) glDisable(GL_CULL_FACE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthMask(GL_TRUE);
+  glDepthMask(depthWrites);
   return passed;
 }
 
-void OcclusionCulling::addPass(Frame& frame) {
+void OcclusionCulling::addPass(Frame& frame, const std::string& name, Target objectIds) {
   frame.addPass(
-      {.name = "visibleObjects",
-       .reads = {setup_.gbuffer.objectId()},
+      {.name = name,
+       .reads = {objectIds},
        .run =
-           [this, &frame](const PassContext& pass) {
-             if (!enabled_) return;
+           [this, &frame, objectIds](const PassContext& pass) {
              const GLuint none = 0, program = markProgram_.id();
              glClearNamedBufferData(visible_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT,
                                     &none);
              glUseProgram(program);
-             glBindTextureUnit(0, frame.texture(setup_.gbuffer.objectId()).id());
+             glBindTextureUnit(0, frame.texture(objectIds).id());
              glProgramUniform1i(program, 0, setup_.scene.samples);
              glBindBufferBase(GL_SHADER_STORAGE_BUFFER,
                               setup_.bindings.storageBlock("VISIBLE_OBJECTS"), visible_.id());
