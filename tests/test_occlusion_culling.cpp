@@ -105,8 +105,9 @@ TEST(OcclusionCulling, ExamplesDrawTheSamePicturesAndAovsWhenTheViewHoldsStill) 
   std::size_t culledInAll = 0;
   for (const std::string file :
        {"engine.json", "engine-cutaway.json", "engine-clip.json", "engine-cutout.json",
-        "engine-breakaway.json", "engine-contextual.json", "house-cutaway.json",
-        "fan-room-cutaway.json", "ss64ne-city-cutaway.json", "mri-head-needle.json"}) {
+        "engine-breakaway.json", "engine-contextual.json", "engine-translucent.json",
+        "house-cutaway.json", "fan-room-cutaway.json", "ss64ne-city-cutaway.json",
+        "mri-head-needle.json"}) {
     Scene scene = loadScene(std::string(CUTAWAY_SOURCE_DIR) + "/examples/" + file);
     scene.width = 160, scene.height = 120;
     Renderer culling(scene, test::glContext().info()), all(scene, test::glContext().info());

@@ -41,6 +41,7 @@ OcclusionCulling::OcclusionCulling(FrameSetup& setup) : setup_(setup) {
 
 void OcclusionCulling::beginFrame(const FrameState& state) {
   culled_ = 0;
+  hidden_.assign(setup_.scene.objects.size(), false);
   if (marked_) {
     shown_.resize(setup_.scene.objects.size());
     glGetNamedBufferSubData(visible_.id(), 0, GLsizeiptr(shown_.size() * sizeof(GLuint)),
@@ -78,6 +79,7 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
     const Bounds local = setup_.meshes.mesh(i).bounds();
     if (local.empty()) {
       ++culled_;  // nothing to draw
+      hidden_[i] = true;
       continue;
     }
     Bounds box = local.transformed(setup_.scene.objects[i].transformAt(time));
@@ -106,6 +108,7 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
     GLuint samples = 0;
     glGetQueryObjectuiv(queries_[k].id(), GL_QUERY_RESULT, &samples);
     passed[tested[k]] = samples != 0;
+    hidden_[tested[k]] = samples == 0;
     culled_ += samples == 0 ? 1 : 0;
   }
   glDisable(GL_POLYGON_OFFSET_FILL);

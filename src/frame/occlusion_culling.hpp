@@ -45,8 +45,11 @@ class OcclusionCulling {
   // the bound framebuffer, the boxes drawn at the objects' transforms at `time`; indexed by
   // object. Leaves face culling and depth writes as it found them, and colour writes on.
   std::vector<bool> mayBeVisible(const std::vector<std::size_t>& candidates, float time) const;
-  // Objects this frame's geometry pass did not draw: their boxes failed the depth test.
+  // Objects this frame's pass did not draw: their boxes failed the depth test.
   std::size_t culled() const { return culled_; }
+  // Whether object i was one of them: every fragment of it lies behind the depth the pass
+  // tested against, and so behind any depth the pass leaves (which only comes nearer).
+  bool hidden(std::size_t i) const { return i < hidden_.size() && hidden_[i]; }
   // The pass `name`, after the pass culled: marks the objects with a sample in `objectIds`
   // (a per-sample R32I target, −1 where none).
   void addPass(Frame& frame, const std::string& name, Target objectIds);
@@ -61,6 +64,7 @@ class OcclusionCulling {
   bool marked_ = false;        // visible_ holds a frame's marks
   mutable std::vector<gl::Query> queries_;
   mutable std::size_t culled_ = 0;
+  mutable std::vector<bool> hidden_;  // this frame's, by object
   // This frame's view.
   glm::mat4 view_{1.0f};
   glm::vec2 worldPerPixel_{0.0f};  // at view depth 1 (perspective) or anywhere (orthographic)

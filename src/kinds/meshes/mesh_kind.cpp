@@ -120,7 +120,9 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, co
   setup_.meshes.draw(
       program,
       [&](const SceneObject& o, std::size_t i) {
-        return !o.proxy && (layerCuts_[i].cutBy & grading) != 0 && layerCuts_[i].clipPasses == 0;
+        // One the geometry pass culled lies wholly behind the opaque depth the layers test.
+        return !o.proxy && (layerCuts_[i].cutBy & grading) != 0 && layerCuts_[i].clipPasses == 0 &&
+               !culling_->hidden(i);
       },
       [&](const SceneObject& o, std::size_t i) {
         setObjectUniforms(program, cutters, layerCuts_[i], o, i);
