@@ -1,6 +1,7 @@
 #include "frame/occlusion_culling.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace cutaway {
@@ -11,7 +12,7 @@ namespace {
 // depths interpolated over the object's triangles and over the box's faces.
 constexpr float kDepthUnits = 4.0f;
 
-// The view depth of a world point's nearest and farthest box corners.
+// The view depths of a box's nearest and farthest corners.
 std::pair<float, float> viewDepthRange(const Bounds& b, const glm::mat4& view) {
   float nearest = std::numeric_limits<float>::max(), farthest = -nearest;
   for (int i = 0; i < 8; ++i) {
@@ -56,6 +57,17 @@ void OcclusionCulling::beginFrame(const FrameState& state) {
                     2.0f / (u.viewport.y * u.projection[1][1])};
 }
 
+void OcclusionCulling::draw(const Batch& drawn, float time,
+                            const std::function<void(const Batch&)>& drawBatch) const {
+  drawBatch([this](std::size_t i) { return shown(i); });
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
+    if (drawn(i) && !shown(i)) candidates.push_back(i);
+  if (candidates.empty()) return;
+  const std::vector<bool> passed = mayBeVisible(candidates, time);
+  drawBatch([&](std::size_t i) { return passed[i]; });
+}
+
 std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>& candidates,
                                                  float time) const {
   std::vector<bool> passed(setup_.scene.objects.size(), false);
@@ -66,6 +78,9 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
   const GLboolean cullFace = glIsEnabled(GL_CULL_FACE);
   GLboolean depthWrites = GL_TRUE;
   glGetBooleanv(GL_DEPTH_WRITEMASK, &depthWrites);
+  GLint cullFaceMode = GL_BACK, frontFace = GL_CCW;
+  glGetIntegerv(GL_CULL_FACE_MODE, &cullFaceMode);
+  glGetIntegerv(GL_FRONT_FACE, &frontFace);
   glDepthMask(GL_FALSE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   // The eye is outside every box tested: the front faces cover every sample the box does.
@@ -91,7 +106,7 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
     const float grow = std::max(1e-4f * glm::length(box.max - box.min), 0.5f * pixel);
     box.min -= glm::vec3(grow);
     box.max += glm::vec3(grow);
-    if (viewDepthRange(box, view_).first <= near_ * (1.0f + 1e-3f)) {
+    if (viewDepthRange(box, view_).first <= near_ + 1e-3f * std::abs(near_)) {
       passed[i] = true;  // cut by the near plane, or around the eye
       continue;
     }
@@ -113,6 +128,8 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
   if (!cullFace) glDisable(GL_CULL_FACE);
+  glCullFace(GLenum(cullFaceMode));
+  glFrontFace(GLenum(frontFace));
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(depthWrites);
   return passed;

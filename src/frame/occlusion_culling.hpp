@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -38,13 +39,13 @@ class OcclusionCulling {
   void setEnabled(bool on) { enabled_ = on; }
   // The last frame's visible objects, and this frame's view.
   void beginFrame(const FrameState& state);
-  // Whether object i is drawn in the first batch: shown by the last frame (every object in the
-  // first frame, and while culling is off).
-  bool shown(std::size_t i) const { return !enabled_ || shown_.empty() || shown_[i] != 0; }
-  // For each object of `candidates` (indices), whether its box passes the depth test LESS of
-  // the bound framebuffer, the boxes drawn at the objects' transforms at `time`; indexed by
-  // object. Leaves face culling and depth writes as it found them, and colour writes on.
-  std::vector<bool> mayBeVisible(const std::vector<std::size_t>& candidates, float time) const;
+  // Draws a pass's objects in two batches, drawBatch(batch) drawing those for which batch(i)
+  // holds in the pass's own order: the objects shown last frame, then those of the others for
+  // which `drawn` holds whose boxes pass the depth test LESS of the bound framebuffer (at the
+  // objects' transforms at `time`).
+  using Batch = std::function<bool(std::size_t)>;
+  void draw(const Batch& drawn, float time,
+            const std::function<void(const Batch&)>& drawBatch) const;
   // Objects this frame's pass did not draw: their boxes failed the depth test.
   std::size_t culled() const { return culled_; }
   // Whether object i was one of them: every fragment of it lies behind the depth the pass
@@ -59,7 +60,7 @@ class OcclusionCulling {
   bool enabled_ = true;
   gl::Program boxProgram_, markProgram_;
   gl::VertexArray noAttributes_;
-  gl::Buffer visible_;         // one uint per object, set by visibleObjects
+  gl::Buffer visible_;         // one uint per object, set by the marking pass
   std::vector<GLuint> shown_;  // visible_ of the last frame; empty before the first
   bool marked_ = false;        // visible_ holds a frame's marks
   mutable std::vector<gl::Query> queries_;
@@ -70,6 +71,13 @@ class OcclusionCulling {
   glm::vec2 worldPerPixel_{0.0f};  // at view depth 1 (perspective) or anywhere (orthographic)
   bool orthographic_ = false;
   float near_ = 0.0f;
+
+  // Whether object i is drawn in the first batch: shown by the last frame (every object in the
+  // first frame, and while culling is off).
+  bool shown(std::size_t i) const { return !enabled_ || shown_.empty() || shown_[i] != 0; }
+  // For each object of `candidates`, whether its box passes; indexed by object. Leaves face
+  // culling (its mode and winding) and depth writes as it found them, and colour writes on.
+  std::vector<bool> mayBeVisible(const std::vector<std::size_t>& candidates, float time) const;
 };
 
 }  // namespace cutaway

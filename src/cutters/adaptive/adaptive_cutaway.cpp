@@ -1,7 +1,5 @@
 #include "cutters/adaptive/adaptive_cutaway.hpp"
 
-#include <functional>
-
 #include "frame/fullscreen.hpp"
 
 namespace cutaway {
@@ -283,7 +281,7 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
   // The objects the last frame showed, then those of the others whose boxes pass
   // (frame/occlusion_culling.hpp).
   const auto ghost = [](const SceneObject& o) { return !o.proxy && o.role != Role::Interest; };
-  const auto drawBatch = [&](const std::function<bool(std::size_t)>& batch) {
+  const auto drawBatch = [&](const OcclusionCulling::Batch& batch) {
     setup_.meshes.draw(
         program, [&](const SceneObject& o, std::size_t i) { return ghost(o) && batch(i); },
         [&](const SceneObject&, std::size_t i) {
@@ -291,15 +289,8 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
           setObjectUniforms(program, i);
         });
   };
-  drawBatch([this](std::size_t i) { return ghostCulling_->shown(i); });
-  std::vector<std::size_t> candidates;
-  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
-    if (ghost(setup_.scene.objects[i]) && !ghostCulling_->shown(i)) candidates.push_back(i);
-  if (!candidates.empty()) {
-    const std::vector<bool> mayBeVisible =
-        ghostCulling_->mayBeVisible(candidates, setup_.meshes.time());
-    drawBatch([&](std::size_t i) { return mayBeVisible[i]; });
-  }
+  ghostCulling_->draw([&](std::size_t i) { return ghost(setup_.scene.objects[i]); },
+                      setup_.meshes.time(), drawBatch);
   glDisable(GL_CULL_FACE);
 }
 

@@ -1,7 +1,6 @@
 #include "kinds/meshes/mesh_kind.hpp"
 
 #include <algorithm>
-#include <functional>
 
 namespace cutaway {
 
@@ -61,8 +60,8 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
   auto setUniforms = [&](const SceneObject& o, std::size_t i) {
     setObjectUniforms(program, cutters, cuts[i], o, i);
   };
-  // The objects of `batch` (occlusion_culling.hpp), in the order below.
-  auto drawBatch = [&](const std::function<bool(std::size_t)>& batch) {
+  // The objects of `batch` (frame/occlusion_culling.hpp), in the order below.
+  auto drawBatch = [&](const OcclusionCulling::Batch& batch) {
     // Secondary objects first, cut; then the objects of interest, whole (Burns08 §4.1).
     setup_.meshes.draw(
         program,
@@ -96,13 +95,8 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
         },
         setUniforms);
   };
-  drawBatch([this](std::size_t i) { return culling_->shown(i); });
-  std::vector<std::size_t> candidates;
-  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
-    if (!setup_.scene.objects[i].proxy && !culling_->shown(i)) candidates.push_back(i);
-  if (candidates.empty()) return;
-  const std::vector<bool> mayBeVisible = culling_->mayBeVisible(candidates, draw.time);
-  drawBatch([&](std::size_t i) { return mayBeVisible[i]; });
+  culling_->draw([this](std::size_t i) { return !setup_.scene.objects[i].proxy; }, draw.time,
+                 drawBatch);
 }
 
 void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw&,
