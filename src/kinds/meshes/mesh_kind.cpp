@@ -87,6 +87,10 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
               glProgramUniform4fv(program, kClipPlane, 1, &keep[0]);
             });
       glDisable(GL_CLIP_DISTANCE0);
+      // A plane that keeps everything: Mesa 22.3's llvmpipe went on clipping the next frame's
+      // objects of interest with the last object's plane, clipping disabled or not.
+      const glm::vec4 keepAll(0, 0, 0, 1);
+      glProgramUniform4fv(program, kClipPlane, 1, &keepAll[0]);
     }
     setup_.meshes.draw(
         program,
