@@ -1,6 +1,6 @@
-// Occlusion culling of the geometry pass (src/frame/occlusion_culling.hpp): hidden
-// objects are skipped from the second frame of a view on, and every picture and AOV is the same,
-// bit for bit, as drawing every object.
+// Occlusion culling (src/frame/occlusion_culling.hpp): the geometry pass, the ghost geometry
+// and the translucent layers skip hidden objects from the second frame of a view on, and every
+// picture and AOV is the same, bit for bit, as drawing every object.
 #include <gtest/gtest.h>
 
 #include <cmath>
