@@ -166,6 +166,24 @@ TEST(Cli, VolumeLinesRenderWithTheirSvgAndCoverage) {
   EXPECT_GT(covered, 200);
 }
 
+// The house's furniture is hidden in its plain view: culled from the second frame on, and
+// drawn every frame with --no-occlusion-culling.
+TEST(Cli, BenchCullsHiddenObjectsUnlessAskedNotTo) {
+  const std::string bench =
+      "bench " + kSource + "/examples/house.json --size 64x48 --frames 1 --json";
+  for (const bool culling : {true, false}) {
+    const Result r = run(bench + (culling ? "" : " --no-occlusion-culling"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto runs = nlohmann::json::parse(r.out)["runs"];
+    ASSERT_FALSE(runs.empty());
+    for (const auto& run : runs)
+      if (culling)
+        EXPECT_GT(run["culledObjects"].get<int>(), 10) << run["label"];
+      else
+        EXPECT_EQ(run["culledObjects"].get<int>(), 0) << run["label"];
+  }
+}
+
 TEST(Cli, BenchPrintsJsonAndTable) {
   const std::string scene = kData + "/render/plane-facing.json";
   const Result json = run("bench " + scene + " --frames 3 --json");

@@ -559,10 +559,18 @@ struct Measurement {
   std::size_t culled = 0;     // objects the last frame found hidden and did not draw
 };
 
+// How every run of one bench invocation renders.
+struct Timing {
+  const gl::ContextInfo& info;
+  int frames;
+  bool occlusionCulling;
+};
+
 // Renders `frames` frames (after a warm-up) and gathers per-pass and whole-frame times.
-Measurement measure(const std::string& label, const Scene& scene, const gl::ContextInfo& info,
-                    int frames) {
-  Renderer renderer(scene, info);
+Measurement measure(const std::string& label, const Scene& scene, const Timing& timing) {
+  Renderer renderer(scene, timing.info);
+  renderer.setOcclusionCulling(timing.occlusionCulling);
+  const int frames = timing.frames;
   const Camera camera = scene.resolvedCamera();
   renderer.render(camera);  // warm-up: shader compilation, first allocation
   glFinish();
@@ -633,8 +641,7 @@ nlohmann::json statsJson(const Stats& s) {
 // Konev18 Table 1's rows for a scene with pipe networks: the empty scene, the (opened)
 // terrain, the shafts, the billboard pipes and the same pipes meshed, each alone, then the
 // whole scene with billboard pipes (the frame a user sees), at the paper's two resolutions.
-void pipeTable(const Scene& scene, const gl::ContextInfo& info, int frames,
-               std::vector<Measurement>& runs) {
+void pipeTable(const Scene& scene, const Timing& timing, std::vector<Measurement>& runs) {
   const auto only = [&](bool terrain, bool shafts, std::optional<PipeNetwork::Mode> pipes) {
     Scene s = scene;
     s.objects.clear();
@@ -674,7 +681,7 @@ void pipeTable(const Scene& scene, const gl::ContextInfo& info, int frames,
     for (const auto& [label, row] : rows) {
       Scene s = row;
       s.width = w, s.height = h;
-      runs.push_back(measure(std::string(label) + " " + size, s, info, frames));
+      runs.push_back(measure(std::string(label) + " " + size, s, timing));
       runs.back().plain = runs.size() - 1;
     }
 }
@@ -684,6 +691,7 @@ int bench(const BenchOptions& options) {
   applyOverrides(scene, options.overrides);
   const auto context = gl::HeadlessContext::create();
   const gl::ContextInfo& info = context->info();
+  const Timing timing{info, options.frames, !options.noOcclusionCulling};
   std::vector<Measurement> runs;
   nlohmann::json references = nlohmann::json::object(), accuracy = nlohmann::json::object();
   constexpr int kAccuracySize = 256;
@@ -696,22 +704,22 @@ int bench(const BenchOptions& options) {
       plain.width = plain.height = n;
       plain.cutters.clear();
       const std::size_t base = runs.size();
-      runs.push_back(measure("ray casting " + size, plain, info, options.frames));
+      runs.push_back(measure("ray casting " + size, plain, timing));
       const std::vector<std::string> keys = scene.cutters.keys();
       for (const std::string& key : keys) {
         Scene one = plain;
         one.cutters.set(key, *scene.cutters.find(key));
-        runs.push_back(measure(key + " " + size, one, info, options.frames));
+        runs.push_back(measure(key + " " + size, one, timing));
       }
       if (keys.size() > 1) {
         Scene all = scene;
         all.width = all.height = n;
-        runs.push_back(measure("all cutters " + size, all, info, options.frames));
+        runs.push_back(measure("all cutters " + size, all, timing));
       }
       for (std::size_t i = base; i < runs.size(); ++i) runs[i].plain = base;
     }
   } else if (!scene.networks.empty()) {
-    pipeTable(scene, info, options.frames, runs);
+    pipeTable(scene, timing, runs);
   } else if (scene.cutters.find<CutoutOptions>() || scene.cutters.find<BreakawayOptions>()) {
     // Diepstraten03 §6's table: plain, cutout and breakaway for every style, in one run; a
     // cutter the scene does not configure runs with its defaults where the roles allow it.
@@ -724,17 +732,17 @@ int bench(const BenchOptions& options) {
       plain.cutters.disable<BreakawayOptions>();
       plain.style.name = style;
       const std::size_t base = runs.size();
-      runs.push_back(measure("plain " + style, plain, info, options.frames));
+      runs.push_back(measure("plain " + style, plain, timing));
       Scene cutout = plain;
       cutout.cutters.enable<CutoutOptions>() =
           scene.cutters.find<CutoutOptions>() ? *scene.cutters.find<CutoutOptions>() : CutoutOptions{};
-      runs.push_back(measure("cutout " + style, cutout, info, options.frames));
+      runs.push_back(measure("cutout " + style, cutout, timing));
       if (interior) {
         Scene breakaway = plain;
         breakaway.cutters.enable<BreakawayOptions>() = scene.cutters.find<BreakawayOptions>()
                                                            ? *scene.cutters.find<BreakawayOptions>()
                                                            : BreakawayOptions{};
-        runs.push_back(measure("breakaway " + style, breakaway, info, options.frames));
+        runs.push_back(measure("breakaway " + style, breakaway, timing));
       }
       for (std::size_t i = base; i < runs.size(); ++i) runs[i].plain = base;
     }
@@ -743,19 +751,19 @@ int bench(const BenchOptions& options) {
     Scene plain = scene, clipped = scene;
     plain.cutters.disable<ClipSurfaceOptions>();
     clipped.cutters.find<ClipSurfaceOptions>()->caps = false;
-    runs.push_back(measure("plain", plain, info, options.frames));
-    runs.push_back(measure("clipped", clipped, info, options.frames));
+    runs.push_back(measure("plain", plain, timing));
+    runs.push_back(measure("clipped", clipped, timing));
     Scene capped = scene;
     capped.cutters.find<ClipSurfaceOptions>()->caps = true;
-    runs.push_back(measure("clipped + capped", capped, info, options.frames));
+    runs.push_back(measure("clipped + capped", capped, timing));
   } else if (!scene.cutters.find<AdaptiveCutawayOptions>()) {
-    runs.push_back(measure("frame", scene, info, options.frames));
+    runs.push_back(measure("frame", scene, timing));
   } else {
     // Burns08 Table 1's shape: the model alone, then with the cutaway, in one run; at the
     // two buffer sizes the issue asks for, on both compute paths.
     Scene plain = scene;
     plain.cutters.disable<AdaptiveCutawayOptions>();
-    runs.push_back(measure("plain", plain, info, options.frames));
+    runs.push_back(measure("plain", plain, timing));
     for (int n : {512, 1024})
       for (auto compute :
            {AdaptiveCutawayOptions::Compute::Gpu, AdaptiveCutawayOptions::Compute::Cpu}) {
@@ -763,15 +771,15 @@ int bench(const BenchOptions& options) {
         s.cutters.find<AdaptiveCutawayOptions>()->bufferSize = n;
         s.cutters.find<AdaptiveCutawayOptions>()->compute = compute;
         const bool gpu = compute == AdaptiveCutawayOptions::Compute::Gpu;
-        runs.push_back(measure("cutaway " + std::to_string(n) + (gpu ? " gpu" : " cpu"), s, info,
-                               options.frames));
+        runs.push_back(
+            measure("cutaway " + std::to_string(n) + (gpu ? " gpu" : " cpu"), s, timing));
       }
     // Burns11 Table 7.1's shape: the simple and the contextual structure, R applied each way
     // (its trimming, translucency, edge highlights), at the scene's own buffer size and
     // compute path; the scene's contextual options if any.
     Scene simple = scene;
     simple.cutters.find<AdaptiveCutawayOptions>()->contextual.reset();
-    runs.push_back(measure("simple cutaway", simple, info, options.frames));
+    runs.push_back(measure("simple cutaway", simple, timing));
     using Application = ContextualCutawayOptions::Application;
     for (const auto& [name, apply] :
          {std::pair{"contextual cutaway", Application::Cut},
@@ -782,7 +790,7 @@ int bench(const BenchOptions& options) {
       if (!a.contextual) a.contextual = ContextualCutawayOptions{};
       a.contextual->transitionAngle = std::max(a.contextual->transitionAngle, a.angle);
       a.contextual->apply = apply;
-      runs.push_back(measure(name, contextual, info, options.frames));
+      runs.push_back(measure(name, contextual, timing));
     }
     const fields::JumpFloodingVariant variant = scene.cutters.find<AdaptiveCutawayOptions>()->variant;
     for (int n : {512, 1024}) {

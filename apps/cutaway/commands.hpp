@@ -55,6 +55,8 @@ struct BenchOptions {
   int city = 0;  // > 0: Konev18's generated benchmark city at this scale instead of a scene
   int frames = 60;
   bool json = false;
+  bool noOcclusionCulling =
+      false;  // every object drawn every frame (Renderer::setOcclusionCulling)
   SceneOverrides overrides;
 };
 int bench(const BenchOptions& options);

@@ -186,6 +186,9 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   bench->add_flag("--json", benchOptions.json, "Print JSON instead of a table");
+  bench->add_flag("--no-occlusion-culling", benchOptions.noOcclusionCulling,
+                  "Draw every object every frame, also those the last frame found hidden (to "
+                  "compare)");
   addSceneOverrides(bench, benchOptions.overrides);
 
   try {
