@@ -5,7 +5,7 @@
 // objects a grading cutter cuts are drawn again, for each translucent layer, by the layer
 // variant of the program (frame/translucent_layers.hpp). The geometry pass draws the objects
 // the last frame showed first, then those of the rest whose boxes pass the depth test
-// (occlusion_culling.hpp).
+// (frame/occlusion_culling.hpp).
 #pragma once
 
 #include <memory>
