@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -359,16 +360,16 @@ TEST(AdaptiveCutaway, GhostLinesFadeWithTheirDistanceInFrontOfTheCut) {
   const Frame& frame = renderer.frame();
   // Rows bottom to top, the image's and the buffer's alike.
   const std::vector<float> normal = frame.read("ghostNormal", 4),
-                           position = frame.read("ghostPosition", 4),
-                           id = frame.read("ghostObjectId", 1), cut = frame.read("cutawayDepth", 1);
+                           cut = frame.read("cutawayDepth", 1);
+  const std::vector<GLint> idDepth = frame.readIntegers("ghostObjectId", 2);  // id, view depth
   const glm::mat4 inverse = glm::inverse(scene.resolvedCamera().projectionMatrix(1.0f));
   int faded = 0, partial = 0;
   double worst = 0.0;
-  for (std::size_t i = 0; i < id.size(); ++i) {
+  for (std::size_t i = 0; i < cut.size(); ++i) {
     const float fade = normal[4 * i + 3];
-    if (id[i] != 0.0f || fade <= 0.0f) continue;  // the plate's removed front faces
+    if (idDepth[2 * i] != 0 || fade <= 0.0f) continue;  // the plate's removed front faces
     const glm::vec4 h = inverse * glm::vec4(0.0f, 0.0f, 2.0f * cut[i] - 1.0f, 1.0f);
-    const float c = -h.z / h.w, z = position[4 * i + 3];
+    const float c = -h.z / h.w, z = std::bit_cast<float>(idDepth[2 * i + 1]);
     const float expected = std::clamp(1.0f - (c - z) / distance, 0.0f, 1.0f);
     worst = std::max(worst, double(std::abs(fade - expected)));
     ++faded, partial += expected > 0.05f && expected < 0.95f;

@@ -50,7 +50,7 @@ struct CutLook {
 // A G-buffer of removed material whose feature lines the composer draws faded over the image
 // (Burns08 §4.3's ghost lines): the normal's w is each sample's line weight.
 struct GhostBuffers {
-  Target normal, position, objectId;  // multisampled, as the scene G-buffer's
+  Target normal, objectId;            // multisampled, as the scene G-buffer's
   std::function<float()> opacity;     // read every frame
 };
 

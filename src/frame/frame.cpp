@@ -30,6 +30,7 @@ std::uint64_t texelBytes(GLenum format) {
       return 4;
     case GL_RGBA16F:
     case GL_RG32F:
+    case GL_RG32I:
     case GL_DEPTH32F_STENCIL8:
       return 8;
     default:
@@ -38,7 +39,7 @@ std::uint64_t texelBytes(GLenum format) {
 }
 
 bool isIntegerFormat(GLenum format) {
-  return format == GL_R32I || format == GL_R32UI;
+  return format == GL_R32I || format == GL_RG32I || format == GL_R32UI;
 }
 
 std::string mebibytes(std::uint64_t bytes) {
@@ -148,12 +149,29 @@ std::vector<float> Frame::read(Target t, int channels) const {
     std::copy(values.begin(), values.end(), texels.begin());
     return texels;
   }
+  if (d.format == GL_R32I || d.format == GL_RG32I) {
+    const std::vector<GLint> values = readIntegers(t, channels);
+    std::copy(values.begin(), values.end(), texels.begin());
+    return texels;
+  }
   const GLenum format = isDepthFormat(d.format) ? GL_DEPTH_COMPONENT
                         : channels == 4         ? GL_RGBA
                         : channels == 3         ? GL_RGB
                                                 : GL_RED;
   glGetTextureImage(data.texture.id(), 0, format, GL_FLOAT,
                     GLsizei(texels.size() * sizeof(float)), texels.data());
+  return texels;
+}
+
+std::vector<GLint> Frame::readIntegers(Target t, int channels) const {
+  const TargetData& data = target(t, "read");
+  runOnRead(t);
+  const TargetDesc& d = data.desc;
+  if (d.format != GL_R32I && d.format != GL_RG32I)
+    throw Error("frame", data.name, "not a signed-integer target, read it with read()");
+  std::vector<GLint> texels(std::size_t(d.width) * std::size_t(d.height) * std::size_t(channels));
+  glGetTextureImage(data.texture.id(), 0, channels == 2 ? GL_RG_INTEGER : GL_RED_INTEGER, GL_INT,
+                    GLsizei(texels.size() * sizeof(GLint)), texels.data());
   return texels;
 }
 

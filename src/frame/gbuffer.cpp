@@ -36,7 +36,7 @@ void GBuffer::declare(Frame& f, int samples, bool stencil) {
   color_ = f.declare("sceneColor", {.format = GL_RGBA8, .samples = samples});
   normal_ = f.declare("sceneNormal", {.format = GL_RGBA16F, .samples = samples});
   position_ = f.declare("scenePosition", {.format = GL_RGBA32F, .samples = samples});
-  objectId_ = f.declare("sceneObjectId", {.format = GL_R32I, .samples = samples});
+  objectId_ = f.declare("sceneObjectId", {.format = GL_RG32I, .samples = samples});
   cutMask_ = f.declare("sceneCutMask", {.format = GL_R8, .samples = samples});
   for (const Channel& c : channels_) {
     channelTargets_.push_back(

@@ -4,7 +4,9 @@
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outNormal;     // world normal, w: lines flag
 layout(location = 2) out vec4 outPosition;   // world position, w: linear view depth
-layout(location = 3) out int outObjectId;
+// The object id, and the linear view depth's bits again: the feature lines' silhouette test
+// reads both with one fetch (styles/lines/lines.frag).
+layout(location = 3) out ivec2 outObjectId;
 // 0.5 on cut surfaces and cut walls, 1 on Trapp13 caps (both count as cut: >= 0.5)
 layout(location = 4) out float outCutMask;
 #include "frame/gbuffer_channels.glsl"
@@ -13,7 +15,8 @@ layout(location = 4) out float outCutMask;
 void writeGBuffer(SurfacePoint s, vec3 color, float lines, int objectId, bool cut, bool cap) {
   outColor = vec4(color, 1.0);
   outNormal = vec4(s.normal, lines);
-  outPosition = vec4(s.position, -(uView * vec4(s.position, 1.0)).z);
-  outObjectId = objectId;
+  float viewDepth = -(uView * vec4(s.position, 1.0)).z;
+  outPosition = vec4(s.position, viewDepth);
+  outObjectId = ivec2(objectId, floatBitsToInt(viewDepth));
   outCutMask = cap ? 1.0 : cut ? 0.5 : 0.0;
 }

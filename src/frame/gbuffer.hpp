@@ -1,8 +1,8 @@
 // The scene's multisampled G-buffer and its resolve. Every program that draws visible surfaces
 // writes it through frame/gbuffer.glsl (colour, normal + line weight, position + view depth,
-// object id, cut mask, then the channels techniques add); the "composite" pass averages the
-// samples into the final colour and blends the overlays (feature lines, cut outlines, ghost
-// lines) over it; the "aovs" and "channels" passes copy sample 0 of every other buffer into
+// object id + view depth, cut mask, then the channels techniques add); the "composite" pass
+// averages the samples into the final colour and blends the overlays (feature lines, cut outlines,
+// ghost lines) over it; the "aovs" and "channels" passes copy sample 0 of every other buffer into
 // the single-sample AOVs when those are read (Frame's onRead passes).
 //
 // Built in two steps: techniques add their channels first (a float per sample with a meaning,

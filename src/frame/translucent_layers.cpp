@@ -26,10 +26,8 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
   layer_.color = frame.declare("translucentLayer", {.format = GL_RGBA16F, .samples = samples});
   layer_.normal =
       frame.declare("translucentLayerNormal", {.format = GL_RGBA16F, .samples = samples});
-  layer_.position =
-      frame.declare("translucentLayerPosition", {.format = GL_RGBA32F, .samples = samples});
   layer_.objectId =
-      frame.declare("translucentLayerObjectId", {.format = GL_R32I, .samples = samples});
+      frame.declare("translucentLayerObjectId", {.format = GL_RG32I, .samples = samples});
   lineCoverage_ = frame.declare("translucentLayerLines", {.format = GL_R16F});
   const GLenum depthFormat = frame.desc(gbuffer.depth()).format;  // copied from the opaque depth
   layerDepth_ = frame.declare("translucentLayerDepth", {.format = depthFormat, .samples = samples});
@@ -40,22 +38,23 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
 
 void TranslucentLayers::addLayersPass(Frame& frame, std::function<void(bool)> drawLayer,
                                       Lines lines) {
-  frame.addPass({.name = "translucentLayers",
-                 .reads = {gbuffer_.depth()},
-                 .writes = {accumulation_, layer_.color, layer_.normal, layer_.position,
-                            layer_.objectId, layerDepth_},
-                 .run = [this, drawLayer = std::move(drawLayer), lines = std::move(lines)](
-                            const PassContext&) { peel(drawLayer, lines); }});
+  frame.addPass(
+      {.name = "translucentLayers",
+       .reads = {gbuffer_.depth()},
+       .writes = {accumulation_, layer_.color, layer_.normal, layer_.objectId, layerDepth_},
+       .run = [this, drawLayer = std::move(drawLayer),
+               lines = std::move(lines)](const PassContext&) { peel(drawLayer, lines); }});
 }
 
 void TranslucentLayers::attach() {
   const auto id = [this](Target t) { return frame_.texture(t).id(); };
   const GLuint layer = layerFramebuffer_.id();
-  const Target colors[4] = {layer_.color, layer_.normal, layer_.position, layer_.objectId};
+  // At the G-buffer's locations (frame/gbuffer.glsl); the world position (2) is not kept.
+  const Target colors[4] = {layer_.color, layer_.normal, Target(), layer_.objectId};
   GLenum buffers[4];
   for (int i = 0; i < 4; ++i) {
-    buffers[i] = GL_COLOR_ATTACHMENT0 + GLenum(i);
-    glNamedFramebufferTexture(layer, buffers[i], id(colors[i]), 0);
+    buffers[i] = colors[i].valid() ? GL_COLOR_ATTACHMENT0 + GLenum(i) : GL_NONE;
+    if (colors[i].valid()) glNamedFramebufferTexture(layer, buffers[i], id(colors[i]), 0);
   }
   glNamedFramebufferDrawBuffers(layer, 4, buffers);
   const GLenum depthFormat = frame_.desc(layerDepth_).format;
@@ -87,7 +86,7 @@ void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const L
     if (k > 0) copyDepth(layerDepth_, previousDepth_);
     copyDepth(gbuffer_.depth(), layerDepth_);
     const GLuint layer = layerFramebuffer_.id();
-    for (GLint i : {0, 1, 2}) glClearNamedFramebufferfv(layer, GL_COLOR, i, zero);
+    for (GLint i : {0, 1}) glClearNamedFramebufferfv(layer, GL_COLOR, i, zero);
     glClearNamedFramebufferiv(layer, GL_COLOR, 3, noObject);
     glBindFramebuffer(GL_FRAMEBUFFER, layer);
     glEnable(GL_DEPTH_TEST);

@@ -45,7 +45,7 @@ class TranslucentLayers {
  public:
   // A layer's G-buffer, written by the layer variant of the geometry programs.
   struct Layer {
-    Target color, normal, position, objectId;
+    Target color, normal, objectId;
   };
   // The feature lines drawn over each layer: their colour this frame (none: no lines), and
   // the line pass over a layer into the bound coverage target (R16F, single sample).

@@ -151,8 +151,8 @@ void Renderer::Impl::buildFrame() {
                                          },
                                          .draw =
                                              [this](const TranslucentLayers::Layer& layer) {
-                                               layerLines->draw(frame, layer.normal, layer.position,
-                                                                layer.objectId, std::nullopt,
+                                               layerLines->draw(frame, layer.normal, layer.objectId,
+                                                                std::nullopt,
                                                                 *setup.scene.style.lines, true);
                                              }};
     layers->addLayersPass(
@@ -194,7 +194,7 @@ void Renderer::Impl::buildFrame() {
                                           .meaning = "feature-line coverage in [0,1] (silhouettes "
                                                      "and creases, fraction of MSAA samples on a "
                                                      "line)"});
-    std::vector<Target> reads{gbuffer.normal(), gbuffer.position(), gbuffer.objectId()};
+    std::vector<Target> reads{gbuffer.normal(), gbuffer.objectId()};
     std::vector<Target> writes{linesTarget};
     if (outlineColor) {
       outlinesTarget = frame.declare(
@@ -212,7 +212,7 @@ void Renderer::Impl::buildFrame() {
                      static const LineStyle kDefault;
                      const LineStyle& l =
                          setup.scene.style.lines ? *setup.scene.style.lines : kDefault;
-                     lines->draw(frame, gbuffer.normal(), gbuffer.position(), gbuffer.objectId(),
+                     lines->draw(frame, gbuffer.normal(), gbuffer.objectId(),
                                  outlines ? std::optional(gbuffer.cutMask()) : std::nullopt, l,
                                  featureLines);
                    }});
@@ -228,14 +228,13 @@ void Renderer::Impl::buildFrame() {
   if (ghosts) {
     ghostLines = std::make_unique<LinePass>(false, scene.samples);
     frame.addPass({.name = "ghostLines",
-                   .reads = {ghosts->normal, ghosts->position, ghosts->objectId},
+                   .reads = {ghosts->normal, ghosts->objectId},
                    .writes = {ghostLinesTarget},
                    .run = [this, g = *ghosts](const PassContext&) {
                      static const LineStyle kDefault;
                      const LineStyle& l =
                          setup.scene.style.lines ? *setup.scene.style.lines : kDefault;
-                     ghostLines->draw(frame, g.normal, g.position, g.objectId, std::nullopt, l,
-                                      true);
+                     ghostLines->draw(frame, g.normal, g.objectId, std::nullopt, l, true);
                    }});
   }
   // 6. The composite: the colour samples resolved, the overlays blended (the AOVs are copied

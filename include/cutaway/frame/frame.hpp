@@ -115,6 +115,9 @@ class Frame {
   // A single-sample target's texels as floats, `channels` (1: red, 3: RGB, 4: RGBA) per
   // texel, rows bottom to top as OpenGL stores them; runs the `onRead` passes as `texture`.
   std::vector<float> read(Target target, int channels) const;
+  // A single-sample signed-integer target's texels (GL_R32I, GL_RG32I), `channels` (1: red,
+  // 2: red and green) per texel, as `read`.
+  std::vector<GLint> readIntegers(Target target, int channels) const;
 
   // Lookup by name, for tools outside the frame's passes (AOV inspectors, tests).
   std::optional<Target> find(const std::string& name) const;
@@ -124,6 +127,9 @@ class Frame {
   const TargetDesc& desc(const std::string& name) const { return desc(at(name)); }
   std::vector<float> read(const std::string& name, int channels) const {
     return read(at(name), channels);
+  }
+  std::vector<GLint> readIntegers(const std::string& name, int channels) const {
+    return readIntegers(at(name), channels);
   }
   // Targets with a meaning, in declaration order.
   std::vector<std::string> aovNames() const;

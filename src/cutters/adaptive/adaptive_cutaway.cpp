@@ -62,8 +62,7 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
   if (options().ghostLines) {
     const int samples = setup.scene.samples;
     ghostNormal_ = frame.declare("ghostNormal", {.format = GL_RGBA16F, .samples = samples});
-    ghostPosition_ = frame.declare("ghostPosition", {.format = GL_RGBA32F, .samples = samples});
-    ghostObjectId_ = frame.declare("ghostObjectId", {.format = GL_R32I, .samples = samples});
+    ghostObjectId_ = frame.declare("ghostObjectId", {.format = GL_RG32I, .samples = samples});
     ghostDepth_ = frame.declare("ghostDepth", {.format = GL_DEPTH_COMPONENT32F, .samples = samples});
     ghostCulling_ = std::make_unique<OcclusionCulling>(setup);
   }
@@ -115,8 +114,9 @@ std::optional<glm::vec3> AdaptiveCutaway::cutOutlineColor() const {
 
 std::optional<GhostBuffers> AdaptiveCutaway::ghosts() const {
   if (!ghostNormal_.valid()) return std::nullopt;
-  return GhostBuffers{ghostNormal_, ghostPosition_, ghostObjectId_,
-                      [this] { return options().ghostLines ? options().ghostLines->opacity : 0.0f; }};
+  return GhostBuffers{ghostNormal_, ghostObjectId_, [this] {
+                        return options().ghostLines ? options().ghostLines->opacity : 0.0f;
+                      }};
 }
 
 void AdaptiveCutaway::describeAovs(std::vector<Aov>& aovs) const {
@@ -251,7 +251,7 @@ void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {
   if (!ghostNormal_.valid()) return;
   frame.addPass({.name = "ghostGeometry",
                  .reads = {surface_.cutawayDepth(), surface_.cutawayDilated()},
-                 .writes = {ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_},
+                 .writes = {ghostNormal_, ghostObjectId_, ghostDepth_},
                  .run = [this](const PassContext& pass) { drawGhostGeometry(pass.framebuffer); }});
   ghostCulling_->addPass(frame, "visibleGhosts", ghostObjectId_);
 }
@@ -260,8 +260,7 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
   const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
   const GLint noObject[4] = {-1, 0, 0, 0};
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, zero);
-  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero);
-  glClearNamedFramebufferiv(framebuffer, GL_COLOR, 2, noObject);
+  glClearNamedFramebufferiv(framebuffer, GL_COLOR, 1, noObject);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);

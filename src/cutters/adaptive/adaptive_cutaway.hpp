@@ -70,7 +70,7 @@ class AdaptiveCutaway : public Cutter {
   GLint contextualLocation_ = -1, importanceLocation_ = -1, applyLocation_ = -1;
   bool graded_ = false;
   Target seedDepthTest_;
-  Target ghostNormal_, ghostPosition_, ghostObjectId_, ghostDepth_;
+  Target ghostNormal_, ghostObjectId_, ghostDepth_;
   std::unique_ptr<OcclusionCulling> ghostCulling_;  // of the ghost geometry's draws
   struct Programs;
   std::unique_ptr<Programs> programs_;

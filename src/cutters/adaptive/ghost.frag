@@ -9,9 +9,8 @@ in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 layout(location = 11) uniform int uObjectId;
 layout(location = 17) uniform float uGhostDistance;
-layout(location = 0) out vec4 outNormal;    // w: fade
-layout(location = 1) out vec4 outPosition;  // w: linear view depth
-layout(location = 2) out int outObjectId;
+layout(location = 0) out vec4 outNormal;     // w: fade
+layout(location = 1) out ivec2 outObjectId;  // the object id, the linear view depth's bits
 void main() {
   if (!gl_FrontFacing) discard;
   bool removed = gl_FragCoord.z < texture(uCutawayDepth, gl_FragCoord.xy * uViewport.zw).r;
@@ -20,6 +19,5 @@ void main() {
   vec3 n = vWorldNormal;
   if (dot(n, n) < 1e-12) n = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
   outNormal = vec4(normalize(n), fade);
-  outPosition = vec4(vWorldPosition, -(uView * vec4(vWorldPosition, 1.0)).z);
-  outObjectId = uObjectId;
+  outObjectId = ivec2(uObjectId, floatBitsToInt(-(uView * vec4(vWorldPosition, 1.0)).z));
 }

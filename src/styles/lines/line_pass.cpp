@@ -15,15 +15,14 @@ LinePass::LinePass(bool outlines, int samples)
                                      ? std::map<std::string, std::string>{{"CUT_OUTLINES", "1"}}
                                      : std::map<std::string, std::string>{}))) {}
 
-void LinePass::draw(const Frame& frame, Target normal, Target position, Target objectId,
+void LinePass::draw(const Frame& frame, Target normal, Target objectId,
                     std::optional<Target> cutMask, const LineStyle& l, bool featureLines) const {
   const GLuint program = program_.id();
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
   glBindTextureUnit(0, frame.texture(normal).id());
-  glBindTextureUnit(1, frame.texture(position).id());
-  glBindTextureUnit(2, frame.texture(objectId).id());
-  if (cutMask) glBindTextureUnit(3, frame.texture(*cutMask).id());
+  glBindTextureUnit(1, frame.texture(objectId).id());
+  if (cutMask) glBindTextureUnit(2, frame.texture(*cutMask).id());
   glProgramUniform1i(program, 0, samples_);
   glProgramUniform1i(program, 1, std::max(1, int(std::lround(l.width))));
   glProgramUniform1f(program, 2, std::cos(glm::radians(l.creaseAngle)));

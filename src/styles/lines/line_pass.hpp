@@ -18,10 +18,10 @@ class LinePass {
   // `outlines`: also the cut outlines, into a second output; `samples`: the G-buffer's.
   LinePass(bool outlines, int samples);
   // Into the bound targets (the coverage, then the outlines' coverage): the lines of the
-  // G-buffer `normal`, `position`, `objectId` (and `cutMask` with outlines); `featureLines`
-  // false draws only the outlines.
-  void draw(const Frame& frame, Target normal, Target position, Target objectId,
-            std::optional<Target> cutMask, const LineStyle& style, bool featureLines) const;
+  // G-buffer `normal`, `objectId` (id and view depth, frame/gbuffer.glsl) and `cutMask` with
+  // outlines; `featureLines` false draws only the outlines.
+  void draw(const Frame& frame, Target normal, Target objectId, std::optional<Target> cutMask,
+            const LineStyle& style, bool featureLines) const;
 
  private:
   int samples_;

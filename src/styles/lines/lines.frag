@@ -11,8 +11,7 @@
 #include "frame/samples.glsl"
 #include "frame/frame_uniforms.glsl"
 layout(binding = 0) uniform SAMPLER_MS uNormal;     // world normal, w: lines flag
-layout(binding = 1) uniform SAMPLER_MS uPosition;   // w: linear view depth
-layout(binding = 2) uniform ISAMPLER_MS uObjectId;  // -1: background
+layout(binding = 1) uniform ISAMPLER_MS uObjectId;  // the id (-1: background), view depth bits
 layout(location = 0) uniform int uSamples;
 layout(location = 1) uniform int uRadius;            // line width in pixels
 layout(location = 2) uniform float uCreaseCos;       // cos(crease angle)
@@ -21,7 +20,7 @@ layout(location = 4) uniform int uSilhouettes;
 layout(location = 5) uniform int uCreases;
 layout(location = 0) out float outCoverage;
 #ifdef CUT_OUTLINES
-layout(binding = 3) uniform SAMPLER_MS uCutMask;
+layout(binding = 2) uniform SAMPLER_MS uCutMask;
 layout(location = 1) out float outOutlineCoverage;
 
 float outline(ivec2 p, int s) {
@@ -38,8 +37,9 @@ float outline(ivec2 p, int s) {
 const float kFar = 1e30;
 
 float viewDepth(ivec2 q, int s, out int id) {
-  id = texelFetch(uObjectId, q, s).r;
-  return id < 0 ? kFar : texelFetch(uPosition, q, s).w;
+  ivec2 v = texelFetch(uObjectId, q, s).rg;
+  id = v.r;
+  return id < 0 ? kFar : intBitsToFloat(v.g);
 }
 
 float edge(ivec2 p, int s) {
