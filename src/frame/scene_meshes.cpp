@@ -137,12 +137,22 @@ std::size_t SceneMeshes::triangles() const {
   return n;
 }
 
-void SceneMeshes::draw(GLuint program, const Filter& which,
-                    const std::function<void(const SceneObject&, std::size_t)>& perObject) const {
+void SceneMeshes::draw(
+    GLuint program, const Filter& which,
+    const std::function<void(const SceneObject&, std::size_t)>& perObject) const {
   glUseProgram(program);
+  draw([program](std::size_t) { return program; }, which, perObject);
+}
+
+void SceneMeshes::draw(
+    const std::function<GLuint(std::size_t)>& programOf, const Filter& which,
+    const std::function<void(const SceneObject&, std::size_t)>& perObject) const {
+  GLuint used = 0;
   for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
     const SceneObject& o = scene_.objects[i];
     if (!which(o, i)) continue;
+    const GLuint program = programOf(i);
+    if (program != used) glUseProgram(used = program);
     const glm::mat4 model = o.transformAt(time_);
     const glm::mat4 normalMatrix = glm::transpose(glm::inverse(model));
     glProgramUniformMatrix4fv(program, meshUniform::kModel, 1, GL_FALSE, &model[0][0]);

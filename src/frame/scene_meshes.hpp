@@ -66,6 +66,9 @@ class SceneMeshes {
   using Filter = std::function<bool(const SceneObject&, std::size_t)>;
   void draw(GLuint program, const Filter& which,
             const std::function<void(const SceneObject&, std::size_t)>& perObject) const;
+  // The same, each object with the program `programOf(index)`, in the same order.
+  void draw(const std::function<GLuint(std::size_t)>& programOf, const Filter& which,
+            const std::function<void(const SceneObject&, std::size_t)>& perObject) const;
   const Scene& scene() const { return scene_; }
   const GpuMesh& mesh(std::size_t object) const { return meshes_[object]; }
   float time() const { return time_; }

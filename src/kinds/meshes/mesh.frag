@@ -21,6 +21,13 @@ layout(location = 14) uniform int uCutSurfaces;   // bit k: its cuts of this obj
 layout(location = 15) uniform vec3 uBackColor;    // back faces that are no cut surface (an open or hollow inside)
 layout(location = 16) uniform float uEmphasisImportance;  // 1 for objects of interest
 layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cut surfaces' colour
+#ifdef UNCUT
+// MeshKind's program for the objects no active cutter cuts: the cutters' code folds away
+// (llvmpipe runs a branch's code for every fragment, uniform condition or not).
+#define CUT_BY 0
+#else
+#define CUT_BY uCutBy
+#endif
 #ifdef TRANSLUCENT_LAYER
 // One layer of frame/translucent_layers.hpp: the nearest fragment of opacity > 0 behind the
 // previous layer and in front of the opaque surfaces (the depth test). It is shaded per sample
@@ -44,7 +51,7 @@ void main() {
 #ifdef CUT_WRITES_DEPTH
   gCutFragDepth = gl_FragCoord.z;
 #endif
-  int fate = cutFragment(uCutBy, f, cutPosition, cutNormal, cutter);
+  int fate = cutFragment(CUT_BY, f, cutPosition, cutNormal, cutter);
   if (fate == kDiscard) discard;
 #ifdef CUT_WRITES_DEPTH
   gl_FragDepth = gCutFragDepth;
@@ -65,7 +72,7 @@ void main() {
   vec3 color = emphasize(s.baseColor, shadeSurface(s), uEmphasisImportance);
   // Burns11 ch. 2: occlusion partly reduced by a grading cutter: the opacity of the surface
   // (x) and of its lines (y); 1 without one.
-  vec2 opacity = cutOpacity(uCutBy, f, s.normal, s.toEye);
+  vec2 opacity = cutOpacity(CUT_BY, f, s.normal, s.toEye);
 #ifdef TRANSLUCENT_LAYER
   // Opacity ≥ 1 too: a fragment the opaque pass kept lies at the opaque depth and fails the
   // depth test, and one it dropped by a rounding apart is drawn here, so none is lost. Below
@@ -80,6 +87,6 @@ void main() {
 #else
   if (opacity.x < 1.0) discard;  // drawn in the translucent layers, or not at all
   writeGBuffer(s, color, uLines, uObjectId, cut, false);
-  writeCutterChannels(uCutBy, f);
+  writeCutterChannels(CUT_BY, f);
 #endif
 }

@@ -11,10 +11,12 @@ constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLin
                 kClipPlane = 18, kCutColor = 24;
 }  // namespace
 
-void MeshKind::prepare(const std::vector<ActiveCutter>&) {
+void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
   const std::vector<std::pair<GLenum, std::string>> stages{
       {GL_VERTEX_SHADER, "frame/mesh.vert"}, {GL_FRAGMENT_SHADER, "kinds/meshes/mesh.frag"}};
   program_ = gl::buildProgram(setup_.geometryProgram(stages));
+  if (!cutters.empty())
+    uncutProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"UNCUT", "1"}}));
   culling_ = std::make_unique<OcclusionCulling>(setup_);
   if (setup_.translucentLayers)
     layerProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"TRANSLUCENT_LAYER", "1"}}));
@@ -57,14 +59,18 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
   const std::vector<ObjectCut> cuts = objectCuts(cutters);
   int clipPasses = 0;  // the most any object needs
   for (const ObjectCut& cut : cuts) clipPasses = std::max(clipPasses, cut.clipPasses);
+  // The objects no cutter cuts take the program without the cutters' code, in the same order.
+  const auto programOf = [&](std::size_t i) {
+    return cuts[i].cutBy == 0 && uncutProgram_ ? uncutProgram_.id() : program;
+  };
   auto setUniforms = [&](const SceneObject& o, std::size_t i) {
-    setObjectUniforms(program, cutters, cuts[i], o, i);
+    setObjectUniforms(programOf(i), cutters, cuts[i], o, i);
   };
   // The objects of `batch` (frame/occlusion_culling.hpp), in the order below.
   auto drawBatch = [&](const OcclusionCulling::Batch& batch) {
     // Secondary objects first, cut; then the objects of interest, whole (Burns08 §4.1).
     setup_.meshes.draw(
-        program,
+        programOf,
         [&](const SceneObject& o, std::size_t i) {
           return !o.proxy && o.role != Role::Interest && cuts[i].clipPasses == 0 && batch(i);
         },
@@ -80,7 +86,7 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
               return !o.proxy && cuts[i].clipPasses > k && batch(i);
             },
             [&](const SceneObject& o, std::size_t i) {
-              setUniforms(o, i);
+              setObjectUniforms(program, cutters, cuts[i], o, i);
               glm::vec4 keep(0, 0, 0, -1);
               for (const ActiveCutter& c : cutters)
                 if (k < c.cutter->clipPasses(i)) keep = c.cutter->clipPlane(i, k);
@@ -93,7 +99,7 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
       glProgramUniform4fv(program, kClipPlane, 1, &keepAll[0]);
     }
     setup_.meshes.draw(
-        program,
+        programOf,
         [&](const SceneObject& o, std::size_t i) {
           return !o.proxy && o.role == Role::Interest && cuts[i].clipPasses == 0 && batch(i);
         },

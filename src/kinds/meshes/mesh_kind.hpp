@@ -5,7 +5,8 @@
 // objects a grading cutter cuts are drawn again, for each translucent layer, by the layer
 // variant of the program (frame/translucent_layers.hpp). The geometry pass draws the objects
 // the last frame showed first, then those of the rest whose boxes pass the depth test
-// (frame/occlusion_culling.hpp).
+// (frame/occlusion_culling.hpp). Objects no cutter cuts are drawn by a variant of the program
+// without the cutters' code (UNCUT), which llvmpipe would otherwise run for their fragments too.
 #pragma once
 
 #include <memory>
@@ -35,6 +36,7 @@ class MeshKind : public GeometryKind {
 
   FrameSetup& setup_;
   gl::Program program_, layerProgram_;
+  gl::Program uncutProgram_;                   // mesh.frag with UNCUT, when cutters are active
   std::unique_ptr<OcclusionCulling> culling_;  // of the geometry pass's draws
   mutable std::vector<ObjectCut> layerCuts_;  // this frame's, from its first translucent layer
 };
