@@ -168,3 +168,21 @@ TEST(OcclusionCulling, AfterALiveChangeTheNextFrameIsTheFreshRenderersPicture) {
   EXPECT_GT(before, 0u);
   EXPECT_GT(culling.culledObjects(), 0u);
 }
+
+// Burns11 ch. 2's translucent layers: an object whose fragments all lie at or in front of an
+// earlier layer, wherever that layer found a surface, is left out of the later layers (its
+// box's far side against that layer's depth). Exact within the frame, so from the first one:
+// the picture and every AOV are the same bit for bit, as the view turns too.
+TEST(OcclusionCulling, TranslucentLayersLeaveOutWhatTheyHavePeeled) {
+  Scene scene = loadScene(std::string(CUTAWAY_SOURCE_DIR) + "/examples/engine-translucent.json");
+  scene.width = 160, scene.height = 120;
+  Renderer culling(scene, test::glContext().info()), all(scene, test::glContext().info());
+  all.setOcclusionCulling(false);
+  for (const float degrees : {0.0f, 30.0f, 75.0f}) {
+    const Camera camera = orbit(scene, degrees, 1.0f);
+    expectSame(picture(culling, camera), picture(all, camera),
+               "turned " + std::to_string(degrees) + "°");
+    EXPECT_GT(culling.peeledLayerDraws(), 20u) << degrees << "°";
+    EXPECT_EQ(all.peeledLayerDraws(), 0u);
+  }
+}

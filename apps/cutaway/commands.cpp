@@ -557,6 +557,7 @@ struct Measurement {
   std::size_t plain = 0;  // index of the run it is compared with
   std::size_t triangles = 0;  // of the scene's meshes, as drawn (at their selected detail)
   std::size_t culled = 0;     // objects the last frame found hidden and did not draw
+  std::size_t peeled = 0;     // translucent-layer draws of objects already peeled, left out
 };
 
 // How every run of one bench invocation renders.
@@ -594,6 +595,7 @@ Measurement measure(const std::string& label, const Scene& scene, const Timing& 
   Measurement m{label, renderer.cutawayComputePath(), {}, stats(frameTimes)};
   m.triangles = renderer.meshTriangles();
   m.culled = renderer.culledObjects();
+  m.peeled = renderer.peeledLayerDraws();
   for (const auto& name : order) {
     PassStats p{name, stats(times[name].first), stats(times[name].second)};
     if (name == "cutawayCpu")
@@ -846,7 +848,8 @@ int bench(const BenchOptions& options) {
                               {"frame", statsJson(m.frame)},
                               {"frameRatioToPlain", m.frame.median / runs[m.plain].frame.median},
                               {"meshTriangles", m.triangles},
-                              {"culledObjects", m.culled}};
+                              {"culledObjects", m.culled},
+                              {"peeledLayerDraws", m.peeled}};
       if (m.computePath)
         entry["cutawaySurfaceMs"] = m.cutawaySurfaceMs, entry["computePath"] = m.computePath;
       list.push_back(entry);
@@ -875,6 +878,7 @@ int bench(const BenchOptions& options) {
     // run when the next pass flushes, so a GPU pass's CPU time holds the previous pass's work.
     std::printf("\n[%s]", m.label.c_str());
     if (m.culled > 0) std::printf(" %zu hidden objects not drawn", m.culled);
+    if (m.peeled > 0) std::printf(", %zu peeled objects not drawn into layers", m.peeled);
     std::printf("\n%-26s %10s %10s %10s %10s\n", "pass (ms)", "GPU median", "GPU min", "GPU max",
                 "CPU wall");
     for (const auto& p : m.passes)

@@ -27,11 +27,16 @@ std::pair<float, float> viewDepthRange(const Bounds& b, const glm::mat4& view) {
 
 }  // namespace
 
-OcclusionCulling::OcclusionCulling(FrameSetup& setup) : setup_(setup) {
+OcclusionCulling::OcclusionCulling(FrameSetup& setup, bool layers) : setup_(setup) {
   setup_.bindings.storageBlock("VISIBLE_OBJECTS");
   boxProgram_ =
       setup_.bindings.build({.stages = {{GL_VERTEX_SHADER, "frame/occlusion_box.vert"},
                                         {GL_FRAGMENT_SHADER, "frame/occlusion_box.frag"}}});
+  if (layers)
+    surfaceBoxProgram_ = setup_.bindings.build(
+        {.stages = {{GL_VERTEX_SHADER, "frame/occlusion_box.vert"},
+                    {GL_FRAGMENT_SHADER, "frame/occlusion_box.frag"}},
+         .defines = sampleDefines(setup_.scene.samples, {{"SURFACES_ONLY", "1"}})});
   markProgram_ =
       setup_.bindings.build({.stages = {{GL_COMPUTE_SHADER, "frame/visible_objects.comp"}},
                              .defines = sampleDefines(setup_.scene.samples)});
@@ -70,9 +75,30 @@ void OcclusionCulling::draw(const Batch& drawn, float time,
 
 std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>& candidates,
                                                  float time) const {
+  const std::vector<bool> passed = boxesPass(candidates, time, Side::nearSide, boxProgram_.id());
+  for (const std::size_t i : candidates) {
+    hidden_[i] = !passed[i];
+    culled_ += passed[i] ? 0 : 1;
+  }
+  return passed;
+}
+
+std::vector<bool> OcclusionCulling::mayReachBehind(const std::vector<std::size_t>& candidates,
+                                                   float time, const gl::Texture& surfaces) const {
+  if (!enabled_) return std::vector<bool>(setup_.scene.objects.size(), true);
+  const GLuint program = surfaceBoxProgram_.id();
+  glBindTextureUnit(0, surfaces.id());
+  glProgramUniform1i(program, 2, setup_.scene.samples);
+  glDepthFunc(GL_GREATER);
+  std::vector<bool> passed = boxesPass(candidates, time, Side::farSide, program);
+  glDepthFunc(GL_LESS);
+  return passed;
+}
+
+std::vector<bool> OcclusionCulling::boxesPass(const std::vector<std::size_t>& candidates,
+                                              float time, Side side, GLuint program) const {
   std::vector<bool> passed(setup_.scene.objects.size(), false);
   if (candidates.empty()) return passed;
-  const GLuint program = boxProgram_.id();
   glUseProgram(program);
   glBindVertexArray(noAttributes_.id());
   const GLboolean cullFace = glIsEnabled(GL_CULL_FACE);
@@ -83,20 +109,17 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
   glGetIntegerv(GL_FRONT_FACE, &frontFace);
   glDepthMask(GL_FALSE);
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  // The eye is outside every box tested: the front faces cover every sample the box does.
+  // The eye is outside every box tested: the front faces, and the back faces, each cover
+  // every sample the box does.
   glEnable(GL_CULL_FACE);
-  glCullFace(GL_BACK);
+  glCullFace(side == Side::nearSide ? GL_BACK : GL_FRONT);
   glFrontFace(GL_CCW);
   glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(0.0f, -kDepthUnits);
+  glPolygonOffset(0.0f, side == Side::nearSide ? -kDepthUnits : kDepthUnits);
   std::vector<std::size_t> tested;
   for (const std::size_t i : candidates) {
     const Bounds local = setup_.meshes.mesh(i).bounds();
-    if (local.empty()) {
-      ++culled_;  // nothing to draw
-      hidden_[i] = true;
-      continue;
-    }
+    if (local.empty()) continue;  // nothing to draw
     Bounds box = local.transformed(setup_.scene.objects[i].transformAt(time));
     // Half a pixel where the box is farthest (its margin is more pixels everywhere nearer), so
     // rasterisation's snapping cannot put one of the object's samples outside the box.
@@ -123,8 +146,6 @@ std::vector<bool> OcclusionCulling::mayBeVisible(const std::vector<std::size_t>&
     GLuint samples = 0;
     glGetQueryObjectuiv(queries_[k].id(), GL_QUERY_RESULT, &samples);
     passed[tested[k]] = samples != 0;
-    hidden_[tested[k]] = samples == 0;
-    culled_ += samples == 0 ? 1 : 0;
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
   if (!cullFace) glDisable(GL_CULL_FACE);

@@ -18,7 +18,9 @@
 //
 // The objects shown are read from the pass's object ids (all samples) by a compute pass after
 // it, into a buffer that the next frame reads back. The mesh kind culls the geometry pass
-// (visibleObjects), the adaptive cutter its ghost geometry (visibleGhosts).
+// (visibleObjects), the adaptive cutter its ghost geometry (visibleGhosts). The boxes' far
+// sides tell the translucent layers which objects an earlier layer has peeled whole
+// (mayReachBehind).
 #pragma once
 
 #include <cstddef>
@@ -33,7 +35,8 @@ namespace cutaway {
 
 class OcclusionCulling {
  public:
-  explicit OcclusionCulling(FrameSetup& setup);
+  // `layers`: mayReachBehind will be asked (the translucent layers').
+  explicit OcclusionCulling(FrameSetup& setup, bool layers = false);
   // Off: every object is drawn in the first batch (on by default); the visible objects are
   // still marked, for the next frame culled.
   void setEnabled(bool on) { enabled_ = on; }
@@ -51,6 +54,13 @@ class OcclusionCulling {
   // Whether object i was one of them: every fragment of it lies behind the depth the pass
   // tested against, and so behind any depth the pass leaves (which only comes nearer).
   bool hidden(std::size_t i) const { return i < hidden_.size() && hidden_[i]; }
+  // For each object of `candidates`, indexed by object: whether some fragment of it could lie
+  // behind the depth of the bound framebuffer at a pixel where the per-sample object ids
+  // `surfaces` hold a surface (its box's far side, pushed back a few depth units, passes the
+  // depth test GREATER at such a pixel; a box the near plane cuts passes; every box while
+  // culling is off). Leaves the depth function LESS.
+  std::vector<bool> mayReachBehind(const std::vector<std::size_t>& candidates, float time,
+                                   const gl::Texture& surfaces) const;
   // The pass `name`, after the pass culled: marks the objects with a sample in `objectIds`
   // (a per-sample R32I target, −1 where none).
   void addPass(Frame& frame, const std::string& name, Target objectIds);
@@ -59,6 +69,7 @@ class OcclusionCulling {
   FrameSetup& setup_;
   bool enabled_ = true;
   gl::Program boxProgram_, markProgram_;
+  gl::Program surfaceBoxProgram_;  // occlusion_box.frag with SURFACES_ONLY, for mayReachBehind
   gl::VertexArray noAttributes_;
   gl::Buffer visible_;         // one uint per object, set by the marking pass
   std::vector<GLuint> shown_;  // visible_ of the last frame; empty before the first
@@ -75,9 +86,15 @@ class OcclusionCulling {
   // Whether object i is drawn in the first batch: shown by the last frame (every object in the
   // first frame, and while culling is off).
   bool shown(std::size_t i) const { return !enabled_ || shown_.empty() || shown_[i] != 0; }
-  // For each object of `candidates`, whether its box passes; indexed by object. Leaves face
-  // culling (its mode and winding) and depth writes as it found them, and colour writes on.
+  // For each object of `candidates`, whether its box passes; indexed by object.
   std::vector<bool> mayBeVisible(const std::vector<std::size_t>& candidates, float time) const;
+  // The boxes' near sides (front faces, nearer by a few depth units) or far sides (back faces,
+  // farther), each in an occlusion query with the bound depth function; a box the near plane
+  // cuts passes, an empty one fails. Leaves face culling (its mode and winding) and depth
+  // writes as it found them, and colour writes on.
+  enum class Side { nearSide, farSide };
+  std::vector<bool> boxesPass(const std::vector<std::size_t>& candidates, float time, Side side,
+                              GLuint program) const;
 };
 
 }  // namespace cutaway

@@ -36,8 +36,7 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
   attach();
 }
 
-void TranslucentLayers::addLayersPass(Frame& frame, std::function<void(bool)> drawLayer,
-                                      Lines lines) {
+void TranslucentLayers::addLayersPass(Frame& frame, LayerDraw drawLayer, Lines lines) {
   frame.addPass(
       {.name = "translucentLayers",
        .reads = {gbuffer_.depth()},
@@ -66,7 +65,7 @@ void TranslucentLayers::attach() {
   glNamedFramebufferTexture(linesFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(lineCoverage_), 0);
 }
 
-void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const Lines& lines) {
+void TranslucentLayers::peel(const LayerDraw& drawLayer, const Lines& lines) {
   const auto id = [this](Target t) { return frame_.texture(t).id(); };
   const int w = frame_.width(), h = frame_.height();
   const auto copyDepth = [&](Target from, Target to) {
@@ -83,9 +82,14 @@ void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const L
   for (int k = 0; k < budget; ++k) {
     // The layer behind layer k − 1 and in front of the opaque surfaces: the depth test (LESS)
     // against the opaque depth, the fragment shader's against the previous layer's.
-    if (k > 0) copyDepth(layerDepth_, previousDepth_);
-    copyDepth(gbuffer_.depth(), layerDepth_);
     const GLuint layer = layerFramebuffer_.id();
+    if (k > 0) {
+      copyDepth(layerDepth_, previousDepth_);
+      glBindFramebuffer(GL_FRAMEBUFFER, layer);  // its depth: the previous layer's, still
+      glEnable(GL_DEPTH_TEST);
+      drawLayer.skipPeeled(layer_.objectId);
+    }
+    copyDepth(gbuffer_.depth(), layerDepth_);
     for (GLint i : {0, 1}) glClearNamedFramebufferfv(layer, GL_COLOR, i, zero);
     glClearNamedFramebufferiv(layer, GL_COLOR, 3, noObject);
     glBindFramebuffer(GL_FRAMEBUFFER, layer);
@@ -95,7 +99,7 @@ void TranslucentLayers::peel(const std::function<void(bool)>& drawLayer, const L
     glDisable(GL_BLEND);
     glBindTextureUnit(peelDepthUnit_, id(previousDepth_));
     glBeginQuery(GL_ANY_SAMPLES_PASSED, anySamples_.id());
-    drawLayer(k == 0);
+    drawLayer.draw(k == 0);
     glEndQuery(GL_ANY_SAMPLES_PASSED);
     GLuint any = 0;
     glGetQueryObjectuiv(anySamples_.id(), GL_QUERY_RESULT, &any);

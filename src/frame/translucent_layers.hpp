@@ -10,7 +10,7 @@
 // nested layers are an approximation.
 //
 // Each layer is a small G-buffer (premultiplied colour; normal with the line opacity as its
-// w; position with view depth; object id), so the feature lines of a layer's surfaces are
+// w; object id with view depth), so the feature lines of a layer's surfaces are
 // found by the same line pass as the opaque frame's and drawn over the layer, faded by their
 // opacity (§2.3: surfaces suppressed, lines kept).
 //
@@ -58,15 +58,24 @@ class TranslucentLayers {
   // geometry programs read the previous layer's depth from (UNIT_PEEL_DEPTH).
   TranslucentLayers(Frame& frame, Bindings& bindings, const GBuffer& gbuffer,
                     std::function<int()> maxLayers);
-  // `drawLayer(first)`: draws every translucent fragment, depth-tested (LESS) into the bound
-  // layer framebuffer, the previous layer's depth bound at UNIT_PEEL_DEPTH unless `first`.
-  void addLayersPass(Frame& frame, std::function<void(bool first)> drawLayer, Lines lines);
+  // What the kinds draw into the layers. `draw(first)`: every translucent fragment,
+  // depth-tested (LESS) into the bound layer framebuffer, the previous layer's depth bound at
+  // UNIT_PEEL_DEPTH unless `first`. `skipPeeled(ids)`, before each layer after the first, the
+  // previous layer's depth in the bound framebuffer's and its per-sample object ids in `ids`
+  // (-1 where it found nothing, and so no later layer will): the kinds may leave out of this
+  // layer and the later ones what lies wholly at or in front of that depth where it found a
+  // surface (peeled, and the peel depths only go back).
+  struct LayerDraw {
+    std::function<void(bool first)> draw;
+    std::function<void(Target ids)> skipPeeled;
+  };
+  void addLayersPass(Frame& frame, LayerDraw drawLayer, Lines lines);
   void addCompositePass(Frame& frame, Target finalColor);
   // Layers peeled in the last frame (the last one empty, unless the budget ended it).
   int layersPeeled() const { return peeled_; }
 
  private:
-  void peel(const std::function<void(bool)>& drawLayer, const Lines& lines);
+  void peel(const LayerDraw& drawLayer, const Lines& lines);
   void attach();  // its targets to its framebuffers, once
 
   Frame& frame_;

@@ -36,6 +36,11 @@ class GeometryKind {
   // previous depth to peel).
   virtual void drawTranslucentLayer(const std::vector<ActiveCutter>& /*cutters*/,
                                     const GeometryDraw& /*draw*/, bool /*first*/) const {}
+  // Before each layer after the first, the previous layer's depth in the bound framebuffer's
+  // and its object ids in `ids`: it may leave out of this layer and the later ones what lies
+  // wholly at or in front of that depth (TranslucentLayers::LayerDraw).
+  virtual void skipPeeled(const std::vector<ActiveCutter>& /*cutters*/,
+                          const GeometryDraw& /*draw*/, Target /*ids*/) const {}
   // Its passes after the geometry pass (into the same G-buffer, or AOVs of its own).
   virtual void addPassesAfterGeometry(Frame&) {}
   // Its passes after the composite, over the final colour, in front of the opaque depth

@@ -155,15 +155,21 @@ void Renderer::Impl::buildFrame() {
                                                                 std::nullopt,
                                                                 *setup.scene.style.lines, true);
                                              }};
-    layers->addLayersPass(
-        frame,
-        [this](bool first) {
-          for (const ActiveCutter& c : cutters) c.cutter->bindForGeometry();
-          setup.bindShading();
-          const GeometryDraw draw{meshes.time(), &cutters};
-          for (const auto& k : kinds) k->drawTranslucentLayer(cutters, draw, first);
-        },
-        std::move(layersLines));
+    layers->addLayersPass(frame,
+                          {.draw =
+                               [this](bool first) {
+                                 for (const ActiveCutter& c : cutters) c.cutter->bindForGeometry();
+                                 setup.bindShading();
+                                 const GeometryDraw draw{meshes.time(), &cutters};
+                                 for (const auto& k : kinds)
+                                   k->drawTranslucentLayer(cutters, draw, first);
+                               },
+                           .skipPeeled =
+                               [this](Target ids) {
+                                 const GeometryDraw draw{meshes.time(), &cutters};
+                                 for (const auto& k : kinds) k->skipPeeled(cutters, draw, ids);
+                               }},
+                          std::move(layersLines));
   }
   // 5. Feature lines and cut outlines over the G-buffer; ghost lines over a cutter's ghosts.
   std::vector<GBuffer::Overlay> overlays;
@@ -272,6 +278,10 @@ std::vector<PassTiming> Renderer::timings() {
 void Renderer::setOcclusionCulling(bool on) {
   impl_->meshKind->culling().setEnabled(on);
   for (ActiveCutter& c : impl_->cutters) c.cutter->setOcclusionCulling(on);
+}
+
+std::size_t Renderer::peeledLayerDraws() const {
+  return impl_->meshKind->peeledDraws();
 }
 
 std::size_t Renderer::culledObjects() const {

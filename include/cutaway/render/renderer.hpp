@@ -115,6 +115,9 @@ class Renderer {
   void setOcclusionCulling(bool on);
   // Scene objects the last frame's geometry pass did not draw, found hidden by that culling.
   std::size_t culledObjects() const;
+  // Object draws the last frame's translucent layers (Burns11 ch. 2) left out by that culling:
+  // objects whose fragments all lay at or in front of an earlier layer, peeled already.
+  std::size_t peeledLayerDraws() const;
   // Where the adaptive cutter's jump flooding runs ("gpu" or "cpu"), or null without it.
   const char* cutawayComputePath() const;
   // Triangles of the scene's meshes as the last frame drew them: grid meshes (terrains) and

@@ -17,7 +17,7 @@ void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
   program_ = gl::buildProgram(setup_.geometryProgram(stages));
   if (!cutters.empty())
     uncutProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"UNCUT", "1"}}));
-  culling_ = std::make_unique<OcclusionCulling>(setup_);
+  culling_ = std::make_unique<OcclusionCulling>(setup_, setup_.translucentLayers);
   if (setup_.translucentLayers)
     layerProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"TRANSLUCENT_LAYER", "1"}}));
 }
@@ -117,20 +117,44 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, co
     for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
     layerCuts_ = objectCuts(cutters);
   }
+  if (first) {
+    peeled_.assign(setup_.scene.objects.size(), false);
+    peeledDraws_ = 0;
+  } else {
+    peeledDraws_ += std::size_t(std::count(peeled_.begin(), peeled_.end(), true));
+  }
   glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
-  int grading = 0;  // the slots of the cutters that leave translucent fragments
-  for (const ActiveCutter& c : cutters)
-    if (c.cutter->translucentLayers() > 0) grading |= 1 << c.slot;
   setup_.meshes.draw(
-      program,
-      [&](const SceneObject& o, std::size_t i) {
-        // One the geometry pass culled lies wholly behind the opaque depth the layers test.
-        return !o.proxy && (layerCuts_[i].cutBy & grading) != 0 && layerCuts_[i].clipPasses == 0 &&
-               !culling_->hidden(i);
-      },
+      program, [&](const SceneObject&, std::size_t i) { return inLayers(cutters, i); },
       [&](const SceneObject& o, std::size_t i) {
         setObjectUniforms(program, cutters, layerCuts_[i], o, i);
       });
+}
+
+bool MeshKind::inLayers(const std::vector<ActiveCutter>& cutters, std::size_t i) const {
+  int grading = 0;  // the slots of the cutters that leave translucent fragments
+  for (const ActiveCutter& c : cutters)
+    if (c.cutter->translucentLayers() > 0) grading |= 1 << c.slot;
+  // One the geometry pass culled lies wholly behind the opaque depth the layers test.
+  return !setup_.scene.objects[i].proxy && (layerCuts_[i].cutBy & grading) != 0 &&
+         layerCuts_[i].clipPasses == 0 && !culling_->hidden(i) && !peeled_[i];
+}
+
+void MeshKind::skipPeeled(const std::vector<ActiveCutter>& cutters, const GeometryDraw& draw,
+                          Target ids) const {
+  // Every fragment of an object whose box's far side lies at or in front of the previous
+  // layer's depth wherever that layer found a surface is peeled (mesh.frag's test), in this
+  // layer and the later ones: where it found none, no layer after it finds one. Not so for the
+  // objects a cutter moves back (CUT_WRITES_DEPTH): their depth may leave the box.
+  int movesBack = 0;
+  for (const ActiveCutter& c : cutters)
+    if (c.cutter->cutSurfaceBehind()) movesBack |= 1 << c.slot;
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
+    if (inLayers(cutters, i) && (layerCuts_[i].cutBy & movesBack) == 0) candidates.push_back(i);
+  const std::vector<bool> behind =
+      culling_->mayReachBehind(candidates, draw.time, setup_.frame.texture(ids));
+  for (const std::size_t i : candidates) peeled_[i] = !behind[i];
 }
 
 }  // namespace cutaway

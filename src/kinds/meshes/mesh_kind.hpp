@@ -24,8 +24,12 @@ class MeshKind : public GeometryKind {
                     const GeometryDraw& draw) const override;
   void drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw& draw,
                             bool first) const override;
+  void skipPeeled(const std::vector<ActiveCutter>& cutters, const GeometryDraw& draw,
+                  Target ids) const override;
   void addPassesAfterGeometry(Frame& frame) override;
   void beginFrame(const FrameState& state) override;
+  // Object draws the last frame's translucent layers left out (skipPeeled).
+  std::size_t peeledDraws() const { return peeledDraws_; }
   OcclusionCulling& culling() { return *culling_; }
   const OcclusionCulling& culling() const { return *culling_; }
 
@@ -39,6 +43,10 @@ class MeshKind : public GeometryKind {
   gl::Program uncutProgram_;                   // mesh.frag with UNCUT, when cutters are active
   std::unique_ptr<OcclusionCulling> culling_;  // of the geometry pass's draws
   mutable std::vector<ObjectCut> layerCuts_;  // this frame's, from its first translucent layer
+  mutable std::vector<bool> peeled_;          // this frame's objects wholly in front of a layer
+  mutable std::size_t peeledDraws_ = 0;       // this frame's layer draws they left out
+  // Whether object i is drawn into the translucent layers (this frame's, once the first is).
+  bool inLayers(const std::vector<ActiveCutter>& cutters, std::size_t i) const;
 };
 
 }  // namespace cutaway
