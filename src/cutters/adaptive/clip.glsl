@@ -3,6 +3,8 @@
 #include "cutters/fate.glsl"
 layout(binding = UNIT_CUTAWAY_DEPTH) uniform sampler2D uCutawayDepth;  // C(p), window depth, linear filter
 layout(binding = UNIT_CUTAWAY_DILATED) uniform sampler2D uCutawayDilated;  // 1-pixel minimum of C (Burns08 §4.2)
+// Read with textureLod at level 0: the value texture() gives (one level, linear minification
+// and magnification alike), without the derivatives llvmpipe works out for texture().
 
 // View-space point on the view ray through uv at window depth `depth`.
 vec3 viewPointAtDepth(vec2 uv, float depth) {
@@ -12,7 +14,7 @@ vec3 viewPointAtDepth(vec2 uv, float depth) {
 
 // The cutaway surface at screen position uv, in view space.
 vec3 cutawayViewPoint(vec2 uv) {
-  return viewPointAtDepth(uv, texture(uCutawayDepth, uv).r);
+  return viewPointAtDepth(uv, textureLod(uCutawayDepth, uv, 0.0).r);
 }
 
 // The cut surface through `center` (view space) with neighbours dx, dy apart along the
@@ -60,8 +62,8 @@ float contextualRamp(float a, float b, float x) {
 
 // (z₁, z₂, d, t): C₁ and C₂ as distances in front of the eye along the ray through uv.
 vec4 contextualRay(vec2 uv, bool frontFacing) {
-  float c1 = frontFacing ? texture(uCutawayDepth, uv).r : texture(uCutawayDilated, uv).r;
-  float c2 = frontFacing ? texture(uCutawayDepthC2, uv).r : texture(uCutawayDilatedC2, uv).r;
+  float c1 = frontFacing ? textureLod(uCutawayDepth, uv, 0.0).r : textureLod(uCutawayDilated, uv, 0.0).r;
+  float c2 = frontFacing ? textureLod(uCutawayDepthC2, uv, 0.0).r : textureLod(uCutawayDilatedC2, uv, 0.0).r;
   float z1 = -viewPointAtDepth(uv, c1).z;
   float z2 = max(-viewPointAtDepth(uv, c2).z, z1);  // θ₂ ≥ θ₁: C₂ lies behind C₁
   return vec4(z1, z2, uContextual.x, uContextual.y);
@@ -159,7 +161,7 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   bool frontFacing = f.frontFacing;
   vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
   // Burns11 eq. 5.4: Ω = 1 − step(C(p), p_z); back faces use the dilated surface.
-  float c = frontFacing ? texture(uCutawayDepth, uv).r : texture(uCutawayDilated, uv).r;
+  float c = frontFacing ? textureLod(uCutawayDepth, uv, 0.0).r : textureLod(uCutawayDilated, uv, 0.0).r;
   if (CUT_FRAG_COORD.z < c) return kDiscard;
   // A back face is a cut surface only where the cutaway surface lies in front of it; elsewhere
   // (no cut at this pixel) it is an ordinary inside view of an open mesh.
@@ -184,7 +186,7 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
 #define ADAPTIVE_REMOVED_SPAN
 vec2 adaptiveRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range) {
   vec2 uv = window * uViewport.zw;
-  float c = texture(uCutawayDepth, uv).r;
+  float c = textureLod(uCutawayDepth, uv, 0.0).r;
   if (c <= 0.0) return vec2(1e30, -1e30);
   vec4 h = uInverseView * (uInverseProjection * vec4(uv * 2.0 - 1.0, c * 2.0 - 1.0, 1.0));
   float t = dot(h.xyz / h.w - origin, direction);
@@ -196,7 +198,7 @@ vec2 adaptiveRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range) {
 // surface, fading to 0 at `distance` (world units) in front of it; 0 for kept fragments.
 float ghostFade(vec3 worldPosition, float distance) {
   vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
-  if (CUT_FRAG_COORD.z >= texture(uCutawayDepth, uv).r) return 0.0;
+  if (CUT_FRAG_COORD.z >= textureLod(uCutawayDepth, uv, 0.0).r) return 0.0;
   float fragmentDepth = -(uView * vec4(worldPosition, 1.0)).z;
   float cutawayDepth = -cutawayViewPoint(uv).z;
   return clamp(1.0 - (cutawayDepth - fragmentDepth) / distance, 0.0, 1.0);
