@@ -18,13 +18,15 @@ layout(binding = UNIT_CLIP_RELIEF) uniform sampler2D uClipRelief[kMaxClipSurface
 
 // Surface i's relief at st, each sampler named by a constant index: Mesa's llvmpipe (LLVM 15,
 // Debian 12) crashes compiling a sampler array indexed by a variable in a loop after a discard
-// (its EarlyCSE pass), as the caps' parity test and the clip test make it.
+// (its EarlyCSE pass), as the caps' parity test and the clip test make it. Level 0 named:
+// the maps have one level, filtered linearly either way, so it is texture()'s value without
+// the derivatives (undefined in a switch, and work llvmpipe does in every fragment).
 vec4 clipRelief(int i, vec2 st) {
   switch (i) {
-    case 0: return texture(uClipRelief[0], st);
-    case 1: return texture(uClipRelief[1], st);
-    case 2: return texture(uClipRelief[2], st);
-    default: return texture(uClipRelief[3], st);
+    case 0: return textureLod(uClipRelief[0], st, 0.0);
+    case 1: return textureLod(uClipRelief[1], st, 0.0);
+    case 2: return textureLod(uClipRelief[2], st, 0.0);
+    default: return textureLod(uClipRelief[3], st, 0.0);
   }
 }
 

@@ -57,7 +57,7 @@ float cutoutPerturbation(vec3 x) {
 #elif CUTOUT_JITTER_PATTERN == 2
   return cutoutFractalNoise(uv, int(uCutoutJitter.w));
 #elif CUTOUT_JITTER_PATTERN == 3
-  return 2.0 * texture(uCutoutImage, uv).r - 1.0;
+  return 2.0 * textureLod(uCutoutImage, uv, 0.0).r - 1.0;  // one level: texture()'s value
 #else
   return 0.0;
 #endif
