@@ -140,7 +140,6 @@ std::size_t SceneMeshes::triangles() const {
 void SceneMeshes::draw(
     GLuint program, const Filter& which,
     const std::function<void(const SceneObject&, std::size_t)>& perObject) const {
-  glUseProgram(program);
   draw([program](std::size_t) { return program; }, which, perObject);
 }
 

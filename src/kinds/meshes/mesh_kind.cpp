@@ -116,8 +116,6 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, co
   if (first) {
     for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
     layerCuts_ = objectCuts(cutters);
-  }
-  if (first) {
     peeled_.assign(setup_.scene.objects.size(), false);
     peeledDraws_ = 0;
   } else {
