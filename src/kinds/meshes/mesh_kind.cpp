@@ -116,6 +116,9 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, co
   if (first) {
     for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
     layerCuts_ = objectCuts(cutters);
+    layerGrading_ = 0;
+    for (const ActiveCutter& c : cutters)
+      if (c.cutter->translucentLayers() > 0) layerGrading_ |= 1 << c.slot;
     peeled_.assign(setup_.scene.objects.size(), false);
     peeledDraws_ = 0;
   } else {
@@ -123,18 +126,15 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, co
   }
   glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
   setup_.meshes.draw(
-      program, [&](const SceneObject&, std::size_t i) { return inLayers(cutters, i); },
+      program, [&](const SceneObject&, std::size_t i) { return inLayers(i); },
       [&](const SceneObject& o, std::size_t i) {
         setObjectUniforms(program, cutters, layerCuts_[i], o, i);
       });
 }
 
-bool MeshKind::inLayers(const std::vector<ActiveCutter>& cutters, std::size_t i) const {
-  int grading = 0;  // the slots of the cutters that leave translucent fragments
-  for (const ActiveCutter& c : cutters)
-    if (c.cutter->translucentLayers() > 0) grading |= 1 << c.slot;
+bool MeshKind::inLayers(std::size_t i) const {
   // One the geometry pass culled lies wholly behind the opaque depth the layers test.
-  return !setup_.scene.objects[i].proxy && (layerCuts_[i].cutBy & grading) != 0 &&
+  return !setup_.scene.objects[i].proxy && (layerCuts_[i].cutBy & layerGrading_) != 0 &&
          layerCuts_[i].clipPasses == 0 && !culling_->hidden(i) && !peeled_[i];
 }
 
@@ -149,7 +149,7 @@ void MeshKind::skipPeeled(const std::vector<ActiveCutter>& cutters, const Geomet
     if (c.cutter->cutSurfaceBehind()) movesBack |= 1 << c.slot;
   std::vector<std::size_t> candidates;
   for (std::size_t i = 0; i < setup_.scene.objects.size(); ++i)
-    if (inLayers(cutters, i) && (layerCuts_[i].cutBy & movesBack) == 0) candidates.push_back(i);
+    if (inLayers(i) && (layerCuts_[i].cutBy & movesBack) == 0) candidates.push_back(i);
   const std::vector<bool> behind =
       culling_->mayReachBehind(candidates, draw.time, setup_.frame.texture(ids));
   for (const std::size_t i : candidates) peeled_[i] = !behind[i];

@@ -43,10 +43,11 @@ class MeshKind : public GeometryKind {
   gl::Program uncutProgram_;                   // mesh.frag with UNCUT, when cutters are active
   std::unique_ptr<OcclusionCulling> culling_;  // of the geometry pass's draws
   mutable std::vector<ObjectCut> layerCuts_;  // this frame's, from its first translucent layer
+  mutable int layerGrading_ = 0;  // the same: the slots of the cutters leaving translucent fragments
   mutable std::vector<bool> peeled_;          // this frame's objects wholly in front of a layer
   mutable std::size_t peeledDraws_ = 0;       // this frame's layer draws they left out
   // Whether object i is drawn into the translucent layers (this frame's, once the first is).
-  bool inLayers(const std::vector<ActiveCutter>& cutters, std::size_t i) const;
+  bool inLayers(std::size_t i) const;
 };
 
 }  // namespace cutaway
