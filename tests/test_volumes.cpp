@@ -1588,7 +1588,8 @@ TEST_F(VolumeTest, BadVolumeEntriesAreRejectedWithTheirPlace) {
       {R"({"isoValues": [{"value": 0, "width": 100}]})", "/volumes/0/lines/isoValues/0/width", ""}};
   for (const auto& [lines, place, reason] : badLines) {
     SCOPED_TRACE(lines);
-    expectError([&] { scene("{" + f + tf + R"("lines": )" + lines + "}"); }, {place, reason});
+    expectError([&, &json = lines] { scene("{" + f + tf + R"("lines": )" + json + "}"); },
+                {place, reason});
   }
   expectError(
       [&] { scene("{" + f + tf + R"("labels": true, "lines": {"isoValues": [{"value": 0}]}})"); },

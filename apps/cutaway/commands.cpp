@@ -387,7 +387,8 @@ int info(const std::string& path) {
     const MeshReport& r = o.mesh->report;
     triangles += o.proxy ? 0 : o.mesh->triangles.size();
     nlohmann::json params = nlohmann::json::object();
-    for (const auto& [k, v] : o.params) std::visit([&](auto value) { params[k] = value; }, v);
+    for (const auto& param : o.params)
+      std::visit([&](auto value) { params[param.first] = value; }, param.second);
     objects.push_back({{"index", i},
                        {"name", o.name},
                        {"alias", o.alias},
