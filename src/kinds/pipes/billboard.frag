@@ -1,9 +1,10 @@
 #version 450 core
-// Konev18 §§5–6: a billboard quad shaded as a tube (eq. 11) in one of four stencil-selected
-// passes: outside (stencil 0: the outer wall; the upper halves inside a cut are discarded,
-// Fig. 11), inside (stencil 1: the inner wall with inverted normals and its own colour, and
-// the water surface, §6.4), over a cut surface (stencil 2), and outside over the back of an
-// end triangle (stencil 4, Fig. 10: the closed tube's end, so the upper half stays). A region
+// Konev18 §§5–6: a billboard quad shaded as a tube (eq. 11) in one of two stencil-selected
+// passes. The outside pass (stencil 0, 2 or 4) shades the outer wall and leaves out, sample by
+// sample: over stencil 0 the upper half of a cut stretch (Fig. 11), over a cut surface
+// (stencil 2) this pipe's own one. Over the back of an end triangle (stencil 4, Fig. 10) the
+// closed tube's end shows, upper half included. The inside pass (stencil 1) shades the inner
+// wall with inverted normals and its own colour, and the water surface (§6.4). A region
 // marked by another pipe's proxies is shaded as this pipe's outside (Konev18 §9's
 // interference): the proxies' nearest pipe id per pixel tells whose region it is. Of this
 // pipe, the cut stretch shows its inside there, and so does the closed tube beyond an end
@@ -24,8 +25,9 @@ flat in int vPipe;
 layout(location = PIPE_CLASS_LOCATION) out float outPipeClass;
 layout(binding = UNIT_PIPE_OWNER) uniform isampler2D uProxyOwner;  // global pipe id + 1; 0: none
 layout(binding = UNIT_PIPE_OWNER_DEPTH) uniform sampler2D uProxyDepth;  // that proxy's depth
-// 0 outside, 1 inside, 2 over a cut, 3 outside over an end triangle seen from behind
-layout(location = 37) uniform int uPass;
+// The pixel's samples at stencil 0 (bits 0–15) and 2 (bits 16–31): pipe_stencil_masks.frag.
+layout(binding = UNIT_PIPE_STENCIL_MASKS) uniform isampler2D uStencilMasks;
+layout(location = 37) uniform int uPass;  // 0 outside, 1 inside
 
 // `onTube`: the point of the tube (or water) the fragment shows, where the shadow map is
 // read; the quad itself lies through the axis, half of it behind the light's quad.
@@ -59,9 +61,14 @@ void main() {
   bool own = texelFetch(uProxyOwner, pixel, 0).r == int(uPipes[vPipe].radii.w) + 1 &&
              (cut || gl_FragCoord.z > texelFetch(uProxyDepth, pixel, 0).r);
   vec3 tube = normalize(vNormal + vFace);  // eq. 11
-  if (uPass == 2 && own) discard;          // this pipe's own cut surface stays
-  if (uPass != 1 || !own) {
-    if (uPass == 0 && cut && upper) discard;  // Fig. 11: the removed upper half
+  int masks = uPass == 0 ? texelFetch(uStencilMasks, pixel, 0).r : 0;
+  int removed = (cut && upper ? masks & 0xffff : 0) | (own ? masks >> 16 : 0);
+#ifdef SINGLE_SAMPLE
+  if (removed != 0) discard;
+#else
+  gl_SampleMask[0] = ~removed;  // written by every invocation: else it is undefined
+#endif
+  if (uPass == 0 || !own) {
     write(surface(vWorld, tube, uPipeColor, vAxis + outerRadius(vPipe) * tube), kClassOutside);
     return;
   }

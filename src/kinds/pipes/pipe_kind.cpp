@@ -105,7 +105,8 @@ PipeKind::PipeKind(FrameSetup& setup)
       scene_(setup.scene),
       pipesBlock_(setup.bindings.storageBlock("PIPES")),
       ownerUnit_(setup.bindings.textureUnit("PIPE_OWNER")),
-      ownerDepthUnit_(setup.bindings.textureUnit("PIPE_OWNER_DEPTH")) {
+      ownerDepthUnit_(setup.bindings.textureUnit("PIPE_OWNER_DEPTH")),
+      stencilMasksUnit_(setup.bindings.textureUnit("PIPE_STENCIL_MASKS")) {
   const Scene& scene = scene_;
   GLint pipeBase = 0;
   for (std::size_t k = 0; k < scene.networks.size(); ++k) {
@@ -216,9 +217,13 @@ void PipeKind::prepare(const std::vector<ActiveCutter>&) {
                          {GL_FRAGMENT_SHADER, "kinds/pipes/water_disc.frag"}});
   aovProgram_ =
       buildFullscreenProgram("kinds/pipes/pipe_aovs.frag", sampleDefines(setup_.scene.samples));
+  stencilMasksProgram_ = buildFullscreenProgram("kinds/pipes/pipe_stencil_masks.frag",
+                                                sampleDefines(setup_.scene.samples));
+  glProgramUniform1i(stencilMasksProgram_.id(), 0, setup_.scene.samples);
 
   owner_ = frame.declare("pipeOwner", {.format = GL_R32I});
   ownerDepth_ = frame.declare("pipeOwnerDepth", {.format = GL_DEPTH_COMPONENT32F});
+  stencilMasks_ = frame.declare("pipeStencilMasks", {.format = GL_R32I});
   pipeClass_ = frame.declare("scenePipeClass", {.format = GL_R8, .samples = scene.samples});
   stencilAov_ = frame.declare(
       "pipeStencil",
@@ -253,15 +258,28 @@ void PipeKind::addPassesAfterGeometry(Frame& frame) {
   frame.addPass({.name = "pipeOwners",
                  .writes = {owner_, ownerDepth_},
                  .run = [this](const PassContext&) { drawOwners(); }});
-  frame.addPass({.name = "pipes",
-                 .reads = {owner_, ownerDepth_},
-                 .writes = writes,
-                 .run = [this](const PassContext& pass) {
+  frame.addPass({.name = "pipeProxies", .writes = writes, .run = [this](const PassContext& pass) {
                    const GLint zero = 0;
                    const float none[4] = {0, 0, 0, 0};
                    glClearNamedFramebufferiv(pass.framebuffer, GL_STENCIL, 0, &zero);
                    glClearNamedFramebufferfv(pass.framebuffer, GL_COLOR, GLint(gbufferTargets_),
                                              none);
+                   setup_.bindShading();
+                   drawProxies();
+                 }});
+  frame.addPass({.name = "pipeStencilMasks",
+                 .reads = {gbuffer.depth()},
+                 .writes = {stencilMasks_},
+                 .run = [this](const PassContext&) {
+                   glDisable(GL_DEPTH_TEST);
+                   glUseProgram(stencilMasksProgram_.id());
+                   glBindTextureUnit(0, stencilView_.id());
+                   fullscreen_.draw();
+                 }});
+  frame.addPass({.name = "pipes",
+                 .reads = {owner_, ownerDepth_, stencilMasks_},
+                 .writes = writes,
+                 .run = [this](const PassContext&) {
                    setup_.bindShading();
                    drawPipes();
                  }});
@@ -325,13 +343,13 @@ void PipeKind::drawOwners() {
   }
 }
 
-void PipeKind::drawPipes() {
+void PipeKind::drawProxies() {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
   glEnable(GL_STENCIL_TEST);
   glStencilMask(0xff);
-  const GLuint proxy = proxyProgram_.id(), billboard = billboardProgram_.id();
+  const GLuint proxy = proxyProgram_.id();
   const auto colorWrites = [&](bool on) {
     for (GLuint i = 0; i <= gbufferTargets_; ++i) glColorMaski(i, on, on, on, on);
   };
@@ -364,17 +382,27 @@ void PipeKind::drawPipes() {
   glStencilFunc(GL_EQUAL, kStencilBackEnd, kStencilCut);
   proxies(3);
   colorWrites(true);
+  glDisable(GL_STENCIL_TEST);
+}
 
-  // The billboards, each pass on its stencil value.
+void PipeKind::drawPipes() {
+  // The billboards: the outside over stencil 0, 2 and 4 (billboard.frag leaves out the samples
+  // each removes, from pipeStencilMasks), then the inside over 1.
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_STENCIL_TEST);
   glDepthMask(GL_TRUE);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  const GLuint billboard = billboardProgram_.id();
   glUseProgram(billboard);
   glBindTextureUnit(ownerUnit_, setup_.frame.texture(owner_).id());
   glBindTextureUnit(ownerDepthUnit_, setup_.frame.texture(ownerDepth_).id());
+  glBindTextureUnit(stencilMasksUnit_, setup_.frame.texture(stencilMasks_).id());
   glEnable(GL_PRIMITIVE_RESTART);
   glPrimitiveRestartIndex(kPrimitiveRestart);
-  for (const int pass : {0, 1, 2, 3}) {
-    glStencilFunc(GL_EQUAL, pass == 3 ? kStencilBackEnd : pass, 0xff);
+  for (const int pass : {0, 1}) {
+    glStencilFunc(pass == 0 ? GL_NOTEQUAL : GL_EQUAL, kStencilInside, 0xff);
     glProgramUniform1i(billboard, kPass, pass);
     for (const NetworkGpu& n : networks_) {
       setNetworkUniforms(billboard, n);

@@ -2,9 +2,11 @@
 // geometry shader from the node buffer, cut open by static proxy geometry that marks the
 // stencil buffer in two passes, with the water in cut pipes and shafts. The frame's passes:
 //   pipeOwners  the proxies' nearest pipe id per pixel (the §9 interference fix)
-//   pipes       stencil cleared; proxy pass 1 (cut surface, stencil 2), pass 2 (inside,
-//               stencil 1), Fig. 10's back-face reset (stencil 0); billboards outside
-//               (stencil 0), inside (1) and over cut surfaces (2); shaft water
+//   pipeProxies stencil cleared; proxy pass 1 (cut surface, stencil 2), pass 2 (inside,
+//               stencil 1), Fig. 10's back-face reset (stencil 4)
+//   pipeStencilMasks  each pixel's samples at stencil 0 and at 2, as bit masks
+//   pipes       billboards: the outside over stencil 0, 2 and 4 (the samples each leaves out
+//               taken from the masks), the inside over 1; shaft water
 //   pipeAovs    the stencil after the proxy passes and the pipe class, as AOVs
 #pragma once
 
@@ -48,6 +50,7 @@ class PipeKind : public GeometryKind {
   // Every network's billboards with `program`, only the radii set (shadow casters, rear hulls).
   void drawTubes(GLuint program) const;
   void drawOwners();
+  void drawProxies();
   void drawPipes();
   void drawAovs();
 
@@ -55,12 +58,12 @@ class PipeKind : public GeometryKind {
   const Scene& scene_;
   std::vector<NetworkGpu> networks_;
   gl::Program billboardProgram_, shadowProgram_, rearHullProgram_, proxyProgram_, ownerProgram_,
-      waterProgram_, aovProgram_;
+      waterProgram_, aovProgram_, stencilMasksProgram_;
   gl::Texture stencilView_;
   FullscreenTriangle fullscreen_;
   GLuint gbufferTargets_ = 0;
-  GLuint pipesBlock_, ownerUnit_, ownerDepthUnit_;
-  Target owner_, ownerDepth_, pipeClass_, stencilAov_, classAov_;
+  GLuint pipesBlock_, ownerUnit_, ownerDepthUnit_, stencilMasksUnit_;
+  Target owner_, ownerDepth_, stencilMasks_, pipeClass_, stencilAov_, classAov_;
 };
 
 }  // namespace cutaway
