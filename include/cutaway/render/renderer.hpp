@@ -15,7 +15,7 @@
 //   [shadowMap]
 //   geometry
 //   visibleObjects
-//   [pipeOwners pipes pipeAovs]
+//   [pipeOwners pipeProxies pipeStencilMasks pipes pipeAovs]
 //   [ghostGeometry visibleGhosts]
 //   [capMask]
 //   [translucentLayers]
@@ -44,7 +44,9 @@
 //   + view depth, object id, cut mask, depth, and the cutters' channels).
 // - visibleObjects: the objects with a sample in the G-buffer, which the next frame's geometry
 //   pass draws before it tests the others' boxes (src/frame/occlusion_culling.hpp).
-// - pipeOwners, pipes, pipeAovs: Konev18 §6's billboard pipes into the same G-buffer.
+// - pipeOwners … pipeAovs: Konev18 §6's billboard pipes into the same G-buffer: the proxies
+//   mark the stencil, which pipeStencilMasks turns into per-pixel sample masks for the
+//   billboards' outside pass (src/kinds/pipes/README.md).
 // - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines; visibleGhosts
 //   marks the objects the ghost geometry shows, culled as the geometry pass's.
 // - capMask: Trapp13's cap coverage AOV.
