@@ -10,7 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <string>
+#include <system_error>
+
+#include <gtest/gtest.h>
 
 #include "test_label.hpp"
 
@@ -38,11 +42,26 @@ inline Result runCommand(const std::string& command) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err};
 }
 
-// `name` inside a folder of this process's own, `cutaway-<kind>-<pid>` in the temp folder.
+// Removes `dir` when the process exits, unless a test failed: then its files stay for a look.
+inline void removeAtExit(const std::filesystem::path& dir) {
+  static struct Folders {
+    std::set<std::filesystem::path> dirs;
+    ~Folders() {
+      if (::testing::UnitTest::GetInstance()->Failed()) return;
+      std::error_code ignored;
+      for (const auto& d : dirs) std::filesystem::remove_all(d, ignored);
+    }
+  } folders;
+  folders.dirs.insert(dir);
+}
+
+// `name` inside a folder of this process's own, `cutaway-<kind>-<pid>` in the temp folder,
+// removed at exit (removeAtExit).
 inline std::filesystem::path scratchPath(const std::string& kind, const std::string& name) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                     ("cutaway-" + kind + "-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
+  removeAtExit(dir);
   return dir / name;
 }
 

@@ -17,6 +17,7 @@
 #include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/scene_writer.hpp"
 #include "parameters.hpp"
+#include "run_command.hpp"
 #include "script.hpp"
 #include "transfer_edit.hpp"
 #include "viewer_state.hpp"
@@ -30,10 +31,7 @@ namespace {
 const std::string kData = CUTAWAY_TEST_DATA;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("cutaway-view-core-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return test::scratchPath("view-core", name);
 }
 
 // The scene as the viewer holds it after loading: its camera resolved, fit off.
