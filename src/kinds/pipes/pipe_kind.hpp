@@ -1,6 +1,6 @@
 // Konev18 §§5–7 on the GPU: the scene's pipe networks as camera-facing billboards built in a
 // geometry shader from the node buffer, cut open by static proxy geometry that marks the
-// stencil buffer in two passes, with the water in cut pipes and shafts. The frame's passes:
+// stencil buffer in three passes, with the water in cut pipes and shafts. The frame's passes:
 //   pipeOwners  the proxies' nearest pipe id per pixel (the §9 interference fix)
 //   pipeProxies stencil cleared; proxy pass 1 (cut surface, stencil 2), pass 2 (inside,
 //               stencil 1), Fig. 10's back-face reset (stencil 4)
