@@ -180,6 +180,7 @@ PipeKind::PipeKind(FrameSetup& setup)
     glVertexArrayAttribFormat(vao, 1, 1, GL_FLOAT, GL_FALSE, offsetof(WaterDisc, fill));
     for (GLuint a = 0; a < 2; ++a)
       glEnableVertexArrayAttrib(vao, a), glVertexArrayAttribBinding(vao, a, 0);
+    cutOpen_ = cutOpen_ || g.proxyVertexCount > 0;
     networks_.push_back(std::move(g));
   }
 }
@@ -271,6 +272,12 @@ void PipeKind::addPassesAfterGeometry(Frame& frame) {
                  .reads = {gbuffer.depth()},
                  .writes = {stencilMasks_},
                  .run = [this](const PassContext&) {
+                   if (!cutOpen_) {  // no proxies: every sample at stencil 0
+                     const GLint allOutside = 0xffff;
+                     glClearTexImage(setup_.frame.texture(stencilMasks_).id(), 0, GL_RED_INTEGER,
+                                     GL_INT, &allOutside);
+                     return;
+                   }
                    glDisable(GL_DEPTH_TEST);
                    glUseProgram(stencilMasksProgram_.id());
                    glBindTextureUnit(0, stencilView_.id());
@@ -402,6 +409,7 @@ void PipeKind::drawPipes() {
   glEnable(GL_PRIMITIVE_RESTART);
   glPrimitiveRestartIndex(kPrimitiveRestart);
   for (const int pass : {0, 1}) {
+    if (pass == 1 && !cutOpen_) break;  // no proxies: no sample at stencil 1
     glStencilFunc(pass == 0 ? GL_NOTEQUAL : GL_EQUAL, kStencilInside, 0xff);
     glProgramUniform1i(billboard, kPass, pass);
     for (const NetworkGpu& n : networks_) {

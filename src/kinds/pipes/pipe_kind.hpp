@@ -62,6 +62,7 @@ class PipeKind : public GeometryKind {
   gl::Texture stencilView_;
   FullscreenTriangle fullscreen_;
   GLuint gbufferTargets_ = 0;
+  bool cutOpen_ = false;  // some network has proxies (a cut stretch): the stencil is not all 0
   GLuint pipesBlock_, ownerUnit_, ownerDepthUnit_, stencilMasksUnit_;
   Target owner_, ownerDepth_, stencilMasks_, pipeClass_, stencilAov_, classAov_;
 };
