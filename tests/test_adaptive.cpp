@@ -18,6 +18,7 @@
 #include "gl_test_context.hpp"
 #include "mismatches.hpp"
 #include "render_aovs.hpp"
+#include "styles/lines/line_pass.hpp"
 
 using namespace cutaway;
 using test::aov;
@@ -267,6 +268,67 @@ TEST(AdaptiveCutaway, CutOutlinesAreTheBorderOfTheCutSurfaces) {
       }
     EXPECT_GT(expectedPixels, 40 * width);
     EXPECT_EQ(wrong.count(), 0) << "of " << expectedPixels << " outline pixels: " << wrong;
+  }
+}
+
+// The line passes run lines.frag only at the pixels with an object or cut-mask sample
+// (LinePass's skipEmpty, the pixels marked in `linePixels`): their coverage is the same, texel
+// for texel, as the shader's at every pixel, for the feature lines, the cut outlines and the
+// ghost lines, at one and four samples.
+TEST(AdaptiveCutaway, LinePassesSkipOnlyPixelsWithoutLines) {
+  for (const int samples : {1, 4}) {
+    SCOPED_TRACE(samples);
+    const Scene scene =
+        parseScene(R"({"resolution": [160, 120], "samples": )" + std::to_string(samples) +
+                       R"(, "style": {"name": "gooch", "lines": true},
+        "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
+        "cutters": {"adaptive": {"angle": 35, "bufferSize": 128, "ghostLines": {"distance": 4}}},
+        "objects": [
+          {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
+          {"name": "core", "file": "meshes/cube.obj", "role": "interest",
+           "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
+                   "lines.json", kData);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    const Frame& frame = renderer.frame();
+    int background = 0;
+    for (const float id : frame.read("objectId", 1)) background += id < 0.0f;
+    EXPECT_GT(background, scene.width * scene.height / 10);  // pixels to skip
+    struct Lines {
+      const char *normal, *objectId, *cutMask;
+      std::vector<std::string> coverage;
+    };
+    for (const Lines& l :
+         {Lines{"sceneNormal", "sceneObjectId", "sceneCutMask", {"lines", "cutOutlines"}},
+          Lines{"ghostNormal", "ghostObjectId", nullptr, {"ghostLines"}}}) {
+      SCOPED_TRACE(l.coverage[0]);
+      const LinePass everywhere(l.cutMask != nullptr, samples);
+      std::vector<gl::Texture> textures;
+      const gl::Framebuffer framebuffer = gl::Framebuffer::create();
+      const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+      for (std::size_t i = 0; i < l.coverage.size(); ++i) {
+        textures.push_back(gl::Texture::create2D(GL_R16F, scene.width, scene.height));
+        glNamedFramebufferTexture(framebuffer.id(), buffers[i], textures.back().id(), 0);
+      }
+      glNamedFramebufferDrawBuffers(framebuffer.id(), GLsizei(textures.size()), buffers);
+      glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+      glViewport(0, 0, scene.width, scene.height);
+      everywhere.draw(frame, frame.at(l.normal), frame.at(l.objectId),
+                      l.cutMask ? std::optional(frame.at(l.cutMask)) : std::nullopt,
+                      *scene.style.lines, true, false);
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      for (std::size_t i = 0; i < textures.size(); ++i) {
+        std::vector<float> expected(std::size_t(scene.width) * std::size_t(scene.height));
+        glGetTextureImage(textures[i].id(), 0, GL_RED, GL_FLOAT,
+                          GLsizei(expected.size() * sizeof(float)), expected.data());
+        const std::vector<float> skipped = frame.read(l.coverage[i], 1);
+        int drawn = 0, wrong = 0;
+        for (std::size_t p = 0; p < expected.size(); ++p)
+          drawn += expected[p] > 0.0f, wrong += skipped[p] != expected[p];
+        EXPECT_GT(drawn, 20) << l.coverage[i];
+        EXPECT_EQ(wrong, 0) << l.coverage[i] << ": of " << drawn << " line pixels";
+      }
+    }
   }
 }
 

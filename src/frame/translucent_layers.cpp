@@ -29,6 +29,7 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
   layer_.objectId =
       frame.declare("translucentLayerObjectId", {.format = GL_RG32I, .samples = samples});
   lineCoverage_ = frame.declare("translucentLayerLines", {.format = GL_R16F});
+  linePixels_ = frame.declare("translucentLayerLinePixels", {.format = GL_DEPTH_COMPONENT16});
   const GLenum depthFormat = frame.desc(gbuffer.depth()).format;  // copied from the opaque depth
   layerDepth_ = frame.declare("translucentLayerDepth", {.format = depthFormat, .samples = samples});
   previousDepth_ =
@@ -63,6 +64,7 @@ void TranslucentLayers::attach() {
   glNamedFramebufferTexture(accumulationFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(accumulation_),
                             0);
   glNamedFramebufferTexture(linesFramebuffer_.id(), GL_COLOR_ATTACHMENT0, id(lineCoverage_), 0);
+  glNamedFramebufferTexture(linesFramebuffer_.id(), GL_DEPTH_ATTACHMENT, id(linePixels_), 0);
 }
 
 void TranslucentLayers::peel(const LayerDraw& drawLayer, const Lines& lines) {

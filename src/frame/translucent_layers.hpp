@@ -48,7 +48,8 @@ class TranslucentLayers {
     Target color, normal, objectId;
   };
   // The feature lines drawn over each layer: their colour this frame (none: no lines), and
-  // the line pass over a layer into the bound coverage target (R16F, single sample).
+  // the line pass over a layer into the bound coverage target (R16F, single sample) with a
+  // one-sample depth attachment it may overwrite (LinePass's skipEmpty).
   struct Lines {
     std::function<std::optional<glm::vec3>()> color;
     std::function<void(const Layer&)> draw;
@@ -83,7 +84,7 @@ class TranslucentLayers {
   std::function<int()> maxLayers_;
   GLuint peelDepthUnit_;
   Layer layer_;
-  Target accumulation_, lineCoverage_, layerDepth_, previousDepth_;
+  Target accumulation_, lineCoverage_, linePixels_, layerDepth_, previousDepth_;
   gl::Framebuffer layerFramebuffer_, accumulationFramebuffer_, linesFramebuffer_;
   gl::Program underProgram_, overProgram_;
   gl::Query anySamples_;

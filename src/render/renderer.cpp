@@ -145,16 +145,16 @@ void Renderer::Impl::buildFrame() {
   // feature lines (faded by their opacity, the normal's w).
   if (layers) {
     layerLines = std::make_unique<LinePass>(false, scene.samples);
-    TranslucentLayers::Lines layersLines{.color = [this]() -> std::optional<glm::vec3> {
-                                           if (!setup.scene.style.lines) return std::nullopt;
-                                           return setup.scene.style.lines->color;
-                                         },
-                                         .draw =
-                                             [this](const TranslucentLayers::Layer& layer) {
-                                               layerLines->draw(frame, layer.normal, layer.objectId,
-                                                                std::nullopt,
-                                                                *setup.scene.style.lines, true);
-                                             }};
+    TranslucentLayers::Lines layersLines{
+        .color = [this]() -> std::optional<glm::vec3> {
+          if (!setup.scene.style.lines) return std::nullopt;
+          return setup.scene.style.lines->color;
+        },
+        .draw =
+            [this](const TranslucentLayers::Layer& layer) {
+              layerLines->draw(frame, layer.normal, layer.objectId, std::nullopt,
+                               *setup.scene.style.lines, true, true);
+            }};
     layers->addLayersPass(frame,
                           {.draw =
                                [this](bool first) {
@@ -184,6 +184,10 @@ void Renderer::Impl::buildFrame() {
     return glm::vec4(setup.scene.style.lines ? setup.scene.style.lines->color : glm::vec3(0.0f),
                      1.0f);
   };
+  // Where LinePass skips the pixels with no line (its `skipEmpty`).
+  Target linePixels;
+  if (ghosts || featureLines || outlineColor)
+    linePixels = frame.declare("linePixels", {.format = GL_DEPTH_COMPONENT16});
   if (ghosts) {
     ghostLinesTarget = frame.declare(
         "ghostLines", {.format = GL_R16F,
@@ -201,14 +205,14 @@ void Renderer::Impl::buildFrame() {
                                                      "and creases, fraction of MSAA samples on a "
                                                      "line)"});
     std::vector<Target> reads{gbuffer.normal(), gbuffer.objectId()};
-    std::vector<Target> writes{linesTarget};
+    std::vector<Target> writes{linesTarget, linePixels};
     if (outlineColor) {
       outlinesTarget = frame.declare(
           "cutOutlines", {.format = GL_R16F,
                           .meaning = "cut-outline coverage in [0,1]: boundary of the cut-surface "
                                      "mask (Burns08 §4.2), fraction of MSAA samples"});
       reads.push_back(gbuffer.cutMask());
-      writes.push_back(outlinesTarget);
+      writes.insert(writes.begin() + 1, outlinesTarget);
     }
     frame.addPass({.name = "lines",
                    .reads = reads,
@@ -220,7 +224,7 @@ void Renderer::Impl::buildFrame() {
                          setup.scene.style.lines ? *setup.scene.style.lines : kDefault;
                      lines->draw(frame, gbuffer.normal(), gbuffer.objectId(),
                                  outlines ? std::optional(gbuffer.cutMask()) : std::nullopt, l,
-                                 featureLines);
+                                 featureLines, true);
                    }});
     overlays.push_back({linesTarget, lineColor});
     if (outlineColor)
@@ -235,12 +239,12 @@ void Renderer::Impl::buildFrame() {
     ghostLines = std::make_unique<LinePass>(false, scene.samples);
     frame.addPass({.name = "ghostLines",
                    .reads = {ghosts->normal, ghosts->objectId},
-                   .writes = {ghostLinesTarget},
+                   .writes = {ghostLinesTarget, linePixels},
                    .run = [this, g = *ghosts](const PassContext&) {
                      static const LineStyle kDefault;
                      const LineStyle& l =
                          setup.scene.style.lines ? *setup.scene.style.lines : kDefault;
-                     ghostLines->draw(frame, g.normal, g.objectId, std::nullopt, l, true);
+                     ghostLines->draw(frame, g.normal, g.objectId, std::nullopt, l, true, true);
                    }});
   }
   // 6. The composite: the colour samples resolved, the overlays blended (the AOVs are copied

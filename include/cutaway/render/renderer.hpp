@@ -54,7 +54,9 @@
 //   translucency, edge highlights or lines: the material a cutter reduces only partly, peeled
 //   front to back into layers with their own feature lines (frame/translucent_layers.hpp),
 //   blended over the final colour.
-// - lines: silhouettes, creases and cut outlines per sample (styles/lines).
+// - lines: silhouettes, creases and cut outlines per sample (styles/lines), only at the
+//   pixels with an object or cut-mask sample (marked first in a depth buffer, `linePixels`,
+//   so that the rasteriser skips the background; ghostLines does the same).
 // - composite: the colour samples resolved, the line overlays blended.
 // - aovs: sample 0 of every other G-buffer buffer copied into single-sample AOVs, run only
 //   when an AOV is read (Frame's onRead passes: a frame that only shows its picture skips it).

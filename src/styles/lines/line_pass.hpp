@@ -19,13 +19,17 @@ class LinePass {
   LinePass(bool outlines, int samples);
   // Into the bound targets (the coverage, then the outlines' coverage): the lines of the
   // G-buffer `normal`, `objectId` (id and view depth, frame/gbuffer.glsl) and `cutMask` with
-  // outlines; `featureLines` false draws only the outlines.
+  // outlines; `featureLines` false draws only the outlines. With `skipEmpty`, the bound
+  // framebuffer has a one-sample depth attachment, which it overwrites: the pixels where no
+  // line can be (no object or cut-mask sample) are cleared to 0 and the line shader skips
+  // them; the coverage is the same.
   void draw(const Frame& frame, Target normal, Target objectId, std::optional<Target> cutMask,
-            const LineStyle& style, bool featureLines) const;
+            const LineStyle& style, bool featureLines, bool skipEmpty) const;
 
  private:
   int samples_;
-  gl::Program program_;
+  bool outlines_;
+  gl::Program program_, pixels_;
   FullscreenTriangle fullscreen_;
 };
 
