@@ -166,6 +166,42 @@ TEST(Renderer, ACameraBelowTheGroundSeesItsUnderside) {
     }
 }
 
+// A mirroring transform (negative determinant) turns the triangles' winding on screen; the
+// object must still show its outside: every pixel of a cube mirrored in x has a normal facing
+// the eye (drawn as a front face: two-sided shading turns the normal of a back face), as the
+// same cube unmirrored, and covers the same pixels.
+TEST(Renderer, AMirroredObjectShowsItsOutside) {
+  int covered[2] = {};
+  for (const bool mirrored : {false, true}) {
+    SCOPED_TRACE(mirrored);
+    const Scene scene = parseScene(
+        std::string(R"({"resolution": [64, 48], "samples": 1,
+        "style": {"name": "blinn-phong", "lines": false},
+        "camera": {"eye": [2.2, 1.7, 3.0], "target": [0, 0, 0], "fov": 45},
+        "objects": [{"name": "cube", "file": "meshes/cube.obj", "color": [0.8, 0.3, 0.2],
+                     "transform": {"translate": )") +
+            (mirrored ? "[0.5, -0.5, -0.5], \"scale\": [-1, 1, 1]" : "[-0.5, -0.5, -0.5]") + "}}]}",
+        "mirror.json", kData);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    const auto aovs = renderer.readAovs();
+    const FloatImage &id = find(aovs, "objectId").image, &normal = find(aovs, "normal").image,
+                     &position = find(aovs, "position").image;
+    const glm::vec3 eye(2.2f, 1.7f, 3.0f);
+    int& pixels = covered[mirrored];
+    for (int y = 0; y < id.height; ++y)
+      for (int x = 0; x < id.width; ++x) {
+        if (id.at(x, y)[0] < 0.0f) continue;
+        ++pixels;
+        const glm::vec3 n(normal.at(x, y)[0], normal.at(x, y)[1], normal.at(x, y)[2]);
+        const glm::vec3 p(position.at(x, y)[0], position.at(x, y)[1], position.at(x, y)[2]);
+        ASSERT_GT(glm::dot(n, eye - p), 0.0f) << x << "," << y;
+      }
+    EXPECT_GT(pixels, 250);
+  }
+  EXPECT_EQ(covered[0], covered[1]);
+}
+
 TEST(Frame, RejectsReadBeforeWrite) {
   test::glContext();
   Frame frame(8, 8, gl::ContextInfo{});

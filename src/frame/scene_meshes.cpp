@@ -157,9 +157,13 @@ void SceneMeshes::draw(
     glProgramUniformMatrix4fv(program, meshUniform::kModel, 1, GL_FALSE, &model[0][0]);
     glProgramUniformMatrix4fv(program, meshUniform::kNormalMatrix, 1, GL_FALSE,
                               &normalMatrix[0][0]);
+    // A mirroring transform turns the triangles' winding on screen: its outside must still
+    // be the front (gl_FrontFacing, face culling).
+    glFrontFace(glm::determinant(glm::mat3(model)) < 0.0f ? GL_CW : GL_CCW);
     perObject(o, i);
     meshes_[i].draw();
   }
+  glFrontFace(GL_CCW);
 }
 
 }  // namespace cutaway
