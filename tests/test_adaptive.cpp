@@ -238,6 +238,20 @@ TEST(AdaptiveCutaway, WatertightWallsShowCutSurfaces) {
     if (mask.data[i] > 0.5f) ASSERT_EQ(id.data[i], 0.0f) << i;
 }
 
+// A cut opens what lies behind the cut, whose back faces are the cut surfaces (§4.1): a cut
+// object that is single-sided (doubleSided: false) shows them as a double-sided one does.
+TEST(AdaptiveCutaway, ASingleSidedCutObjectStillShowsItsCutSurfaces) {
+  const Scene doubleSided = shellAroundACore();
+  Scene singleSided = doubleSided;
+  singleSided.objects[0].params["doubleSided"] = false;
+  const auto a = renderAovs(doubleSided), b = renderAovs(singleSided);
+  int cutPixels = 0;
+  for (float m : aov(a, "cutMask").data) cutPixels += m > 0.5f;
+  EXPECT_GT(cutPixels, 30);
+  for (const char* name : {"cutMask", "objectId", "normal"})
+    EXPECT_EQ(aov(a, name).data, aov(b, name).data) << name;
+}
+
 // Burns08 §4.2: the cut outline is the border of the cut surfaces: a cut-surface pixel with a
 // pixel outside them within the line width along a row or a column (the image's edge
 // extends). Checked pixel by pixel against that rule evaluated on the dumped cut mask, at

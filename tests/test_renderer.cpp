@@ -202,6 +202,32 @@ TEST(Renderer, AMirroredObjectShowsItsOutside) {
   EXPECT_EQ(covered[0], covered[1]);
 }
 
+// The object parameter doubleSided: false (glTF's doubleSided) culls the back faces of an
+// object no cutter cuts: the plane is seen from above, and not at all from below.
+TEST(Renderer, ASingleSidedObjectIsCulledFromBehind) {
+  for (const float eyeZ : {5.0f, -5.0f}) {
+    SCOPED_TRACE(eyeZ);
+    const Scene scene = parseScene(
+        R"({"resolution": [64, 48], "samples": 4, "style": {"name": "gooch", "lines": false},
+        "objects": [{"name": "plane", "file": "render/plane.obj",
+                     "params": {"doubleSided": false},
+                     "transform": {"rotate": {"axis": [1, 0, 0], "degrees": -35}}}],
+        "camera": {"eye": [0, 0, )" +
+            std::to_string(eyeZ) + R"(], "target": [0, 0, 0], "fov": 60}})",
+        "single.json", kData);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    const auto aovs = renderer.readAovs();
+    const FloatImage& id = find(aovs, "objectId").image;
+    int seen = 0;
+    for (const float v : id.data) seen += v >= 0.0f;
+    if (eyeZ > 0.0f)
+      EXPECT_EQ(seen, id.width * id.height);
+    else
+      EXPECT_EQ(seen, 0);
+  }
+}
+
 TEST(Frame, RejectsReadBeforeWrite) {
   test::glContext();
   Frame frame(8, 8, gl::ContextInfo{});

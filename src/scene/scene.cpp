@@ -108,6 +108,9 @@ const std::vector<ObjectParamSpec>& objectParameterSpecs() {
       {"solid", ObjectParamSpec::Type::Bool, 0, 0,
        "whether a cut shows this object's inside as a solid cut wall (default: when the mesh "
        "is watertight); false for hollow shells such as rooms (Diepstraten03 rule 5)"},
+      {"doubleSided", ObjectParamSpec::Type::Bool, 0, 0,
+       "draw this object's back faces where no cutter cuts it (default); false culls them, "
+       "as glTF's doubleSided: false asks (a cut always shows the back faces it opens)"},
       {"castsShadow", ObjectParamSpec::Type::Bool, 0, 0,
        "this object casts shadows (style.shadows); default: every visible object except those "
        "of role exterior"},
@@ -123,6 +126,11 @@ glm::mat4 Trs::matrix() const {
 bool SceneObject::solid() const {
   const auto it = params.find("solid");
   return it != params.end() ? std::get<bool>(it->second) : mesh->report.watertight;
+}
+
+bool SceneObject::doubleSided() const {
+  const auto it = params.find("doubleSided");
+  return it == params.end() || std::get<bool>(it->second);
 }
 
 bool SceneObject::named(const std::regex& pattern) const {

@@ -119,6 +119,8 @@ struct SceneObject {
   }
   // Whether a cut shows the inside as solid material: param "solid", else watertightness.
   bool solid() const;
+  // Whether its back faces are drawn where no cutter cuts it: param "doubleSided", else true.
+  bool doubleSided() const;
   // Whether `pattern` matches its name or its alias (the whole of either).
   bool named(const std::regex& pattern) const;
   // Bounds in world space over the whole animation (at every keyframe).

@@ -65,6 +65,11 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
   };
   auto setUniforms = [&](const SceneObject& o, std::size_t i) {
     setObjectUniforms(programOf(i), cutters, cuts[i], o, i);
+    // A cut opens the inside, whose back faces show (Burns08 §4.1): only uncut objects cull.
+    if (cuts[i].cutBy == 0 && !o.doubleSided())
+      glEnable(GL_CULL_FACE);
+    else
+      glDisable(GL_CULL_FACE);
   };
   // The objects of `batch` (frame/occlusion_culling.hpp), in the order below.
   auto drawBatch = [&](const OcclusionCulling::Batch& batch) {
@@ -79,6 +84,7 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
       // Diepstraten03 §4.3: each pass keeps the far side of one plane; their union is the
       // object outside the cut.
       glEnable(GL_CLIP_DISTANCE0);
+      glDisable(GL_CULL_FACE);  // cut objects: two-sided
       for (int k = 0; k < clipPasses; ++k)
         setup_.meshes.draw(
             program,
@@ -105,8 +111,10 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
         },
         setUniforms);
   };
+  glCullFace(GL_BACK);
   culling_->draw([this](std::size_t i) { return !setup_.scene.objects[i].proxy; }, draw.time,
                  drawBatch);
+  glDisable(GL_CULL_FACE);
 }
 
 void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw&,
