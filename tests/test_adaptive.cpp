@@ -204,16 +204,20 @@ TEST(AdaptiveCutaway, ExposesTheObjectOfInterest) {
 
 namespace {
 
-// A watertight box around a small object of interest, seen from above and to the side.
+// A watertight box around a small object of interest, seen from above and to the side: the
+// camera and objects, the last keys of a scene file whose settings come before them.
+const std::string kShellAroundACore =
+    R"("camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
+    "objects": [
+      {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
+      {"name": "core", "file": "meshes/cube.obj", "role": "interest",
+       "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})";
+
 Scene shellAroundACore() {
   return parseScene(
       R"({"resolution": [80, 60], "samples": 1, "style": {"name": "gooch", "lines": false},
-      "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
-      "cutters": {"adaptive": {"angle": 35, "bufferSize": 128}},
-      "objects": [
-        {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
-        {"name": "core", "file": "meshes/cube.obj", "role": "interest",
-         "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
+      "cutters": {"adaptive": {"angle": 35, "bufferSize": 128}}, )" +
+          kShellAroundACore,
       "shell.json", kData);
 }
 
@@ -295,12 +299,8 @@ TEST(AdaptiveCutaway, LinePassesSkipOnlyPixelsWithoutLines) {
     const Scene scene =
         parseScene(R"({"resolution": [160, 120], "samples": )" + std::to_string(samples) +
                        R"(, "style": {"name": "gooch", "lines": true},
-        "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
-        "cutters": {"adaptive": {"angle": 35, "bufferSize": 128, "ghostLines": {"distance": 4}}},
-        "objects": [
-          {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
-          {"name": "core", "file": "meshes/cube.obj", "role": "interest",
-           "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
+        "cutters": {"adaptive": {"angle": 35, "bufferSize": 128, "ghostLines": {"distance": 4}}}, )" +
+                       kShellAroundACore,
                    "lines.json", kData);
     Renderer renderer(scene, test::glContext().info());
     renderer.render();
@@ -463,12 +463,8 @@ TEST(Renderer, TheCompositeIsTheColourWithItsOverlaysBlendedInOrder) {
   const Scene scene = parseScene(
       R"({"resolution": [80, 60], "samples": 1,
       "style": {"name": "gooch", "lines": {"color": [0.2, 0.1, 0.6]}},
-      "camera": {"eye": [1, 2, 10], "target": [0, 0, 0], "fov": 40},
-      "cutters": {"adaptive": {"angle": 35, "bufferSize": 128, "outlineColor": [0.9, 0.6, 0.1]}},
-      "objects": [
-        {"name": "shell", "file": "meshes/cube.obj", "transform": {"translate": [-2, -2, -2], "scale": 4}},
-        {"name": "core", "file": "meshes/cube.obj", "role": "interest",
-         "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}}]})",
+      "cutters": {"adaptive": {"angle": 35, "bufferSize": 128, "outlineColor": [0.9, 0.6, 0.1]}}, )" +
+          kShellAroundACore,
       "composite.json", kData);
   Renderer renderer(scene, test::glContext().info());
   renderer.render();
