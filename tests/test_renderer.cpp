@@ -137,6 +137,23 @@ INSTANTIATE_TEST_SUITE_P(
                               "height": 12, "near": 1, "far": 40})")),
     planeAovTestName);
 
+// The AOVs are resolved when read, with the reading renderer's camera: another renderer that
+// drew in between (binding its own frame uniforms) changes nothing.
+TEST(Renderer, AovsReadAfterAnotherRendererDrewAreItsOwn) {
+  const Scene a = planeScene(4, R"({"eye": [0, 2, 12], "target": [0, 0, 0], "fov": 50})");
+  const Scene b = planeScene(4, R"({"eye": [5, 9, 4], "target": [0, 0, 0], "fov": 30})");
+  Renderer first(a, test::glContext().info()), second(b, test::glContext().info());
+  first.render(a.resolvedCamera());
+  const auto alone = first.readAovs();
+  first.render(a.resolvedCamera());
+  second.render(b.resolvedCamera());
+  const auto after = first.readAovs();
+  for (const char* name : {"position", "viewDepth", "normal", "objectId", "depth"}) {
+    const FloatImage &x = find(alone, name).image, &y = find(after, name).image;
+    ASSERT_EQ(x.data, y.data) << name;
+  }
+}
+
 TEST(Renderer, BackgroundAovsAreMarked) {
   const Scene scene = planeScene(4, R"({"eye": [0, 0, 30], "target": [0, 0, 0], "fov": 60})");
   Renderer renderer(scene, test::glContext().info());

@@ -2,6 +2,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
+#include "frame/bindings.hpp"
 #include "frame/samples.hpp"
 
 namespace cutaway {
@@ -35,7 +36,6 @@ void GBuffer::declare(Frame& f, int samples, bool stencil) {
   samples_ = samples;
   color_ = f.declare("sceneColor", {.format = GL_RGBA8, .samples = samples});
   normal_ = f.declare("sceneNormal", {.format = GL_RGBA16F, .samples = samples});
-  position_ = f.declare("scenePosition", {.format = GL_RGBA32F, .samples = samples});
   objectId_ = f.declare("sceneObjectId", {.format = GL_RG32I, .samples = samples});
   cutMask_ = f.declare("sceneCutMask", {.format = GL_R8, .samples = samples});
   for (const Channel& c : channels_) {
@@ -51,7 +51,7 @@ void GBuffer::declare(Frame& f, int samples, bool stencil) {
 }
 
 std::vector<Target> GBuffer::colorTargets() const {
-  std::vector<Target> t{color_, normal_, position_, objectId_, cutMask_};
+  std::vector<Target> t{color_, normal_, objectId_, cutMask_};
   t.insert(t.end(), channelTargets_.begin(), channelTargets_.end());
   return t;
 }
@@ -67,11 +67,10 @@ void GBuffer::clearWithBackground(GLuint framebuffer) const {
   const GLint noObject[4] = {-1, 0, 0, 0};
   const float nan[4] = {std::nanf(""), 0, 0, 0};  // a channel's "no value here"
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero);
-  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 2, zero);
-  glClearNamedFramebufferiv(framebuffer, GL_COLOR, 3, noObject);
-  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 4, zero);
+  glClearNamedFramebufferiv(framebuffer, GL_COLOR, 2, noObject);
+  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 3, zero);
   const GLuint attachments = GLuint(colorAttachmentCount());
-  for (GLuint i = 5; i < attachments; ++i)
+  for (GLuint i = 4; i < attachments; ++i)
     glClearNamedFramebufferfv(framebuffer, GL_COLOR, GLint(i), nan);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
   // The background gradient into the colour target only.
@@ -87,14 +86,15 @@ std::string GBuffer::channelsGlsl() const {
   std::string glsl, none;
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     const std::string name = "outChannel" + std::to_string(i);
-    glsl += "layout(location = " + std::to_string(5 + i) + ") out float " + name + ";  // " +
+    glsl += "layout(location = " + std::to_string(4 + i) + ") out float " + name + ";  // " +
             channels_[i].name + "\n";
     none += "  " + name + " = uintBitsToFloat(0x7fc00000u);\n";  // NaN: no value here
   }
   return glsl + "void writeNoChannels() {\n" + none + "}\n";
 }
 
-void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
+void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays, GLuint frameUniforms) {
+  frameUniforms_ = frameUniforms;
   overlays_ = std::move(overlays);
   std::string parts;
   std::string blend = "vec3 blendOverlays(ivec2 p, vec3 c) {\n";
@@ -167,7 +167,7 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays) {
   aovsProgram_ = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
                                               {GL_FRAGMENT_SHADER, "frame/aovs.frag"}},
                                    .defines = sampleDefines(samples_)});
-  addResolvePass(f, "aovs", aovsProgram_, {normal_, position_, objectId_, depth_, cutMask_},
+  addResolvePass(f, "aovs", aovsProgram_, {normal_, objectId_, depth_, cutMask_},
                  {normal, position, viewDepth, objectId, depth, cutMask});
   addChannelsPass(f);
 }
@@ -182,6 +182,8 @@ void GBuffer::addResolvePass(Frame& f, const std::string& name, const gl::Progra
                  [this, &f, &program, reads](const PassContext&) {
                    glDisable(GL_DEPTH_TEST);
                    glUseProgram(program.id());
+                   glBindBufferBase(GL_UNIFORM_BUFFER, Bindings::kFrameUniformBlock,
+                                    frameUniforms_);
                    for (std::size_t unit = 0; unit < reads.size(); ++unit)
                      glBindTextureUnit(GLuint(unit), f.texture(reads[unit]).id());
                    fullscreen_.draw();

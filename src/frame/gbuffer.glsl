@@ -3,12 +3,12 @@
 // attached in this order, then the techniques' channels (generated: outChannel<i>).
 layout(location = 0) out vec4 outColor;
 layout(location = 1) out vec4 outNormal;     // world normal, w: lines flag
-layout(location = 2) out vec4 outPosition;   // world position, w: linear view depth
-// The object id, and the linear view depth's bits again: the feature lines' silhouette test
-// reads both with one fetch (styles/lines/lines.frag).
-layout(location = 3) out ivec2 outObjectId;
+// The object id, and the bits of the linear view depth of the point shaded, which lies on the
+// view ray through the pixel's centre: the feature lines' silhouette test reads both with one
+// fetch (styles/lines/lines.frag), and the position AOV is that point (frame/aovs.frag).
+layout(location = 2) out ivec2 outObjectId;
 // 0.5 on cut surfaces and cut walls, 1 on Trapp13 caps (both count as cut: >= 0.5)
-layout(location = 4) out float outCutMask;
+layout(location = 3) out float outCutMask;
 #include "frame/gbuffer_channels.glsl"
 
 // Writes a shaded surface point to the G-buffer.
@@ -16,7 +16,6 @@ void writeGBuffer(SurfacePoint s, vec3 color, float lines, int objectId, bool cu
   outColor = vec4(color, 1.0);
   outNormal = vec4(s.normal, lines);
   float viewDepth = -(uView * vec4(s.position, 1.0)).z;
-  outPosition = vec4(s.position, viewDepth);
   outObjectId = ivec2(objectId, floatBitsToInt(viewDepth));
   outCutMask = cap ? 1.0 : cut ? 0.5 : 0.0;
 }

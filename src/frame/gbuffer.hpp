@@ -1,6 +1,6 @@
 // The scene's multisampled G-buffer and its resolve. Every program that draws visible surfaces
-// writes it through frame/gbuffer.glsl (colour, normal + line weight, position + view depth,
-// object id + view depth, cut mask, then the channels techniques add); the "composite" pass
+// writes it through frame/gbuffer.glsl (colour, normal + line weight, object id + view depth,
+// cut mask, then the channels techniques add); the "composite" pass
 // averages the samples into the final colour and blends the overlays (feature lines, cut outlines,
 // ghost lines) over it; the "aovs" and "channels" passes copy sample 0 of every other buffer into
 // the single-sample AOVs when those are read (Frame's onRead passes).
@@ -49,7 +49,6 @@ class GBuffer {
   int colorAttachmentCount() const { return int(colorTargets().size()); }
   Target color() const { return color_; }
   Target normal() const { return normal_; }
-  Target position() const { return position_; }
   Target objectId() const { return objectId_; }
   Target cutMask() const { return cutMask_; }
   Target depth() const { return depth_; }
@@ -62,8 +61,10 @@ class GBuffer {
   const std::vector<Channel>& channels() const { return channels_; }
 
   // The composite pass (the colour and `overlays` in order); then the passes that resolve the
-  // other buffers and the channels into their AOVs when they are read.
-  void addCompositePass(Frame& frame, std::vector<Overlay> overlays);
+  // other buffers and the channels into their AOVs when they are read, with the frame's
+  // uniform buffer (frame/frame_uniforms.glsl) bound again: another renderer sharing the
+  // context may have bound its own since.
+  void addCompositePass(Frame& frame, std::vector<Overlay> overlays, GLuint frameUniforms);
   // The final colour (RGBA8, single sample).
   Target finalColor() const { return finalColor_; }
 
@@ -76,7 +77,8 @@ class GBuffer {
   std::vector<Target> channelTargets_, channelAovs_;
   std::vector<Overlay> overlays_;
   int samples_ = 1;
-  Target color_, normal_, position_, objectId_, cutMask_, depth_;
+  Target color_, normal_, objectId_, cutMask_, depth_;
+  GLuint frameUniforms_ = 0;
   Target finalColor_;
   gl::Program backgroundProgram_, compositeProgram_, aovsProgram_, channelsProgram_;
   FullscreenTriangle fullscreen_;

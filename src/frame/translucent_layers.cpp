@@ -49,14 +49,14 @@ void TranslucentLayers::addLayersPass(Frame& frame, LayerDraw drawLayer, Lines l
 void TranslucentLayers::attach() {
   const auto id = [this](Target t) { return frame_.texture(t).id(); };
   const GLuint layer = layerFramebuffer_.id();
-  // At the G-buffer's locations (frame/gbuffer.glsl); the world position (2) is not kept.
-  const Target colors[4] = {layer_.color, layer_.normal, Target(), layer_.objectId};
-  GLenum buffers[4];
-  for (int i = 0; i < 4; ++i) {
+  // At the G-buffer's locations (frame/gbuffer.glsl); the cut mask (3) is not kept.
+  const Target colors[3] = {layer_.color, layer_.normal, layer_.objectId};
+  GLenum buffers[3];
+  for (int i = 0; i < 3; ++i) {
     buffers[i] = colors[i].valid() ? GL_COLOR_ATTACHMENT0 + GLenum(i) : GL_NONE;
     if (colors[i].valid()) glNamedFramebufferTexture(layer, buffers[i], id(colors[i]), 0);
   }
-  glNamedFramebufferDrawBuffers(layer, 4, buffers);
+  glNamedFramebufferDrawBuffers(layer, 3, buffers);
   const GLenum depthFormat = frame_.desc(layerDepth_).format;
   const bool stencil = depthFormat == GL_DEPTH32F_STENCIL8 || depthFormat == GL_DEPTH24_STENCIL8;
   glNamedFramebufferTexture(layer, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT,
@@ -93,7 +93,7 @@ void TranslucentLayers::peel(const LayerDraw& drawLayer, const Lines& lines) {
     }
     copyDepth(gbuffer_.depth(), layerDepth_);
     for (GLint i : {0, 1}) glClearNamedFramebufferfv(layer, GL_COLOR, i, zero);
-    glClearNamedFramebufferiv(layer, GL_COLOR, 3, noObject);
+    glClearNamedFramebufferiv(layer, GL_COLOR, 2, noObject);
     glBindFramebuffer(GL_FRAMEBUFFER, layer);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

@@ -249,7 +249,7 @@ void Renderer::Impl::buildFrame() {
   }
   // 6. The composite: the colour samples resolved, the overlays blended (the AOVs are copied
   //    when read).
-  gbuffer.addCompositePass(frame, std::move(overlays));
+  gbuffer.addCompositePass(frame, std::move(overlays), frameUniforms.id());
   // 7. The kinds' passes over the final colour (volumes ray cast up to the opaque depth), then
   //    the translucent layers, lines of what lies behind them included.
   for (const auto& k : kinds) k->addPassesAfterComposite(frame);
