@@ -41,6 +41,7 @@ void LinePass::draw(const Frame& frame, Target normal, Target objectId,
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glUseProgram(pixels_.id());
     glProgramUniform1i(pixels_.id(), 0, samples_);
+    glProgramUniform1i(pixels_.id(), 1, featureLines && (l.silhouettes || l.creases));
     fullscreen_.draw();
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthMask(GL_FALSE);

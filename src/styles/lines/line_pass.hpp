@@ -21,8 +21,8 @@ class LinePass {
   // G-buffer `normal`, `objectId` (id and view depth, frame/gbuffer.glsl) and `cutMask` with
   // outlines; `featureLines` false draws only the outlines. With `skipEmpty`, the bound
   // framebuffer has a one-sample depth attachment, which it overwrites: the pixels where no
-  // line can be (no object or cut-mask sample) are cleared to 0 and the line shader skips
-  // them; the coverage is the same.
+  // line can be (no sample with a line weight > 0 or of the cut mask) are cleared to 0 and
+  // the line shader skips them; the coverage is the same.
   void draw(const Frame& frame, Target normal, Target objectId, std::optional<Target> cutMask,
             const LineStyle& style, bool featureLines, bool skipEmpty) const;
 
