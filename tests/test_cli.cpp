@@ -354,8 +354,8 @@ TEST(Cli, CutawayOptionsOverrideTheScene) {
   EXPECT_NE(both.err.find("--no-cutaway"), std::string::npos) << both.err;
 }
 
-// --set takes any option by its scene-file path; bad paths and values are one-line errors
-// naming them, and nothing is written.
+// --set takes any option by its scene-file path; bad paths and values, and what they make of
+// the scene, are one-line errors naming them, and nothing is written.
 TEST(Cli, SetOverridesAnyOptionByItsPath) {
   const std::string scene = kSource + "/examples/bunny.json";
   const fs::path plain = scratch("set-plain.png"), cut = scratch("set-box.png");
@@ -367,10 +367,17 @@ TEST(Cli, SetOverridesAnyOptionByItsPath) {
   EXPECT_NE(readPng(plain).pixels, readPng(cut).pixels);
   for (const auto& [set, says] : std::vector<std::pair<std::string, std::string>>{
            {"nosuch.key=1", "nosuch.key: no such option"},
-           {"cutters.boxCut.size=1,0,1", "cutters.boxCut.size: component 1 of \"1,0,1\" is outside"},
+           {"cutters.boxCut.size=1,0,1",
+            "cutters.boxCut.size: component 1 of \"1,0,1\" is outside"},
            {"cutters.adaptive.angle=200", "cutters.adaptive.angle"},
            {"style.shadows.size=1000", "style.shadows.size: value 1000 is not a power of two"},
-           {"cutters.boxCut.size", "expected PATH=VALUE"}}) {
+           {"cutters.boxCut.size", "expected PATH=VALUE"},
+           // Checked as the scene file would be: the schema's checks, then the scene's.
+           {"'cutters.terrainOpening.terrain=('",
+            "--set: /cutters/terrainOpening/terrain: invalid regular expression \"(\""},
+           {"cutters.cutout.jitter.pattern=image",
+            "--set: /cutters/cutout/jitter: pattern \"image\" needs an \"image\" file"},
+           {"cutters.cutout=true", "--set: /cutters/cutout: no object has role \"exterior\""}}) {
     const fs::path out = scratch("set-bad.png");
     const Result bad = run("render " + scene + " -o " + out.string() + " --set " + set);
     EXPECT_EQ(bad.exitCode, 1) << set;

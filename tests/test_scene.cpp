@@ -426,6 +426,37 @@ TEST(SceneErrors, NamePatternsTooDeepOrTooLongAreRefusedBeforeCompiling) {
   EXPECT_EQ(scene.setImportance("a|" + std::string(1022 - 2, 'b'), 0.5f), 1u);
 }
 
+// std::regex matches by recursion, a frame or so per character of the name: a name of 16,000
+// characters overflowed the stack against "(a|b)*". Names are refused beyond 1,024 characters;
+// at that length every name a pattern can match (objects, groups, proxies, volumes, networks)
+// matches the costliest patterns within the limits.
+TEST(SceneErrors, NamesTooLongToMatchAreRefused) {
+  const std::string longest(1024, 'a'), tooLong(1025, 'a');
+  for (const auto& [json, place] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"objects": [{"name": "N", "file": "cube.obj"}]})", "/objects/0/name"},
+           {R"({"objects": [{"name": "a", "file": "cube.obj", "group": "N"}]})",
+            "/objects/0/group"},
+           {R"({"objects": [{"name": "a", "file": "cube.obj"}],
+                "proxies": [{"name": "N", "hullOf": "a"}]})",
+            "/proxies/0/name"}}) {
+    const auto with = [&json = json](const std::string& name) {
+      std::string s = json;
+      s.replace(s.find("\"N\""), 3, "\"" + name + "\"");
+      return s;
+    };
+    try {
+      (void)parseScene(with(tooLong), "long.json", kMeshes);
+      FAIL() << "accepted " << place << " of 1025 characters";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.place(), place);
+      EXPECT_NE(e.reason().find("1025 characters (at most 1024)"), std::string::npos) << e.what();
+    }
+    Scene scene = parseScene(with(longest), "long.json", kMeshes);
+    for (const std::string& pattern : {".*", "(a|b)*", "((a)|(b))*", "(.*)*"})
+      EXPECT_GE(scene.setImportance(pattern, 0.5f), 1u) << place << " " << pattern;
+  }
+}
+
 TEST(SceneErrors, MissingSceneFile) {
   const std::filesystem::path path = kData / "bad" / "no_such_scene.json";
   try {

@@ -109,6 +109,8 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
       throw Error("--set", e.file(), e.reason());
     }
   }
+  // What the options set now make of the scene, checked as a scene file would be.
+  if (!o.set.empty()) checkScene(scene, "--set");
 }
 
 nlohmann::json vec(const glm::vec3& v) {

@@ -112,6 +112,19 @@ inline std::string string(const Context& ctx, const json& j, const std::string& 
   return s;
 }
 
+// A name that name patterns are matched against (objects, groups, proxies, volumes, networks):
+// at most kMaxNameLength characters (core/name_pattern.hpp), and not empty unless `mayBeEmpty`
+// (a group: "" is none).
+inline std::string name(const Context& ctx, const json& j, const std::string& ptr,
+                        const std::string& what, bool mayBeEmpty = false) {
+  std::string s = string(ctx, j, ptr);
+  if (s.empty() && !mayBeEmpty) ctx.fail(ptr, what + " name must not be empty");
+  if (s.size() > kMaxNameLength)
+    ctx.fail(ptr, what + " name of " + std::to_string(s.size()) + " characters (at most " +
+                      std::to_string(kMaxNameLength) + ")");
+  return s;
+}
+
 inline std::string oneOf(const Context& ctx, const json& j, const std::string& ptr,
                   const std::vector<std::string>& names) {
   const std::string v = string(ctx, j, ptr);

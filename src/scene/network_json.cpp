@@ -114,8 +114,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
     const std::string np = ptr + "/" + std::to_string(n);
     ObjectReader r(ctx, j[n], np);
     PipeNetwork net;
-    net.name = string(ctx, r.require("name"), r.at("name"));
-    if (net.name.empty()) ctx.fail(r.at("name"), "network name must not be empty");
+    net.name = name(ctx, r.require("name"), r.at("name"), "network");
     for (const PipeNetwork& other : scene.networks)
       if (other.name == net.name)
         ctx.fail(r.at("name"), "two networks are named \"" + net.name + "\"");

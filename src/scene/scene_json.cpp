@@ -200,7 +200,7 @@ void appearance(const Context& ctx, ObjectReader& r, SceneObject& o, bool visibl
   if (const json* v = r.take("role")) o.role = role(ctx, *v, r.at("role"));
   if (const json* v = r.take("importance"))
     o.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
-  if (const json* v = r.take("group")) o.group = string(ctx, *v, r.at("group"));
+  if (const json* v = r.take("group")) o.group = name(ctx, *v, r.at("group"), "group", true);
   if (const json* v = r.take("cutBy")) {
     // The registered cutters' keys (the shaft wedge's too, which the file never switches).
     std::vector<std::string> keys;
@@ -421,8 +421,7 @@ std::shared_ptr<const T> arraysEntry(const Context& ctx, const json& j, const st
 void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshCache& cache,
                 const SceneArrays& arrays, std::vector<SceneObject>& out) {
   ObjectReader r(ctx, j, ptr);
-  const std::string name = string(ctx, r.require("name"), r.at("name"));
-  if (name.empty()) ctx.fail(r.at("name"), "object name must not be empty");
+  const std::string name = cutaway::name(ctx, r.require("name"), r.at("name"), "object");
   const json* fileKey = r.take("file");
   const json* rasterKey = r.take("raster");
   const json* footprintsKey = r.take("footprints");
@@ -545,8 +544,7 @@ void readProxy(const Context& ctx, const json& j, const std::string& ptr,
   o.role = Role::Interest;
   o.importance = 1.0f;
   o.source = "proxy";
-  o.name = string(ctx, r.require("name"), r.at("name"));
-  if (o.name.empty()) ctx.fail(r.at("name"), "proxy name must not be empty");
+  o.name = name(ctx, r.require("name"), r.at("name"), "proxy");
   const json* box = r.take("box");
   const json* hullOf = r.take("hullOf");
   if (!!box == !!hullOf) ctx.fail(ptr, "a proxy needs exactly one of \"box\" or \"hullOf\"");
@@ -630,8 +628,7 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr,
                 const SceneArrays& arrays, Scene& scene) {
   ObjectReader r(ctx, j, ptr);
   SceneVolume v;
-  v.name = string(ctx, r.require("name"), r.at("name"));
-  if (v.name.empty()) ctx.fail(r.at("name"), "volume name must not be empty");
+  v.name = name(ctx, r.require("name"), r.at("name"), "volume");
   std::filesystem::path file;
   if (const json* a = r.take("arrays")) {
     if (r.has("file")) ctx.fail(ptr, "a volume needs one of \"file\" or \"arrays\", not both");
@@ -1001,7 +998,20 @@ void appendVolume(Scene& scene, const std::string& text, const std::string& disp
 }
 
 void checkScene(Scene& scene, const std::string& displayName) {
-  checkAcross(Context{displayName, {}, scene.geo}, scene);
+  const Context ctx{displayName, {}, scene.geo};
+  // Options set in memory (`--set`, the Python module) skipped their schema's checks: each
+  // enabled cutter's options are written and read back through it (required keys, patterns,
+  // the checks across its keys).
+  for (const CutterType& type : cutterTypes()) {
+    const std::any* options = type.schema ? scene.cutters.find(type.key) : nullptr;
+    if (!options) continue;
+    const json written = json::parse(type.schema->write(type.schema->data(*options)).dump());
+    std::any read = type.schema->makeDefault();
+    ObjectReader r(ctx, written, "/cutters/" + type.key);
+    type.schema->read(ctx, r, type.schema->data(read));
+    r.finish();
+  }
+  checkAcross(ctx, scene);
 }
 
 Scene loadScene(const std::filesystem::path& path) {

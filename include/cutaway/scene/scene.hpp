@@ -304,9 +304,11 @@ Scene parseScene(const std::string& text, const std::filesystem::path& displayNa
 void appendVolume(Scene& scene, const std::string& text, const std::string& displayName,
                   const std::filesystem::path& baseDir, const SceneArrays& arrays = {});
 // The checks a scene file gets after its parts are read, for a scene changed in memory (roles
-// set, objects added): names unique, everything within float reach, each enabled cutter's
-// needs (the roles it cuts or keeps), and what the cutters complete from the scene (a terrain
-// opening's lines from its networks). Errors name `displayName`.
+// set, objects added, options set by path): each enabled cutter's options as its schema reads
+// them (required keys, valid patterns, the checks across its keys), names unique, everything
+// within float reach, each enabled cutter's needs (the roles it cuts or keeps), and what the
+// cutters complete from the scene (a terrain opening's lines from its networks). Errors name
+// `displayName`.
 void checkScene(Scene& scene, const std::string& displayName);
 
 }  // namespace cutaway

@@ -40,7 +40,8 @@ OptionsSchema jitterSchema() {
       .readHook([](const json_reader::Context& ctx, json_reader::ObjectReader& r, J& j) {
         const auto* x = r.take("image");
         if (!x) return;
-        if (!x->is_string()) ctx.fail(r.at("image"), "expected a file name, got " + json_reader::typeName(*x));
+        if (!x->is_string())
+          ctx.fail(r.at("image"), "expected a file name, got " + json_reader::typeName(*x));
         j.image = ctx.baseDir / json_reader::string(ctx, *x, r.at("image"));
         if (!std::filesystem::is_regular_file(j.image))
           ctx.fail(r.at("image"), "no such image file: " + j.image.string());
@@ -55,7 +56,8 @@ OptionsSchema jitterSchema() {
           ctx.fail(r.pointer(), "pattern \"image\" needs an \"image\" file (a PNG)");
       })
       .writeHook([](const J& j, nlohmann::ordered_json& out) {
-        if (j.pattern == J::Pattern::Image) out["image"] = std::filesystem::absolute(j.image).string();
+        if (j.pattern == J::Pattern::Image && !j.image.empty())
+          out["image"] = std::filesystem::absolute(j.image).string();
       })
       .build();
 }
