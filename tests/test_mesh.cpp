@@ -28,6 +28,22 @@ TEST(Mesh, BoxIsWatertightWithOutwardNormals) {
   }
 }
 
+// Faces of 1e10 units (a scene may reach 1e15) are neither dropped as degenerate (the cross
+// product's squared length overflows) nor given zero normals; zero-area and NaN faces are.
+TEST(Mesh, LargeFacesKeepTheirAreaAndNormalsDegenerateOnesAreDropped) {
+  for (const float size : {1.0f, 1e10f, 1e14f}) {
+    Mesh mesh;
+    mesh.positions = {
+        {0, 0, 0}, {size, 0, 0}, {0, size, 0}, {2 * size, 0, 0}, {0, std::nanf(""), 0}};
+    mesh.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}, {0, 0, 2}};
+    EXPECT_EQ(dropDegenerateTriangles(mesh), 3u) << size;
+    ASSERT_EQ(mesh.triangles.size(), 1u) << size;
+    computeVertexNormals(mesh);
+    ASSERT_EQ(mesh.normals.size(), 3u) << size;
+    for (const glm::vec3& n : mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1)) << size;
+  }
+}
+
 namespace {
 
 // A PLY file in the temporary folder with the given text; its path.

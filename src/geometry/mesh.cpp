@@ -1,5 +1,6 @@
 #include "cutaway/geometry/mesh.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -46,7 +47,10 @@ std::size_t dropDegenerateTriangles(Mesh& mesh) {
     if (t.x == t.y || t.y == t.z || t.x == t.z) continue;
     const glm::vec3 c = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
                                    mesh.positions[t.z] - mesh.positions[t.x]);
-    if (!(glm::dot(c, c) > 0.0f) || !std::isfinite(glm::dot(c, c))) continue;  // also NaN
+    // Component by component: dot(c, c) overflows for edges of some 4e9 units, far within
+    // the 1e15 a scene may reach.
+    const bool zero = c.x == 0.0f && c.y == 0.0f && c.z == 0.0f;
+    if (zero || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
     mesh.triangles[kept++] = t;
   }
   const std::size_t dropped = mesh.triangles.size() - kept;
@@ -64,7 +68,12 @@ void computeVertexNormals(Mesh& mesh, float creaseAngle) {
   }
   auto unit = [](const glm::vec3& n) {
     const float len = glm::length(n);
-    return len > 0.0f ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    if (len > 0.0f && std::isfinite(len)) return n / len;
+    // |n| overflowed (faces of some 1e10 units) or underflowed: scaled to its largest
+    // component first.
+    const float largest = std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)});
+    if (!(largest > 0.0f) || !std::isfinite(largest)) return glm::vec3(0.0f, 0.0f, 1.0f);
+    return glm::normalize(n / largest);
   };
   // Faces around each vertex index.
   std::vector<std::vector<unsigned>> facesOf(mesh.positions.size());
