@@ -376,6 +376,27 @@ TEST(SceneErrors, ObjectsBeyondWhatFloatsCanRenderAreRefused) {
       "far.json", kMeshes));
 }
 
+// The camera too: an eye 1e20 away was refused as "up is parallel to the viewing direction"
+// (the direction's squared length overflowed to a zero vector).
+TEST(SceneErrors, ACameraBeyondWhatFloatsCanRenderIsRefused) {
+  for (const auto& [camera, place] : std::vector<std::pair<std::string, std::string>>{
+           {R"("eye": [0, 0, 1e20], "target": [0, 0, 0])", "/camera/eye"},
+           {R"("eye": [0, 0, 5], "target": [-1e16, 0, 0])", "/camera/target"},
+           {R"("path": [{"time": 0, "eye": [1e30, 0, 0], "target": [0, 0, 0]}])",
+            "/camera/path/0/eye"}})
+    test::expectError(
+        [&] {
+          (void)parseScene(
+              R"({"objects": [{"name": "a", "file": "cube.obj"}], "camera": {)" + camera + "}}",
+              "far.json", kMeshes);
+        },
+        {"far.json", place, "32-bit floats cannot render beyond 1e15"});
+  EXPECT_NO_THROW((void)parseScene(
+      R"({"objects": [{"name": "a", "file": "cube.obj"}],
+          "camera": {"eye": [0, 0, 1e15], "target": [0, 0, 0]}})",
+      "far.json", kMeshes));
+}
+
 // Issue 16: a NUL inside a file name cut it ("cube.obj\u0000.png" opened cube.obj); no string
 // of a scene may hold one.
 TEST(SceneErrors, StringsWithANulCharacterAreRefused) {

@@ -51,6 +51,10 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     scene.height = h;
   }
   Camera& c = scene.camera;
+  for (const auto& [option, p] : {std::pair{"--eye", o.eye}, std::pair{"--target", o.target}})
+    if (p && !(std::max({std::abs(p->x), std::abs(p->y), std::abs(p->z)}) <= kMaxSceneReach))
+      throw Error(option, "",
+                  "beyond 1e15 scene units from the origin (32-bit floats cannot render it)");
   if (o.eye) c.eye = *o.eye;
   if (o.target) c.target = *o.target;
   if ((o.eye || o.target) && !o.fit) c.fit = false;

@@ -100,6 +100,18 @@ std::vector<Keyframe> animation(const Context& ctx, const json& j, const std::st
   return keys;
 }
 
+// A camera's eye or target: within kMaxSceneReach of the origin, as the scene's parts.
+glm::vec3 cameraPoint(const Context& ctx, const json& j, const std::string& ptr) {
+  const glm::vec3 p = vec3(ctx, j, ptr);
+  const float reach = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  if (!(reach <= kMaxSceneReach)) {
+    std::ostringstream message;
+    message << reach << " scene units from the origin; 32-bit floats cannot render beyond 1e15";
+    ctx.fail(ptr, message.str());
+  }
+  return p;
+}
+
 std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::string& ptr) {
   if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected a non-empty array of camera keys");
   std::vector<CameraKey> keys;
@@ -109,8 +121,8 @@ std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::
     k.time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
     if (!keys.empty() && k.time <= keys.back().time)
       ctx.fail(r.at("time"), "camera key times must increase");
-    k.eye = vec3(ctx, r.require("eye"), r.at("eye"));
-    k.target = vec3(ctx, r.require("target"), r.at("target"));
+    k.eye = cameraPoint(ctx, r.require("eye"), r.at("eye"));
+    k.target = cameraPoint(ctx, r.require("target"), r.at("target"));
     if (glm::length(k.eye - k.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
     r.finish();
     keys.push_back(k);
@@ -724,8 +736,8 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
     ctx.fail(ptr, "a camera needs \"eye\" and \"target\", a \"path\", or \"fit\": true");
   if (!c.path.empty() && !eye && !target)
     c.eye = c.path.front().eye, c.target = c.path.front().target;
-  if (eye) c.eye = vec3(ctx, *eye, r.at("eye"));
-  if (target) c.target = vec3(ctx, *target, r.at("target"));
+  if (eye) c.eye = cameraPoint(ctx, *eye, r.at("eye"));
+  if (target) c.target = cameraPoint(ctx, *target, r.at("target"));
   if (eye && target && glm::length(c.eye - c.target) < 1e-9f)
     ctx.fail(r.at("eye"), "eye and target coincide");
   if (const json* v = r.take("up")) c.up = direction(ctx, *v, r.at("up"));
@@ -876,15 +888,13 @@ void checkNamesAndReach(const Context& ctx, const Scene& scene) {
     if (!names.insert(scene.volumes[i].name).second)
       ctx.fail("/volumes/" + std::to_string(i) + "/name",
                "the name \"" + scene.volumes[i].name + "\" is taken");
-  // 32-bit floats cannot render what lies too far out: beyond this the view's squared
-  // distances overflow and the camera turns NaN (a blank image). Nearer, far coordinates
-  // render with a warning (the CLI names the farthest part).
-  constexpr float kMaxReach = 1e15f;
+  // Within kMaxSceneReach; nearer, far coordinates render with a warning (the CLI names the
+  // farthest part).
   const auto checkReach = [&](const std::string& ptr, const std::string& name, const Bounds& b) {
     if (b.empty()) return;
     const glm::vec3 m = glm::max(glm::abs(b.min), glm::abs(b.max));
     const float reach = std::max({m.x, m.y, m.z});
-    if (reach <= kMaxReach) return;  // NaN and infinity fail too
+    if (reach <= kMaxSceneReach) return;  // NaN and infinity fail too
     std::ostringstream message;
     message << "\"" << name << "\" reaches " << reach
             << " scene units from the origin; 32-bit floats cannot render beyond 1e15 (scale it "

@@ -287,6 +287,10 @@ SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part,
 // circle through its corners.
 SceneObject shaftObject(const PipeNetwork& net, int network, bool inner);
 
+// How far from the origin a scene's coordinates (its parts, the camera) may lie: beyond, 32-bit
+// floats overflow the view's squared distances and the camera turns NaN (a blank image).
+constexpr float kMaxSceneReach = 1e15f;
+
 // Loads and validates a scene file and imports its meshes; throws cutaway::Error naming the
 // file, the JSON pointer and the reason.
 Scene loadScene(const std::filesystem::path& path);
