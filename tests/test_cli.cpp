@@ -267,6 +267,17 @@ TEST(Cli, UsageErrors) {
   const Result eye = run("render " + kData + "/render/plane-facing.json -o x.png --eye 1,2");
   EXPECT_EQ(eye.exitCode, 2);
   EXPECT_NE(eye.err.find("x,y,z"), std::string::npos) << eye.err;
+  // An empty name is refused, not taken for the option left out.
+  for (const char* option : {"--aov", "--svg"}) {
+    const Result empty =
+        run("render " + kData + "/render/plane-facing.json -o x.png " + option + " ''");
+    EXPECT_EQ(empty.exitCode, 2) << option;
+    EXPECT_NE(empty.err.find(std::string(option) + ": the name is empty"), std::string::npos)
+        << empty.err;
+  }
+  const Result far = run("render " + kData + "/render/plane-facing.json -o x.png --eye 0,0,1e20");
+  EXPECT_EQ(far.exitCode, 1);
+  EXPECT_NE(far.err.find("--eye: beyond 1e15"), std::string::npos) << far.err;
   EXPECT_FALSE(fs::exists("x.png"));
 }
 

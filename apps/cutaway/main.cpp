@@ -112,13 +112,23 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100))
       ->excludes(renderScene);
   render->add_option("-o,--output", renderOptions.output, "Output PNG file")->required();
-  render->add_option("--aov", renderOptions.aovDir,
-                     "Directory for the frame's intermediate buffers (PFM + aovs.json); with "
-                     "--frames, one sub-directory per frame");
-  render->add_option("--svg", renderOptions.svg,
-                     "The volumes' lines (a volume's \"lines\") as SVG, visible ones and, when "
-                     "dimmed or shown, hidden ones, with their halos; with --frames, numbered "
-                     "as the PNGs");
+  // An empty value would read as the option not given.
+  const CLI::Validator named(
+      [](const std::string& s) {
+        return s.empty() ? std::string("the name is empty") : std::string();
+      },
+      "", "named");
+  render
+      ->add_option("--aov", renderOptions.aovDir,
+                   "Directory for the frame's intermediate buffers (PFM + aovs.json); with "
+                   "--frames, one sub-directory per frame")
+      ->check(named);
+  render
+      ->add_option("--svg", renderOptions.svg,
+                   "The volumes' lines (a volume's \"lines\") as SVG, visible ones and, when "
+                   "dimmed or shown, hidden ones, with their halos; with --frames, numbered "
+                   "as the PNGs")
+      ->check(named);
   auto* frames = render
                      ->add_option("--frames", renderOptions.frames,
                                   "Render an animation of N frames spanning the scene's duration; "
