@@ -241,7 +241,9 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
       {"-o " + png + " --eye 1,1e39,2", "x,y,z"},
       {"-o " + png + " --svg " + (dir / "lines.txt").string(), "give it a .svg name"},
       {"-o " + png + " --svg " + (dir / "lines.svg").string(), "no volume of"},
-      {"-o " + png + " --frames 2 --svg " + (dir / "lines_%s.svg").string(), "frame pattern"}};
+      {"-o " + png + " --frames 2 --svg " + (dir / "lines_%s.svg").string(), "frame pattern"},
+      {"-o " + (dir / "missing" / "out.png").string(), "no such folder"},
+      {"-o " + png + " --svg " + (dir / "missing" / "lines.svg").string(), "no such folder"}};
   // A device as the scene: refused, not read until memory runs out.
   const Result zero = run("render /dev/zero -o " + png);
   EXPECT_EQ(zero.exitCode, 1);

@@ -216,8 +216,20 @@ void warnAboutFarCoordinates(const Scene& scene) {
                double(std::nextafter(reach, 2 * reach) - reach), at.x, at.y);
 }
 
+// A file to be written: its folder exists and may be written to.
+void checkFolderOf(const std::string& file) {
+  const std::filesystem::path folder = std::filesystem::path(file).has_parent_path()
+                                           ? std::filesystem::path(file).parent_path()
+                                           : ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec))
+    throw Error(file, "", "no such folder: " + folder.string());
+  if (::access(folder.c_str(), W_OK) != 0) throw Error(file, "", "the folder is not writable");
+}
+
 // The outputs checked before anything is rendered, so that a bad one leaves no file behind:
-// a PNG name (no other format is written), an AOV folder that is one or can be made.
+// a PNG name (no other format is written) and an SVG name in folders that take them, an AOV
+// folder that is one or can be made.
 void checkOutputs(const RenderOptions& options) {
   const std::filesystem::path out(options.output);
   if (options.output.empty()) throw Error("--output", "", "the file name is empty");
@@ -228,12 +240,14 @@ void checkOutputs(const RenderOptions& options) {
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".png")
     throw Error(options.output, "", "only PNG is written: give the output a .png name");
+  checkFolderOf(options.output);
   if (!options.svg.empty()) {
     std::string svgExt = std::filesystem::path(options.svg).extension().string();
     for (char& c : svgExt) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (svgExt != ".svg") throw Error(options.svg, "", "--svg writes SVG: give it a .svg name");
     if (std::filesystem::is_directory(options.svg, ec))
       throw Error(options.svg, "", "is a directory, not a file name");
+    checkFolderOf(options.svg);
   }
   if (options.aovDir.empty()) return;
   const std::filesystem::path dir(options.aovDir);

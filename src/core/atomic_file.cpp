@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 
 #include "cutaway/core/error.hpp"
@@ -27,11 +29,17 @@ void replaceFileAtomically(const std::filesystem::path& path,
 void writeFileAtomically(const std::filesystem::path& path,
                          const std::function<void(std::ostream&)>& write) {
   replaceFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    // With the system's reason where it gave one (errno: no space, no permission).
+    const auto fail = [&](const std::string& what) {
+      throw Error(path.string(), "", errno != 0 ? what + ": " + std::strerror(errno) : what);
+    };
+    errno = 0;
     std::ofstream os(tmp, std::ios::binary);
-    if (!os) throw Error(path.string(), "", "cannot open for writing");
+    if (!os) fail("cannot open for writing");
+    errno = 0;
     write(os);
-    os.flush();
-    if (!os) throw Error(path.string(), "", "write failed");
+    os.close();  // flushes: a full disk shows here
+    if (!os) fail("write failed");
   });
 }
 
