@@ -223,7 +223,7 @@ const BadScene kBadScenes[] = {
      "cannot read PNG"},
     {"clip_uv_not_orthogonal.json", "/cutters/clipSurfaces/surfaces/0/v",
      "u and v must be orthogonal"},
-    {"clip_five_surfaces.json", "/cutters/clipSurfaces/surfaces", "expected 1 to 4 clip surfaces"},
+    {"clip_five_surfaces.json", "/cutters/clipSurfaces/surfaces", "expected 1 to 4 entries, got 5"},
     {"clip_offset_pattern_unknown.json", "/cutters/clipSurfaces/surfaces/0/offsetMap/pattern",
      "unknown value \"waves\""},
     {"clip_blend_one_layer.json", "/cutters/clipSurfaces/surfaces/0/offsetMap/layers",

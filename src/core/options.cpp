@@ -261,9 +261,14 @@ void OptionsSchema::read(const json_reader::Context& ctx, json_reader::ObjectRea
         break;
       }
       case Node::Kind::Array: {
-        if (!v->is_array() || v->size() < n->minCount || v->size() > n->maxCount)
+        if (!v->is_array())
+          ctx.fail(ptr, "expected an array of " + std::to_string(n->minCount) + " to " +
+                            std::to_string(n->maxCount) + " entries, got " +
+                            json_reader::typeName(*v));
+        if (v->size() < n->minCount || v->size() > n->maxCount)
           ctx.fail(ptr, "expected " + std::to_string(n->minCount) + " to " +
-                            std::to_string(n->maxCount) + " " + n->spec.doc);
+                            std::to_string(n->maxCount) + " entries, got " +
+                            std::to_string(v->size()));
         n->resize(options, v->size());
         for (std::size_t i = 0; i < v->size(); ++i) {
           json_reader::ObjectReader e(ctx, (*v)[i], ptr + "/" + std::to_string(i));
