@@ -242,6 +242,7 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
       {"-o " + png + " --svg " + (dir / "lines.txt").string(), "give it a .svg name"},
       {"-o " + png + " --svg " + (dir / "lines.svg").string(), "no volume of"},
       {"-o " + png + " --frames 2 --svg " + (dir / "lines_%s.svg").string(), "frame pattern"},
+      {"-o " + (dir / "f%0999d.png").string() + " --frames 2", "of width at most 99"},
       {"-o " + (dir / "missing" / "out.png").string(), "no such folder"},
       {"-o " + png + " --svg " + (dir / "missing" / "lines.svg").string(), "no such folder"}};
   // A device as the scene: refused, not read until memory runs out.

@@ -272,10 +272,11 @@ int render(const RenderOptions& options) {
   // A frame pattern is a printf format: nothing but one %d in it.
   for (const auto& [option, path] :
        {std::pair{"--output", &options.output}, std::pair{"--svg", &options.svg}}) {
-    static const std::regex patternRe(R"([^%]*%0?\d*d[^%]*)");
+    static const std::regex patternRe(R"([^%]*%0?\d{0,2}d[^%]*)");
     if (options.frames > 0 && path->find('%') != std::string::npos &&
         !std::regex_match(*path, patternRe))
-      throw Error(option, "", "a frame pattern may hold one %d (e.g. frame_%04d.png)");
+      throw Error(option, "",
+                  "a frame pattern may hold one %d, of width at most 99 (e.g. frame_%04d.png)");
   }
   if (!options.svg.empty() &&
       std::none_of(scene.volumes.begin(), scene.volumes.end(),
