@@ -592,6 +592,28 @@ TEST(SceneLoad, MinimalSceneGetsTheDefaults) {
   EXPECT_EQ(s.find("nothing"), nullptr);
 }
 
+// "fit" frames a scene the same way at any size (a 1e-3 floor on the radius framed a 1e-8
+// cube as a few pixels).
+TEST(SceneLoad, FitFramesAScaleFreeView) {
+  const auto fitted = [](const std::string& scale) {
+    const Scene scene =
+        parseScene(R"({"objects": [{"name": "a", "file": "cube.obj", "transform": {"scale": )" +
+                       scale + R"(}}]})",
+                   "fit.json", kMeshes);
+    const Camera c = scene.resolvedCamera();
+    const Bounds b = scene.bounds();
+    return std::tuple{glm::length(c.eye - b.center()) / b.radius(), c.near / b.radius(),
+                      c.far / b.radius()};
+  };
+  const auto [distance, near, far] = fitted("1");
+  for (const char* scale : {"1e-4", "1e-8"}) {
+    const auto [d, n, f] = fitted(scale);
+    EXPECT_NEAR(d, distance, 1e-3f * distance) << scale;
+    EXPECT_NEAR(n, near, 1e-3f * distance) << scale;
+    EXPECT_NEAR(f, far, 1e-3f * distance) << scale;
+  }
+}
+
 TEST(SceneLoad, EveryKeyIsRead) {
   const Scene s = parse(R"({
     "version": 1,

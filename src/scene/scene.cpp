@@ -277,7 +277,10 @@ Camera Scene::resolvedCamera(float time) const {
   }
   const Bounds b = bounds();
   const glm::vec3 center = b.empty() ? glm::vec3(0.0f) : b.center();
-  const float radius = std::max(b.radius(), 1e-3f);
+  // A point (or nothing) still gets a view; a scene its own size, down to what floats resolve
+  // at its distance from the origin (a 1e-3 floor framed a 1e-8 scene as a few pixels).
+  const float radius =
+      !(b.radius() > 0.0f) ? 1e-3f : std::max(b.radius(), 1e-6f * glm::length(center));
   const float aspect = float(width) / float(height);
   if (c.fit) {
     // Keep the viewing direction (eye − target), aim at the bounds' centre and back off until
