@@ -221,6 +221,43 @@ TEST(Renderer, AMirroredObjectShowsItsOutside) {
 
 // The object parameter doubleSided: false (glTF's doubleSided) culls the back faces of an
 // object no cutter cuts: the plane is seen from above, and not at all from below.
+// A cube scaled far from 1 (fitted, so it looks the same) is shaded, not black: its normals
+// are the unit cube's. At 1e12 they came out too short for the vanishing-normal test, at 1e14
+// the 4×4 inverse's determinant overflowed to zero normals.
+TEST(Renderer, ObjectsScaledFarFromOneKeepTheirNormals) {
+  std::vector<std::vector<float>> normals;
+  for (const char* scale : {"1", "1e-6", "1e12", "1e14"}) {
+    SCOPED_TRACE(scale);
+    const Scene scene = parseScene(std::string(R"({"resolution": [64, 48], "samples": 1,
+        "style": {"name": "gooch", "lines": false},
+        "camera": {"fit": true, "eye": [2.2, 1.7, 3.0], "target": [0, 0, 0], "fov": 45},
+        "objects": [{"name": "cube", "file": "meshes/cube.obj", "transform": {"scale": )") +
+                                       scale + "}}]}",
+                                   "scaled.json", kData);
+    Renderer renderer(scene, test::glContext().info());
+    renderer.render();
+    const auto aovs = renderer.readAovs();
+    const FloatImage &id = find(aovs, "objectId").image, &normal = find(aovs, "normal").image;
+    int pixels = 0;
+    for (int y = 0; y < id.height; ++y)
+      for (int x = 0; x < id.width; ++x) {
+        if (id.at(x, y)[0] < 0.0f) continue;
+        ++pixels;
+        const glm::vec3 n(normal.at(x, y)[0], normal.at(x, y)[1], normal.at(x, y)[2]);
+        ASSERT_NEAR(glm::length(n), 1.0f, 1e-3f) << x << "," << y;
+      }
+    EXPECT_GT(pixels, 250);
+    normals.push_back(normal.data);
+  }
+  for (std::size_t i = 1; i < normals.size(); ++i) {
+    ASSERT_EQ(normals[i].size(), normals[0].size());
+    int differ = 0;
+    for (std::size_t k = 0; k < normals[0].size(); ++k)
+      differ += std::abs(normals[i][k] - normals[0][k]) > 1e-3f;
+    EXPECT_LE(differ, 3 * 8) << i;  // edge pixels may fall either way
+  }
+}
+
 TEST(Renderer, ASingleSidedObjectIsCulledFromBehind) {
   for (const float eyeZ : {5.0f, -5.0f}) {
     SCOPED_TRACE(eyeZ);

@@ -153,7 +153,21 @@ void SceneMeshes::draw(
     const GLuint program = programOf(i);
     if (program != used) glUseProgram(used = program);
     const glm::mat4 model = o.transformAt(time_);
-    const glm::mat4 normalMatrix = glm::transpose(glm::inverse(model));
+    glm::mat4 normalMatrix = glm::transpose(glm::inverse(model));
+    // Only its directions count. Under a scale far from 1 the normals came out too short for
+    // mesh.frag's vanishing-normal test (1e12), or zero where the 4×4 determinant overflowed
+    // (1e14): a black object. Such a matrix is worked out in double and scaled to a largest
+    // entry of 1; every other is left as it was.
+    const auto largest = [](const auto& m) {
+      double l = 0.0;
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) l = std::max(l, double(std::abs(m[c][r])));
+      return l;
+    };
+    if (const double l = largest(normalMatrix); !(l >= 1e-3 && l <= 1e3)) {
+      const glm::dmat3 n = glm::transpose(glm::inverse(glm::dmat3(glm::mat3(model))));
+      normalMatrix = glm::mat4(glm::mat3(n / largest(n)));
+    }
     glProgramUniformMatrix4fv(program, meshUniform::kModel, 1, GL_FALSE, &model[0][0]);
     glProgramUniformMatrix4fv(program, meshUniform::kNormalMatrix, 1, GL_FALSE,
                               &normalMatrix[0][0]);
