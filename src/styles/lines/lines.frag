@@ -51,24 +51,16 @@ float edge(ivec2 p, int s) {
   ivec2 last = sizeMS(uObjectId) - 1;
   const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
   for (int r = 1; r <= uRadius; ++r) {
-    // The four neighbours at distance r, fetched once: each is the one opposite another
-    // (offsets[k + 2] = −offsets[k]).
-    ivec2 q[4];
-    int ids[4];
-    float depths[4];
     for (int k = 0; k < 4; ++k) {
-      q[k] = clamp(p + r * offsets[k], ivec2(0), last);
-      depths[k] = viewDepth(q[k], s, ids[k]);
-    }
-    for (int k = 0; k < 4; ++k) {
-      int idq = ids[k];
-      float dq = depths[k];
+      ivec2 q = clamp(p + r * offsets[k], ivec2(0), last);
+      int idq;
+      float dq = viewDepth(q, s, idq);
       if (uSilhouettes != 0 && dq > d) {
         // A different object only counts if it is really behind: coplanar objects (a door in
         // its wall) z-fight, and their ids alternate pixel by pixel.
         if (idq != id && dq > d * (1.0 + 1e-4)) return n.w;
-        int idOpposite = ids[(k + 2) & 3];
-        float dOpposite = depths[(k + 2) & 3];
+        int idOpposite;
+        float dOpposite = viewDepth(clamp(p - r * offsets[k], ivec2(0), last), s, idOpposite);
         // On a plane, inverse depth (perspective) or depth (orthographic) is affine in screen
         // space, so its second difference is zero however grazing the plane, and large across
         // a depth discontinuity.
@@ -77,7 +69,7 @@ float edge(ivec2 p, int s) {
       }
       // Creases: compare with the +x and +y neighbours only, so a crease is one line thick.
       if (uCreases != 0 && k < 2 && idq == id &&
-          dot(n.xyz, texelFetch(uNormal, q[k], s).xyz) < uCreaseCos)
+          dot(n.xyz, texelFetch(uNormal, q, s).xyz) < uCreaseCos)
         return n.w;
     }
   }
