@@ -379,13 +379,13 @@ TEST(SceneErrors, ObjectsBeyondWhatFloatsCanRenderAreRefused) {
 // The camera too: an eye 1e20 away was refused as "up is parallel to the viewing direction"
 // (the direction's squared length overflowed to a zero vector).
 TEST(SceneErrors, ACameraBeyondWhatFloatsCanRenderIsRefused) {
-  for (const auto& [camera, place] : std::vector<std::pair<std::string, std::string>>{
+  for (const auto& [given, place] : std::vector<std::pair<std::string, std::string>>{
            {R"("eye": [0, 0, 1e20], "target": [0, 0, 0])", "/camera/eye"},
            {R"("eye": [0, 0, 5], "target": [-1e16, 0, 0])", "/camera/target"},
            {R"("path": [{"time": 0, "eye": [1e30, 0, 0], "target": [0, 0, 0]}])",
             "/camera/path/0/eye"}})
     test::expectError(
-        [&] {
+        [&camera = given] {
           (void)parseScene(
               R"({"objects": [{"name": "a", "file": "cube.obj"}], "camera": {)" + camera + "}}",
               "far.json", kMeshes);
