@@ -629,6 +629,11 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   const auto crs = run("dem --extent 0 0 20 20 --crs EPSG:999999 -o " + odd);
   EXPECT_EQ(crs.exitCode, 1);
   EXPECT_NE(crs.err.find("unknown CRS"), std::string::npos) << crs.err;
+  const std::string png = test::scratchPath("cli", "dem.png").string();
+  const auto named = run("dem --extent 0 0 20 20 --crs EPSG:27700 -o " + png);
+  EXPECT_EQ(named.exitCode, 1);
+  EXPECT_NE(named.err.find("dem.png: dem writes a GeoTIFF"), std::string::npos) << named.err;
+  EXPECT_FALSE(std::filesystem::exists(png));
 }
 
 TEST(Cli, InfoDescribesGisLayers) {

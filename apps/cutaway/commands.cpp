@@ -381,6 +381,10 @@ int gisInfo(const std::string& path) {
 
 int dem(const DemOptions& o) {
   if (o.extent.size() != 4) throw Error("--extent", "", "expected west south east north");
+  std::string ext = std::filesystem::path(o.output).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".tif" && ext != ".tiff")
+    throw Error(o.output, "", "dem writes a GeoTIFF: give the output a .tif name");
   writeSyntheticDem(o.output, {.min = {o.extent[0], o.extent[1]},
                                .max = {o.extent[2], o.extent[3]},
                                .crs = o.crs,
