@@ -525,8 +525,8 @@ TEST(SceneErrors, ProxyNameClashesWithAnObject) {
                     "proxies": [{"name": "cube", "hullOf": "cube"}]})");
     FAIL() << "a proxy with an object's name was accepted";
   } catch (const Error& e) {
-    EXPECT_EQ(e.place(), "/objects");
-    EXPECT_NE(e.reason().find("two objects are named \"cube\""), std::string::npos) << e.what();
+    EXPECT_EQ(e.place(), "/proxies/0/name");
+    EXPECT_NE(e.reason().find("the name \"cube\" is taken"), std::string::npos) << e.what();
   }
 }
 

@@ -881,9 +881,15 @@ json parseJson(const Context& ctx, const std::string& text) {
 // Names unique across objects and volumes, and everything within float reach.
 void checkNamesAndReach(const Context& ctx, const Scene& scene) {
   std::set<std::string> names;
-  for (const auto& o : scene.objects)
-    if (!names.insert(o.name).second)
-      ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+  std::size_t proxies = 0;  // the proxies follow the objects, in the file's order
+  for (const auto& o : scene.objects) {
+    const bool fresh = names.insert(o.name).second;
+    if (o.proxy && !fresh)
+      ctx.fail("/proxies/" + std::to_string(proxies) + "/name",
+               "the name \"" + o.name + "\" is taken");
+    if (!fresh) ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+    proxies += o.proxy;
+  }
   for (std::size_t i = 0; i < scene.volumes.size(); ++i)
     if (!names.insert(scene.volumes[i].name).second)
       ctx.fail("/volumes/" + std::to_string(i) + "/name",
