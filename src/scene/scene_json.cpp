@@ -149,7 +149,9 @@ glm::dmat4 transform(const Context& ctx, const json& j, const std::string& ptr) 
     const glm::dmat3 linear(out);
     if (!(std::abs(glm::determinant(linear)) >
           1e-6 * glm::length(linear[0]) * glm::length(linear[1]) * glm::length(linear[2])))
-      ctx.fail(r.at("matrix"), "the matrix is singular");
+      ctx.fail(r.at("matrix"),
+               "the matrix is singular or nearly so (|det| at most 1e-6 of the "
+               "product of its columns' lengths)");
     r.finish();
     return out;
   }
