@@ -52,7 +52,7 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   }
   Camera& c = scene.camera;
   for (const auto& [option, p] : {std::pair{"--eye", o.eye}, std::pair{"--target", o.target}})
-    if (p && !(std::max({std::abs(p->x), std::abs(p->y), std::abs(p->z)}) <= kMaxSceneReach))
+    if (p && !(sceneReach(*p) <= kMaxSceneReach))
       throw Error(option, "",
                   "beyond 1e15 scene units from the origin (32-bit floats cannot render it)");
   if (o.eye) c.eye = *o.eye;

@@ -103,7 +103,7 @@ std::vector<Keyframe> animation(const Context& ctx, const json& j, const std::st
 // A camera's eye or target: within kMaxSceneReach of the origin, as the scene's parts.
 glm::vec3 cameraPoint(const Context& ctx, const json& j, const std::string& ptr) {
   const glm::vec3 p = vec3(ctx, j, ptr);
-  const float reach = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  const float reach = sceneReach(p);
   if (!(reach <= kMaxSceneReach)) {
     std::ostringstream message;
     message << reach << " scene units from the origin; 32-bit floats cannot render beyond 1e15";
@@ -900,8 +900,7 @@ void checkNamesAndReach(const Context& ctx, const Scene& scene) {
   // farthest part).
   const auto checkReach = [&](const std::string& ptr, const std::string& name, const Bounds& b) {
     if (b.empty()) return;
-    const glm::vec3 m = glm::max(glm::abs(b.min), glm::abs(b.max));
-    const float reach = std::max({m.x, m.y, m.z});
+    const float reach = sceneReach(glm::max(glm::abs(b.min), glm::abs(b.max)));
     if (reach <= kMaxSceneReach) return;  // NaN and infinity fail too
     std::ostringstream message;
     message << "\"" << name << "\" reaches " << reach
