@@ -9,7 +9,7 @@
 // clang-format off
 //   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth) cutawayDilate]
 //   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2) cutawayDilateC2]
-//   [cutawayCutSurface]
+//   [cutawayAtPixel]
 //   [breakawayClip breakawayInnerClip]
 //   [clipSurfaceSprites]
 //   [shadowMap]
@@ -34,8 +34,9 @@
 //   step size N), dilated (src/cutters/adaptive/README.md).
 // - cutawayCpuC2 … cutawayDilateC2: the contextual structure's second surface C₂ from the same
 //   seed, every seed's angle raised to θ₂ (Burns11 §4.1.3, §5.2.3).
-// - cutawayCutSurface: the simple structure's cut surface (position, normal) at each pixel
-//   centre, for the back faces seen through the cut (Burns11 §5.2.4.1).
+// - cutawayAtPixel: the cutaway surfaces' depths at each pixel centre, which every fragment's
+//   decision reads with one unfiltered fetch, and the simple structure's cut surface
+//   (position, normal) there, for the back faces seen through the cut (Burns11 §5.2.4.1).
 // - breakawayClip, breakawayInnerClip: Diepstraten03 §5's hull clip depths (outer, inner).
 // - clipSurfaceSprites: Trapp13 §6.3's depth sprites, rebuilt per frame for animated parity.
 // - shadowMap: style.shadows, the key light's depth (src/styles/shadows/README.md).

@@ -16,7 +16,7 @@ CutterType adaptiveCutterType() {
 }
 
 struct AdaptiveCutaway::Programs {
-  gl::Program seed, ghost, cutSurface;
+  gl::Program seed, ghost, atPixel;
   FullscreenTriangle fullscreen;
 };
 
@@ -56,6 +56,9 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
     cutPosition_ = frame.declare("cutawayCutPosition", {.format = GL_RGBA32F});
     cutNormal_ = frame.declare("cutawayCutNormal", {.format = GL_RGBA32F});
   }
+  // Both structures' depths (x, y: C; z, w: C₂) or the simple one's alone.
+  atPixel_ = frame.declare("cutawayAtPixel", {.format = transition_ ? GL_RGBA32F : GL_RG32F});
+  atPixelUnit_ = setup.bindings.textureUnit("CUTAWAY_AT_PIXEL");
   const int n = surface_.bufferSize();
   seedDepthTest_ =
       frame.declare("seedDepthTest", {.format = GL_DEPTH_COMPONENT32F, .width = n, .height = n});
@@ -69,10 +72,9 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
   Programs& p = *programs_;
   p.seed = gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                         {GL_FRAGMENT_SHADER, "cutters/adaptive/seed.frag"}}});
-  if (cutPosition_.valid())
-    p.cutSurface = setup.bindings.build(
-        {.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
-                    {GL_FRAGMENT_SHADER, "cutters/adaptive/cut_surface.frag"}}});
+  p.atPixel =
+      setup.bindings.build({.stages = {{GL_VERTEX_SHADER, "frame/fullscreen.vert"},
+                                       {GL_FRAGMENT_SHADER, "cutters/adaptive/at_pixel.frag"}}});
   if (options().ghostLines)
     p.ghost = setup.bindings.build({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                                {GL_FRAGMENT_SHADER, "cutters/adaptive/ghost.frag"}}});
@@ -136,7 +138,7 @@ void AdaptiveCutaway::beginFrame(const FrameState& state) {
 }
 
 std::vector<Target> AdaptiveCutaway::geometryInputs() const {
-  std::vector<Target> inputs{surface_.cutawayDepth(), surface_.cutawayDilated()};
+  std::vector<Target> inputs{surface_.cutawayDepth(), surface_.cutawayDilated(), atPixel_};
   if (transition_) inputs.insert(inputs.end(), {transition_->cutawayDepth(), transition_->cutawayDilated()});
   if (cutPosition_.valid()) inputs.insert(inputs.end(), {cutPosition_, cutNormal_});
   return inputs;
@@ -145,6 +147,7 @@ std::vector<Target> AdaptiveCutaway::geometryInputs() const {
 void AdaptiveCutaway::bindForGeometry() const {
   glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
   glBindTextureUnit(dilatedUnit_, setup_.frame.texture(surface_.cutawayDilated()).id());
+  glBindTextureUnit(atPixelUnit_, setup_.frame.texture(atPixel_).id());
   if (cutPosition_.valid()) {
     glBindTextureUnit(cutPositionUnit_, setup_.frame.texture(cutPosition_).id());
     glBindTextureUnit(cutNormalUnit_, setup_.frame.texture(cutNormal_).id());
@@ -233,24 +236,34 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
                  }});
   surface_.addPasses();
   if (transition_) transition_->addPasses();
-  if (cutPosition_.valid())
-    frame.addPass({.name = "cutawayCutSurface",
-                   .reads = {surface_.cutawayDepth()},
-                   .writes = {cutPosition_, cutNormal_},
-                   .run = [this](const PassContext&) { drawCutSurface(); }});
+  std::vector<Target> reads{surface_.cutawayDepth(), surface_.cutawayDilated()};
+  std::vector<Target> writes{atPixel_};
+  if (transition_)
+    reads.insert(reads.end(), {transition_->cutawayDepth(), transition_->cutawayDilated()});
+  if (cutPosition_.valid()) writes.insert(writes.end(), {cutPosition_, cutNormal_});
+  frame.addPass({.name = "cutawayAtPixel",
+                 .reads = reads,
+                 .writes = writes,
+                 .run = [this](const PassContext&) { drawAtPixel(); }});
 }
 
-void AdaptiveCutaway::drawCutSurface() const {
+void AdaptiveCutaway::drawAtPixel() const {
   glDisable(GL_DEPTH_TEST);
-  glUseProgram(programs_->cutSurface.id());
+  glUseProgram(programs_->atPixel.id());
   glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
+  glBindTextureUnit(dilatedUnit_, setup_.frame.texture(surface_.cutawayDilated()).id());
+  if (transition_) {
+    glBindTextureUnit(transitionDepthUnit_, setup_.frame.texture(transition_->cutawayDepth()).id());
+    glBindTextureUnit(transitionDilatedUnit_,
+                      setup_.frame.texture(transition_->cutawayDilated()).id());
+  }
   programs_->fullscreen.draw();
 }
 
 void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {
   if (!ghostNormal_.valid()) return;
   frame.addPass({.name = "ghostGeometry",
-                 .reads = {surface_.cutawayDepth(), surface_.cutawayDilated()},
+                 .reads = geometryInputs(),
                  .writes = {ghostNormal_, ghostObjectId_, ghostDepth_},
                  .run = [this](const PassContext& pass) { drawGhostGeometry(pass.framebuffer); }});
   ghostCulling_->addPass(frame, "visibleGhosts", ghostObjectId_);

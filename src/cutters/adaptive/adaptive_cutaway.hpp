@@ -52,7 +52,7 @@ class AdaptiveCutaway : public Cutter {
     return *setup_.scene.cutters.find<AdaptiveCutawayOptions>();
   }
   void drawGhostGeometry(GLuint framebuffer) const;
-  void drawCutSurface() const;
+  void drawAtPixel() const;
   // Burns11 §7.2: whether R = Ω (the objects it cuts are not ranked by importance).
   bool reductionIsOcclusion() const;
 
@@ -67,6 +67,10 @@ class AdaptiveCutaway : public Cutter {
   // centre), read by back faces seen through the cut instead of working it out per fragment.
   Target cutPosition_, cutNormal_;
   GLuint cutPositionUnit_ = 0, cutNormalUnit_ = 0;
+  // C and its dilation (and C₂'s) at each pixel's centre (at_pixel.frag), for the geometry
+  // passes.
+  Target atPixel_;
+  GLuint atPixelUnit_ = 0;
   GLint contextualLocation_ = -1, importanceLocation_ = -1, applyLocation_ = -1;
   bool graded_ = false;
   Target seedDepthTest_;

@@ -42,6 +42,25 @@ layout(binding = UNIT_CUTAWAY_CUT_POSITION) uniform sampler2D uCutPosition;  // 
 layout(binding = UNIT_CUTAWAY_CUT_NORMAL) uniform sampler2D uCutNormal;
 #endif
 
+#if !defined(CUT_VOLUME_SAMPLE) && !defined(TRANSLUCENT_LAYER)
+// Every fragment decided here lies at its pixel's centre (one per pixel, no per-sample
+// shading): the depths there, sampled once per pixel (at_pixel.frag), replace the bilinear
+// fetches. Ray samples and the per-sample translucent layers sample the surfaces themselves.
+#define CUTAWAY_AT_PIXEL
+layout(binding = UNIT_CUTAWAY_AT_PIXEL) uniform sampler2D uCutawayAtPixel;
+#endif
+
+// C at window position `window`, or its dilation (Burns08 §4.2) for back faces.
+float cutawayDepthAt(vec2 window, bool frontFacing) {
+#ifdef CUTAWAY_AT_PIXEL
+  vec2 c = texelFetch(uCutawayAtPixel, ivec2(window), 0).xy;
+  return frontFacing ? c.x : c.y;
+#else
+  vec2 uv = window * uViewport.zw;
+  return frontFacing ? textureLod(uCutawayDepth, uv, 0.0).r : textureLod(uCutawayDilated, uv, 0.0).r;
+#endif
+}
+
 #ifdef UNIT_CUTAWAY_DEPTH_C2
 // The contextual cutaway structure (Burns11 §4.1.3, §5.2.3); mirrors contextual_function.cpp.
 layout(binding = UNIT_CUTAWAY_DEPTH_C2) uniform sampler2D uCutawayDepthC2;  // C₂, window depth
@@ -60,13 +79,29 @@ float contextualRamp(float a, float b, float x) {
   return clamp((x - a) / (b - a), 0.0, 1.0);
 }
 
-// (z₁, z₂, d, t): C₁ and C₂ as distances in front of the eye along the ray through uv.
-vec4 contextualRay(vec2 uv, bool frontFacing) {
-  float c1 = frontFacing ? textureLod(uCutawayDepth, uv, 0.0).r : textureLod(uCutawayDilated, uv, 0.0).r;
-  float c2 = frontFacing ? textureLod(uCutawayDepthC2, uv, 0.0).r : textureLod(uCutawayDilatedC2, uv, 0.0).r;
+// (z₁, z₂, d, t): C₁ and C₂ (window depths c1, c2) as distances in front of the eye along the
+// ray through uv.
+vec4 contextualRay(vec2 uv, float c1, float c2) {
   float z1 = -viewPointAtDepth(uv, c1).z;
   float z2 = max(-viewPointAtDepth(uv, c2).z, z1);  // θ₂ ≥ θ₁: C₂ lies behind C₁
   return vec4(z1, z2, uContextual.x, uContextual.y);
+}
+
+// The same, sampling C₁ and C₂ (dilated for back faces) at uv.
+vec4 contextualRay(vec2 uv, bool frontFacing) {
+  float c1 = frontFacing ? textureLod(uCutawayDepth, uv, 0.0).r : textureLod(uCutawayDilated, uv, 0.0).r;
+  float c2 = frontFacing ? textureLod(uCutawayDepthC2, uv, 0.0).r : textureLod(uCutawayDilatedC2, uv, 0.0).r;
+  return contextualRay(uv, c1, c2);
+}
+
+// The ray through the decided point's pixel.
+vec4 contextualRayAt(vec2 window, bool frontFacing) {
+#ifdef CUTAWAY_AT_PIXEL
+  vec4 c = texelFetch(uCutawayAtPixel, ivec2(window), 0);
+  return contextualRay(window * uViewport.zw, frontFacing ? c.x : c.y, frontFacing ? c.z : c.w);
+#else
+  return contextualRay(window * uViewport.zw, frontFacing);
+#endif
 }
 
 // Ω at distance z (§4.1.3.3; eq. 5.6 when t = ½), z growing away from the eye.
@@ -113,7 +148,7 @@ int contextualFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) 
   return kKeep;
 #endif
   vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
-  vec4 r = contextualRay(uv, f.frontFacing);
+  vec4 r = contextualRayAt(CUT_FRAG_COORD.xy, f.frontFacing);
   if (occlusionReduction(contextualOcclusion(r, fragmentDistance(f.position))) >= 0.5) return kDiscard;
   float omega = max(trimOcclusion(), 1e-6);  // I = 0: trimmed wherever Ω > 0, i.e. at C₂
   if (f.frontFacing || omega > 1.0) return kKeep;
@@ -129,8 +164,7 @@ int contextualFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) 
 
 // The G-buffer channels occlusion (Ω) and reduction (R) at a fragment of a cut object.
 float adaptiveChannel0(CutFragment f) {
-  vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
-  return contextualOcclusion(contextualRay(uv, f.frontFacing), fragmentDistance(f.position));
+  return contextualOcclusion(contextualRayAt(CUT_FRAG_COORD.xy, f.frontFacing), fragmentDistance(f.position));
 }
 float adaptiveChannel1(CutFragment f) {
   return occlusionReduction(adaptiveChannel0(f));
@@ -159,9 +193,8 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   return contextualFragment(f, cutPosition, cutNormal);
 #else
   bool frontFacing = f.frontFacing;
-  vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
   // Burns11 eq. 5.4: Ω = 1 − step(C(p), p_z); back faces use the dilated surface.
-  float c = frontFacing ? textureLod(uCutawayDepth, uv, 0.0).r : textureLod(uCutawayDilated, uv, 0.0).r;
+  float c = cutawayDepthAt(CUT_FRAG_COORD.xy, frontFacing);
   if (CUT_FRAG_COORD.z < c) return kDiscard;
   // A back face is a cut surface only where the cutaway surface lies in front of it; elsewhere
   // (no cut at this pixel) it is an ordinary inside view of an open mesh.
@@ -172,7 +205,7 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   cutPosition = texelFetch(uCutPosition, pixel, 0).xyz;
   cutNormal = texelFetch(uCutNormal, pixel, 0).xyz;
 #else
-  cutawaySurfaceAt(uv, cutPosition, cutNormal);
+  cutawaySurfaceAt(CUT_FRAG_COORD.xy * uViewport.zw, cutPosition, cutNormal);
 #endif
   return kCutSurface;
 #endif
@@ -197,9 +230,9 @@ vec2 adaptiveRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 range) {
 // Burns08 §4.3: how strongly a removed fragment shows as a ghost line: 1 at the cutaway
 // surface, fading to 0 at `distance` (world units) in front of it; 0 for kept fragments.
 float ghostFade(vec3 worldPosition, float distance) {
-  vec2 uv = CUT_FRAG_COORD.xy * uViewport.zw;
-  if (CUT_FRAG_COORD.z >= textureLod(uCutawayDepth, uv, 0.0).r) return 0.0;
+  float c = cutawayDepthAt(CUT_FRAG_COORD.xy, true);
+  if (CUT_FRAG_COORD.z >= c) return 0.0;
   float fragmentDepth = -(uView * vec4(worldPosition, 1.0)).z;
-  float cutawayDepth = -cutawayViewPoint(uv).z;
+  float cutawayDepth = -viewPointAtDepth(CUT_FRAG_COORD.xy * uViewport.zw, c).z;
   return clamp(1.0 - (cutawayDepth - fragmentDepth) / distance, 0.0, 1.0);
 }

@@ -13,7 +13,7 @@ layout(location = 0) out vec4 outNormal;     // w: fade
 layout(location = 1) out ivec2 outObjectId;  // the object id, the linear view depth's bits
 void main() {
   if (!gl_FrontFacing) discard;
-  bool removed = gl_FragCoord.z < textureLod(uCutawayDepth, gl_FragCoord.xy * uViewport.zw, 0.0).r;
+  bool removed = gl_FragCoord.z < cutawayDepthAt(gl_FragCoord.xy, true);
   float fade = removed ? ghostFade(vWorldPosition, uGhostDistance) : 0.0;
   if (removed && fade <= 0.0) discard;  // beyond the ghost distance
   vec3 n = vWorldNormal;
