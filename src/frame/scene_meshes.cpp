@@ -140,18 +140,19 @@ std::size_t SceneMeshes::triangles() const {
 void SceneMeshes::draw(
     GLuint program, const Filter& which,
     const std::function<void(const SceneObject&, std::size_t)>& perObject) const {
-  draw([program](std::size_t) { return program; }, which, perObject);
+  forEach(which, [&](const SceneObject& o, std::size_t i, const DrawWith& drawWith) {
+    perObject(o, i);
+    drawWith(program);
+  });
 }
 
-void SceneMeshes::draw(
-    const std::function<GLuint(std::size_t)>& programOf, const Filter& which,
-    const std::function<void(const SceneObject&, std::size_t)>& perObject) const {
+void SceneMeshes::forEach(
+    const Filter& which,
+    const std::function<void(const SceneObject&, std::size_t, const DrawWith&)>& perObject) const {
   GLuint used = 0;
   for (std::size_t i = 0; i < scene_.objects.size(); ++i) {
     const SceneObject& o = scene_.objects[i];
     if (!which(o, i)) continue;
-    const GLuint program = programOf(i);
-    if (program != used) glUseProgram(used = program);
     const glm::mat4 model = o.transformAt(time_);
     glm::mat4 normalMatrix = glm::transpose(glm::inverse(model));
     // Only its directions count. Under a scale far from 1 the normals came out too short for
@@ -168,14 +169,16 @@ void SceneMeshes::draw(
       const glm::dmat3 n = glm::transpose(glm::inverse(glm::dmat3(glm::mat3(model))));
       normalMatrix = glm::mat4(glm::mat3(n / largest(n)));
     }
-    glProgramUniformMatrix4fv(program, meshUniform::kModel, 1, GL_FALSE, &model[0][0]);
-    glProgramUniformMatrix4fv(program, meshUniform::kNormalMatrix, 1, GL_FALSE,
-                              &normalMatrix[0][0]);
     // A mirroring transform turns the triangles' winding on screen: its outside must still
     // be the front (gl_FrontFacing, face culling).
     glFrontFace(glm::determinant(glm::mat3(model)) < 0.0f ? GL_CW : GL_CCW);
-    perObject(o, i);
-    meshes_[i].draw();
+    perObject(o, i, [&](GLuint program) {
+      if (program != used) glUseProgram(used = program);
+      glProgramUniformMatrix4fv(program, meshUniform::kModel, 1, GL_FALSE, &model[0][0]);
+      glProgramUniformMatrix4fv(program, meshUniform::kNormalMatrix, 1, GL_FALSE,
+                                &normalMatrix[0][0]);
+      meshes_[i].draw();
+    });
   }
   glFrontFace(GL_CCW);
 }

@@ -66,9 +66,13 @@ class SceneMeshes {
   using Filter = std::function<bool(const SceneObject&, std::size_t)>;
   void draw(GLuint program, const Filter& which,
             const std::function<void(const SceneObject&, std::size_t)>& perObject) const;
-  // The same, each object with the program `programOf(index)`, in the same order.
-  void draw(const std::function<GLuint(std::size_t)>& programOf, const Filter& which,
-            const std::function<void(const SceneObject&, std::size_t)>& perObject) const;
+  // Calls `perObject` for every object for which `which` is true, in the same order, with a
+  // function that draws the object with a program: sets the program's meshUniform transforms,
+  // binds it and draws (as often as `perObject` asks, with its uniforms and state each time).
+  using DrawWith = std::function<void(GLuint program)>;
+  void forEach(
+      const Filter& which,
+      const std::function<void(const SceneObject&, std::size_t, const DrawWith&)>& perObject) const;
   const Scene& scene() const { return scene_; }
   const GpuMesh& mesh(std::size_t object) const { return meshes_[object]; }
   float time() const { return time_; }

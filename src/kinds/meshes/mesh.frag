@@ -37,6 +37,13 @@ layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cu
 layout(binding = UNIT_PEEL_DEPTH) uniform SAMPLER_MS uPeelDepth;
 layout(location = 17) uniform int uFirstLayer;
 #endif
+#if defined(FRONT_FACES)
+#define FRONT_FACING true
+#elif defined(BACK_FACES)
+#define FRONT_FACING false
+#else
+#define FRONT_FACING gl_FrontFacing
+#endif
 #ifdef CUT_WRITES_DEPTH
 // A cut surface behind the fragment (cutters/composition.glsl) moves it back, never forward.
 layout(depth_greater) out float gl_FragDepth;
@@ -45,7 +52,7 @@ layout(depth_greater) out float gl_FragDepth;
 #define FRAGMENT_DEPTH gl_FragCoord.z
 #endif
 void main() {
-  CutFragment f = CutFragment(vWorldPosition, vWorldNormal, gl_FrontFacing);
+  CutFragment f = CutFragment(vWorldPosition, vWorldNormal, FRONT_FACING);
   vec3 cutPosition, cutNormal;
   int cutter;
 #ifdef CUT_WRITES_DEPTH
@@ -63,9 +70,9 @@ void main() {
   n = normalize(n);
   SurfacePoint s;
   s.position = cut ? cutPosition : vWorldPosition;
-  s.normal = cut ? cutNormal : gl_FrontFacing ? n : -n;  // two-sided: open meshes show their inside
+  s.normal = cut ? cutNormal : FRONT_FACING ? n : -n;  // two-sided: open meshes show their inside
   s.toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - s.position);
-  s.baseColor = cut ? uCutColor[cutter] : gl_FrontFacing ? uColor : uBackColor;
+  s.baseColor = cut ? uCutColor[cutter] : FRONT_FACING ? uColor : uBackColor;
   s.specular = uSpecular;
   s.shininess = uShininess;
   s.keyLightVisibility = keyLightVisibility(s.position);

@@ -14,9 +14,11 @@ constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLin
 void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
   const std::vector<std::pair<GLenum, std::string>> stages{
       {GL_VERTEX_SHADER, "frame/mesh.vert"}, {GL_FRAGMENT_SHADER, "kinds/meshes/mesh.frag"}};
-  program_ = gl::buildProgram(setup_.geometryProgram(stages));
-  if (!cutters.empty())
-    uncutProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"UNCUT", "1"}}));
+  uncutProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"UNCUT", "1"}}));
+  if (!cutters.empty()) {
+    frontProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"FRONT_FACES", "1"}}));
+    backProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"BACK_FACES", "1"}}));
+  }
   culling_ = std::make_unique<OcclusionCulling>(setup_, setup_.translucentLayers);
   if (setup_.translucentLayers)
     layerProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"TRANSLUCENT_LAYER", "1"}}));
@@ -54,66 +56,86 @@ void MeshKind::setObjectUniforms(GLuint program, const std::vector<ActiveCutter>
 
 void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
                             const GeometryDraw& draw) const {
-  const GLuint program = program_.id();
-  for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
+  for (const GLuint program : {frontProgram_.id(), backProgram_.id()})
+    if (program != 0)
+      for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
   const std::vector<ObjectCut> cuts = objectCuts(cutters);
   int clipPasses = 0;  // the most any object needs
   for (const ObjectCut& cut : cuts) clipPasses = std::max(clipPasses, cut.clipPasses);
-  // The objects no cutter cuts take the program without the cutters' code, in the same order.
-  const auto programOf = [&](std::size_t i) {
-    return cuts[i].cutBy == 0 && uncutProgram_ ? uncutProgram_.id() : program;
+  // Draws object i. One no cutter cuts or clips takes the program without the cutters' code. A
+  // cut opens the inside, whose back faces show (Burns08 §4.1): a cut object is drawn twice, its
+  // front faces and then its back faces, each by a program with the other side's code folded
+  // away (llvmpipe runs both sides of a branch); drawn first, its front faces hide from the
+  // depth test the back faces behind them.
+  const auto drawObject = [&](const SceneObject& o, std::size_t i,
+                              const SceneMeshes::DrawWith& drawWith,
+                              const std::function<void(GLuint)>& perProgram) {
+    if (cuts[i].cutBy == 0 && cuts[i].clipPasses == 0) {
+      setObjectUniforms(uncutProgram_.id(), cutters, cuts[i], o, i);
+      perProgram(uncutProgram_.id());
+      if (o.doubleSided())
+        glDisable(GL_CULL_FACE);
+      else
+        glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      drawWith(uncutProgram_.id());
+      return;
+    }
+    glEnable(GL_CULL_FACE);
+    for (const auto& [culled, program] :
+         {std::pair{GL_BACK, frontProgram_.id()}, std::pair{GL_FRONT, backProgram_.id()}}) {
+      setObjectUniforms(program, cutters, cuts[i], o, i);
+      perProgram(program);
+      glCullFace(culled);
+      drawWith(program);
+    }
   };
-  auto setUniforms = [&](const SceneObject& o, std::size_t i) {
-    setObjectUniforms(programOf(i), cutters, cuts[i], o, i);
-    // A cut opens the inside, whose back faces show (Burns08 §4.1): only uncut objects cull.
-    if (cuts[i].cutBy == 0 && !o.doubleSided())
-      glEnable(GL_CULL_FACE);
-    else
-      glDisable(GL_CULL_FACE);
-  };
+  const auto noMore = [](GLuint) {};
   // The objects of `batch` (frame/occlusion_culling.hpp), in the order below.
   auto drawBatch = [&](const OcclusionCulling::Batch& batch) {
     // Secondary objects first, cut; then the objects of interest, whole (Burns08 §4.1).
-    setup_.meshes.draw(
-        programOf,
+    setup_.meshes.forEach(
         [&](const SceneObject& o, std::size_t i) {
           return !o.proxy && o.role != Role::Interest && cuts[i].clipPasses == 0 && batch(i);
         },
-        setUniforms);
+        [&](const SceneObject& o, std::size_t i, const SceneMeshes::DrawWith& drawWith) {
+          drawObject(o, i, drawWith, noMore);
+        });
     if (clipPasses > 0) {
       // Diepstraten03 §4.3: each pass keeps the far side of one plane; their union is the
       // object outside the cut.
       glEnable(GL_CLIP_DISTANCE0);
-      glDisable(GL_CULL_FACE);  // cut objects: two-sided
       for (int k = 0; k < clipPasses; ++k)
-        setup_.meshes.draw(
-            program,
+        setup_.meshes.forEach(
             [&](const SceneObject& o, std::size_t i) {
               return !o.proxy && cuts[i].clipPasses > k && batch(i);
             },
-            [&](const SceneObject& o, std::size_t i) {
-              setObjectUniforms(program, cutters, cuts[i], o, i);
+            [&](const SceneObject& o, std::size_t i, const SceneMeshes::DrawWith& drawWith) {
               glm::vec4 keep(0, 0, 0, -1);
               for (const ActiveCutter& c : cutters)
                 if (k < c.cutter->clipPasses(i)) keep = c.cutter->clipPlane(i, k);
-              glProgramUniform4fv(program, kClipPlane, 1, &keep[0]);
+              drawObject(o, i, drawWith, [&](GLuint program) {
+                glProgramUniform4fv(program, kClipPlane, 1, &keep[0]);
+              });
             });
       glDisable(GL_CLIP_DISTANCE0);
       // A plane that keeps everything: Mesa 22.3's llvmpipe went on clipping the next frame's
       // objects of interest with the last object's plane, clipping disabled or not.
       const glm::vec4 keepAll(0, 0, 0, 1);
-      glProgramUniform4fv(program, kClipPlane, 1, &keepAll[0]);
+      for (const GLuint program : {frontProgram_.id(), backProgram_.id()})
+        glProgramUniform4fv(program, kClipPlane, 1, &keepAll[0]);
     }
-    setup_.meshes.draw(
-        programOf,
+    setup_.meshes.forEach(
         [&](const SceneObject& o, std::size_t i) {
           return !o.proxy && o.role == Role::Interest && cuts[i].clipPasses == 0 && batch(i);
         },
-        setUniforms);
+        [&](const SceneObject& o, std::size_t i, const SceneMeshes::DrawWith& drawWith) {
+          drawObject(o, i, drawWith, noMore);
+        });
   };
-  glCullFace(GL_BACK);
   culling_->draw([this](std::size_t i) { return !setup_.scene.objects[i].proxy; }, draw.time,
                  drawBatch);
+  glCullFace(GL_BACK);
   glDisable(GL_CULL_FACE);
 }
 

@@ -39,8 +39,9 @@ class MeshKind : public GeometryKind {
                          const ObjectCut& cut, const SceneObject& o, std::size_t i) const;
 
   FrameSetup& setup_;
-  gl::Program program_, layerProgram_;
-  gl::Program uncutProgram_;                   // mesh.frag with UNCUT, when cutters are active
+  gl::Program layerProgram_;
+  gl::Program uncutProgram_;                   // mesh.frag with UNCUT: the objects no cutter cuts
+  gl::Program frontProgram_, backProgram_;     // FRONT_FACES, BACK_FACES: a cut object's sides
   std::unique_ptr<OcclusionCulling> culling_;  // of the geometry pass's draws
   mutable std::vector<ObjectCut> layerCuts_;  // this frame's, from its first translucent layer
   mutable int layerGrading_ = 0;  // the same: the slots of the cutters leaving translucent fragments
