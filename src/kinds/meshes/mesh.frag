@@ -37,6 +37,8 @@ layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cu
 layout(binding = UNIT_PEEL_DEPTH) uniform SAMPLER_MS uPeelDepth;
 layout(location = 17) uniform int uFirstLayer;
 #endif
+// MeshKind draws a cut object's front faces and its back faces apart (FRONT_FACES,
+// BACK_FACES): the side is known, and the other side's code folds away.
 #if defined(FRONT_FACES)
 #define FRONT_FACING true
 #elif defined(BACK_FACES)

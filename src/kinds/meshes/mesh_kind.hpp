@@ -6,7 +6,8 @@
 // variant of the program (frame/translucent_layers.hpp). The geometry pass draws the objects
 // the last frame showed first, then those of the rest whose boxes pass the depth test
 // (frame/occlusion_culling.hpp). Objects no cutter cuts are drawn by a variant of the program
-// without the cutters' code (UNCUT), which llvmpipe would otherwise run for their fragments too.
+// without the cutters' code (UNCUT), which llvmpipe would otherwise run for their fragments too;
+// a cut object's front faces, then its back faces, by variants for one side each.
 #pragma once
 
 #include <memory>
