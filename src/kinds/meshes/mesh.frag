@@ -36,6 +36,10 @@ layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cu
 #include "frame/samples.glsl"
 layout(binding = UNIT_PEEL_DEPTH) uniform SAMPLER_MS uPeelDepth;
 layout(location = 17) uniform int uFirstLayer;
+// The previous layer's depth at this sample.
+float peelDepth() {
+  return texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), gl_SampleID).r;
+}
 #endif
 // MeshKind draws a cut object's front faces and its back faces apart (FRONT_FACES,
 // BACK_FACES): the side is known, and the other side's code folds away.
@@ -54,6 +58,11 @@ layout(depth_greater) out float gl_FragDepth;
 #define FRAGMENT_DEPTH gl_FragCoord.z
 #endif
 void main() {
+#if defined(TRANSLUCENT_LAYER) && !defined(CUT_WRITES_DEPTH)
+  // Peeled by the layers before: dropped before any other work (llvmpipe skips the rest of
+  // the shader where a whole block is dropped).
+  if (uFirstLayer == 0 && gl_FragCoord.z <= peelDepth()) discard;
+#endif
   CutFragment f = CutFragment(vWorldPosition, vWorldNormal, FRONT_FACING);
   vec3 cutPosition, cutNormal;
   int cutter;
@@ -74,13 +83,9 @@ void main() {
   s.position = cut ? cutPosition : vWorldPosition;
   s.normal = cut ? cutNormal : FRONT_FACING ? n : -n;  // two-sided: open meshes show their inside
   s.toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - s.position);
-  s.baseColor = cut ? uCutColor[cutter] : FRONT_FACING ? uColor : uBackColor;
-  s.specular = uSpecular;
-  s.shininess = uShininess;
-  s.keyLightVisibility = keyLightVisibility(s.position);
-  vec3 color = emphasize(s.baseColor, shadeSurface(s), uEmphasisImportance);
   // Burns11 ch. 2: occlusion partly reduced by a grading cutter: the opacity of the surface
-  // (x) and of its lines (y); 1 without one.
+  // (x) and of its lines (y); 1 without one. Decided before the shading, which a fragment
+  // dropped here does not need.
   vec2 opacity = cutOpacity(CUT_BY, f, s.normal, s.toEye);
 #ifdef TRANSLUCENT_LAYER
   // Opacity ≥ 1 too: a fragment the opaque pass kept lies at the opaque depth and fails the
@@ -88,13 +93,21 @@ void main() {
   // 1/512 a fragment changes no 8-bit colour: it takes no layer.
   opacity = min(opacity, vec2(1.0, uLines));
   if (!(max(opacity.x, opacity.y) > 1.0 / 512.0)) discard;
-  if (uFirstLayer == 0 &&
-      FRAGMENT_DEPTH <= texelFetch(uPeelDepth, ivec2(gl_FragCoord.xy), gl_SampleID).r)
-    discard;
+#ifdef CUT_WRITES_DEPTH
+  if (uFirstLayer == 0 && FRAGMENT_DEPTH <= peelDepth()) discard;
+#endif
+#else
+  if (opacity.x < 1.0) discard;  // drawn in the translucent layers, or not at all
+#endif
+  s.baseColor = cut ? uCutColor[cutter] : FRONT_FACING ? uColor : uBackColor;
+  s.specular = uSpecular;
+  s.shininess = uShininess;
+  s.keyLightVisibility = keyLightVisibility(s.position);
+  vec3 color = emphasize(s.baseColor, shadeSurface(s), uEmphasisImportance);
+#ifdef TRANSLUCENT_LAYER
   writeGBuffer(s, color, opacity.y, uObjectId, cut, false);  // the lines' weight: their opacity
   outColor = vec4(clamp(color, 0.0, 1.0) * opacity.x, opacity.x);  // premultiplied
 #else
-  if (opacity.x < 1.0) discard;  // drawn in the translucent layers, or not at all
   writeGBuffer(s, color, uLines, uObjectId, cut, false);
   writeCutterChannels(CUT_BY, f);
 #endif

@@ -21,7 +21,10 @@ void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
   }
   culling_ = std::make_unique<OcclusionCulling>(setup_, setup_.translucentLayers);
   if (setup_.translucentLayers)
-    layerProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"TRANSLUCENT_LAYER", "1"}}));
+    for (const auto& [program, side] : {std::pair{&layerFrontProgram_, "FRONT_FACES"},
+                                        std::pair{&layerBackProgram_, "BACK_FACES"}})
+      *program = gl::buildProgram(
+          setup_.geometryProgram(stages, {{"TRANSLUCENT_LAYER", "1"}, {side, "1"}}));
 }
 
 void MeshKind::addPassesAfterGeometry(Frame& frame) {
@@ -141,10 +144,11 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
 
 void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, const GeometryDraw&,
                                     bool first) const {
-  const GLuint program = layerProgram_.id();
+  const GLuint front = layerFrontProgram_.id(), back = layerBackProgram_.id();
   // The cuts and the cutters' program uniforms are the frame's: set once, at the first layer.
   if (first) {
-    for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
+    for (const GLuint program : {front, back})
+      for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
     layerCuts_ = objectCuts(cutters);
     layerGrading_ = 0;
     for (const ActiveCutter& c : cutters)
@@ -154,12 +158,21 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, co
   } else {
     peeledDraws_ += std::size_t(std::count(peeled_.begin(), peeled_.end(), true));
   }
-  glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
-  setup_.meshes.draw(
-      program, [&](const SceneObject&, std::size_t i) { return inLayers(i); },
-      [&](const SceneObject& o, std::size_t i) {
-        setObjectUniforms(program, cutters, layerCuts_[i], o, i);
+  // As the geometry pass's cut objects: front faces, then back faces.
+  glEnable(GL_CULL_FACE);
+  setup_.meshes.forEach(
+      [&](const SceneObject&, std::size_t i) { return inLayers(i); },
+      [&](const SceneObject& o, std::size_t i, const SceneMeshes::DrawWith& drawWith) {
+        for (const auto& [culled, program] :
+             {std::pair{GL_BACK, front}, std::pair{GL_FRONT, back}}) {
+          setObjectUniforms(program, cutters, layerCuts_[i], o, i);
+          glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
+          glCullFace(culled);
+          drawWith(program);
+        }
       });
+  glCullFace(GL_BACK);
+  glDisable(GL_CULL_FACE);
 }
 
 bool MeshKind::inLayers(std::size_t i) const {

@@ -3,7 +3,7 @@
 // order: the secondary objects first, cut; the objects of interest after, whole. An object a
 // cutter clips with hardware clip planes (Diepstraten03 §4.3) is drawn once per plane. The
 // objects a grading cutter cuts are drawn again, for each translucent layer, by the layer
-// variant of the program (frame/translucent_layers.hpp). The geometry pass draws the objects
+// variants of the program (frame/translucent_layers.hpp). The geometry pass draws the objects
 // the last frame showed first, then those of the rest whose boxes pass the depth test
 // (frame/occlusion_culling.hpp). Objects no cutter cuts are drawn by a variant of the program
 // without the cutters' code (UNCUT), which llvmpipe would otherwise run for their fragments too;
@@ -40,7 +40,7 @@ class MeshKind : public GeometryKind {
                          const ObjectCut& cut, const SceneObject& o, std::size_t i) const;
 
   FrameSetup& setup_;
-  gl::Program layerProgram_;
+  gl::Program layerFrontProgram_, layerBackProgram_;  // TRANSLUCENT_LAYER, one side each
   gl::Program uncutProgram_;                   // mesh.frag with UNCUT: the objects no cutter cuts
   gl::Program frontProgram_, backProgram_;     // FRONT_FACES, BACK_FACES: a cut object's sides
   std::unique_ptr<OcclusionCulling> culling_;  // of the geometry pass's draws
