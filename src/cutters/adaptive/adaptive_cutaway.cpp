@@ -57,7 +57,8 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
     cutNormal_ = frame.declare("cutawayCutNormal", {.format = GL_RGBA32F});
   }
   // Both structures' depths (x, y: C; z, w: C₂) or the simple one's alone.
-  atPixel_ = frame.declare("cutawayAtPixel", {.format = transition_ ? GL_RGBA32F : GL_RG32F});
+  atPixel_ =
+      frame.declare("cutawayAtPixel", {.format = GLenum(transition_ ? GL_RGBA32F : GL_RG32F)});
   atPixelUnit_ = setup.bindings.textureUnit("CUTAWAY_AT_PIXEL");
   const int n = surface_.bufferSize();
   seedDepthTest_ =
