@@ -499,13 +499,28 @@ TEST(Frame, MeshesBeyondTheTriangleCapAreRefused) {
   EXPECT_EQ(GpuMesh::kMaxTriangles, std::size_t(1) << 29);
 }
 
-// A scene the device cannot hold is refused with the frame's message, not a broken frame.
-TEST(Frame, TooManySamplesForTheDeviceAreRefusedByTheRenderer) {
+// A scene the device cannot hold is refused at its own keys, not with a broken frame: the
+// samples and the size before any target is made, the targets' memory as the frame finds it.
+TEST(Frame, AFrameTheDeviceCannotHoldIsRefusedAtTheScenesKeys) {
   const gl::ContextInfo device = test::glContext().info();
-  if (device.maxColorSamples >= 16) GTEST_SKIP() << "this device takes 16 samples";
-  const Scene scene = planeScene(16, R"({"eye": [0, 0, -5], "target": [0, 0, 0], "fov": 60})");
-  test::expectError([&] { Renderer renderer(scene, device); },
-                    {"frame: sceneColor: 16 samples exceed the device's"});
+  Scene scene = planeScene(16, R"({"eye": [0, 0, -5], "target": [0, 0, 0], "fov": 60})");
+  scene.file = "plane.json";
+  if (device.maxColorSamples < 16)
+    test::expectError([&] { Renderer renderer(scene, device); },
+                      {"plane.json: /samples: 16 samples exceed the device's " +
+                       std::to_string(device.maxColorSamples) + " (" + device.renderer + ")"});
+  scene.samples = 1;
+  gl::ContextInfo small = device;
+  small.maxTextureSize = 32;
+  test::expectError([&] { Renderer renderer(scene, small); },
+                    {"plane.json: /resolution: 64×48 exceeds the device's largest image, 32 on a "
+                     "side"});
+  scene.file.clear();
+  small.maxColorSamples = small.maxDepthSamples = small.maxIntegerSamples = 2;
+  small.maxTextureSize = device.maxTextureSize;
+  scene.samples = 4;
+  test::expectError([&] { Renderer renderer(scene, small); },
+                    {"scene: /samples: 4 samples exceed the device's 2"});
 }
 
 // On llvmpipe the GL_TIME_ELAPSED queries need a flush after glBeginQuery (gl/timer.cpp);

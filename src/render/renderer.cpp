@@ -25,6 +25,33 @@
 
 namespace cutaway {
 
+namespace {
+
+// The scene's file, or what stands for it in messages (a scene built in code).
+std::string sceneName(const Scene& scene) {
+  return scene.file.empty() ? "scene" : scene.file.string();
+}
+
+// The device's limits on the frame, said at the scene's keys before any target is made (the
+// frame's own checks, the backstop, name only its targets).
+const Scene& withinDeviceLimits(const Scene& scene, const gl::ContextInfo& info) {
+  int most = 0;  // samples every kind of render target takes
+  for (const int m : {info.maxColorSamples, info.maxDepthSamples, info.maxIntegerSamples})
+    if (m > 0) most = most == 0 ? m : std::min(most, m);
+  if (scene.samples > 1 && most > 0 && scene.samples > most)
+    throw Error(sceneName(scene), "/samples",
+                std::to_string(scene.samples) + " samples exceed the device's " +
+                    std::to_string(most) + " (" + info.renderer + ")");
+  if (info.maxTextureSize > 0 && std::max(scene.width, scene.height) > info.maxTextureSize)
+    throw Error(sceneName(scene), "/resolution",
+                std::to_string(scene.width) + "×" + std::to_string(scene.height) +
+                    " exceeds the device's largest image, " + std::to_string(info.maxTextureSize) +
+                    " on a side (" + info.renderer + ")");
+  return scene;
+}
+
+}  // namespace
+
 struct Renderer::Impl {
   Impl(const Scene& scene, const gl::ContextInfo& info)
       : frame(scene.width, scene.height, info), meshes(scene), setup{scene,         info,   frame,
@@ -51,8 +78,8 @@ struct Renderer::Impl {
   Target linesTarget, outlinesTarget, ghostLinesTarget;
 };
 
-Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
-    : scene_(scene), impl_(std::make_unique<Impl>(scene, info)) {
+Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info) try
+    : scene_(scene), impl_(std::make_unique<Impl>(withinDeviceLimits(scene, info), info)) {
   Impl& g = *impl_;
   FrameSetup& setup = g.setup;
   g.frameUniforms = gl::Buffer::create(sizeof(FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -117,6 +144,11 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info)
   for (ActiveCutter& c : g.cutters) c.cutter->prepareGeometryPrograms();
   for (const auto& k : g.kinds) k->prepare(g.cutters);
   g.buildFrame();
+} catch (const Error& e) {
+  // The frame's targets outgrow the device (its memory): a matter of the scene's resolution and
+  // samples, named with its file.
+  if (e.file() != "frame") throw;
+  throw Error(sceneName(scene), "render target " + e.place(), e.reason());
 }
 
 // One frame's passes, in order. The pass graph of renderer.hpp's header comment.
