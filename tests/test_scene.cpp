@@ -162,6 +162,8 @@ const BadScene kBadScenes[] = {
     {"camera_path_eye_equals_target.json", "/camera/path/1/eye", "eye and target coincide"},
     {"camera_path_times_not_increasing.json", "/camera/path/1/time",
      "camera key times must increase"},
+    {"camera_path_times_one_float.json", "/camera/path/1/time",
+     "camera key times must increase: 1e-300 and 0 are one time in 32-bit floats"},
     {"camera_path_key_without_target.json", "/camera/path/0", "missing required key \"target\""},
     {"camera_path_empty.json", "/camera/path", "expected a non-empty array of camera keys"},
     // Style.
@@ -295,6 +297,8 @@ const BadScene kBadScenes[] = {
     // Animation.
     {"animation_times_not_increasing.json", "/objects/0/animation/1/time",
      "keyframe times must increase"},
+    {"animation_times_one_float.json", "/objects/0/animation/1/time",
+     "keyframe times must increase: 1000000 and 999999.99 are one time in 32-bit floats"},
     {"animation_keyframe_without_time.json", "/objects/0/animation/1",
      "missing required key \"time\""},
     {"animation_empty.json", "/objects/0/animation", "expected a non-empty array of keyframes"},

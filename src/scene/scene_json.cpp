@@ -8,6 +8,7 @@
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -86,14 +87,29 @@ ExactTrs readTrs(const Context& ctx, ObjectReader& r) {
   return out;
 }
 
+// The time of key `r`, in [0, 1e6], after the time of the key before it (`previous`, as read):
+// both as the 32-bit floats they are kept in.
+float keyTime(const Context& ctx, ObjectReader& r, std::optional<double>& previous,
+              const std::string& keys) {
+  const double time = number(ctx, r.require("time"), r.at("time"), 0, 1e6);
+  if (previous && !(float(time) > float(*previous))) {
+    std::ostringstream message;
+    message << std::setprecision(10) << keys << " times must increase";
+    if (time > *previous)
+      message << ": " << time << " and " << *previous << " are one time in 32-bit floats";
+    ctx.fail(r.at("time"), message.str());
+  }
+  previous = time;
+  return float(time);
+}
+
 std::vector<Keyframe> animation(const Context& ctx, const json& j, const std::string& ptr) {
   if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected a non-empty array of keyframes");
   std::vector<Keyframe> keys;
+  std::optional<double> previous;
   for (std::size_t i = 0; i < j.size(); ++i) {
     ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
-    const float time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
-    if (!keys.empty() && time <= keys.back().time)
-      ctx.fail(r.at("time"), "keyframe times must increase");
+    const float time = keyTime(ctx, r, previous, "keyframe");
     keys.push_back({time, readTrs(ctx, r).single()});
     r.finish();
   }
@@ -115,12 +131,11 @@ glm::vec3 cameraPoint(const Context& ctx, const json& j, const std::string& ptr)
 std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::string& ptr) {
   if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected a non-empty array of camera keys");
   std::vector<CameraKey> keys;
+  std::optional<double> previous;
   for (std::size_t i = 0; i < j.size(); ++i) {
     ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
     CameraKey k;
-    k.time = float(number(ctx, r.require("time"), r.at("time"), 0, 1e6));
-    if (!keys.empty() && k.time <= keys.back().time)
-      ctx.fail(r.at("time"), "camera key times must increase");
+    k.time = keyTime(ctx, r, previous, "camera key");
     k.eye = cameraPoint(ctx, r.require("eye"), r.at("eye"));
     k.target = cameraPoint(ctx, r.require("target"), r.at("target"));
     if (glm::length(k.eye - k.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
