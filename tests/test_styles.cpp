@@ -284,6 +284,26 @@ TEST(ShadowRender, PointLightShadowMatchesTheRayBoxTest) {
   EXPECT_EQ(c.wrongShadowed, 0) << "lit pixels rendered shadowed (acne or a shifted shadow)";
 }
 
+// A point light far beyond the scene casts as the directional light along its axis does: at
+// 3e7 units its perspective map held the scene within one float step of that distance, and
+// the ground rendered all dark.
+TEST(ShadowRender, AFarPointLightShadowMatchesTheRayBoxTest) {
+  Scene scene = boxShadowScene();
+  Light& light = scene.lights[0];
+  light.type = Light::Type::Point;
+  light.position = -3e7f * glm::normalize(light.direction);
+  const ShadowCount c = countShadows(scene);
+  EXPECT_GT(c.shadowed, 100);
+  EXPECT_GT(c.lit, 2000);
+  EXPECT_EQ(c.wrongLit, 0) << "shadowed pixels rendered lit";
+  EXPECT_EQ(c.wrongShadowed, 0) << "lit pixels rendered shadowed";
+  const LightFrustum far = keyLightFrustum(glm::vec4(light.position, 1.0f), scene.bounds());
+  EXPECT_TRUE(far.orthographic);
+  const LightFrustum near =
+      keyLightFrustum(glm::vec4(light.position * 1e-4f, 1.0f), scene.bounds());
+  EXPECT_FALSE(near.orthographic);
+}
+
 TEST(ShadowRender, CastersFollowRoleAndCastsShadow) {
   {
     Scene scene = boxShadowScene();

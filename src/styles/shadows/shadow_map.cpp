@@ -21,6 +21,11 @@ glm::vec3 upFor(const glm::vec3& d) {
 LightFrustum keyLightFrustum(const glm::vec4& lightVector, const Bounds& bounds) {
   const glm::vec3 center = bounds.center();
   const float radius = std::max(bounds.radius(), 1e-6f);
+  // A point light beyond 1e4 radii shines on the scene in parallel to within 1e-4 rad, and a
+  // perspective map from it would hold the scene within a few float steps of its distance
+  // (two units at 3e7): it casts as the directional light along its axis.
+  if (lightVector.w != 0.0f && glm::length(glm::vec3(lightVector) - center) > 1e4f * radius)
+    return keyLightFrustum(glm::vec4(center - glm::vec3(lightVector), 0.0f), bounds);
   LightFrustum f{};
   if (lightVector.w == 0.0f) {
     // Directional: an orthographic box around the bounds' corners in light view space, so the
