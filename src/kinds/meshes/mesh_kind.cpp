@@ -9,6 +9,18 @@ namespace {
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
                 kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kImportance = 16, kFirstLayer = 17,
                 kClipPlane = 18, kCutColor = 24;
+// A cut object's front faces by `front`, then its back faces by `back` (mesh.frag's
+// FRONT_FACES, BACK_FACES), `prepare` setting each program's uniforms before it draws.
+void drawSides(GLuint front, GLuint back, const SceneMeshes::DrawWith& drawWith,
+               const std::function<void(GLuint)>& prepare) {
+  glEnable(GL_CULL_FACE);
+  for (const auto& [culled, program] : {std::pair{GL_BACK, front}, std::pair{GL_FRONT, back}}) {
+    prepare(program);
+    glCullFace(culled);
+    drawWith(program);
+  }
+}
+
 }  // namespace
 
 void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
@@ -84,14 +96,10 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
       drawWith(uncutProgram_.id());
       return;
     }
-    glEnable(GL_CULL_FACE);
-    for (const auto& [culled, program] :
-         {std::pair{GL_BACK, frontProgram_.id()}, std::pair{GL_FRONT, backProgram_.id()}}) {
+    drawSides(frontProgram_.id(), backProgram_.id(), drawWith, [&](GLuint program) {
       setObjectUniforms(program, cutters, cuts[i], o, i);
       perProgram(program);
-      glCullFace(culled);
-      drawWith(program);
-    }
+    });
   };
   const auto noMore = [](GLuint) {};
   // The objects of `batch` (frame/occlusion_culling.hpp), in the order below.
@@ -158,18 +166,15 @@ void MeshKind::drawTranslucentLayer(const std::vector<ActiveCutter>& cutters, co
   } else {
     peeledDraws_ += std::size_t(std::count(peeled_.begin(), peeled_.end(), true));
   }
+  for (const GLuint program : {front, back})
+    glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
   // As the geometry pass's cut objects: front faces, then back faces.
-  glEnable(GL_CULL_FACE);
   setup_.meshes.forEach(
       [&](const SceneObject&, std::size_t i) { return inLayers(i); },
       [&](const SceneObject& o, std::size_t i, const SceneMeshes::DrawWith& drawWith) {
-        for (const auto& [culled, program] :
-             {std::pair{GL_BACK, front}, std::pair{GL_FRONT, back}}) {
+        drawSides(front, back, drawWith, [&](GLuint program) {
           setObjectUniforms(program, cutters, layerCuts_[i], o, i);
-          glProgramUniform1i(program, kFirstLayer, first ? 1 : 0);
-          glCullFace(culled);
-          drawWith(program);
-        }
+        });
       });
   glCullFace(GL_BACK);
   glDisable(GL_CULL_FACE);
