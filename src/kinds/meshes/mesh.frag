@@ -53,9 +53,6 @@ float peelDepth() {
 #ifdef CUT_WRITES_DEPTH
 // A cut surface behind the fragment (cutters/composition.glsl) moves it back, never forward.
 layout(depth_greater) out float gl_FragDepth;
-#define FRAGMENT_DEPTH gCutFragDepth
-#else
-#define FRAGMENT_DEPTH gl_FragCoord.z
 #endif
 void main() {
 #if defined(TRANSLUCENT_LAYER) && !defined(CUT_WRITES_DEPTH)
@@ -94,7 +91,8 @@ void main() {
   opacity = min(opacity, vec2(1.0, uLines));
   if (!(max(opacity.x, opacity.y) > 1.0 / 512.0)) discard;
 #ifdef CUT_WRITES_DEPTH
-  if (uFirstLayer == 0 && FRAGMENT_DEPTH <= peelDepth()) discard;
+  // Where a cut moves the fragment back, the depth to peel by is known only now.
+  if (uFirstLayer == 0 && gCutFragDepth <= peelDepth()) discard;
 #endif
 #else
   if (opacity.x < 1.0) discard;  // drawn in the translucent layers, or not at all
