@@ -145,17 +145,22 @@ std::vector<Target> AdaptiveCutaway::geometryInputs() const {
   return inputs;
 }
 
-void AdaptiveCutaway::bindForGeometry() const {
+void AdaptiveCutaway::bindSurfaces() const {
   glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
   glBindTextureUnit(dilatedUnit_, setup_.frame.texture(surface_.cutawayDilated()).id());
+  if (!transition_) return;
+  glBindTextureUnit(transitionDepthUnit_, setup_.frame.texture(transition_->cutawayDepth()).id());
+  glBindTextureUnit(transitionDilatedUnit_,
+                    setup_.frame.texture(transition_->cutawayDilated()).id());
+}
+
+void AdaptiveCutaway::bindForGeometry() const {
+  bindSurfaces();
   glBindTextureUnit(atPixelUnit_, setup_.frame.texture(atPixel_).id());
   if (cutPosition_.valid()) {
     glBindTextureUnit(cutPositionUnit_, setup_.frame.texture(cutPosition_).id());
     glBindTextureUnit(cutNormalUnit_, setup_.frame.texture(cutNormal_).id());
   }
-  if (!transition_) return;
-  glBindTextureUnit(transitionDepthUnit_, setup_.frame.texture(transition_->cutawayDepth()).id());
-  glBindTextureUnit(transitionDilatedUnit_, setup_.frame.texture(transition_->cutawayDilated()).id());
 }
 
 int AdaptiveCutaway::translucentLayers() const {
@@ -251,13 +256,7 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
 void AdaptiveCutaway::drawAtPixel() const {
   glDisable(GL_DEPTH_TEST);
   glUseProgram(programs_->atPixel.id());
-  glBindTextureUnit(depthUnit_, setup_.frame.texture(surface_.cutawayDepth()).id());
-  glBindTextureUnit(dilatedUnit_, setup_.frame.texture(surface_.cutawayDilated()).id());
-  if (transition_) {
-    glBindTextureUnit(transitionDepthUnit_, setup_.frame.texture(transition_->cutawayDepth()).id());
-    glBindTextureUnit(transitionDilatedUnit_,
-                      setup_.frame.texture(transition_->cutawayDilated()).id());
-  }
+  bindSurfaces();
   programs_->fullscreen.draw();
 }
 

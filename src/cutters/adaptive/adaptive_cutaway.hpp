@@ -53,6 +53,8 @@ class AdaptiveCutaway : public Cutter {
   }
   void drawGhostGeometry(GLuint framebuffer) const;
   void drawAtPixel() const;
+  // C and its dilation, and C₂'s, at their texture units (clip.glsl's samplers).
+  void bindSurfaces() const;
   // Burns11 §7.2: whether R = Ω (the objects it cuts are not ranked by importance).
   bool reductionIsOcclusion() const;
 
