@@ -200,7 +200,7 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   // (no cut at this pixel) it is an ordinary inside view of an open mesh.
   if (frontFacing || c <= 0.0) return kKeep;
 #ifdef UNIT_CUTAWAY_CUT_POSITION
-  // Worked out once per pixel (cut_surface.frag): every fragment here lies at a pixel centre.
+  // Worked out once per pixel (at_pixel.frag): every fragment here lies at a pixel centre.
   ivec2 pixel = clamp(ivec2(CUT_FRAG_COORD.xy), ivec2(0), textureSize(uCutPosition, 0) - 1);
   cutPosition = texelFetch(uCutPosition, pixel, 0).xyz;
   cutNormal = texelFetch(uCutNormal, pixel, 0).xyz;
