@@ -298,7 +298,7 @@ const BadScene kBadScenes[] = {
     {"animation_times_not_increasing.json", "/objects/0/animation/1/time",
      "keyframe times must increase"},
     {"animation_times_one_float.json", "/objects/0/animation/1/time",
-     "keyframe times must increase: 1000000 and 999999.99 are one time in 32-bit floats"},
+     "keyframe times must increase: 1e+06 and 999999.99 are one time in 32-bit floats"},
     {"animation_keyframe_without_time.json", "/objects/0/animation/1",
      "missing required key \"time\""},
     {"animation_empty.json", "/objects/0/animation", "expected a non-empty array of keyframes"},

@@ -2,13 +2,13 @@
 // the JSON pointer and the reason; unknown keys are errors.
 #include <algorithm>
 #include <any>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
-#include <iomanip>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -93,11 +93,16 @@ float keyTime(const Context& ctx, ObjectReader& r, std::optional<double>& previo
               const std::string& keys) {
   const double time = number(ctx, r.require("time"), r.at("time"), 0, 1e6);
   if (previous && !(float(time) > float(*previous))) {
-    std::ostringstream message;
-    message << std::setprecision(10) << keys << " times must increase";
+    std::string message = keys + " times must increase";
+    // Each number as its shortest exact form, so that the two always read apart.
+    const auto shortest = [](double v) {
+      char text[32];
+      return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
+    };
     if (time > *previous)
-      message << ": " << time << " and " << *previous << " are one time in 32-bit floats";
-    ctx.fail(r.at("time"), message.str());
+      message +=
+          ": " + shortest(time) + " and " + shortest(*previous) + " are one time in 32-bit floats";
+    ctx.fail(r.at("time"), message);
   }
   previous = time;
   return float(time);
