@@ -347,6 +347,17 @@ RowKernel rowKernel(bool directional, [[maybe_unused]] JumpFloodingKernel choice
   return directional ? floodRowScalar<true> : floodRowScalar<false>;
 }
 
+// The i-th row a step of size k computes: the rows y ≡ 0 (mod k) bottom to top, then y ≡ 1,
+// and so on. Row y reads rows y − k, y and y + k, so in this order each input row is read three
+// times in a row, not k rows apart: at 1024² the directional state (56 MB) exceeds the cache,
+// and the large steps ran from memory.
+int rowInStepOrder(int i, int h, int k) {
+  const int q = h / k, longResidues = h % k;  // residues below h % k have q + 1 rows, others q
+  if (i < longResidues * (q + 1)) return i / (q + 1) + i % (q + 1) * k;
+  const int rest = i - longResidues * (q + 1);
+  return longResidues + rest / q + rest % q * k;
+}
+
 // Every seed starts as its own anchor, at distance 0 (jfa_init.frag); other pixels have none.
 // One simple loop per array, for the vectoriser.
 void initialiseRow(const SeedImage& s, const OutRow& o, int y, bool directional) {
@@ -400,6 +411,13 @@ void finishRow(const InRow& r, int width, int y, float nearDepth, CutawayField& 
 
 CutawayField jumpFlooding(const SeedImage& seeds, float nearDepth, JumpFloodingVariant variant,
                           int threads, JumpFloodingKernel kernelChoice) {
+  CutawayField f;
+  jumpFlooding(seeds, nearDepth, f, variant, threads, kernelChoice);
+  return f;
+}
+
+void jumpFlooding(const SeedImage& seeds, float nearDepth, CutawayField& f,
+                  JumpFloodingVariant variant, int threads, JumpFloodingKernel kernelChoice) {
   const int w = seeds.width, h = seeds.height;
   assert(w > 0 && h > 0 && w <= 65536 && h <= 65536 && "anchors are packed in 16 + 16 bits");
   assert(std::size_t(w) * std::size_t(h) <= std::size_t(std::numeric_limits<int>::max()));
@@ -421,10 +439,9 @@ CutawayField jumpFlooding(const SeedImage& seeds, float nearDepth, JumpFloodingV
   thread_local Workspace workspace;
   workspace.reserve(n);
   const AnchorBuffer* buffers = workspace.buffers;
-  CutawayField f;
   f.width = w;
   f.height = h;
-  f.depth.resize(n);
+  f.depth.resize(n);  // every element is written by finishRow()
   f.anchor.resize(n);
 
   // Phase 0 initialises buffer 0, phase s + 1 runs step s from buffer s % 2 into the other;
@@ -463,8 +480,8 @@ CutawayField jumpFlooding(const SeedImage& seeds, float nearDepth, JumpFloodingV
   auto work = [&] {
     for (int phase = 0; phase < phases; ++phase) {
       for (int chunk; (chunk = nextChunk[std::size_t(phase)].fetch_add(1)) < rowChunks;)
-        for (int y = chunk * kRowsPerChunk; y < std::min(h, (chunk + 1) * kRowsPerChunk); ++y)
-          runRow(phase, y);
+        for (int i = chunk * kRowsPerChunk; i < std::min(h, (chunk + 1) * kRowsPerChunk); ++i)
+          runRow(phase, phase == 0 ? i : rowInStepOrder(i, h, steps[std::size_t(phase - 1)]));
       phaseDone.arrive_and_wait();
     }
   };
@@ -477,7 +494,6 @@ CutawayField jumpFlooding(const SeedImage& seeds, float nearDepth, JumpFloodingV
     for (int i = int(helpers.size()) + 1; i < workers; ++i) phaseDone.arrive_and_drop();
   }
   work();
-  return f;
 }
 
 }  // namespace cutaway::fields
