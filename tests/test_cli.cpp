@@ -93,6 +93,40 @@ TEST(Cli, AovRoundTripMatchesTheCamera) {
     }
 }
 
+// A disk that fills part way through an AOV folder (here a 200 KB file-size limit: the 3-channel
+// AOVs at 200×150 are 360 KB) leaves the folder as it was, or no folder, never new images beside
+// an old index or temporaries.
+TEST(Cli, AnAovFolderIsWrittenWholeOrNotAtAll) {
+  const std::string scene = kData + "/render/plane-facing.json";
+  const fs::path dir = scratch("whole-aovs"), fresh = scratch("no-aovs");
+  ASSERT_EQ(
+      run("render " + scene + " -o " + scratch("whole.png").string() + " --aov " + dir.string())
+          .exitCode,
+      0);
+  const auto contents = [](const fs::path& folder) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+      std::ifstream is(entry.path(), std::ios::binary);
+      files[entry.path().filename().string()].assign(std::istreambuf_iterator<char>(is), {});
+    }
+    return files;
+  };
+  const auto before = contents(dir);
+  ASSERT_TRUE(before.count("aovs.json"));
+  ASSERT_TRUE(before.count("normal.pfm"));
+  for (const fs::path& target : {dir, fresh}) {
+    // SIGXFSZ ignored: the write fails with EFBIG, as a full disk fails with ENOSPC.
+    const Result r =
+        test::runCommand("bash -c \"trap '' XFSZ; ulimit -f 200; " + kBinary + " render " + scene +
+                         " --size 200x150 -o " + scratch("limited.png").string() + " --aov " +
+                         target.string() + "\"");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find(".pfm"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(contents(dir), before);
+  EXPECT_FALSE(fs::exists(fresh));
+}
+
 TEST(Cli, InfoPrintsObjectsAndWatertightness) {
   const Result r = run("info " + kSource + "/examples/fan-room.json");
   ASSERT_EQ(r.exitCode, 0) << r.err;

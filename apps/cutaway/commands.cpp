@@ -227,10 +227,20 @@ void checkFolderOf(const std::string& file) {
   if (::access(folder.c_str(), W_OK) != 0) throw Error(file, "", "the folder is not writable");
 }
 
+// An AOV folder this run made: removed again at the end if it is still empty (the run failed
+// before writing a frame's AOVs; writeAovs() writes a frame's folder whole or not at all).
+struct MadeFolder {
+  std::filesystem::path dir;
+  ~MadeFolder() {
+    std::error_code ignored;
+    if (!dir.empty()) std::filesystem::remove(dir, ignored);  // removes empty folders only
+  }
+};
+
 // The outputs checked before anything is rendered, so that a bad one leaves no file behind:
 // a PNG name (no other format is written) and an SVG name in folders that take them, an AOV
-// folder that is one or can be made.
-void checkOutputs(const RenderOptions& options) {
+// folder that is one or can be made (returned when made).
+std::filesystem::path checkOutputs(const RenderOptions& options) {
   const std::filesystem::path out(options.output);
   if (options.output.empty()) throw Error("--output", "", "the file name is empty");
   std::error_code ec;
@@ -249,7 +259,7 @@ void checkOutputs(const RenderOptions& options) {
       throw Error(options.svg, "", "is a directory, not a file name");
     checkFolderOf(options.svg);
   }
-  if (options.aovDir.empty()) return;
+  if (options.aovDir.empty()) return {};
   const std::filesystem::path dir(options.aovDir);
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
     throw Error(options.aovDir, "", "--aov needs a directory; this is a file");
@@ -260,10 +270,11 @@ void checkOutputs(const RenderOptions& options) {
     if (made) std::filesystem::remove(dir, ec);
     throw Error(options.aovDir, "", "the AOV directory is not writable");
   }
+  return made ? dir : std::filesystem::path();
 }
 
 int render(const RenderOptions& options) {
-  checkOutputs(options);
+  const MadeFolder aovFolder{checkOutputs(options)};
   Scene scene = sceneOrCity(options.scene, options.city, "render");
   applyOverrides(scene, options.overrides);
   warnAboutFarCoordinates(scene);

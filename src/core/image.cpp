@@ -126,20 +126,22 @@ float sampleRepeat(const FloatImage& image, float u, float v, int c) {
 }
 
 void writePfm(const std::filesystem::path& path, const FloatImage& image) {
+  writeFileAtomically(path, [&](std::ostream& os) { writePfm(os, image, path); });
+}
+
+void writePfm(std::ostream& os, const FloatImage& image, const std::filesystem::path& path) {
   if (image.channels != 1 && image.channels != 3)
     throw Error(path.string(), "",
                 "PFM holds 1 or 3 channels, not " + std::to_string(image.channels));
-  writeFileAtomically(path, [&](std::ostream& os) {
-    // Negative scale marks little-endian data.
-    os << (image.channels == 3 ? "PF" : "Pf") << "\n"
-       << image.width << " " << image.height << "\n-1.0\n";
-    const std::size_t row = std::size_t(image.width) * image.channels;
-    for (int y = image.height - 1; y >= 0; --y) {
-      const float* p = image.data.data() + std::size_t(y) * row;
-      static_assert(std::endian::native == std::endian::little);
-      os.write(reinterpret_cast<const char*>(p), std::streamsize(row * sizeof(float)));
-    }
-  });
+  // Negative scale marks little-endian data.
+  os << (image.channels == 3 ? "PF" : "Pf") << "\n"
+     << image.width << " " << image.height << "\n-1.0\n";
+  const std::size_t row = std::size_t(image.width) * image.channels;
+  for (int y = image.height - 1; y >= 0; --y) {
+    const float* p = image.data.data() + std::size_t(y) * row;
+    static_assert(std::endian::native == std::endian::little);
+    os.write(reinterpret_cast<const char*>(p), std::streamsize(row * sizeof(float)));
+  }
 }
 
 FloatImage readPfm(const std::filesystem::path& path) {

@@ -38,7 +38,7 @@ std::vector<Aov> readFrameAovs(const Frame& frame) {
 void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
                float aspect) {
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
+  const bool created = std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir.string(), "", "cannot create AOV directory: " + ec.message());
   nlohmann::json index;
   index["camera"] = {
@@ -54,9 +54,11 @@ void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, c
       {"projectionMatrix", matrixRows(camera.projectionMatrix(aspect))}};
   index["rowOrder"] = "PFM files store rows bottom to top, as the format requires";
   nlohmann::json list = nlohmann::json::array();
+  std::vector<std::pair<std::filesystem::path, FileWriter>> files;
   for (const auto& aov : aovs) {
     const std::string file = aov.name + ".pfm";
-    writePfm(dir / file, aov.image);
+    files.emplace_back(
+        dir / file, [&aov, path = dir / file](std::ostream& os) { writePfm(os, aov.image, path); });
     nlohmann::json entry = {{"name", aov.name},
                             {"file", file},
                             {"width", aov.image.width},
@@ -67,7 +69,15 @@ void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, c
     list.push_back(std::move(entry));
   }
   index["aovs"] = list;
-  writeFileAtomically(dir / "aovs.json", [&](std::ostream& os) { os << index.dump(2) << "\n"; });
+  files.emplace_back(dir / "aovs.json", [&](std::ostream& os) { os << index.dump(2) << "\n"; });
+  // All or nothing (a full disk must not leave new images beside an old index), and no empty
+  // folder left behind.
+  try {
+    writeFilesAtomically(files);
+  } catch (...) {
+    if (created) std::filesystem::remove(dir, ec);
+    throw;
+  }
 }
 
 }  // namespace cutaway

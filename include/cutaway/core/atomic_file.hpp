@@ -9,11 +9,19 @@
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <utility>
+#include <vector>
 
 namespace cutaway {
 
-void writeFileAtomically(const std::filesystem::path& path,
-                         const std::function<void(std::ostream&)>& write);
+using FileWriter = std::function<void(std::ostream&)>;
+
+void writeFileAtomically(const std::filesystem::path& path, const FileWriter& write);
+
+// Several files replaced together (a folder of AOVs and its index): every content goes to its
+// temporary first, and only when all were written are they renamed over their paths, in the
+// order given (renames within a folder need no space). A failure leaves every path as it was.
+void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, FileWriter>>& files);
 
 // For writers that need a path (C libraries): `write` receives the temporary path.
 void replaceFileAtomically(const std::filesystem::path& path,

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <ostream>
 #include <vector>
 
 namespace cutaway {
@@ -56,6 +57,8 @@ float sampleRepeat(const FloatImage& image, float u, float v, int c = 0);
 // Portable float map: 1 channel ("Pf") or 3 channels ("PF"), little-endian, rows stored
 // bottom to top on disk as the format requires.
 void writePfm(const std::filesystem::path& path, const FloatImage& image);
+// The same into a stream; errors name `path`.
+void writePfm(std::ostream& os, const FloatImage& image, const std::filesystem::path& path);
 FloatImage readPfm(const std::filesystem::path& path);
 
 }  // namespace cutaway
