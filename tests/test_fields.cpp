@@ -369,7 +369,8 @@ TEST(JumpFlooding, SameAlgorithmAsTheShader) {
 // thread runs it: results are identical bit for bit.
 TEST(JumpFlooding, ThreadCountDoesNotChangeTheResult) {
   for (bool directional : {false, true})
-    for (JumpFloodingKernel kernel : {JumpFloodingKernel::automatic, JumpFloodingKernel::scalar}) {
+    for (JumpFloodingKernel kernel :
+         {JumpFloodingKernel::automatic, JumpFloodingKernel::avx2, JumpFloodingKernel::scalar}) {
       const SeedImage s = randomSeeds(100, 37, 11, directional);
       const CutawayField one = jumpFlooding(s, kNear, JumpFloodingVariant::jfaPlus1, 1, kernel);
       for (int threads : {2, 3, 7, 0}) {
@@ -398,6 +399,26 @@ TEST(JumpFlooding, AReusedFieldHoldsTheFreshResult) {
       EXPECT_EQ(reused.anchor, fresh.anchor) << w << "×" << h;
     }
   }
+}
+
+// The AVX-512 kernel (16 lanes) and the AVX2 one (8) run the same operations per lane: the same
+// bits, also in the partial vectors at the rows' ends and around the neighbours' edges.
+TEST(JumpFlooding, VectorKernelsAgreeBitForBit) {
+#if defined(__x86_64__) || defined(__i386__)
+  if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512dq"))
+    GTEST_SKIP() << "this processor has no AVX-512: both run the AVX2 kernel";
+#else
+  GTEST_SKIP() << "no vector kernels on this processor";
+#endif
+  for (bool directional : {false, true})
+    for (auto [w, h] : {std::pair{101, 37}, std::pair{16, 70}, std::pair{5, 9}}) {
+      const SeedImage s = randomSeeds(w, h, 13, directional);
+      const CutawayField wide = jumpFlooding(s, kNear, JumpFloodingVariant::jfaPlus2, 1);
+      const CutawayField narrow =
+          jumpFlooding(s, kNear, JumpFloodingVariant::jfaPlus2, 1, JumpFloodingKernel::avx2);
+      EXPECT_EQ(wide.depth, narrow.depth) << w << "×" << h << (directional ? ", directional" : "");
+      EXPECT_EQ(wide.anchor, narrow.anchor) << w << "×" << h;
+    }
 }
 
 // The AVX2 kernel (where the machine has it) and the scalar one evaluate the same formula;

@@ -6,11 +6,12 @@
 //
 // Speed (bench/bench_fields.cpp): a pixel's state is its anchor's whole cone (position, z,
 // slopes, floor direction) plus that cone's depth at the pixel, in structure-of-arrays rows,
-// so the candidates of 8 adjacent pixels are 8 contiguous, shifted row loads (no gathers) and
+// so the candidates of adjacent pixels are contiguous, shifted row loads (no gathers) and
 // the pixel's own anchor needs no evaluation (c(p, a) depends on p and a only: the previous
-// step computed it). An AVX2 + FMA kernel, chosen at run time, evaluates 8 pixels at once;
-// other machines run the scalar kernel. Rows are shared out to threads in chunks; a pixel is
-// always computed by the same code, so the result does not depend on the number of threads.
+// step computed it). A vector kernel (jump_flooding_simd.inc), chosen at run time, evaluates
+// 16 pixels at once with AVX-512 or 8 with AVX2; other machines run the scalar kernel. Rows are
+// shared out to threads in chunks; a pixel is always computed by the same code, so the result does
+// not depend on the number of threads.
 #include <algorithm>
 #include <atomic>
 #include <barrier>
@@ -27,11 +28,10 @@
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
+// The vector kernels are compiled for their instruction sets whatever the build's baseline
+// (target attributes; GCC's target_clones cannot hold these intrinsics) and run only after
+// the run-time check in rowKernel().
 #define CUTAWAY_FIELDS_X86 1
-// Compiles a function for AVX2 + FMA whatever the build's baseline; it only runs after the
-// run-time check in rowKernel(). (GCC's target_clones cannot hold these intrinsics.)
-#define CUTAWAY_AVX2 __attribute__((target("avx2,fma")))
-#define CUTAWAY_AVX2_INLINE __attribute__((target("avx2,fma"), always_inline)) inline
 #endif
 
 namespace cutaway::fields {
@@ -169,169 +169,117 @@ void floodRowScalar(const RowTask& t) {
   }
 }
 
-// ---- AVX2 kernel -----------------------------------------------------------------------
+// ---- vector kernels (jump_flooding_simd.inc) -------------------------------------------
 
 #if CUTAWAY_FIELDS_X86
 
-// 8 values from p, or those of the lanes set in mask (a segment's last, partial vector).
-template <bool kMasked>
-CUTAWAY_AVX2_INLINE __m256 load8(const float* p, __m256i mask) {
-  if constexpr (kMasked)
-    return _mm256_maskload_ps(p, mask);
-  else
-    return _mm256_loadu_ps(p);
-}
-template <bool kMasked>
-CUTAWAY_AVX2_INLINE __m256 load8(const std::int32_t* p, __m256i mask) {
-  return load8<kMasked>(reinterpret_cast<const float*>(p), mask);  // the bits, for blending
-}
-template <bool kMasked>
-CUTAWAY_AVX2_INLINE void store8(float* p, __m256i mask, __m256 v) {
-  if constexpr (kMasked)
-    _mm256_maskstore_ps(p, mask, v);
-  else
-    _mm256_storeu_ps(p, v);
-}
-template <bool kMasked>
-CUTAWAY_AVX2_INLINE void store8(std::int32_t* p, __m256i mask, __m256 v) {
-  store8<kMasked>(reinterpret_cast<float*>(p), mask, v);
-}
+namespace avx2 {
 
-// The state of 8 adjacent pixels.
-struct Lanes {
-  __m256 depth, anchor, z, slopeLow, slopeDelta, floorX, floorY;
+#define CUTAWAY_SIMD_INLINE __attribute__((target("avx2,fma"), always_inline)) inline
+#define CUTAWAY_SIMD_FUNCTION __attribute__((target("avx2,fma")))
+// 8 lanes; a mask is a compare's result, lanes of all ones or zeros.
+struct Simd {
+  static constexpr int kWidth = 8;
+  using F = __m256;
+  using Mask = __m256;
+  using Tail = __m256i;  // the lanes a partial vector loads and stores
+  static CUTAWAY_SIMD_INLINE Tail tail(int lanes) {
+    return _mm256_cmpgt_epi32(_mm256_set1_epi32(lanes), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
+  }
+  static CUTAWAY_SIMD_INLINE F load(const float* p) { return _mm256_loadu_ps(p); }
+  static CUTAWAY_SIMD_INLINE F load(const float* p, Tail t) { return _mm256_maskload_ps(p, t); }
+  static CUTAWAY_SIMD_INLINE void store(float* p, F v) { _mm256_storeu_ps(p, v); }
+  static CUTAWAY_SIMD_INLINE void store(float* p, Tail t, F v) { _mm256_maskstore_ps(p, t, v); }
+  static CUTAWAY_SIMD_INLINE F set1(float v) { return _mm256_set1_ps(v); }
+  static CUTAWAY_SIMD_INLINE F iota() {
+    return _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
+  }
+  static CUTAWAY_SIMD_INLINE F zero() { return _mm256_setzero_ps(); }
+  static CUTAWAY_SIMD_INLINE F add(F a, F b) { return _mm256_add_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F sub(F a, F b) { return _mm256_sub_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F mul(F a, F b) { return _mm256_mul_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F fmadd(F a, F b, F c) { return _mm256_fmadd_ps(a, b, c); }
+  static CUTAWAY_SIMD_INLINE F fnmadd(F a, F b, F c) { return _mm256_fnmadd_ps(a, b, c); }
+  static CUTAWAY_SIMD_INLINE F fnmsub(F a, F b, F c) { return _mm256_fnmsub_ps(a, b, c); }
+  static CUTAWAY_SIMD_INLINE F sqrt(F a) { return _mm256_sqrt_ps(a); }
+  static CUTAWAY_SIMD_INLINE F min(F a, F b) { return _mm256_min_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F max(F a, F b) { return _mm256_max_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F abs(F a) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a); }
+  // An anchor's packed position (x | y << 16, in the bits of a float) as floats.
+  static CUTAWAY_SIMD_INLINE F anchorX(F a) {
+    return _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_castps_si256(a), _mm256_set1_epi32(0xFFFF)));
+  }
+  static CUTAWAY_SIMD_INLINE F anchorY(F a) {
+    return _mm256_cvtepi32_ps(_mm256_srli_epi32(_mm256_castps_si256(a), 16));
+  }
+  static CUTAWAY_SIMD_INLINE Mask greater(F a, F b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
+  static CUTAWAY_SIMD_INLINE bool none(Mask m) { return _mm256_movemask_ps(m) == 0; }
+  static CUTAWAY_SIMD_INLINE F select(Mask m, F unset, F set) {
+    return _mm256_blendv_ps(unset, set, m);
+  }
+  static CUTAWAY_SIMD_INLINE F selectBySign(F sign, F positive, F negative) {
+    return _mm256_blendv_ps(positive, negative, sign);  // reads the sign bits
+  }
 };
+#include "jump_flooding_simd.inc"
+#undef CUTAWAY_SIMD_INLINE
+#undef CUTAWAY_SIMD_FUNCTION
 
-// The pixels' coordinates and the view-plane units, the same for all candidates.
-struct Pixels {
-  __m256 x, y, unitX, unitY;
+}  // namespace avx2
+
+// Zen 5 and recent Intel processors run 16 lanes at the cost of 8 and hold the whole state in
+// their 32 registers (the 8-lane directional kernel spills).
+namespace avx512 {
+
+#define CUTAWAY_SIMD_INLINE __attribute__((target("avx512f,avx512dq,fma"), always_inline)) inline
+#define CUTAWAY_SIMD_FUNCTION __attribute__((target("avx512f,avx512dq,fma")))
+struct Simd {
+  static constexpr int kWidth = 16;
+  using F = __m512;
+  using Mask = __mmask16;
+  using Tail = __mmask16;
+  static CUTAWAY_SIMD_INLINE Tail tail(int lanes) { return Tail((1u << lanes) - 1u); }
+  static CUTAWAY_SIMD_INLINE F load(const float* p) { return _mm512_loadu_ps(p); }
+  static CUTAWAY_SIMD_INLINE F load(const float* p, Tail t) { return _mm512_maskz_loadu_ps(t, p); }
+  static CUTAWAY_SIMD_INLINE void store(float* p, F v) { _mm512_storeu_ps(p, v); }
+  static CUTAWAY_SIMD_INLINE void store(float* p, Tail t, F v) { _mm512_mask_storeu_ps(p, t, v); }
+  static CUTAWAY_SIMD_INLINE F set1(float v) { return _mm512_set1_ps(v); }
+  static CUTAWAY_SIMD_INLINE F iota() {
+    return _mm512_set_ps(15.0f, 14.0f, 13.0f, 12.0f, 11.0f, 10.0f, 9.0f, 8.0f, 7.0f, 6.0f, 5.0f,
+                         4.0f, 3.0f, 2.0f, 1.0f, 0.0f);
+  }
+  static CUTAWAY_SIMD_INLINE F zero() { return _mm512_setzero_ps(); }
+  static CUTAWAY_SIMD_INLINE F add(F a, F b) { return _mm512_add_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F sub(F a, F b) { return _mm512_sub_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F mul(F a, F b) { return _mm512_mul_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F fmadd(F a, F b, F c) { return _mm512_fmadd_ps(a, b, c); }
+  static CUTAWAY_SIMD_INLINE F fnmadd(F a, F b, F c) { return _mm512_fnmadd_ps(a, b, c); }
+  static CUTAWAY_SIMD_INLINE F fnmsub(F a, F b, F c) { return _mm512_fnmsub_ps(a, b, c); }
+  static CUTAWAY_SIMD_INLINE F sqrt(F a) { return _mm512_sqrt_ps(a); }
+  static CUTAWAY_SIMD_INLINE F min(F a, F b) { return _mm512_min_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F max(F a, F b) { return _mm512_max_ps(a, b); }
+  static CUTAWAY_SIMD_INLINE F abs(F a) { return _mm512_abs_ps(a); }
+  static CUTAWAY_SIMD_INLINE F anchorX(F a) {
+    return _mm512_cvtepi32_ps(_mm512_and_si512(_mm512_castps_si512(a), _mm512_set1_epi32(0xFFFF)));
+  }
+  static CUTAWAY_SIMD_INLINE F anchorY(F a) {
+    return _mm512_cvtepi32_ps(_mm512_srli_epi32(_mm512_castps_si512(a), 16));
+  }
+  static CUTAWAY_SIMD_INLINE Mask greater(F a, F b) { return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ); }
+  static CUTAWAY_SIMD_INLINE bool none(Mask m) { return m == 0; }
+  static CUTAWAY_SIMD_INLINE F select(Mask m, F unset, F set) {
+    return _mm512_mask_blend_ps(m, unset, set);
+  }
+  static CUTAWAY_SIMD_INLINE F selectBySign(F sign, F positive, F negative) {
+    return _mm512_mask_blend_ps(_mm512_movepi32_mask(_mm512_castps_si512(sign)), positive,
+                                negative);
+  }
 };
+#include "jump_flooding_simd.inc"
+#undef CUTAWAY_SIMD_INLINE
+#undef CUTAWAY_SIMD_FUNCTION
 
-// One candidate for 8 pixels: the anchors in `row` at x … x+7 replace the current ones where
-// their cones are strictly deeper (the GPU's comparison).
-template <bool kDirectional, bool kMasked>
-CUTAWAY_AVX2_INLINE void considerAvx2(Lanes& best, const InRow& row, int x, const Pixels& p,
-                                      __m256i mask) {
-  Lanes q;
-  q.anchor = load8<kMasked>(row.anchor + x, mask);
-  q.z = load8<kMasked>(row.z + x, mask);
-  q.slopeLow = load8<kMasked>(row.slopeLow + x, mask);
-  const __m256i a = _mm256_castps_si256(q.anchor);
-  const __m256 qx = _mm256_cvtepi32_ps(_mm256_and_si256(a, _mm256_set1_epi32(0xFFFF)));
-  const __m256 qy = _mm256_cvtepi32_ps(_mm256_srli_epi32(a, 16));
-  const __m256 dx = _mm256_mul_ps(_mm256_sub_ps(p.x, qx), p.unitX);
-  const __m256 dy = _mm256_mul_ps(_mm256_sub_ps(p.y, qy), p.unitY);
-  // Exact sqrt: as fast here as rsqrt with a Newton step, since nothing divides by it.
-  const __m256 distance = _mm256_sqrt_ps(_mm256_fmadd_ps(dx, dx, _mm256_mul_ps(dy, dy)));
-  __m256 depth = _mm256_fnmadd_ps(q.slopeLow, distance, q.z);    // the bound
-  __m256 deeper = _mm256_cmp_ps(depth, best.depth, _CMP_GT_OQ);  // strict, as the GPU
-  if constexpr (kDirectional) {
-    // About 4 in 5 candidates lose at all 8 pixels. Skipping them pays with the directional
-    // part to skip (measured 7–15% faster); for the plain cone, the mispredicted branches
-    // cost more than the blends they save (5–10% slower).
-    if (_mm256_movemask_ps(deeper) == 0) return;
-    q.slopeDelta = load8<kMasked>(row.slopeDelta + x, mask);
-    q.floorX = load8<kMasked>(row.floorX + x, mask);
-    q.floorY = load8<kMasked>(row.floorY + x, mask);
-    const __m256 along = _mm256_fnmsub_ps(dx, q.floorX, _mm256_mul_ps(dy, q.floorY));  // −Δ·f
-    const __m256 alphaDistance = _mm256_min_ps(_mm256_max_ps(along, _mm256_setzero_ps()), distance);
-    // b = a, or d − a where m_F − m_E is negative (blendv reads the sign bit).
-    const __m256 b =
-        _mm256_blendv_ps(alphaDistance, _mm256_sub_ps(distance, alphaDistance), q.slopeDelta);
-    const __m256 magnitude = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), q.slopeDelta);
-    depth = _mm256_fnmadd_ps(magnitude, b, depth);
-    deeper = _mm256_cmp_ps(depth, best.depth, _CMP_GT_OQ);
-  }
-  best.depth = _mm256_max_ps(depth, best.depth);  // = blend(best, depth, deeper)
-  best.anchor = _mm256_blendv_ps(best.anchor, q.anchor, deeper);
-  best.z = _mm256_blendv_ps(best.z, q.z, deeper);
-  best.slopeLow = _mm256_blendv_ps(best.slopeLow, q.slopeLow, deeper);
-  if constexpr (kDirectional) {
-    best.slopeDelta = _mm256_blendv_ps(best.slopeDelta, q.slopeDelta, deeper);
-    best.floorX = _mm256_blendv_ps(best.floorX, q.floorX, deeper);
-    best.floorY = _mm256_blendv_ps(best.floorY, q.floorY, deeper);
-  }
-}
-
-// 8 pixels x … x+7 (fewer when kMasked) whose left (x − k) and right (x + k) neighbours are
-// inside the image exactly when kLeft, kRight. Candidates in the GPU's order: dy outer, dx
-// inner, the pixel's own anchor first.
-template <bool kDirectional, bool kLeft, bool kRight, bool kMasked>
-CUTAWAY_AVX2_INLINE void floodVectorAvx2(const RowTask& t, int x, __m256i mask) {
-  const Pixels p{_mm256_add_ps(_mm256_set1_ps(float(x)),
-                               _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f)),
-                 _mm256_set1_ps(t.y), _mm256_set1_ps(t.unitX), _mm256_set1_ps(t.unitY)};
-  const int k = t.step;
-  const InRow& own = t.rows[1];
-  Lanes best;
-  best.depth = load8<kMasked>(own.depth + x, mask);
-  best.anchor = load8<kMasked>(own.anchor + x, mask);
-  best.z = load8<kMasked>(own.z + x, mask);
-  best.slopeLow = load8<kMasked>(own.slopeLow + x, mask);
-  if constexpr (kDirectional) {
-    best.slopeDelta = load8<kMasked>(own.slopeDelta + x, mask);
-    best.floorX = load8<kMasked>(own.floorX + x, mask);
-    best.floorY = load8<kMasked>(own.floorY + x, mask);
-  }
-  if (const InRow& below = t.rows[0]; below.depth) {
-    if constexpr (kLeft) considerAvx2<kDirectional, kMasked>(best, below, x - k, p, mask);
-    considerAvx2<kDirectional, kMasked>(best, below, x, p, mask);
-    if constexpr (kRight) considerAvx2<kDirectional, kMasked>(best, below, x + k, p, mask);
-  }
-  if constexpr (kLeft) considerAvx2<kDirectional, kMasked>(best, own, x - k, p, mask);
-  if constexpr (kRight) considerAvx2<kDirectional, kMasked>(best, own, x + k, p, mask);
-  if (const InRow& above = t.rows[2]; above.depth) {
-    if constexpr (kLeft) considerAvx2<kDirectional, kMasked>(best, above, x - k, p, mask);
-    considerAvx2<kDirectional, kMasked>(best, above, x, p, mask);
-    if constexpr (kRight) considerAvx2<kDirectional, kMasked>(best, above, x + k, p, mask);
-  }
-  const OutRow& o = t.out;
-  store8<kMasked>(o.depth + x, mask, best.depth);
-  store8<kMasked>(o.anchor + x, mask, best.anchor);
-  if (!o.z) return;  // the last step: nothing reads the cones any more
-  store8<kMasked>(o.z + x, mask, best.z);
-  store8<kMasked>(o.slopeLow + x, mask, best.slopeLow);
-  if constexpr (kDirectional) {
-    store8<kMasked>(o.slopeDelta + x, mask, best.slopeDelta);
-    store8<kMasked>(o.floorX + x, mask, best.floorX);
-    store8<kMasked>(o.floorY + x, mask, best.floorY);
-  }
-}
-
-template <bool kDirectional, bool kLeft, bool kRight>
-CUTAWAY_AVX2 void floodSegmentAvx2(const RowTask& task, int x0, int x1) {
-  const RowTask t = task;  // a local copy, which the stores cannot alias
-  int x = x0;
-  for (; x + 8 <= x1; x += 8)
-    floodVectorAvx2<kDirectional, kLeft, kRight, false>(t, x, _mm256_setzero_si256());
-  if (x < x1) {
-    const __m256i mask =
-        _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7));
-    floodVectorAvx2<kDirectional, kLeft, kRight, true>(t, x, mask);
-  }
-}
-
-// Splits the row where the left neighbour enters (x = k) and the right one leaves
-// (x = width − k) the image, so that each piece runs without per-pixel bounds checks.
-template <bool kDirectional>
-CUTAWAY_AVX2 void floodRowAvx2(const RowTask& t) {
-  const int w = t.width, k = t.step;
-  int cuts[4] = {0, std::min(k, w), std::max(w - k, 0), w};
-  std::sort(cuts, cuts + 4);
-  for (int i = 0; i < 3; ++i) {
-    const int x0 = cuts[i], x1 = cuts[i + 1];
-    if (x0 == x1) continue;
-    const bool left = x0 >= k, right = x1 <= w - k;
-    if (left && right)
-      floodSegmentAvx2<kDirectional, true, true>(t, x0, x1);
-    else if (left)
-      floodSegmentAvx2<kDirectional, true, false>(t, x0, x1);
-    else if (right)
-      floodSegmentAvx2<kDirectional, false, true>(t, x0, x1);
-    else
-      floodSegmentAvx2<kDirectional, false, false>(t, x0, x1);
-  }
-}
+}  // namespace avx512
 
 #endif  // CUTAWAY_FIELDS_X86
 
@@ -340,9 +288,12 @@ using RowKernel = void (*)(const RowTask&);
 RowKernel rowKernel(bool directional, [[maybe_unused]] JumpFloodingKernel choice) {
 #if CUTAWAY_FIELDS_X86
   __builtin_cpu_init();
-  if (choice == JumpFloodingKernel::automatic && __builtin_cpu_supports("avx2") &&
-      __builtin_cpu_supports("fma"))
-    return directional ? floodRowAvx2<true> : floodRowAvx2<false>;
+  const bool fma = __builtin_cpu_supports("fma");
+  if (choice == JumpFloodingKernel::automatic && fma && __builtin_cpu_supports("avx512f") &&
+      __builtin_cpu_supports("avx512dq"))
+    return directional ? avx512::floodRow<true> : avx512::floodRow<false>;
+  if (choice != JumpFloodingKernel::scalar && fma && __builtin_cpu_supports("avx2"))
+    return directional ? avx2::floodRow<true> : avx2::floodRow<false>;
 #endif
   return directional ? floodRowScalar<true> : floodRowScalar<false>;
 }

@@ -72,10 +72,11 @@ bool parseVariant(const std::string& name, JumpFloodingVariant& out);
 std::vector<int> stepSizes(int width, int height, JumpFloodingVariant variant);
 
 // `threads` = 0: one per hardware thread; the result does not depend on it. The kernel is
-// AVX2 + FMA where the processor has both, else portable scalar code (`scalar` forces it);
-// the two agree up to float rounding. Scratch buffers (about 32–56 bytes a pixel) are kept
-// between calls on the same thread.
-enum class JumpFloodingKernel { automatic, scalar };
+// AVX-512 (16 pixels at once) or AVX2 (8) with FMA where the processor has them, else portable
+// scalar code; `avx2` and `scalar` force the narrower ones. The vector kernels give the same
+// bits, the scalar one agrees up to float rounding. Scratch buffers (about 32–56 bytes a
+// pixel) are kept between calls on the same thread.
+enum class JumpFloodingKernel { automatic, avx2, scalar };
 CutawayField jumpFlooding(const SeedImage& seeds, float nearDepth,
                           JumpFloodingVariant variant = JumpFloodingVariant::jfa, int threads = 0,
                           JumpFloodingKernel kernel = JumpFloodingKernel::automatic);
