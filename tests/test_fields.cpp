@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
-#include <utility>
 #include <vector>
 
 #include "cutaway/fields/cutaway_surface.hpp"
@@ -380,25 +379,6 @@ TEST(JumpFlooding, ThreadCountDoesNotChangeTheResult) {
         EXPECT_EQ(f.anchor, one.anchor) << threads << " threads";
       }
     }
-}
-
-// A field flooded into again keeps no trace of what it held: every pixel of every row is
-// written, whatever the size before and the order the steps take the rows in.
-TEST(JumpFlooding, AReusedFieldHoldsTheFreshResult) {
-  for (bool directional : {false, true}) {
-    CutawayField reused;
-    for (auto [w, h] : {std::pair{100, 37}, std::pair{37, 100}, std::pair{37, 100}}) {
-      const SeedImage s = randomSeeds(w, h, 9, directional);
-      const CutawayField fresh = jumpFlooding(s, kNear, JumpFloodingVariant::jfaPlus2, 2);
-      std::fill(reused.depth.begin(), reused.depth.end(), std::nanf(""));
-      std::fill(reused.anchor.begin(), reused.anchor.end(), -7);
-      jumpFlooding(s, kNear, reused, JumpFloodingVariant::jfaPlus2, 2);
-      EXPECT_EQ(reused.width, w);
-      EXPECT_EQ(reused.height, h);
-      EXPECT_EQ(reused.depth, fresh.depth) << w << "×" << h;
-      EXPECT_EQ(reused.anchor, fresh.anchor) << w << "×" << h;
-    }
-  }
 }
 
 // The AVX-512 kernel (16 lanes) and the AVX2 one (8) run the same operations per lane: the same

@@ -362,13 +362,6 @@ void finishRow(const InRow& r, int width, int y, float nearDepth, CutawayField& 
 
 CutawayField jumpFlooding(const SeedImage& seeds, float nearDepth, JumpFloodingVariant variant,
                           int threads, JumpFloodingKernel kernelChoice) {
-  CutawayField f;
-  jumpFlooding(seeds, nearDepth, f, variant, threads, kernelChoice);
-  return f;
-}
-
-void jumpFlooding(const SeedImage& seeds, float nearDepth, CutawayField& f,
-                  JumpFloodingVariant variant, int threads, JumpFloodingKernel kernelChoice) {
   const int w = seeds.width, h = seeds.height;
   assert(w > 0 && h > 0 && w <= 65536 && h <= 65536 && "anchors are packed in 16 + 16 bits");
   assert(std::size_t(w) * std::size_t(h) <= std::size_t(std::numeric_limits<int>::max()));
@@ -390,9 +383,10 @@ void jumpFlooding(const SeedImage& seeds, float nearDepth, CutawayField& f,
   thread_local Workspace workspace;
   workspace.reserve(n);
   const AnchorBuffer* buffers = workspace.buffers;
+  CutawayField f;
   f.width = w;
   f.height = h;
-  f.depth.resize(n);  // every element is written by finishRow()
+  f.depth.resize(n);
   f.anchor.resize(n);
 
   // Phase 0 initialises buffer 0, phase s + 1 runs step s from buffer s % 2 into the other;
@@ -445,6 +439,7 @@ void jumpFlooding(const SeedImage& seeds, float nearDepth, CutawayField& f,
     for (int i = int(helpers.size()) + 1; i < workers; ++i) phaseDone.arrive_and_drop();
   }
   work();
+  return f;
 }
 
 }  // namespace cutaway::fields

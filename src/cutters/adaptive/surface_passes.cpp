@@ -220,11 +220,11 @@ void CutawaySurfacePasses::computeOnCpu() {
   const int n = bufferSize_;
   std::vector<float> angle = frame_.read(seedAngle_, 1);
   for (float& a : angle) a = std::max(a, minAngle_());
-  fields::jumpFlooding(makeSeedImage(frame_.read(seedDepth_, 1), angle, n, options_(), camera_),
-                       -1.0f, field_, variant_);
-  for (float& z : field_.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
+  fields::CutawayField field = fields::jumpFlooding(
+      makeSeedImage(frame_.read(seedDepth_, 1), angle, n, options_(), camera_), -1.0f, variant_);
+  for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
   glTextureSubImage2D(frame_.texture(cutawayDepth_).id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
-                      field_.depth.data());
+                      field.depth.data());
 }
 
 void CutawaySurfacePasses::describeAovs(std::vector<Aov>& aovs) const {

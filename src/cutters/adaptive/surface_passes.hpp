@@ -65,7 +65,6 @@ class CutawaySurfacePasses {
   CutawayProjection camera_{};
   Target seedDepth_, seedAngle_, cutawayDepth_, cutawayDilated_;
   Target anchorCone_, anchorFloor_, anchorsA_, anchorsB_;
-  fields::CutawayField field_;  // the CPU path's C, its storage reused from frame to frame
   struct Programs;
   std::unique_ptr<Programs> programs_;
 };
