@@ -10,28 +10,18 @@
 
 namespace cutaway {
 
-void replaceFileAtomically(const std::filesystem::path& path,
-                           const std::function<void(const std::filesystem::path&)>& write) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid());
-  try {
-    write(tmp);
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw Error(path.string(), "", "cannot write: " + ec.message());
-  } catch (...) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw;
-  }
-}
-
 namespace {
+
+// `path` with a suffix of this process's own: "<path>.<what>-<pid>".
+std::filesystem::path beside(const std::filesystem::path& path, const std::string& what) {
+  std::filesystem::path p = path;
+  p += "." + what + "-" + std::to_string(::getpid());
+  return p;
+}
 
 // Writes `path`'s temporary and returns its name; removes it again if the writing failed.
 std::filesystem::path writeTemporary(const std::filesystem::path& path, const FileWriter& write) {
-  std::filesystem::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid());
+  const std::filesystem::path tmp = beside(path, "tmp");
   try {
     // With the system's reason where it gave one (errno: no space, no permission).
     const auto fail = [&](const std::string& what) {
@@ -54,29 +44,67 @@ std::filesystem::path writeTemporary(const std::filesystem::path& path, const Fi
 
 }  // namespace
 
+void replaceFileAtomically(const std::filesystem::path& path,
+                           const std::function<void(const std::filesystem::path&)>& write) {
+  const std::filesystem::path tmp = beside(path, "tmp");
+  try {
+    write(tmp);
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) throw Error(path.string(), "", "cannot write: " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+}
+
 void writeFileAtomically(const std::filesystem::path& path, const FileWriter& write) {
   writeFilesAtomically({{path, write}});
 }
 
 void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, FileWriter>>& files) {
-  std::vector<std::filesystem::path> temporaries;
-  std::size_t renamed = 0;
-  const auto removeTemporaries = [&] {
-    std::error_code ignored;
-    for (std::size_t i = renamed; i < temporaries.size(); ++i)
-      std::filesystem::remove(temporaries[i], ignored);
-  };
+  namespace fs = std::filesystem;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (files[i].first == files[j].first)
+        throw Error(files[i].first.string(), "", "named twice among the files written together");
+  std::vector<fs::path> temporaries;
+  temporaries.reserve(files.size());
+  // Each path in turn: its old file (if any) moved to a backup, its temporary renamed in place.
+  // On a failure the paths done so far get their old files back.
+  std::vector<bool> backedUp;
+  backedUp.reserve(files.size());
+  std::size_t placed = 0;
   try {
     for (const auto& [path, write] : files) temporaries.push_back(writeTemporary(path, write));
-    for (; renamed < files.size(); ++renamed) {
+    for (; placed < files.size(); ++placed) {
+      const fs::path& path = files[placed].first;
       std::error_code ec;
-      std::filesystem::rename(temporaries[renamed], files[renamed].first, ec);
-      if (ec) throw Error(files[renamed].first.string(), "", "cannot write: " + ec.message());
+      const fs::file_status status = fs::symlink_status(path, ec);  // not_found sets ec too
+      ec.clear();
+      if (fs::is_directory(status)) throw Error(path.string(), "", "is a directory, not a file");
+      const bool old = fs::exists(status);
+      if (old) fs::rename(path, beside(path, "old"), ec);
+      if (!ec) {
+        backedUp.push_back(old);
+        fs::rename(temporaries[placed], path, ec);
+      }
+      if (ec) throw Error(path.string(), "", "cannot write: " + ec.message());
     }
   } catch (...) {
-    removeTemporaries();
+    std::error_code ignored;
+    for (std::size_t i = 0; i < backedUp.size(); ++i) {
+      const fs::path& path = files[i].first;
+      if (i < placed) fs::remove(path, ignored);
+      if (backedUp[i]) fs::rename(beside(path, "old"), path, ignored);
+    }
+    for (std::size_t i = placed; i < temporaries.size(); ++i) fs::remove(temporaries[i], ignored);
     throw;
   }
+  std::error_code ignored;
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (backedUp[i]) fs::remove(beside(files[i].first, "old"), ignored);
 }
 
 }  // namespace cutaway

@@ -1,0 +1,98 @@
+// Files written together (core/atomic_file.hpp): all of them or none, whatever fails where.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "cutaway/core/atomic_file.hpp"
+#include "cutaway/core/error.hpp"
+#include "run_command.hpp"
+
+namespace fs = std::filesystem;
+using namespace cutaway;
+
+namespace {
+
+// Every entry of `folder`: a file's content, or "<folder>" for a folder.
+std::map<std::string, std::string> contents(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    std::string& text = files[entry.path().filename().string()];
+    if (entry.is_directory()) {
+      text = "<folder>";
+      continue;
+    }
+    std::ifstream is(entry.path(), std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(is), {});
+  }
+  return files;
+}
+
+FileWriter text(const std::string& s) {
+  return [s](std::ostream& os) { os << s; };
+}
+
+// A folder holding a.txt = "old a" and b.txt = "old b".
+fs::path folderWithTwoFiles(const std::string& name) {
+  const fs::path dir = test::scratchPath("atomic", name);
+  fs::create_directories(dir);
+  writeFileAtomically(dir / "a.txt", text("old a"));
+  writeFileAtomically(dir / "b.txt", text("old b"));
+  return dir;
+}
+
+}  // namespace
+
+TEST(AtomicFiles, AllAreReplacedAndNothingElseIsLeft) {
+  const fs::path dir = folderWithTwoFiles("all");
+  writeFilesAtomically({{dir / "a.txt", text("new a")},
+                        {dir / "b.txt", text("new b")},
+                        {dir / "c.txt", text("new c")}});
+  EXPECT_EQ(contents(dir), (std::map<std::string, std::string>{
+                               {"a.txt", "new a"}, {"b.txt", "new b"}, {"c.txt", "new c"}}));
+}
+
+// The second writer fails: the first file's new content was written to its temporary only.
+TEST(AtomicFiles, AWriterThatThrowsLeavesEveryFileAsItWas) {
+  const fs::path dir = folderWithTwoFiles("writer");
+  const auto before = contents(dir);
+  EXPECT_THROW(writeFilesAtomically(
+                   {{dir / "a.txt", text("new a")},
+                    {dir / "b.txt", [](std::ostream&) { throw std::runtime_error("disk full"); }},
+                    {dir / "c.txt", text("new c")}}),
+               std::runtime_error);
+  EXPECT_EQ(contents(dir), before);
+}
+
+// The last path cannot take a file (it is a folder): the two files already replaced get their
+// old contents back, and the one that did not exist before is gone again.
+TEST(AtomicFiles, APathThatFailsLateGivesTheEarlierOnesBack) {
+  const fs::path dir = folderWithTwoFiles("late");
+  fs::create_directory(dir / "d.txt");
+  const auto before = contents(dir);
+  try {
+    writeFilesAtomically({{dir / "a.txt", text("new a")},
+                          {dir / "new.txt", text("new")},
+                          {dir / "b.txt", text("new b")},
+                          {dir / "d.txt", text("new d")}});
+    FAIL() << "a folder took a file";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("d.txt"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(contents(dir), before);
+}
+
+TEST(AtomicFiles, APathNamedTwiceIsRefusedBeforeAnythingIsWritten) {
+  const fs::path dir = folderWithTwoFiles("twice");
+  const auto before = contents(dir);
+  EXPECT_THROW(
+      writeFilesAtomically(
+          {{dir / "a.txt", text("one")}, {dir / "c.txt", text("c")}, {dir / "a.txt", text("two")}}),
+      Error);
+  EXPECT_EQ(contents(dir), before);
+}
