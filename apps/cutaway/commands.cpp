@@ -16,6 +16,7 @@
 #include <optional>
 #include <regex>
 #include <tuple>
+#include <utility>
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
@@ -227,20 +228,26 @@ void checkFolderOf(const std::string& file) {
   if (::access(folder.c_str(), W_OK) != 0) throw Error(file, "", "the folder is not writable");
 }
 
-// An AOV folder this run made: removed again at the end if it is still empty (the run failed
-// before writing a frame's AOVs; writeAovs() writes a frame's folder whole or not at all).
-struct MadeFolder {
-  std::filesystem::path dir;
-  ~MadeFolder() {
-    std::error_code ignored;
-    if (!dir.empty()) std::filesystem::remove(dir, ignored);  // removes empty folders only
+// The AOV folder this run made and the parents it made for it (`top` the outermost): removed
+// again at the end where still empty (the run failed before writing a frame's AOVs;
+// writeAovs() writes a frame's folder whole or not at all).
+struct MadeFolders {
+  std::filesystem::path leaf, top;  // empty: none made
+  MadeFolders() = default;
+  MadeFolders(MadeFolders&& o) noexcept
+      : leaf(std::exchange(o.leaf, {})), top(std::exchange(o.top, {})) {}
+  MadeFolders& operator=(MadeFolders&&) = delete;
+  ~MadeFolders() {
+    std::error_code ec;
+    for (std::filesystem::path p = leaf; !p.empty(); p = p.parent_path())
+      if (!std::filesystem::remove(p, ec) || p == top) break;  // removes empty folders only
   }
 };
 
 // The outputs checked before anything is rendered, so that a bad one leaves no file behind:
 // a PNG name (no other format is written) and an SVG name in folders that take them, an AOV
-// folder that is one or can be made (returned when made).
-std::filesystem::path checkOutputs(const RenderOptions& options) {
+// folder that is one or can be made (and the folders made for it).
+MadeFolders checkOutputs(const RenderOptions& options) {
   const std::filesystem::path out(options.output);
   if (options.output.empty()) throw Error("--output", "", "the file name is empty");
   std::error_code ec;
@@ -259,22 +266,26 @@ std::filesystem::path checkOutputs(const RenderOptions& options) {
       throw Error(options.svg, "", "is a directory, not a file name");
     checkFolderOf(options.svg);
   }
-  if (options.aovDir.empty()) return {};
-  const std::filesystem::path dir(options.aovDir);
+  MadeFolders made;
+  if (options.aovDir.empty()) return made;
+  std::filesystem::path dir(options.aovDir);
+  if (!dir.has_filename()) dir = dir.parent_path();  // "frames/aovs/"
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
     throw Error(options.aovDir, "", "--aov needs a directory; this is a file");
-  const bool made = !std::filesystem::exists(dir, ec);
+  if (!std::filesystem::exists(dir, ec)) {
+    made.leaf = made.top = dir;
+    while (made.top.has_parent_path() && !std::filesystem::exists(made.top.parent_path(), ec))
+      made.top = made.top.parent_path();
+  }
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(options.aovDir, "", "cannot create the AOV directory: " + ec.message());
-  if (::access(dir.c_str(), W_OK) != 0) {
-    if (made) std::filesystem::remove(dir, ec);
+  if (::access(dir.c_str(), W_OK) != 0)
     throw Error(options.aovDir, "", "the AOV directory is not writable");
-  }
-  return made ? dir : std::filesystem::path();
+  return made;
 }
 
 int render(const RenderOptions& options) {
-  const MadeFolder aovFolder{checkOutputs(options)};
+  const MadeFolders aovFolders = checkOutputs(options);
   Scene scene = sceneOrCity(options.scene, options.city, "render");
   applyOverrides(scene, options.overrides);
   warnAboutFarCoordinates(scene);
