@@ -125,6 +125,27 @@ TEST(Cli, AnAovFolderIsWrittenWholeOrNotAtAll) {
   }
   EXPECT_EQ(contents(dir), before);
   EXPECT_FALSE(fs::exists(scratch("no-aovs")));  // nor the folders made for it
+  EXPECT_FALSE(fs::exists(scratch("limited.png")));  // nor the picture written with them
+}
+
+// An animation's outputs that a folder or a file already holds are refused before the first
+// frame is written.
+TEST(Cli, AnAnimationsTakenOutputsFailBeforeTheFirstFrame) {
+  const std::string scene = kData + "/render/plane-facing.json";
+  const fs::path dir = scratch("taken");
+  fs::create_directories(dir / "f_2.png");
+  Result r = run("render " + scene + " --frames 3 -o " + (dir / "f_%d.png").string());
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("f_2.png: is a directory"), std::string::npos) << r.err;
+  fs::create_directories(dir / "aovs");
+  std::ofstream(dir / "aovs" / "0003") << "a file";
+  r = run("render " + scene + " --frames 3 -o " + (dir / "g_%d.png").string() + " --aov " +
+          (dir / "aovs").string());
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("0003: --aov needs a directory"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "f_1.png"));
+  EXPECT_FALSE(fs::exists(dir / "g_1.png"));
+  EXPECT_FALSE(fs::exists(dir / "aovs" / "0001"));
 }
 
 TEST(Cli, InfoPrintsObjectsAndWatertightness) {
@@ -272,6 +293,9 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
       {"-o " + png + " --aov " + file, "needs a directory"},
       {"-o " + png + " --up 0,0,0", "zero vector"},
       {"-o " + png + " --time nan", "finite"},
+      {"-o " + png + " --fov nan", "finite"},
+      {"-o " + png + " --pixel-error -nan", "finite"},
+      {"-o " + png + " --cutaway-angle nan", "finite"},
       {"-o " + png + " --eye 1,1e39,2", "x,y,z"},
       {"-o " + png + " --svg " + (dir / "lines.txt").string(), "give it a .svg name"},
       {"-o " + png + " --svg " + (dir / "lines.svg").string(), "no volume of"},
@@ -668,6 +692,14 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   EXPECT_EQ(named.exitCode, 1);
   EXPECT_NE(named.err.find("dem.png: dem writes a GeoTIFF"), std::string::npos) << named.err;
   EXPECT_FALSE(std::filesystem::exists(png));
+  // Heights beyond Float32 would be written as infinities.
+  const auto huge = run("dem --extent 0 0 20 20 --crs EPSG:27700 --relief 1e39 -o " + odd);
+  EXPECT_EQ(huge.exitCode, 1);
+  EXPECT_NE(huge.err.find("--relief: heights from --base to --base + --relief must fit in "
+                          "Float32"),
+            std::string::npos)
+      << huge.err;
+  EXPECT_FALSE(std::filesystem::exists(odd));
 }
 
 TEST(Cli, InfoDescribesGisLayers) {

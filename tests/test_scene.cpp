@@ -451,10 +451,41 @@ TEST(SceneErrors, NamePatternsTooDeepOrTooLongAreRefusedBeforeCompiling) {
   EXPECT_EQ(scene.setImportance("a|" + std::string(1022 - 2, 'b'), 0.5f), 1u);
 }
 
-// std::regex matches by recursion, a frame or so per character of the name: a name of 16,000
-// characters overflowed the stack against "(a|b)*". Names are refused beyond 1,024 characters;
-// at that length every name a pattern can match (objects, groups, proxies, volumes, networks)
-// matches the costliest patterns within the limits.
+// A backtracking matcher takes exponential time on "(a*)*b" against a's (26 of them ran for
+// minutes, a minute-long `--importance` or "hullOf"); the breadth-first one answers at once,
+// and refuses back-references, which it cannot match.
+TEST(SceneErrors, NamePatternsMatchWithoutBacktracking) {
+  const std::string name(1024, 'a');
+  Scene scene = parseScene(R"({"objects": [{"name": ")" + name + R"(", "file": "cube.obj"}]})",
+                           "s.json", kMeshes);
+  try {
+    scene.setImportance("(a*)*b", 0.5f);
+    FAIL() << "(a*)*b matched";
+  } catch (const Error& e) {
+    EXPECT_NE(e.reason().find("matches no object"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(scene.setImportance("(a*)*", 0.5f), 1u);
+  EXPECT_EQ(scene.setImportance("(a|aa)*(b|a)", 0.5f), 1u);
+  try {
+    scene.setImportance("(a)\\1.*", 0.5f);
+    FAIL() << "accepted a back-reference";
+  } catch (const Error& e) {
+    EXPECT_NE(e.reason().find("back-reference"), std::string::npos) << e.what();
+  }
+  try {
+    (void)parseScene(R"({"objects": [{"name": "a", "file": "cube.obj"}],
+                        "proxies": [{"name": "p", "hullOf": "(a)\\1"}]})",
+                     "s.json", kMeshes);
+    FAIL() << "accepted a back-reference";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.place(), "/proxies/0/hullOf");
+  }
+}
+
+// std::regex's backtracking matcher recursed a frame or so per character of the name: a name of
+// 16,000 characters overflowed the stack against "(a|b)*". Names are refused beyond 1,024
+// characters; at that length every name a pattern can match (objects, groups, proxies, volumes,
+// networks) matches the costliest patterns within the limits.
 TEST(SceneErrors, NamesTooLongToMatchAreRefused) {
   const std::string longest(1024, 'a'), tooLong(1025, 'a');
   for (const auto& [json, place] : std::vector<std::pair<std::string, std::string>>{

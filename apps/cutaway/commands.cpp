@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -145,6 +146,13 @@ Scene sceneOrCity(const std::string& file, int city, const char* command) {
 
 // The file name of frame `index` (1-based): a printf pattern in `output`, or the number
 // appended to its stem ("out.png" → "out_0001.png").
+// An animation's AOV folder for frame `index` (from 1): DIR/0001 …
+std::string aovFrameFolder(const std::string& dir, int index) {
+  char number[16];
+  std::snprintf(number, sizeof number, "%04d", index);
+  return (std::filesystem::path(dir) / number).string();
+}
+
 std::string framePath(const std::string& output, int index) {
   if (output.find('%') != std::string::npos) {
     char buffer[4096];
@@ -300,6 +308,17 @@ int render(const RenderOptions& options) {
       throw Error(option, "",
                   "a frame pattern may hold one %d, of width at most 99 (e.g. frame_%04d.png)");
   }
+  // An animation's outputs that something else holds fail before the first frame is written.
+  std::error_code ec;
+  for (int i = 1; i <= options.frames; ++i) {
+    for (const std::string* pattern : {&options.output, &options.svg})
+      if (!pattern->empty() && std::filesystem::is_directory(framePath(*pattern, i), ec))
+        throw Error(framePath(*pattern, i), "", "is a directory, not a file name");
+    if (const std::string folder = aovFrameFolder(options.aovDir, i);
+        !options.aovDir.empty() && std::filesystem::exists(folder, ec) &&
+        !std::filesystem::is_directory(folder, ec))
+      throw Error(folder, "", "--aov needs a directory for each frame; this is a file");
+  }
   if (!options.svg.empty() &&
       std::none_of(scene.volumes.begin(), scene.volumes.end(),
                    [](const SceneVolume& v) { return v.lines.has_value(); }))
@@ -313,8 +332,12 @@ int render(const RenderOptions& options) {
                        const std::string& svg) {
     const Camera camera = scene.resolvedCamera(time);
     renderer.render(camera, time);
-    writePng(out, renderer.readColor());
-    if (!aovDir.empty()) writeAovs(aovDir, renderer.readAovs(), camera, aspect);
+    const Rgba8Image color = renderer.readColor();
+    if (aovDir.empty())
+      writePng(out, color);
+    else  // the picture and its AOVs, all or none
+      writeAovs(aovDir, renderer.readAovs(), camera, aspect,
+                {{out, [&](std::ostream& os) { writePng(os, color, out); }}});
     if (!svg.empty()) writeVolumeLineSvg(svg, renderer.volumeLineDrawing());
   };
   if (options.frames == 0) {
@@ -330,12 +353,7 @@ int render(const RenderOptions& options) {
   const bool progress = ::isatty(STDERR_FILENO);
   for (int i = 0; i < options.frames; ++i) {
     const float time = options.frames > 1 ? duration * float(i) / float(options.frames - 1) : 0.0f;
-    std::string aovDir;
-    if (!options.aovDir.empty()) {
-      char number[16];
-      std::snprintf(number, sizeof number, "%04d", i + 1);
-      aovDir = (std::filesystem::path(options.aovDir) / number).string();
-    }
+    const std::string aovDir = options.aovDir.empty() ? "" : aovFrameFolder(options.aovDir, i + 1);
     renderOne(time, framePath(options.output, i + 1), aovDir,
               options.svg.empty() ? "" : framePath(options.svg, i + 1));
     if (progress) {
@@ -407,6 +425,11 @@ int dem(const DemOptions& o) {
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".tif" && ext != ".tiff")
     throw Error(o.output, "", "dem writes a GeoTIFF: give the output a .tif name");
+  // Float32 heights: base … base + relief must be floats, or the file holds infinities.
+  for (const double h : {o.base, o.base + o.relief})
+    if (!(std::abs(h) <= double(std::numeric_limits<float>::max())))
+      throw Error("--relief", "",
+                  "heights from --base to --base + --relief must fit in Float32 (|h| ≤ 3.4e38)");
   writeSyntheticDem(o.output, {.min = {o.extent[0], o.extent[1]},
                                .max = {o.extent[2], o.extent[3]},
                                .crs = o.crs,

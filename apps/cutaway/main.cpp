@@ -56,7 +56,7 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
   command
       ->add_option_function<float>(
           "--fov", [&o](float f) { o.fov = f; }, "Vertical field of view in degrees")
-      ->check(CLI::Range(1.0f, 170.0f));
+      ->check(kFinite & CLI::Range(1.0f, 170.0f));
   command->add_option("--projection", o.projection, "Camera projection")
       ->check(CLI::IsMember({"perspective", "orthographic"}));
   command->add_flag("--fit", o.fit, "Fit the camera to the scene (keeps the viewing direction)");
@@ -72,12 +72,12 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
           "--pixel-error", [&o](float e) { o.pixelError = e; },
           "Screen-space error in pixels that terrain grids and shafts may show where drawn "
           "coarser (0: every triangle)")
-      ->check(CLI::Range(0.0f, 100.0f));
+      ->check(kFinite & CLI::Range(0.0f, 100.0f));
   command
       ->add_option_function<float>(
           "--cutaway-angle", [&o](float a) { o.cutawayAngle = a; },
           "Adaptive cutaway angle θ in degrees (adds the cutter if the scene has none)")
-      ->check(CLI::Range(0.0f, 90.0f));
+      ->check(kFinite & CLI::Range(0.0f, 90.0f));
   command->add_flag("--no-cutaway", o.noCutaway,
                     "Render without any of the scene's cutters (the plain model)");
   command->add_option("--set", o.set,

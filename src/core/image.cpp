@@ -42,18 +42,27 @@ void FloatImage::flipVertically() {
 }
 
 void writePng(const std::filesystem::path& path, const Rgba8Image& image) {
-  replaceFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    png_image png{};
-    png.version = PNG_IMAGE_VERSION;
-    png.width = png_uint_32(image.width);
-    png.height = png_uint_32(image.height);
-    png.format = PNG_FORMAT_RGBA;
-    if (!png_image_write_to_file(&png, tmp.c_str(), 0, image.pixels.data(), 0, nullptr)) {
-      std::string reason = png.message;
-      png_image_free(&png);
-      throw Error(path.string(), "", "cannot write PNG: " + reason);
-    }
-  });
+  writeFileAtomically(path, [&](std::ostream& os) { writePng(os, image, path); });
+}
+
+void writePng(std::ostream& os, const Rgba8Image& image, const std::filesystem::path& path) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png_uint_32(image.width);
+  png.height = png_uint_32(image.height);
+  png.format = PNG_FORMAT_RGBA;
+  const auto fail = [&] {
+    std::string reason = png.message;
+    png_image_free(&png);
+    throw Error(path.string(), "", "cannot write PNG: " + reason);
+  };
+  // Encoded in memory (libpng's simplified API: the size first, then the bytes).
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), 0, nullptr)) fail();
+  std::vector<char> bytes(size);
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), 0, nullptr))
+    fail();
+  os.write(bytes.data(), std::streamsize(size));
 }
 
 namespace {

@@ -1,9 +1,11 @@
 // Name patterns: ECMAScript regular expressions over object names and groups (a scene file's
 // "nodes" and "overrides", `--importance PATTERN=I`). std::regex compiles by recursion, one
 // level per group and per term of a sequence, so a pattern nested or chained thousands deep
-// exhausts the stack: patterns are limited in length and nesting before they are compiled. It
-// matches by recursion too, about a frame per character of the name (a name of 16,000
-// characters overflowed an 8 MiB stack against "(a|b)*"): the names a scene file gives are
+// exhausts the stack: patterns are limited in length and nesting before they are compiled.
+// Its default matcher backtracks, by recursion: "(a*)*b" against 26 a's ran for minutes, and a
+// name of 16,000 characters overflowed an 8 MiB stack against "(a|b)*". Patterns are therefore
+// matched by libstdc++'s breadth-first matcher (`__polynomial`: time pattern × name, no
+// recursion per character), which has no back-references; the names a scene file gives stay
 // limited in length (a mesh file's node names are within Assimp's 1,024).
 #pragma once
 
@@ -18,6 +20,14 @@ namespace cutaway {
 constexpr std::size_t kMaxNamePatternLength = 1024;
 constexpr int kMaxNamePatternNesting = 64;
 constexpr std::size_t kMaxNameLength = 1024;
+
+#if defined(__GLIBCXX__)
+constexpr std::regex::flag_type kNamePatternSyntax =
+    std::regex::ECMAScript | std::regex_constants::__polynomial;
+#else
+#error \
+    "name patterns need libstdc++'s polynomial-time std::regex matcher (std::regex_constants::__polynomial)"
+#endif
 
 // The pattern as a message shows it: cut after 60 characters; quoted.
 inline std::string shortNamePattern(const std::string& pattern) {
@@ -50,7 +60,7 @@ inline std::regex compileNamePattern(const std::string& pattern) {
                                 std::to_string(kMaxNamePatternNesting) +
                                 " groups: " + quotedNamePattern(pattern));
   try {
-    return std::regex(pattern, std::regex::ECMAScript);
+    return std::regex(pattern, kNamePatternSyntax);
   } catch (const std::regex_error& e) {
     throw std::invalid_argument("invalid regular expression " + quotedNamePattern(pattern) + ": " +
                                 e.what());

@@ -36,7 +36,7 @@ std::vector<Aov> readFrameAovs(const Frame& frame) {
 }
 
 void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
-               float aspect) {
+               float aspect, std::vector<std::pair<std::filesystem::path, FileWriter>> alongside) {
   std::error_code ec;
   const bool created = std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir.string(), "", "cannot create AOV directory: " + ec.message());
@@ -54,7 +54,7 @@ void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, c
       {"projectionMatrix", matrixRows(camera.projectionMatrix(aspect))}};
   index["rowOrder"] = "PFM files store rows bottom to top, as the format requires";
   nlohmann::json list = nlohmann::json::array();
-  std::vector<std::pair<std::filesystem::path, FileWriter>> files;
+  std::vector<std::pair<std::filesystem::path, FileWriter>> files = std::move(alongside);
   for (const auto& aov : aovs) {
     const std::string file = aov.name + ".pfm";
     files.emplace_back(

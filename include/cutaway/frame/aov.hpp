@@ -11,8 +11,10 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "cutaway/core/atomic_file.hpp"
 #include "cutaway/core/image.hpp"
 #include "cutaway/frame/frame.hpp"
 #include "cutaway/scene/camera.hpp"
@@ -31,7 +33,10 @@ struct Aov {
 // The frame's targets that have a meaning, in declaration order, rows top-down.
 std::vector<Aov> readFrameAovs(const Frame& frame);
 
+// Written all or none (core/atomic_file.hpp), together with `alongside` (the frame's picture:
+// a failure leaves no new picture beside old AOVs either).
 void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
-               float aspect);
+               float aspect,
+               std::vector<std::pair<std::filesystem::path, FileWriter>> alongside = {});
 
 }  // namespace cutaway

@@ -2,6 +2,7 @@
 
 #include <regex>
 
+#include "core/name_pattern.hpp"
 #include "cutaway/core/error.hpp"
 
 namespace cutaway {
@@ -26,7 +27,7 @@ void completeTerrainOpening(const json_reader::Context& ctx, const std::string& 
              "opens the terrain above pipes)");
   for (const auto& [key, pattern] : {std::pair{"terrain", o.terrain}, std::pair{"buildings", o.buildings}}) {
     if (pattern.empty()) continue;
-    const std::regex re(pattern);
+    const std::regex re = regex(ctx, pattern, pointer + "/" + key);
     if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& s) {
           return !s.proxy && std::regex_match(s.name, re);
         }))
@@ -60,8 +61,9 @@ TerrainOpening::TerrainOpening(FrameSetup& setup)
       wallLocation_(setup.bindings.uniformLocation("TERRAIN_WALL")) {
   const TerrainOpeningOptions& options = this->options();
   const Scene& scene = setup.scene;
-  const std::regex terrain(options.terrain);
-  const std::regex buildings(options.buildings.empty() ? "$^" : options.buildings);
+  const std::regex terrain = compileNamePattern(options.terrain);
+  const std::regex buildings =
+      compileNamePattern(options.buildings.empty() ? "$^" : options.buildings);
   Bounds bounds;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
