@@ -123,6 +123,10 @@ TEST_F(RasterTerrainTest, NodataTakesTheNearestValidHeight) {
   const fs::path empty =
       tiff("empty.tif", 2, {-1, -1, -1, -1}, {0, 1, 0, 2, 0, -1}, "EPSG:27700", -1.0);
   expectError([&] { importRasterTerrain(empty); }, {"empty.tif", "no valid sample"});
+  // `cutaway info`: a band of nodata only has no range; a file cut short is an error, not that.
+  EXPECT_FALSE(describeRaster(empty).minimum.has_value());
+  expectError([&] { describeRaster(fs::path(CUTAWAY_TEST_DATA) / "fuzz/raster/truncated.tif"); },
+              {"truncated.tif", "cannot read band 1", "IReadBlock"});
 }
 
 TEST_F(RasterTerrainTest, ReprojectsEachNode) {

@@ -42,7 +42,7 @@ namespace {
 
 void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (!o.size.empty()) {
-    static const std::regex sizeRe(R"((\d{1,5})x(\d{1,5}))");
+    static const std::regex sizeRe(R"((\d{1,9})x(\d{1,9}))");
     std::smatch m;
     if (!std::regex_match(o.size, m, sizeRe))
       throw Error("--size", "", "expected WxH, e.g. 800x600, got \"" + o.size + "\"");
@@ -365,10 +365,14 @@ int render(const RenderOptions& options) {
     }
   }
   if (progress) std::fprintf(stderr, "\n");
-  std::printf("wrote %d frames %s … %s (%dx%d, %.2f s of animation)\n", options.frames,
-              framePath(options.output, 1).c_str(),
-              framePath(options.output, options.frames).c_str(), scene.width, scene.height,
-              duration);
+  if (options.frames == 1)
+    std::printf("wrote 1 frame %s (%dx%d)\n", framePath(options.output, 1).c_str(), scene.width,
+                scene.height);
+  else
+    std::printf("wrote %d frames %s … %s (%dx%d, %.2f s of animation)\n", options.frames,
+                framePath(options.output, 1).c_str(),
+                framePath(options.output, options.frames).c_str(), scene.width, scene.height,
+                duration);
   return 0;
 }
 

@@ -107,9 +107,14 @@ RasterInfo describeRasterHere(const std::filesystem::path& file) {
   const double nodata = band->GetNoDataValue(&hasNodata);
   if (hasNodata) info.nodata = nodata;
   double minMax[2];
-  // Exact (every sample read), not the approximate overview statistics.
+  // Exact (every sample read), not the approximate overview statistics. No minimum where every
+  // sample is nodata; a sample that cannot be read (a truncated file) is an error, as in render.
+  CPLErrorReset();
   if (band->ComputeRasterMinMax(FALSE, minMax) == CE_None)
     info.minimum = minMax[0], info.maximum = minMax[1];
+  else if (CPLGetLastErrorType() >= CE_Failure && CPLGetLastErrorNo() != CPLE_None &&
+           std::string(CPLGetLastErrorMsg()).find("valid") == std::string::npos)
+    throw Error(file.string(), "", "cannot read band 1" + gdal::QuietErrors::lastMessage());
   return info;
 }
 
