@@ -144,8 +144,6 @@ Scene sceneOrCity(const std::string& file, int city, const char* command) {
 
 }  // namespace
 
-// The file name of frame `index` (1-based): a printf pattern in `output`, or the number
-// appended to its stem ("out.png" → "out_0001.png").
 // An animation's AOV folder for frame `index` (from 1): DIR/0001 …
 std::string aovFrameFolder(const std::string& dir, int index) {
   char number[16];
@@ -153,6 +151,8 @@ std::string aovFrameFolder(const std::string& dir, int index) {
   return (std::filesystem::path(dir) / number).string();
 }
 
+// The file name of frame `index` (1-based): a printf pattern in `output`, or the number
+// appended to its stem ("out.png" → "out_0001.png").
 std::string framePath(const std::string& output, int index) {
   if (output.find('%') != std::string::npos) {
     char buffer[4096];
@@ -314,9 +314,9 @@ int render(const RenderOptions& options) {
     for (const std::string* pattern : {&options.output, &options.svg})
       if (!pattern->empty() && std::filesystem::is_directory(framePath(*pattern, i), ec))
         throw Error(framePath(*pattern, i), "", "is a directory, not a file name");
-    if (const std::string folder = aovFrameFolder(options.aovDir, i);
-        !options.aovDir.empty() && std::filesystem::exists(folder, ec) &&
-        !std::filesystem::is_directory(folder, ec))
+    if (options.aovDir.empty()) continue;
+    const std::string folder = aovFrameFolder(options.aovDir, i);
+    if (std::filesystem::exists(folder, ec) && !std::filesystem::is_directory(folder, ec))
       throw Error(folder, "", "--aov needs a directory for each frame; this is a file");
   }
   if (!options.svg.empty() &&

@@ -71,8 +71,10 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
         throw Error(files[i].first.string(), "", "named twice among the files written together");
   std::vector<fs::path> temporaries;
   temporaries.reserve(files.size());
-  // Each path in turn: its old file (if any) moved to a backup, its temporary renamed in place.
-  // On a failure the paths done so far get their old files back.
+  // Each path in turn gets its temporary renamed over it, which replaces it atomically. Where a
+  // later path could still fail, its old file is kept first as a backup (a second link to it,
+  // or moved aside where the file system has no links), and put back if one does.
+  const bool set = files.size() > 1;
   std::vector<bool> backedUp;
   backedUp.reserve(files.size());
   std::size_t placed = 0;
@@ -84,10 +86,13 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
       const fs::file_status status = fs::symlink_status(path, ec);  // not_found sets ec too
       ec.clear();
       if (fs::is_directory(status)) throw Error(path.string(), "", "is a directory, not a file");
-      const bool old = fs::exists(status);
-      if (old) fs::rename(path, beside(path, "old"), ec);
+      const bool backup = set && fs::exists(status);
+      if (backup) {
+        fs::create_hard_link(path, beside(path, "old"), ec);
+        if (ec) ec.clear(), fs::rename(path, beside(path, "old"), ec);
+      }
       if (!ec) {
-        backedUp.push_back(old);
+        backedUp.push_back(backup);
         fs::rename(temporaries[placed], path, ec);
       }
       if (ec) throw Error(path.string(), "", "cannot write: " + ec.message());
@@ -96,8 +101,12 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
     std::error_code ignored;
     for (std::size_t i = 0; i < backedUp.size(); ++i) {
       const fs::path& path = files[i].first;
-      if (i < placed) fs::remove(path, ignored);
-      if (backedUp[i]) fs::rename(beside(path, "old"), path, ignored);
+      if (backedUp[i]) {
+        fs::rename(beside(path, "old"), path, ignored);
+        fs::remove(beside(path, "old"), ignored);  // still there if it was `path`'s own link
+      } else if (i < placed) {
+        fs::remove(path, ignored);
+      }
     }
     for (std::size_t i = placed; i < temporaries.size(); ++i) fs::remove(temporaries[i], ignored);
     throw;

@@ -20,8 +20,8 @@ void writeFileAtomically(const std::filesystem::path& path, const FileWriter& wr
 
 // Several files replaced together (a folder of AOVs and its index): every content goes to its
 // temporary first; only when all were written does each path in turn get its new file (its old
-// one moved aside first, and back again if a later path fails). A failure leaves every path as
-// it was; a path named twice, or one that is a folder, is refused.
+// one kept aside first, and put back if a later path fails). A failure leaves every path as it
+// was; a path named twice, or one that is a folder, is refused.
 void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, FileWriter>>& files);
 
 // For writers that need a path (C libraries): `write` receives the temporary path.
