@@ -298,6 +298,7 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
       {"-o " + png + " --cutaway-angle nan", "finite"},
       {"-o " + png + " --eye 1,1e39,2", "x,y,z"},
       {"-o " + png + " --svg " + (dir / "lines.txt").string(), "give it a .svg name"},
+      {"-o " + (dir / "a-file" / "out.png").string(), "a-file/out.png: not a folder: "},
       {"-o " + png + " --svg " + (dir / "lines.svg").string(), "no volume of"},
       {"-o " + png + " --frames 2 --svg " + (dir / "lines_%s.svg").string(), "frame pattern"},
       {"-o " + (dir / "f%0999d.png").string() + " --frames 2", "of width at most 99"},

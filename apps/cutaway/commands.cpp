@@ -232,7 +232,8 @@ void checkFolderOf(const std::string& file) {
                                            : ".";
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec))
-    throw Error(file, "", "no such folder: " + folder.string());
+    throw Error(file, "", (std::filesystem::exists(folder, ec) ? "not a folder: " : "no such folder: ") +
+                              folder.string());
   if (::access(folder.c_str(), W_OK) != 0) throw Error(file, "", "the folder is not writable");
 }
 
