@@ -227,8 +227,8 @@ struct Simd {
 
 }  // namespace avx2
 
-// Zen 5 and recent Intel processors run 16 lanes at the cost of 8 and hold the whole state in
-// their 32 registers (the 8-lane directional kernel spills).
+// 16 lanes: Zen 5 and recent Intel processors run them at about the cost of 8 (the 32 registers
+// alone gained nothing: bench/RESULTS.md, the 8-lane kernel compiled for AVX-512VL).
 namespace avx512 {
 
 #define CUTAWAY_SIMD_INLINE __attribute__((target("avx512f,avx512dq,fma"), always_inline)) inline
