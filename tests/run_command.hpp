@@ -20,6 +20,20 @@
 
 namespace cutaway::test {
 
+// This build's programs run under AddressSanitizer (they are built as the tests are). Its
+// allocator reserves terabytes of address space, so `ulimit -v` cannot bound their memory.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
 struct Result {
   int exitCode;
   std::string out, err;

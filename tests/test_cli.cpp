@@ -96,6 +96,23 @@ TEST(Cli, AovRoundTripMatchesTheCamera) {
 // A disk that fills part way through an AOV folder (here a 200 KB file-size limit: the 3-channel
 // AOVs at 200×150 are 360 KB) leaves the folder as it was, or no folder, never an empty folder
 // or temporaries (AtomicFiles.* fail later in the set).
+// Out of memory for the CPU cutaway buffer (8192²: 3.8 GB of jump-flooding state, under a
+// 3 GB limit): the error names the option, and nothing is written.
+TEST(Cli, ACutawayBufferBeyondTheMemoryNamesItsOption) {
+  if (test::kAddressSanitizer) GTEST_SKIP() << "ulimit -v cannot hold AddressSanitizer";
+  const fs::path out = scratch("no-memory.png");
+  const Result r = test::runCommand(
+      "bash -c \"ulimit -v 3000000; " + kBinary + " render " + kSource +
+      "/examples/engine-cutaway.json --size 160x120 --set cutters.adaptive.compute=cpu --set "
+      "cutters.adaptive.bufferSize=8192 -o " +
+      out.string() + "\"");
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_EQ(r.err,
+            "cutaway: error: cutters.adaptive.bufferSize: out of memory for the 8192x8192 cutaway "
+            "buffer on the CPU; use a smaller bufferSize, or \"compute\": \"gpu\"\n");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Cli, AnAovFolderIsWrittenWholeOrNotAtAll) {
   const std::string scene = kData + "/render/plane-facing.json";
   const fs::path dir = scratch("whole-aovs"), fresh = scratch("no-aovs") / "frame" / "aovs";

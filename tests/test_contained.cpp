@@ -20,6 +20,7 @@
 #include "cutaway/io/volume_import.hpp"
 #include "expect_error.hpp"
 #include "fuzz/fuzz_targets.hpp"
+#include "run_command.hpp"
 
 using namespace cutaway;
 
@@ -133,18 +134,6 @@ void expectContainedError(const std::string& id, const std::string& arguments,
   test::expectError([&] { run(id, arguments, l); }, parts);
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-
 }  // namespace
 
 TEST(Contained, TheWorkersBytesComeBackWhole) {
@@ -232,7 +221,7 @@ TEST(Contained, AWorkerPastItsTimeIsStopped) {
 TEST(Contained, AWorkerPastItsMemoryIsStopped) {
   // 1 GB under a 64 MB limit. AddressSanitizer's allocator dies on a failed mapping rather
   // than throwing, which is a crash.
-  if (kAddressSanitizer)
+  if (test::kAddressSanitizer)
     expectContainedError("test-allocate", "1024", limits(60, 64),
                          {"input.bin: the test parser crashed"});
   else

@@ -1244,6 +1244,25 @@ TEST(SceneCamera, DerivedPlanesEncloseTheSceneWithoutFit) {
   checkFramed(s, c, "explicit camera");
 }
 
+// A given far plane nearer than the derived near is kept; the near plane yields to it.
+TEST(SceneCamera, AGivenFarNearerThanTheSceneIsKept) {
+  for (const char* projection : {"perspective", "orthographic"}) {
+    const Scene s = parse(std::string(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+      "camera": {"eye": [0.5, 0.5, 30], "target": [0.5, 0.5, 0.5], "far": 2, "projection": ")") +
+                          projection + R"("}})");
+    const Camera c = s.resolvedCamera();
+    EXPECT_EQ(c.far, 2.0f) << projection;
+    EXPECT_LT(c.near, c.far) << projection;
+    if (std::string(projection) == "perspective") EXPECT_GT(c.near, 0.0f);
+  }
+  // A given near beyond the scene keeps its value; the derived far moves past it.
+  const Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+                            "camera": {"eye": [0.5, 0.5, 30], "target": [0.5, 0.5, 0.5], "near": 50}})");
+  const Camera c = s.resolvedCamera();
+  EXPECT_EQ(c.near, 50.0f);
+  EXPECT_GT(c.far, c.near);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Camera paths and the scene's duration.
 

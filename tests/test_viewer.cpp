@@ -48,14 +48,15 @@ constexpr const char* kNoXvfb = "xvfb-run is not installed (Debian package xvfb;
 // xvfb-run (SIGUSR1) in the middle of its clean-up, which then fails ("problem while
 // cleaning up temporary directory") and leaves the server running. The viewer's exit status
 // and stderr are its own, kept apart from xvfb-run's.
-Result runUnderXvfb(const std::string& args) {
+// `shell` runs first in the viewer's shell (e.g. "ulimit -v 3000000; ").
+Result runUnderXvfb(const std::string& args, const std::string& shell = "") {
   const fs::path rc = scratch("viewer.rc"), err = scratch("viewer.err");
   Result outer;
   // A second try when the server did not start (another Xvfb took the display meanwhile).
   for (int attempt = 0; attempt < 2; ++attempt) {
     fs::remove(rc);
-    outer = run("xvfb-run -a -s '-screen 0 1280x1024x24 -noreset' sh -c '" + kViewer + " " + args +
-                " 2>" + err.string() + "; echo $? >" + rc.string() + "'");
+    outer = run("xvfb-run -a -s '-screen 0 1280x1024x24 -noreset' sh -c '" + shell + kViewer + " " +
+                args + " 2>" + err.string() + "; echo $? >" + rc.string() + "'");
     std::ifstream rcStream(rc), errStream(err);
     int status = -1;
     if (rcStream >> status)
@@ -314,6 +315,32 @@ TEST(Viewer, NetworkOptionsChangeLiveAndSave) {
 // (16 samples on llvmpipe, which takes 4), leaves the last good scene on screen and says why,
 // and the next edit still applies; a good one replaces it at the window's size (not the
 // file's resolution), and `reload` reads the file again keeping the view.
+// A frame that needs more memory than there is (a CPU cutaway buffer of 8192², 3.8 GB of
+// jump-flooding state, under a 3 GB limit) gives way to the last scene drawn, as a scene
+// the device refuses does; the error names the option.
+TEST(Viewer, AFrameWithoutMemoryKeepsTheLastGoodScene) {
+  ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
+  if (test::kAddressSanitizer) GTEST_SKIP() << "ulimit -v cannot hold AddressSanitizer";
+  const fs::path script = scratch("memory.txt"), before = scratch("memory-before.png"),
+                 after = scratch("memory-after.png"), turned = scratch("memory-turned.png");
+  std::ofstream(script) << "set cutters.adaptive.compute cpu\nwait 1\nscreenshot "
+                        << before.string() << "\nset cutters.adaptive.bufferSize 8192\nscreenshot "
+                        << after.string() << "\norbit 30 0\nscreenshot " << turned.string()
+                        << "\nquit\n";
+  const Result r = runUnderXvfb(
+      kSource + "/examples/engine-cutaway.json --size 160x120 --script " + script.string(),
+      "ulimit -v 3000000; ");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("cutters.adaptive.bufferSize: out of memory for the 8192x8192 cutaway "
+                       "buffer on the CPU"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("(the last good scene stays)"), std::string::npos) << r.err;
+  const Rgba8Image a = readPng(before), b = readPng(after), c = readPng(turned);
+  EXPECT_EQ(b.pixels, a.pixels);  // the 512² buffer's picture
+  EXPECT_NE(c.pixels, a.pixels);  // and the viewer goes on drawing
+}
+
 TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
   ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
   const std::string bunny = R"({"resolution": [200, 100], "samples": 1, "objects": [

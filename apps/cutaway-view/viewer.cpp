@@ -482,7 +482,8 @@ void Viewer::renderFull() {
   // A resting view draws every object in scene order: an object that came into view would
   // otherwise be drawn after the others (exact depth ties), src/frame/occlusion_culling.hpp.
   renderer_->setOcclusionCulling(moving());
-  renderer_->render(viewCamera(state_), state_.time);
+  if (!drawLive(*renderer_)) renderer_->render(viewCamera(state_), state_.time);
+  if (shown_ != renderer_.get()) rendered_ = state_.scene;  // its first full frame
   state_.timings = renderer_->timings();  // waits for the frame's timer queries
   state_.renderMs = state_.fullMs = millisecondsSince(start);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -529,7 +530,10 @@ void Viewer::renderMoving() {
     std::fflush(stdout);
   }
   const auto start = std::chrono::steady_clock::now();
-  moving_->render(viewCamera(state_), state_.time);
+  if (!drawLive(*moving_)) {
+    renderFull();
+    return;
+  }
   state_.timings = moving_->timings();
   state_.renderMs = millisecondsSince(start);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -773,7 +777,6 @@ bool Viewer::rebuild() {
     renderer_ = std::make_unique<Renderer>(state_.scene, window_->info());
     made = false;
   }
-  rendered_ = state_.scene;
   const char* path = renderer_->cutawayComputePath();
   state_.computePath = path ? path : "";
   state_.aovNames = renderer_->frame().aovNames();
@@ -790,6 +793,27 @@ bool Viewer::rebuild() {
   state_.sceneChanged = false;
   state_.viewChanged = true;
   return made;
+}
+
+bool Viewer::drawLive(Renderer& renderer) {
+  try {
+    renderer.render(viewCamera(state_), state_.time);
+    return true;
+  } catch (const Error& e) {
+    if (!rendered_) throw;  // the first scene: nothing to go back to
+    restoreRendered(e.what());
+  } catch (const std::bad_alloc&) {
+    if (!rendered_) throw;
+    restoreRendered("out of memory for this scene's frame");
+  }
+  return false;
+}
+
+void Viewer::restoreRendered(const std::string& why) {
+  report(why + std::string(kKept));
+  state_.scene = *rendered_;
+  state_.sceneChanged = true;
+  rebuild();  // renderer_ anew, moving_ gone
 }
 
 void Viewer::saveScene(const fs::path& path) {

@@ -83,6 +83,11 @@ class Viewer {
   // path, a frame to draw); when it cannot be made, the scene the last renderer drew comes
   // back with it and the error is reported. Returns whether the new one was made.
   bool rebuild();
+  // Draws the live scene with `renderer`. When that fails (an Error, or no memory for the
+  // frame's buffers) after an earlier scene drew, that scene comes back with a renderer of
+  // its own (restoreRendered), the failure is reported, and false is returned.
+  bool drawLive(Renderer& renderer);
+  void restoreRendered(const std::string& why);
   void report(const std::string& message);
   void screenshot(const std::filesystem::path& path);
   void windowShot(const std::filesystem::path& path);
@@ -91,7 +96,9 @@ class Viewer {
 
   ViewerOptions options_;
   Scene original_;  // as loaded, for saving
-  std::optional<Scene> rendered_;  // the live scene as the current renderer was made from it
+  // The live scene as a renderer last drew it in full: what a scene that cannot be made or
+  // drawn (the device refuses it, its buffers do not fit in memory) gives way to.
+  std::optional<Scene> rendered_;
   std::optional<SceneDocument> document_;
   ViewerState state_;
   std::optional<Script> script_;

@@ -27,6 +27,11 @@
 #include "cutaway/fields/cutaway_surface.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ < 13
+// GCC 12's AVX-512 intrinsics start from `__m512 __Y = __Y;` (_mm512_undefined_ps), which
+// its own -Wmaybe-uninitialized reports at every use (GCC bug 105593, fixed in 13).
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <immintrin.h>
 // The vector kernels are compiled for their instruction sets whatever the build's baseline
 // (target attributes; GCC's target_clones cannot hold these intrinsics) and run only after

@@ -315,12 +315,21 @@ Camera Scene::resolvedCamera(float time) const {
   }
   // Depth range hugging the scene: better depth precision than a fixed range.
   const float distance = glm::length(center - c.eye);
-  if (c.near <= 0.0f) {
+  const bool perspective = c.projection == Projection::Perspective;
+  const bool nearGiven = c.near > 0.0f, farGiven = c.far > 0.0f;
+  if (!nearGiven) {
     const float n = distance - radius * 1.05f;
-    c.near = c.projection == Projection::Perspective ? std::max(n, radius * 1e-3f) : n;
+    c.near = perspective ? std::max(n, radius * 1e-3f) : n;
   }
-  if (c.far <= 0.0f) c.far = distance + radius * 1.05f;
-  if (c.far <= c.near) c.far = c.near + radius * 2.0f;
+  if (!farGiven) c.far = distance + radius * 1.05f;
+  // Given values are kept (both given: far > near, checked where they are read); a derived
+  // plane that lands on the wrong side of a given one yields to it.
+  if (c.far <= c.near) {
+    if (farGiven && !nearGiven)
+      c.near = perspective ? c.far * 1e-3f : c.far - radius * 2.0f;
+    else
+      c.far = c.near + radius * 2.0f;
+  }
   return c;
 }
 

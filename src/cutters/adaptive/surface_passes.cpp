@@ -1,8 +1,10 @@
 #include "cutters/adaptive/surface_passes.hpp"
 
 #include <algorithm>
+#include <new>
 #include <string>
 
+#include "cutaway/core/error.hpp"
 #include "frame/fullscreen.hpp"
 
 namespace cutaway {
@@ -220,8 +222,16 @@ void CutawaySurfacePasses::computeOnCpu() {
   const int n = bufferSize_;
   std::vector<float> angle = frame_.read(seedAngle_, 1);
   for (float& a : angle) a = std::max(a, minAngle_());
-  fields::CutawayField field = fields::jumpFlooding(
-      makeSeedImage(frame_.read(seedDepth_, 1), angle, n, options_(), camera_), -1.0f, variant_);
+  fields::CutawayField field;
+  try {
+    field = fields::jumpFlooding(
+        makeSeedImage(frame_.read(seedDepth_, 1), angle, n, options_(), camera_), -1.0f, variant_);
+  } catch (const std::bad_alloc&) {
+    throw Error(
+        "", "cutters.adaptive.bufferSize",
+        "out of memory for the " + std::to_string(n) + "x" + std::to_string(n) +
+            " cutaway buffer on the CPU; use a smaller bufferSize, or \"compute\": \"gpu\"");
+  }
   for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
   glTextureSubImage2D(frame_.texture(cutawayDepth_).id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
                       field.depth.data());
