@@ -1244,6 +1244,32 @@ TEST(SceneCamera, DerivedPlanesEncloseTheSceneWithoutFit) {
   checkFramed(s, c, "explicit camera");
 }
 
+// Views that 32-bit floats cannot draw are named, and nothing near them is.
+TEST(SceneCamera, ViewsThatFloatsCannotDrawAreNamed) {
+  const auto why = [](const char* camera, const char* transform = "{}") {
+    return parse(std::string(R"({"objects": [{"name": "cube", "file": "cube.obj", "transform": )") +
+                 transform + R"(}], "camera": )" + camera + "}")
+        .resolvedCamera()
+        .unresolvable(4.0f / 3.0f);
+  };
+  EXPECT_EQ(why(R"({"eye": [0.5, 0.5, 30], "target": [0.5, 0.5, 0.5]})"), "");
+  EXPECT_EQ(why(R"({"fit": true})"), "");
+  // Projected coordinates: 5e6 from the origin, the eye 50 away (100 float steps) still draws.
+  EXPECT_EQ(why(R"({"eye": [5e6, 30, 5000040], "target": [5e6, 0, 5e6]})",
+                R"({"translate": [5e6, 0, 5e6]})"),
+            "");
+  // The scene 1e14 away: its depth range is one float.
+  EXPECT_NE(why(R"({"eye": [1e14, 0, 0], "target": [0, 0, 0]})").find("depth range"),
+            std::string::npos);
+  // Eye and target one float step apart at 1e14.
+  EXPECT_NE(why(R"({"eye": [1e14, 0, 0], "target": [99999990000000, 0, 0]})",
+                R"({"translate": [1e14, 0, 0]})")
+                .find("eye and target are 8.39e+06 apart at 1e+14"),
+            std::string::npos);
+  // A scene 1e-30 across, fitted: lookAt's squares underflow.
+  EXPECT_NE(why(R"({"fit": true})", R"({"scale": 1e-30})").find("not finite"), std::string::npos);
+}
+
 // A given far plane nearer than the derived near is kept; the near plane yields to it.
 TEST(SceneCamera, AGivenFarNearerThanTheSceneIsKept) {
   for (const char* projection : {"perspective", "orthographic"}) {

@@ -456,6 +456,13 @@ void Viewer::update(bool full) {
   constexpr double kLiveRebuildMs = 150.0;
   const bool dragging = ImGui::GetCurrentContext() && ImGui::IsAnyItemActive() && !script_;
   if (state_.sceneChanged && renderer_ && dragging && rebuildMs_ > kLiveRebuildMs) return;
+  if (state_.viewChanged && drawnCamera_) {
+    // A move that 32-bit floats cannot draw (a zoom of 1e30, a pan of 1e300) is undone.
+    if (const std::string why = viewCamera(state_).unresolvable(aspect()); !why.empty()) {
+      report("the view stays where it was: the camera's " + why);
+      state_.scene.camera = *drawnCamera_;
+    }
+  }
   const bool rebuilding = state_.sceneChanged;
   if (rebuilding) {
     const auto start = std::chrono::steady_clock::now();
@@ -484,6 +491,7 @@ void Viewer::renderFull() {
   renderer_->setOcclusionCulling(moving());
   if (!drawLive(*renderer_)) renderer_->render(viewCamera(state_), state_.time);
   if (shown_ != renderer_.get()) rendered_ = state_.scene;  // its first full frame
+  drawnCamera_ = state_.scene.camera;
   state_.timings = renderer_->timings();  // waits for the frame's timer queries
   state_.renderMs = state_.fullMs = millisecondsSince(start);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -534,6 +542,7 @@ void Viewer::renderMoving() {
     renderFull();
     return;
   }
+  drawnCamera_ = state_.scene.camera;
   state_.timings = moving_->timings();
   state_.renderMs = millisecondsSince(start);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

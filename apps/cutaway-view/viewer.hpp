@@ -99,6 +99,7 @@ class Viewer {
   // The live scene as a renderer last drew it in full: what a scene that cannot be made or
   // drawn (the device refuses it, its buffers do not fit in memory) gives way to.
   std::optional<Scene> rendered_;
+  std::optional<Camera> drawnCamera_;  // the live scene's camera at the last frame drawn
   std::optional<SceneDocument> document_;
   ViewerState state_;
   std::optional<Script> script_;

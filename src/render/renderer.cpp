@@ -337,8 +337,10 @@ std::size_t Renderer::meshTriangles() const {
 
 void Renderer::render(const Camera& camera, float time) {
   Impl& g = *impl_;
-  g.meshes.setTime(time);
   const float aspect = float(scene_.width) / float(scene_.height);
+  if (const std::string why = camera.unresolvable(aspect); !why.empty())
+    throw Error("", "camera", why);
+  g.meshes.setTime(time);
   FrameUniforms u{};
   u.view = camera.view();
   u.projection = camera.projectionMatrix(aspect);

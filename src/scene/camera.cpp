@@ -1,6 +1,8 @@
 #include "cutaway/scene/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace cutaway {
@@ -15,6 +17,32 @@ glm::mat4 Camera::projectionMatrix(float aspect) const {
     return glm::ortho(-w, w, -h, h, near, far);
   }
   return glm::perspective(glm::radians(fovY), aspect, near, far);
+}
+
+std::string Camera::unresolvable(float aspect) const {
+  const auto text = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.3g", v);
+    return std::string(buffer);
+  };
+  // Eight float steps (2⁻²³ relative each) apart at least: fewer leave the view's direction,
+  // or its depth, to the rounding. (Lengths in double: a float's squares underflow at 1e-20.)
+  constexpr double kSteps = 8.0 / double(1 << 23);
+  const double distance = glm::length(glm::dvec3(eye) - glm::dvec3(target));
+  const double magnitude = std::max(glm::length(glm::dvec3(eye)), glm::length(glm::dvec3(target)));
+  if (!(distance > kSteps * magnitude))
+    return "eye and target are " + text(distance) + " apart at " + text(magnitude) +
+           " from the origin, too close for 32-bit floats to give the view's direction";
+  if (!(double(far) - double(near) > kSteps * std::max(std::abs(near), std::abs(far))))
+    return "the depth range from near " + text(near) + " to far " + text(far) +
+           " is too thin for 32-bit floats (the eye is " + text(distance) + " from the target)";
+  const glm::mat4 m = projectionMatrix(aspect) * view();
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r]))
+        return "its view and projection are not finite in 32-bit floats (eye and target " +
+               text(distance) + " apart, near " + text(near) + ", far " + text(far) + ")";
+  return "";
 }
 
 float Camera::viewHeightAtTarget() const {

@@ -28,7 +28,10 @@ struct Bounds {
     if (!b.empty()) extend(b.min), extend(b.max);
   }
   glm::vec3 center() const { return (min + max) * 0.5f; }
-  float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
+  // In double: the squares of a box 1e-20 across underflow in float.
+  float radius() const {
+    return empty() ? 0.0f : float(glm::length(glm::dvec3(max) - glm::dvec3(min)) * 0.5);
+  }
   Bounds transformed(const glm::mat4& m) const;
 };
 

@@ -5,6 +5,7 @@
 //   glm::mat4 viewProjection = c.projectionMatrix(4.0f / 3.0f) * c.view();
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -29,6 +30,10 @@ struct Camera {
 
   glm::mat4 view() const;
   glm::mat4 projectionMatrix(float aspect) const;
+  // Why 32-bit floats cannot draw this resolved camera's view (near and far set), or "":
+  // eye and target closer than a few of the floats' steps at their magnitude, a depth range
+  // [near, far] as thin, or matrices that are not finite (a scene 1e-30 across).
+  std::string unresolvable(float aspect) const;
   // World units of the view's height at the target (orthographic: `height`).
   float viewHeightAtTarget() const;
   // Where the view ray through world point `x` starts: the eye, or for orthographic views
