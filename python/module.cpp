@@ -7,6 +7,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -14,6 +16,8 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <string_view>
+#include <type_traits>
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
@@ -30,27 +34,75 @@ using namespace cutaway;
 namespace {
 
 // The one headless context of the process, made when the first renderer needs it and
-// destroyed when the last renderer that holds it goes away.
+// destroyed when the last renderer that holds it goes away; and the process that made it.
 std::weak_ptr<gl::HeadlessContext> sharedContext;
+pid_t contextProcess = 0;
+
+// A context does not survive fork(): the driver's threads stay in the parent, and the
+// child's first OpenGL call waits for them forever.
+void checkNotForked() {
+  if (!sharedContext.expired() && ::getpid() != contextProcess)
+    throw Error(
+        "this process was forked from one that holds a cutaway renderer, and an OpenGL "
+        "context does not survive fork(): make renderers only after forking, or use "
+        "multiprocessing's \"spawn\" or \"forkserver\" start method");
+}
 
 std::shared_ptr<gl::HeadlessContext> context() {
+  checkNotForked();
   if (auto c = sharedContext.lock()) return c;
   std::shared_ptr<gl::HeadlessContext> c = gl::HeadlessContext::create();
-  sharedContext = c;
+  c->release();  // made current on each call instead (OnThisThread)
+  sharedContext = c, contextProcess = ::getpid();
   return c;
 }
+
+// OpenGL work from whichever Python thread calls: the context is current on the calling
+// thread for the call and released after it, since EGL lets one thread at a time hold it
+// (the GIL, held throughout, keeps the calls apart).
+class OnThisThread {
+ public:
+  explicit OnThisThread(const gl::HeadlessContext& context) : context_(context) {
+    checkNotForked();
+    context_.makeCurrent();
+  }
+  ~OnThisThread() { context_.release(); }
+  OnThisThread(const OnThisThread&) = delete;
+  OnThisThread& operator=(const OnThisThread&) = delete;
+
+ private:
+  const gl::HeadlessContext& context_;
+};
 
 // A renderer with its own copy of the scene (cutaway::Renderer keeps a reference to it) and
 // a share of the context. The context is declared first, so it outlives the renderer.
 class PyRenderer {
  public:
-  explicit PyRenderer(const Scene& scene)
-      : context_(context()),
-        scene_(scene),
-        renderer_(std::make_unique<Renderer>(scene_, context_->info())) {}
+  explicit PyRenderer(const Scene& scene) : context_(context()), scene_(scene) {
+    const OnThisThread current(*context_);
+    renderer_ = std::make_unique<Renderer>(scene_, context_->info());
+  }
+  ~PyRenderer() {
+    if (::getpid() != contextProcess) {
+      // A copy in a forked child: the parent's OpenGL objects, and its context, are not this
+      // process's to free; both are left as they are (a leak, not a hang).
+      (void)renderer_.release();
+      new std::shared_ptr<gl::HeadlessContext>(std::move(context_));
+      return;
+    }
+    const OnThisThread current(*context_);
+    renderer_.reset();
+  }
+  PyRenderer(const PyRenderer&) = delete;
+  PyRenderer& operator=(const PyRenderer&) = delete;
 
   py::array_t<std::uint8_t> render(float time) {
+    // The scene's times, as `cutaway render --time` takes them.
+    if (!(time >= 0.0f && time <= 1e6f))
+      throw Error("render", "time", "expected seconds in [0, 1e6], got " + std::to_string(time));
+    const OnThisThread current(*context_);
     renderer_->renderAt(time);
+    rendered_ = true;
     const Rgba8Image image = renderer_->readColor();
     py::array_t<std::uint8_t> out({image.height, image.width, 4});
     std::memcpy(out.mutable_data(), image.pixels.data(), image.pixels.size());
@@ -59,12 +111,16 @@ class PyRenderer {
 
   // Every AOV of the last frame: float32 arrays, rows top to bottom, (H, W) for one channel.
   py::dict aovs() const {
+    requireFrame("aovs");
+    const OnThisThread current(*context_);
     py::dict out;
     for (const Aov& a : renderer_->readAovs()) out[py::str(a.name)] = toArray(a.image);
     return out;
   }
 
   py::list timings() {
+    requireFrame("timings");
+    const OnThisThread current(*context_);
     py::list out;
     for (const PassTiming& t : renderer_->timings()) {
       py::dict d;
@@ -87,9 +143,14 @@ class PyRenderer {
     return out;
   }
 
+  void requireFrame(const char* what) const {
+    if (!rendered_) throw Error(what, "", "no frame yet: call render() first");
+  }
+
   std::shared_ptr<gl::HeadlessContext> context_;
   Scene scene_;
   std::unique_ptr<Renderer> renderer_;
+  bool rendered_ = false;
 };
 
 // A mesh from arrays: `vertices` (N, 3) in object space, `faces` (M, 3) indices into them
@@ -99,15 +160,21 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
                                            const py::handle& vertexArray,
                                            const py::handle& faceArray) {
   const auto fail = [&](const std::string& reason) { throw Error(source, place, reason); };
-  using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
-  using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
-  const auto vertices = Vertices::ensure(vertexArray);
-  const auto faces = Faces::ensure(faceArray);
-  PyErr_Clear();  // ensure() leaves the conversion's error set when it fails
-  if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3)
-    fail("vertices must be numbers of shape (N, 3)");
-  if (!faces || faces.ndim() != 2 || faces.shape(1) != 3)
-    fail("faces must be integers of shape (M, 3)");
+  // The kinds first: forcecast would take 0.5 as index 0, a complex number as its real part
+  // and 2⁶³ as −2⁶³.
+  const auto kind = [](const py::handle& h) {
+    const py::array a = py::array::ensure(h);
+    PyErr_Clear();  // ensure() leaves the conversion's error set when it fails
+    return a ? a.dtype().kind() : '?';
+  };
+  const char vertexKind = kind(vertexArray), faceKind = kind(faceArray);
+  const auto vertices =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(vertexArray);
+  PyErr_Clear();
+  if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3 ||
+      std::string_view("iuf").find(vertexKind) == std::string_view::npos)
+    fail("vertices must be real numbers of shape (N, 3)");
+  if (faceKind != 'i' && faceKind != 'u') fail("faces must be integers of shape (M, 3)");
   Mesh mesh;
   const double* v = vertices.data();
   for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
@@ -116,15 +183,34 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
       fail("vertex " + std::to_string(i) + " is not finite or lies beyond 1e15");
     mesh.positions.emplace_back(p);
   }
-  const std::int64_t* f = faces.data();
-  const auto count = std::int64_t(mesh.positions.size());
-  for (py::ssize_t i = 0; i < faces.shape(0); ++i) {
-    for (int k = 0; k < 3; ++k)
-      if (f[3 * i + k] < 0 || f[3 * i + k] >= count)
-        fail("face " + std::to_string(i) + " has vertex index " + std::to_string(f[3 * i + k]) +
-             " out of range (" + std::to_string(count) + " vertices)");
-    mesh.triangles.emplace_back(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
-  }
+  // Signed indices read as signed (−1 stays −1), unsigned as unsigned (2⁶³ stays 2⁶³).
+  const auto addFaces = [&](auto index) {
+    using Index = decltype(index);
+    const auto outside = [](Index v, Index count) {
+      if constexpr (std::is_signed_v<Index>)
+        return v < 0 || v >= count;
+      else
+        return v >= count;
+    };
+    const auto faces =
+        py::array_t<Index, py::array::c_style | py::array::forcecast>::ensure(faceArray);
+    PyErr_Clear();
+    if (!faces || faces.ndim() != 2 || faces.shape(1) != 3)
+      fail("faces must be integers of shape (M, 3)");
+    const Index* f = faces.data();
+    const auto count = Index(mesh.positions.size());
+    for (py::ssize_t i = 0; i < faces.shape(0); ++i) {
+      for (int k = 0; k < 3; ++k)
+        if (outside(f[3 * i + k], count))
+          fail("face " + std::to_string(i) + " has vertex index " + std::to_string(f[3 * i + k]) +
+               " out of range (" + std::to_string(count) + " vertices)");
+      mesh.triangles.emplace_back(f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+    }
+  };
+  if (faceKind == 'u')
+    addFaces(std::uint64_t{});
+  else
+    addFaces(std::int64_t{});
   mesh.report.droppedDegenerate = dropDegenerateTriangles(mesh);
   if (mesh.triangles.empty()) fail("no triangle of non-zero area");
   computeVertexNormals(mesh);

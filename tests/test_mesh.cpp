@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <unistd.h>
+#include <zlib.h>
 #include <algorithm>
 #include <cstring>
 #include <iterator>
@@ -201,6 +202,44 @@ TEST(PlyReader, BadFilesAreRefusedWithTheirPlaceAndReason) {
   refuse("lines.ply", kPlyHeader + "2 0 1\n", {"lines.ply", "contains no triangles"});
 }
 
+// A triangle with an infinite coordinate is dropped as a NaN one is, and the vertex it leaves
+// behind stays out of the bounds (it made the object's box empty, and the object vanish).
+TEST(MeshImport, AnInfiniteVertexLeavesTheBoundsAlone) {
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n"
+      "inf 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n";
+  const std::filesystem::path file = plyFile("inf.ply", ply);
+  const std::vector<ImportedNode> nodes = importMeshNodes(file);
+  std::filesystem::remove(file);
+  ASSERT_EQ(nodes.size(), 1u);
+  EXPECT_EQ(nodes[0].mesh.triangles.size(), 1u);
+  const Bounds b = nodes[0].mesh.bounds();
+  EXPECT_EQ(b.min, glm::vec3(0, 0, 0));
+  EXPECT_EQ(b.max, glm::vec3(1, 1, 0));
+}
+
+// Repeated node names take "#2", "#3", … but never a name the file gives another node.
+TEST(MeshImport, RepeatedNodeNamesStayUnique) {
+  const std::string triangle = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";  // 3 vec3
+  const std::string gltf =
+      R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2, 3]}],
+          "nodes": [{"name": "a", "mesh": 0}, {"name": "a#2", "mesh": 0}, {"name": "a", "mesh": 0},
+                    {"name": "a", "mesh": 0}],
+          "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+          "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                         "min": [0, 0, 0], "max": [1, 1, 0]}],
+          "bufferViews": [{"buffer": 0, "byteLength": 36}],
+          "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
+      triangle + R"("}]})";
+  const std::filesystem::path file = plyFile("names.gltf", gltf);
+  std::vector<std::string> names;
+  for (const ImportedNode& node : importMeshNodes(file)) names.push_back(node.name);
+  std::filesystem::remove(file);
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"a", "a#2", "a#3", "a#4"}));
+}
+
 // Gzip and binary glTF files that lie about their sizes.
 TEST(MeshImport, BadGzipAndBinaryGltfFilesAreRefused) {
   // .gz files that are not gzip, or hold nothing (Assimp said "Invalid parameters passed to
@@ -212,6 +251,26 @@ TEST(MeshImport, BadGzipAndBinaryGltfFilesAreRefused) {
                      20),
          {"empty.stl.gz", "empty after gzip"});
   refuse("cut.stl.gz", "\x1f\x8b\x08\x00\x00\x00", {"cut.stl.gz", "gzip"});
+  // A whole OBJ gzipped, then cut within its data, or only its 8-byte trailer (CRC, size)
+  // taken off: zlib hands over what it inflated (half a mesh) and only records the error.
+  const std::filesystem::path whole = std::filesystem::temp_directory_path() /
+                                      ("cutaway-whole-" + std::to_string(::getpid()) + ".obj.gz");
+  {
+    gzFile gz = gzopen(whole.c_str(), "wb");
+    std::string obj;
+    for (int i = 0; i < 400; ++i)
+      obj += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0\nv " +
+             std::to_string(i) + " 0 1\nf " + std::to_string(3 * i + 1) + " " +
+             std::to_string(3 * i + 2) + " " + std::to_string(3 * i + 3) + "\n";
+    ASSERT_EQ(gzwrite(gz, obj.data(), unsigned(obj.size())), int(obj.size()));
+    gzclose(gz);
+  }
+  std::ifstream in(whole, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  std::filesystem::remove(whole);
+  refuse("half.obj.gz", bytes.substr(0, bytes.size() / 2), {"half.obj.gz", "truncated gzip"});
+  refuse("no-trailer.obj.gz", bytes.substr(0, bytes.size() - 8),
+         {"no-trailer.obj.gz", "truncated gzip"});
   // A binary glTF whose JSON chunk claims 1.2 GB (Assimp allocated it; found by fuzzing), one
   // whose header claims more than the file, and one cut inside its chunk table (after an empty
   // first chunk).

@@ -20,8 +20,11 @@ Bounds Bounds::transformed(const glm::mat4& m) const {
 }
 
 Bounds Mesh::bounds() const {
+  // Non-finite positions are left out: their triangles were dropped (dropDegenerateTriangles),
+  // and one infinite coordinate made the whole object's bounds, then its box, empty.
   Bounds b;
-  for (const auto& p : positions) b.extend(p);
+  for (const auto& p : positions)
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) b.extend(p);
   return b;
 }
 

@@ -3,6 +3,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -136,6 +137,18 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create() {
                 std::to_string(epoxy_gl_version() % 10));
   self->info_ = ContextInfo::query();
   return self;
+}
+
+void HeadlessContext::makeCurrent() const {
+  if (eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) return;
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04X", unsigned(eglGetError()));
+  throw Error(std::string("cannot make the OpenGL context current on this thread (EGL error ") +
+              code + ")");
+}
+
+void HeadlessContext::release() const {
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 HeadlessContext::~HeadlessContext() {

@@ -15,6 +15,7 @@
 #include <iterator>
 #include <map>
 #include <regex>
+#include <set>
 #include <string_view>
 
 #include "cutaway/core/contained.hpp"
@@ -37,10 +38,16 @@ std::vector<char> readGzip(const std::filesystem::path& file) {
   char chunk[1 << 16];
   int n = 0;
   while ((n = gzread(gz, chunk, sizeof chunk)) > 0) data.insert(data.end(), chunk, chunk + n);
-  int errnum = 0;
-  const std::string message = n < 0 ? gzerror(gz, &errnum) : "";
+  // A stream cut short (or without its 8-byte trailer) ends gzread without an error of its
+  // own: zlib only records Z_BUF_ERROR, "unexpected end of file".
+  int errnum = Z_OK;
+  std::string message = gzerror(gz, &errnum);
   gzclose(gz);
-  if (n < 0) throw Error(file.string(), "", "corrupt gzip: " + message);
+  if (message.starts_with(file.string() + ": "))  // zlib names the file itself
+    message.erase(0, file.string().size() + 2);
+  if (errnum == Z_BUF_ERROR)
+    throw Error(file.string(), "", "truncated gzip stream (" + message + ")");
+  if (n < 0 || errnum != Z_OK) throw Error(file.string(), "", "corrupt gzip: " + message);
   if (data.empty()) throw Error(file.string(), "", "empty after gzip decompression");
   return data;
 }
@@ -222,6 +229,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
 
   std::vector<ImportedNode> nodes;
   std::map<std::string, int> nameCount;
+  std::set<std::string> taken;
   auto visit = [&](auto&& self, const aiNode* node, const glm::mat4& parent) -> void {
     const glm::mat4 transform = parent * toGlm(node->mTransformation);
     if (node->mNumMeshes > 0) {
@@ -248,8 +256,12 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
         out.id = name;
         name = named;
       }
-      const int seen = nameCount[name]++;
-      out.name = seen ? name + "#" + std::to_string(seen + 1) : name;
+      // Repeated names take "#2", "#3", …, skipping those the file's own nodes hold ("a",
+      // "a#2", "a" gave two "a#2").
+      out.name = name;
+      for (int k = nameCount[name]++; taken.count(out.name);)
+        out.name = name + "#" + std::to_string(++k);
+      taken.insert(out.name);
       bool normalsComputed = false;
       for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];

@@ -900,11 +900,24 @@ json parseJson(const Context& ctx, const std::string& text) {
   return root;
 }
 
-// Names unique across objects and volumes, and everything within float reach.
+// Names unique across objects and volumes, and everything within float reach. Also what the
+// file's reader checks where it reads a name or a colour, for objects made otherwise (a
+// split file's nodes, the Python module's arrays).
 void checkNamesAndReach(const Context& ctx, const Scene& scene) {
   std::set<std::string> names;
   std::size_t proxies = 0;  // the proxies follow the objects, in the file's order
   for (const auto& o : scene.objects) {
+    if (o.name.empty() || o.name.size() > kMaxNameLength)
+      ctx.fail("/objects", "an object name of " + std::to_string(o.name.size()) +
+                               " characters (1 to " + std::to_string(kMaxNameLength) + ")");
+    if (const std::size_t at = o.name.find('\0'); at != std::string::npos)
+      ctx.fail("/objects", "an object name holds a NUL character (at " + std::to_string(at) + ")");
+    const glm::vec3 c = o.material.color;
+    if (!(glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) &&
+          glm::all(glm::lessThanEqual(c, glm::vec3(1.0f)))))
+      ctx.fail("/objects", "\"" + o.name + "\" has the colour [" + std::to_string(c.r) + ", " +
+                               std::to_string(c.g) + ", " + std::to_string(c.b) +
+                               "], outside [0, 1]");
     const bool fresh = names.insert(o.name).second;
     if (o.proxy && !fresh)
       ctx.fail("/proxies/" + std::to_string(proxies) + "/name",

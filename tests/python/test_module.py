@@ -4,7 +4,10 @@ cutaway.Error with the CLI's messages, and the shared context released with the 
 renderer. Run by CTest (Python.Module) with PYTHONPATH at the build tree's python/."""
 import json
 import os
+import signal
 import subprocess
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -115,6 +118,84 @@ def test_the_context_goes_with_the_last_renderer():
     assert len(os.listdir("/proc/self/fd")) <= fds + 2
 
 
+def test_renderers_work_from_any_thread():
+    # The context is current on the calling thread for each call: a frame, a second renderer
+    # and the last reference dropped in other threads (each aborted in libepoxy before).
+    scene = cutaway.from_dict(cube_scene())
+    renderer = cutaway.Renderer(scene)
+    expected = renderer.render()
+    results = {}
+
+    def elsewhere():
+        results["same"] = renderer.render()
+        second = cutaway.Renderer(scene)
+        results["second"] = second.render()
+        results["aovs"] = sorted(second.aovs())
+        del second
+
+    worker = threading.Thread(target=elsewhere)
+    worker.start()
+    worker.join()
+    assert np.array_equal(results["same"], expected)
+    assert np.array_equal(results["second"], expected)
+    assert "objectId" in results["aovs"]
+    dropper = threading.Thread(target=lambda r=[renderer]: r.clear())
+    del renderer
+    dropper.start()
+    dropper.join()
+    assert cutaway.live_contexts() == 0
+    assert np.array_equal(cutaway.Renderer(scene).render(), expected)
+
+
+def test_a_forked_child_is_told_its_context_did_not_come_along():
+    # fork() with a renderer alive (multiprocessing's default on Linux): the child's first
+    # OpenGL call waited forever for the driver's threads, which stay in the parent.
+    scene = cutaway.from_dict(cube_scene())
+    renderer = cutaway.Renderer(scene)
+    renderer.render()
+    read, write = os.pipe()
+    child = os.fork()
+    if child == 0:
+        os.close(read)
+        try:
+            cutaway.Renderer(scene)
+            message = "made a renderer"
+        except cutaway.Error as e:
+            message = str(e)
+        try:
+            renderer.render()
+        except cutaway.Error as e:
+            message += "\n" + str(e)
+        os.write(write, message.encode())
+        os._exit(0)
+    os.close(write)
+    deadline = time.monotonic() + 60
+    while os.waitpid(child, os.WNOHANG) == (0, 0):
+        if time.monotonic() > deadline:
+            os.kill(child, signal.SIGKILL)
+            os.waitpid(child, 0)
+            pytest.fail("the forked child hung")
+        time.sleep(0.05)
+    with os.fdopen(read) as pipe:
+        lines = pipe.read().splitlines()
+    assert len(lines) == 2, lines
+    assert all("an OpenGL context does not survive fork()" in line for line in lines), lines
+    renderer.render()  # the parent's renderer goes on
+
+
+def test_a_frame_comes_first_and_its_time_is_checked():
+    renderer = cutaway.Renderer(cutaway.from_dict(cube_scene()))
+    with pytest.raises(cutaway.Error, match=r"aovs: no frame yet: call render\(\) first"):
+        renderer.aovs()
+    with pytest.raises(cutaway.Error, match=r"timings: no frame yet"):
+        renderer.timings()
+    for bad in (float("nan"), -1, 1e300):
+        with pytest.raises(cutaway.Error, match=r"render: time: expected seconds in \[0, 1e6\]"):
+            renderer.render(bad)
+    renderer.render(2.5)
+    assert "objectId" in renderer.aovs()
+
+
 def test_the_frame_shows_itself_and_bench_reports_figures():
     renderer = cutaway.Renderer(cutaway.from_dict(cube_scene()))
     png = renderer.render()._repr_png_()
@@ -157,8 +238,28 @@ def test_a_bad_numpy_mesh_is_refused():
     with pytest.raises(cutaway.Error, match=r"add_mesh: m: face 1 has vertex index 8 out of "
                                             r"range \(8 vertices\)"):
         scene.add_mesh("m", CUBE_VERTICES, np.array([[0, 1, 2], [0, 2, 8]]))
-    with pytest.raises(cutaway.Error, match=r"vertices must be numbers of shape \(N, 3\)"):
+    with pytest.raises(cutaway.Error, match=r"vertices must be real numbers of shape \(N, 3\)"):
         scene.add_mesh("m", CUBE_VERTICES[:, :2], CUBE_FACES)
+    # Kinds that a cast would take silently: 0.5 as index 0, a complex number as its real part,
+    # 2⁶³ as −2⁶³.
+    with pytest.raises(cutaway.Error, match=r"faces must be integers of shape \(M, 3\)"):
+        scene.add_mesh("m", CUBE_VERTICES, CUBE_FACES + 0.5)
+    with pytest.raises(cutaway.Error, match=r"vertices must be real numbers"):
+        scene.add_mesh("m", CUBE_VERTICES + 1j, CUBE_FACES)
+    huge = CUBE_FACES.astype(np.uint64)
+    huge[2, 1] = 2**63
+    with pytest.raises(cutaway.Error, match=r"face 2 has vertex index 9223372036854775808 out"):
+        scene.add_mesh("m", CUBE_VERTICES, huge)
+    with pytest.raises(cutaway.Error, match=r"face 0 has vertex index -1 out of range"):
+        scene.add_mesh("m", CUBE_VERTICES, np.array([[-1, 1, 2]]))
+    # What a scene file's reader refuses: colours outside [0, 1], names too long or with NUL.
+    for color in ([2, 0, 0], [-5, 0, 0], [np.nan, 0, 0]):
+        with pytest.raises(cutaway.Error, match=r"\"m\" has the colour .* outside \[0, 1\]"):
+            scene.add_mesh("m", CUBE_VERTICES, CUBE_FACES, color=color)
+    with pytest.raises(cutaway.Error, match=r"an object name of 2000 characters \(1 to 1024\)"):
+        scene.add_mesh("m" * 2000, CUBE_VERTICES, CUBE_FACES)
+    with pytest.raises(cutaway.Error, match=r"an object name holds a NUL character \(at 1\)"):
+        scene.add_mesh("a\0b", CUBE_VERTICES, CUBE_FACES)
     bad = CUBE_VERTICES.copy()
     bad[3, 1] = np.nan
     with pytest.raises(cutaway.Error, match="vertex 3 is not finite"):

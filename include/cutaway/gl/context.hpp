@@ -41,6 +41,11 @@ class HeadlessContext {
   HeadlessContext& operator=(const HeadlessContext&) = delete;
 
   const ContextInfo& info() const { return info_; }
+  // Makes the context current on the calling thread. EGL lets a context be current on one
+  // thread at a time: the thread that had it must release() it first.
+  void makeCurrent() const;
+  // Leaves the calling thread without a current context.
+  void release() const;
   // "device" (EGL device platform) or "surfaceless" (Mesa surfaceless platform).
   const std::string& platform() const { return platform_; }
 
