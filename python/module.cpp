@@ -168,11 +168,12 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
     return a ? a.dtype().kind() : '?';
   };
   const char vertexKind = kind(vertexArray), faceKind = kind(faceArray);
+  if (std::string_view("iuf").find(vertexKind) == std::string_view::npos)
+    fail("vertices must be real numbers of shape (N, 3)");
   const auto vertices =
       py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(vertexArray);
   PyErr_Clear();
-  if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3 ||
-      std::string_view("iuf").find(vertexKind) == std::string_view::npos)
+  if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3)
     fail("vertices must be real numbers of shape (N, 3)");
   if (faceKind != 'i' && faceKind != 'u') fail("faces must be integers of shape (M, 3)");
   Mesh mesh;
