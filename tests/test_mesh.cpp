@@ -219,6 +219,16 @@ TEST(MeshImport, AnInfiniteVertexLeavesTheBoundsAlone) {
   EXPECT_EQ(b.max, glm::vec3(1, 1, 0));
 }
 
+// A path that is there but holds no file (a folder, a device) says so, not "not found".
+TEST(MeshImport, APathThatIsNoFileIsNamedSo) {
+  test::expectError([] { importMeshNodes("/dev/null"); },
+                    {"/dev/null", "mesh file is not a regular file"});
+  test::expectError([] { importMeshNodes(std::filesystem::temp_directory_path() / "."); },
+                    {"mesh file is not a regular file"});
+  test::expectError([] { importMeshNodes("/no/such/mesh.obj"); },
+                    {"/no/such/mesh.obj", "mesh file not found"});
+}
+
 // Repeated node names take "#2", "#3", … but never a name the file gives another node.
 TEST(MeshImport, RepeatedNodeNamesStayUnique) {
   const std::string triangle = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";  // 3 vec3

@@ -160,7 +160,9 @@ void checkGlbHeader(const std::filesystem::path& file) {
 std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
-    throw Error(file.string(), "", "mesh file not found");
+    throw Error(file.string(), "",
+                std::filesystem::exists(file, ec) ? "mesh file is not a regular file"
+                                                  : "mesh file not found");
   const bool gzip = file.extension() == ".gz";
   // "room.stl.gz" → "stl"
   std::string format = (gzip ? file.stem().extension() : file.extension()).string();

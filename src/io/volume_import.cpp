@@ -1030,7 +1030,8 @@ std::vector<float> readAsciiVoxels(Source& in, std::size_t count, const VoxelTyp
 std::vector<float> readData(const DataLayout& d, std::size_t count, const VoxelType& t,
                             const Where& data) {
   std::error_code ec;
-  if (!fs::is_regular_file(d.file, ec)) data.fail("data file not found");
+  if (!fs::is_regular_file(d.file, ec))
+    data.fail(fs::exists(d.file, ec) ? "data file is not a regular file" : "data file not found");
   const std::uint64_t size = fileSize(d.file, data);
   const std::uint64_t expected = std::uint64_t(count) * std::uint64_t(t.bytes);
   if (d.offset > size) data.fail(truncated(0, expected));
@@ -2246,7 +2247,10 @@ Volume importVolume(const std::filesystem::path& file, const VolumeLimits& limit
     throw Error(file.string(), "",
                 "unknown volume format (expected .nii, .nii.gz, .npy, .npz, .den, .json, .mha, "
                 ".mhd, .nrrd, .nhdr, .vtk or a folder of DICOM images)");
-  if (!fs::is_regular_file(file, ec)) throw Error(file.string(), "", "volume file not found");
+  if (!fs::is_regular_file(file, ec))
+    throw Error(
+        file.string(), "",
+        fs::exists(file, ec) ? "volume file is not a regular file" : "volume file not found");
   Volume v = reader(file, limits);
   v.updateRange();
   return v;
