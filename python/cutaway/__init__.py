@@ -11,6 +11,7 @@ Errors are cutaway.Error (a RuntimeError) with the CLI's one-line messages. docs
 """
 import io
 import json
+import math
 import os
 import statistics
 import time as _time
@@ -37,9 +38,27 @@ def _json_default(value):
     raise TypeError("%s is not a number, string, list or dict" % type(value).__name__)
 
 
+def _check_finite(value, place):
+    # JSON has no NaN or infinity: json.dumps would write them, and the parser would then
+    # name a line and column of text the user never wrote.
+    if isinstance(value, (float, np.floating)) and not math.isfinite(value):
+        raise Error("<dict>: %s: %r is not a finite number" % (place or "/", float(value)))
+    if isinstance(value, dict):
+        for key, item in value.items():
+            _check_finite(item, "%s/%s" % (place, key))
+    elif isinstance(value, (list, tuple)):
+        for i, item in enumerate(value):
+            _check_finite(item, "%s/%d" % (place, i))
+    elif isinstance(value, np.ndarray) and value.dtype.kind == "f" and not np.isfinite(value).all():
+        at = tuple(int(i) for i in np.argwhere(~np.isfinite(value))[0])
+        raise Error("<dict>: %s%s: %r is not a finite number"
+                    % (place, "".join("/%d" % i for i in at), float(value[at])))
+
+
 def _dumps(value):
+    _check_finite(value, "")
     try:
-        return json.dumps(value, default=_json_default)
+        return json.dumps(value, default=_json_default, allow_nan=False)
     except (TypeError, ValueError) as e:
         raise Error("<dict>: %s" % e) from None
 

@@ -183,6 +183,15 @@ def test_a_forked_child_is_told_its_context_did_not_come_along():
     renderer.render()  # the parent's renderer goes on
 
 
+def test_a_number_json_cannot_hold_is_named_by_its_place():
+    camera = dict(cube_scene()["camera"], fov=float("nan"))
+    with pytest.raises(cutaway.Error, match=r"^<dict>: /camera/fov: nan is not a finite number$"):
+        cutaway.from_dict(cube_scene(camera=camera))
+    camera = dict(cube_scene()["camera"], eye=np.array([3.0, np.inf, 4.0]))
+    with pytest.raises(cutaway.Error, match=r"^<dict>: /camera/eye/1: inf is not a finite number$"):
+        cutaway.from_dict(cube_scene(camera=camera))
+
+
 def test_a_frame_comes_first_and_its_time_is_checked():
     renderer = cutaway.Renderer(cutaway.from_dict(cube_scene()))
     with pytest.raises(cutaway.Error, match=r"aovs: no frame yet: call render\(\) first"):
