@@ -229,19 +229,34 @@ TEST(MeshImport, APathThatIsNoFileIsNamedSo) {
                     {"/no/such/mesh.obj", "mesh file not found"});
 }
 
-// Repeated node names take "#2", "#3", … but never a name the file gives another node.
-TEST(MeshImport, RepeatedNodeNamesStayUnique) {
-  const std::string triangle = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";  // 3 vec3
-  const std::string gltf =
-      R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2, 3]}],
-          "nodes": [{"name": "a", "mesh": 0}, {"name": "a#2", "mesh": 0}, {"name": "a", "mesh": 0},
-                    {"name": "a", "mesh": 0}],
+// A glTF file whose `nodes` (JSON) each draw mesh 0, one triangle (0, 0, 0), (1, 0, 0),
+// (0, 1, 0).
+std::string triangleGltf(const std::string& nodes) {
+  std::string scene;
+  for (std::size_t i = 0, n = std::count(nodes.begin(), nodes.end(), '{'); i < n; ++i)
+    scene += (i ? ", " : "") + std::to_string(i);
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [)" + scene +
+         R"(]}], "nodes": [)" + nodes +
+         R"(],
           "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
           "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
                          "min": [0, 0, 0], "max": [1, 1, 0]}],
           "bufferViews": [{"buffer": 0, "byteLength": 36}],
-          "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
-      triangle + R"("}]})";
+          "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)"
+         "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}]}";
+}
+
+// A triangle moved 1e20 away collapses in floats: the error says where it went.
+TEST(MeshImport, TrianglesBeyondTheFloatsReachAreNamedSo) {
+  refuse("far.gltf", triangleGltf(R"({"mesh": 0, "translation": [1e20, 0, 0]})"),
+         {"far.gltf", "its triangles lie 1e+20 from the origin", "at most 1e15"});
+}
+
+// Repeated node names take "#2", "#3", … but never a name the file gives another node.
+TEST(MeshImport, RepeatedNodeNamesStayUnique) {
+  const std::string gltf = triangleGltf(
+      R"({"name": "a", "mesh": 0}, {"name": "a#2", "mesh": 0}, {"name": "a", "mesh": 0},
+         {"name": "a", "mesh": 0})");
   const std::filesystem::path file = plyFile("names.gltf", gltf);
   std::vector<std::string> names;
   for (const ImportedNode& node : importMeshNodes(file)) names.push_back(node.name);

@@ -53,7 +53,16 @@ std::size_t dropDegenerateTriangles(Mesh& mesh) {
     // Component by component: dot(c, c) overflows for edges of some 4e9 units, far within
     // the 1e15 a scene may reach.
     const bool zero = c.x == 0.0f && c.y == 0.0f && c.z == 0.0f;
-    if (zero || !std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) continue;
+    if (zero) continue;
+    if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) {
+      // Non-finite corners, or edges beyond ~1e19 whose products overflow: those stay for
+      // the scene's reach check to name, rather than leave a file "without triangles".
+      const glm::dvec3 a(mesh.positions[t.x]), b(mesh.positions[t.y]), d(mesh.positions[t.z]);
+      const glm::dvec3 wide = glm::cross(b - a, d - a);
+      if (!std::isfinite(wide.x) || !std::isfinite(wide.y) || !std::isfinite(wide.z) ||
+          wide == glm::dvec3(0.0))
+        continue;
+    }
     mesh.triangles[kept++] = t;
   }
   const std::size_t dropped = mesh.triangles.size() - kept;

@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -20,6 +21,7 @@
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/scene/scene.hpp"
 #include "io/ply_reader.hpp"
 #include "io/wire_fields.hpp"
 
@@ -156,6 +158,29 @@ void checkGlbHeader(const std::filesystem::path& file) {
   }
 }
 
+// The largest finite |coordinate| of the mesh's positions.
+float farthest(const Mesh& mesh) {
+  float far = 0.0f;
+  for (const glm::vec3& p : mesh.positions)
+    for (int a = 0; a < 3; ++a)
+      if (std::isfinite(p[a])) far = std::max(far, std::abs(p[a]));
+  return far;
+}
+
+// A file whose triangles all collapsed because their corners lie where 32-bit floats no
+// longer tell them apart (a node translated by 1e20) says so, not "no triangles".
+[[noreturn]] void noTriangles(const std::filesystem::path& file, float far) {
+  if (far > kMaxSceneReach) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", double(far));
+    throw Error(file.string(), "",
+                std::string("its triangles lie ") + text +
+                    " from the origin, where 32-bit floats cannot tell their corners apart "
+                    "(a scene reaches at most 1e15)");
+  }
+  throw Error(file.string(), "", "the file contains no triangles");
+}
+
 // The import itself, in whichever process runs it.
 std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::error_code ec;
@@ -177,8 +202,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     node.mesh = readPly(file, data.data(), data.size());
     node.mesh.report.normalsComputed = useOrComputeNormals(node.mesh);
     node.mesh.report.droppedDegenerate = dropDegenerateTriangles(node.mesh);
-    if (node.mesh.triangles.empty())
-      throw Error(file.string(), "", "the file contains no triangles");
+    if (node.mesh.triangles.empty()) noTriangles(file, farthest(node.mesh));
     analyzeTopology(node.mesh);
     return {std::move(node)};
   }
@@ -232,6 +256,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::vector<ImportedNode> nodes;
   std::map<std::string, int> nameCount;
   std::set<std::string> taken;
+  float far = 0.0f;  // of every node's positions, for noTriangles
   auto visit = [&](auto&& self, const aiNode* node, const glm::mat4& parent) -> void {
     const glm::mat4 transform = parent * toGlm(node->mTransformation);
     if (node->mNumMeshes > 0) {
@@ -280,6 +305,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
         }
       }
       out.mesh.report.normalsComputed = normalsComputed;
+      far = std::max(far, farthest(out.mesh));
       out.mesh.report.droppedDegenerate = dropDegenerateTriangles(out.mesh);
       if (!out.mesh.triangles.empty()) {
         analyzeTopology(out.mesh);
@@ -289,7 +315,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     for (unsigned i = 0; i < node->mNumChildren; ++i) self(self, node->mChildren[i], transform);
   };
   visit(visit, scene->mRootNode, glm::mat4(1.0f));
-  if (nodes.empty()) throw Error(file.string(), "", "the file contains no triangles");
+  if (nodes.empty()) noTriangles(file, far);
   return nodes;
 }
 
