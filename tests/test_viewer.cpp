@@ -146,6 +146,15 @@ TEST(Viewer, ScriptLineFailingAtRunTimeNamesTheLine) {
   EXPECT_EQ(r.exitCode, 1) << r.err;
   EXPECT_EQ(r.err, "cutaway-view: error: " + script.string() +
                        ": line 2: no object or group named \"no such part\"\n");
+  // A cutter the scene has no roles for, refused as `cutaway render --set` refuses it.
+  std::ofstream(script) << "wait 1\nset cutters.breakaway true\nquit\n";
+  const Result roles =
+      runUnderXvfb(kSource + "/examples/bunny.json --size 160x120 --script " + script.string());
+  EXPECT_EQ(roles.exitCode, 1) << roles.err;
+  EXPECT_EQ(roles.err, "cutaway-view: error: " + script.string() +
+                           ": line 2: set: /cutters/breakaway: no object has role \"exterior\": "
+                           "nothing to cut (give the outside objects or volumes that role, or "
+                           "match objects by name with \"overrides\")\n");
 }
 
 // The scenario: orbit, select the pistons, change the cutter, look at the cutaway

@@ -344,9 +344,15 @@ void Viewer::execute(const ScriptCommand& c) {
       if (state_.selection.empty()) throw Error("\"angle\" needs a selection");
       setLocalAngle(state_, c.text == "off" ? std::nullopt : std::optional<float>(n[0]));
       break;
-    case Kind::Set:
+    case Kind::Set: {
+      // As `cutaway render --set`: the scene must still pass the checks across it (a cutter
+      // without the roles it needs is refused, not drawn as if it were off).
+      Scene checked = state_.scene;
+      c.parameter->assign(checked, c.value);
+      checkScene(checked, "set");
       setParameter(state_, *c.parameter, c.value);
       break;
+    }
     case Kind::Aov:
       update();
       if (c.text == "off") {
