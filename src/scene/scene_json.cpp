@@ -292,6 +292,12 @@ class MeshCache {
   std::map<std::filesystem::path, std::shared_ptr<const std::vector<ImportedNode>>> files_;
 };
 
+// A file reader's error as the reason for the scene's "file": where in the file it went
+// wrong too ("vertex index 9 out of range (4 vertices) (part.ply: face 0)").
+std::string fromFile(const Error& e, const std::filesystem::path& file) {
+  return e.reason() + " (" + file.string() + (e.place().empty() ? "" : ": " + e.place()) + ")";
+}
+
 // "raster": a terrain grid from band 1 of a GDAL raster, placed through the scene's frame.
 std::shared_ptr<Mesh> rasterMesh(const Context& ctx, const json& j, const std::string& ptr,
                                  std::string& source) {
@@ -311,7 +317,7 @@ std::shared_ptr<Mesh> rasterMesh(const Context& ctx, const json& j, const std::s
     analyzeTopology(*mesh);
     return mesh;
   } catch (const Error& e) {
-    ctx.fail(r.at("file"), e.reason() + " (" + file.string() + ")");
+    ctx.fail(r.at("file"), fromFile(e, file));
   }
 }
 
@@ -395,8 +401,7 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
   try {
     polygons = importGisPolygons(file, options);
   } catch (const Error& e) {
-    ctx.fail(r.at("file"), e.reason() + (e.place().empty() ? "" : " (" + e.place() + ")") + " (" +
-                               file.string() + ")");
+    ctx.fail(r.at("file"), fromFile(e, file));
   }
   std::optional<TerrainProbe> probe;
   if (ground) {  // the terrain at rest, in this object's space
@@ -526,7 +531,7 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
   try {
     nodes = cache.get(file);
   } catch (const Error& e) {
-    ctx.fail(r.at("file"), e.reason() + " (" + file.string() + ")");
+    ctx.fail(r.at("file"), fromFile(e, file));
   }
   std::vector<const ImportedNode*> selected;
   for (const auto& node : *nodes)
