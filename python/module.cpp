@@ -283,6 +283,16 @@ auto changeChecked(Scene& s, const std::string& source, Change change) {
   return result;
 }
 
+// `f()`, its errors led by the method's name, as the module's own are ("set_role: …").
+template <class F>
+auto calledAs(const char* method, F f) {
+  try {
+    return f();
+  } catch (const Error& e) {
+    throw Error(method, "", e.what());
+  }
+}
+
 // An object from arrays, appended to the scene with a role and an optional colour.
 void addMesh(Scene& s, const std::string& name, const py::handle& vertices, const py::handle& faces,
              const std::string& role, const std::optional<std::array<float, 3>>& color) {
@@ -342,15 +352,21 @@ PYBIND11_MODULE(_cutaway, m) {
       .def("add_mesh", &addMesh, py::arg("name"), py::arg("vertices"), py::arg("faces"),
            py::arg("role") = "context", py::arg("color") = py::none(),
            "An object from arrays: vertices (N, 3), faces (M, 3) indices")
-      .def("set_importance", &Scene::setImportance, py::arg("pattern"), py::arg("importance"),
-           "Importance in [0, 1] for the objects whose name or group the pattern matches whole; "
-           "returns how many")
+      .def(
+          "set_importance",
+          [](Scene& s, const std::string& pattern, float importance) {
+            return calledAs("set_importance", [&] { return s.setImportance(pattern, importance); });
+          },
+          py::arg("pattern"), py::arg("importance"),
+          "Importance in [0, 1] for the objects whose name or group the pattern matches whole; "
+          "returns how many")
       .def(
           "set_role",
           [](Scene& s, const std::string& pattern, const std::string& role) {
             const Role r = roleNamed("set_role", pattern, role);
-            return changeChecked(s, "set_role",
-                                 [&](Scene& changed) { return changed.setRole(pattern, r); });
+            return changeChecked(s, "set_role", [&](Scene& changed) {
+              return calledAs("set_role", [&] { return changed.setRole(pattern, r); });
+            });
           },
           py::arg("pattern"), py::arg("role"),
           "The role (context, interest, exterior, interior) of the objects whose name or group "

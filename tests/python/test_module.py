@@ -294,8 +294,13 @@ def test_roles_by_pattern():
     assert (renderer.aov("objectId") == 1).sum() == 0
     with pytest.raises(cutaway.Error, match="unknown role \"inside\""):
         scene.set_role("inner", "inside")
-    with pytest.raises(cutaway.Error, match="nope: matches no object's name or group, nor a"):
+    with pytest.raises(cutaway.Error,
+                       match="^set_role: nope: matches no object's name or group, nor a"):
         scene.set_role("nope", "context")
+    with pytest.raises(cutaway.Error, match=r"^set_role: invalid regular expression \"\(\""):
+        scene.set_role("(", "context")
+    with pytest.raises(cutaway.Error, match=r"^set_importance: invalid regular expression"):
+        scene.set_importance("(", 0.5)
     # Checked as a scene file is: the cutout needs an exterior object.
     cutout = cube_scene(cutters={"cutout": {}})
     cutout["objects"][0]["role"] = "exterior"
