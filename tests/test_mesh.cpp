@@ -200,6 +200,10 @@ TEST(PlyReader, BadFilesAreRefusedWithTheirPlaceAndReason) {
   refuse("fraction.ply", kPlyHeader + "3 0 1 1.5\n", {"fraction.ply", "face 0", "not an integer"});
   refuse("range.ply", kPlyHeader + "3 0 1 1e999\n", {"range.ply", "face 0", "out of range"});
   refuse("lines.ply", kPlyHeader + "2 0 1\n", {"lines.ply", "contains no triangles"});
+  refuse("flat.ply", kPlyHeader + "3 0 1 1\n", {"flat.ply", "its one triangle has no area ("});
+  refuse("nan.ply",
+         kPlyHeader.substr(0, kPlyHeader.find("0 0 0")) + "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+         {"nan.ply", "its one triangle has no area (", "not finite"});
 }
 
 // A triangle with an infinite coordinate is dropped as a NaN one is, and the vertex it leaves

@@ -167,9 +167,10 @@ float farthest(const Mesh& mesh) {
   return far;
 }
 
-// A file whose triangles all collapsed because their corners lie where 32-bit floats no
-// longer tell them apart (a node translated by 1e20) says so, not "no triangles".
-[[noreturn]] void noTriangles(const std::filesystem::path& file, float far) {
+// A file without a triangle to draw: where they all collapsed because their corners lie
+// where 32-bit floats no longer tell them apart (a node translated by 1e20), or were dropped
+// as degenerate (`dropped` of them), it says so rather than "no triangles".
+[[noreturn]] void noTriangles(const std::filesystem::path& file, float far, std::size_t dropped) {
   if (far > kMaxSceneReach) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", double(far));
@@ -178,6 +179,12 @@ float farthest(const Mesh& mesh) {
                     " from the origin, where 32-bit floats cannot tell their corners apart "
                     "(a scene reaches at most 1e15)");
   }
+  if (dropped > 0)
+    throw Error(
+        file.string(), "",
+        (dropped == 1 ? std::string("its one triangle has no area")
+                      : "none of its " + std::to_string(dropped) + " triangles has an area") +
+            " (a repeated corner, or corners in a line, at one point or not finite)");
   throw Error(file.string(), "", "the file contains no triangles");
 }
 
@@ -202,7 +209,8 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     node.mesh = readPly(file, data.data(), data.size());
     node.mesh.report.normalsComputed = useOrComputeNormals(node.mesh);
     node.mesh.report.droppedDegenerate = dropDegenerateTriangles(node.mesh);
-    if (node.mesh.triangles.empty()) noTriangles(file, farthest(node.mesh));
+    if (node.mesh.triangles.empty())
+      noTriangles(file, farthest(node.mesh), node.mesh.report.droppedDegenerate);
     analyzeTopology(node.mesh);
     return {std::move(node)};
   }
@@ -256,7 +264,8 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::vector<ImportedNode> nodes;
   std::map<std::string, int> nameCount;
   std::set<std::string> taken;
-  float far = 0.0f;  // of every node's positions, for noTriangles
+  float far = 0.0f;         // of every node's positions, for noTriangles
+  std::size_t dropped = 0;  // degenerate triangles of every node
   auto visit = [&](auto&& self, const aiNode* node, const glm::mat4& parent) -> void {
     const glm::mat4 transform = parent * toGlm(node->mTransformation);
     if (node->mNumMeshes > 0) {
@@ -307,6 +316,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
       out.mesh.report.normalsComputed = normalsComputed;
       far = std::max(far, farthest(out.mesh));
       out.mesh.report.droppedDegenerate = dropDegenerateTriangles(out.mesh);
+      dropped += out.mesh.report.droppedDegenerate;
       if (!out.mesh.triangles.empty()) {
         analyzeTopology(out.mesh);
         nodes.push_back(std::move(out));
@@ -315,7 +325,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     for (unsigned i = 0; i < node->mNumChildren; ++i) self(self, node->mChildren[i], transform);
   };
   visit(visit, scene->mRootNode, glm::mat4(1.0f));
-  if (nodes.empty()) noTriangles(file, far);
+  if (nodes.empty()) noTriangles(file, far, dropped);
   return nodes;
 }
 
