@@ -341,6 +341,9 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
 
 TEST(Cli, UsageErrors) {
   EXPECT_EQ(run("").exitCode, 2);
+  const Result noFile = run("info ''");
+  EXPECT_EQ(noFile.exitCode, 1);
+  EXPECT_EQ(noFile.err, "cutaway: error: info: give a scene file, or a GIS file or raster\n");
   EXPECT_EQ(run("frobnicate").exitCode, 2);
   const Result size = run("render " + kData + "/render/plane-facing.json -o x.png --size 12by3");
   EXPECT_NE(size.exitCode, 0);
@@ -394,6 +397,12 @@ TEST(Cli, FramesAndTimeRenderTheAnimation) {
   const Result bad = run("render " + scene + " --frames 2 -o " + scratch("a_%d_%d.png").string());
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_NE(bad.err.find("one %d"), std::string::npos) << bad.err;
+  // %% is a percent sign, as printf has it.
+  const Result percent =
+      run("render " + scene + " --frames 2 -o " + scratch("at_100%%_%d.png").string());
+  ASSERT_EQ(percent.exitCode, 0) << percent.err;
+  EXPECT_TRUE(fs::exists(scratch("at_100%_1.png")));
+  EXPECT_TRUE(fs::exists(scratch("at_100%_2.png")));
 }
 
 // With a cutter, bench measures the plain frame and the cutaway on both compute paths, at

@@ -300,14 +300,15 @@ int render(const RenderOptions& options) {
   warnAboutFarCoordinates(scene);
   warnAboutOpenExteriors(scene);
   warnAboutUncappedObjects(scene);
-  // A frame pattern is a printf format: nothing but one %d in it.
+  // A frame pattern is a printf format: nothing but one %d in it, and %% for a '%'.
   for (const auto& [option, path] :
        {std::pair{"--output", &options.output}, std::pair{"--svg", &options.svg}}) {
-    static const std::regex patternRe(R"([^%]*%0?\d{0,2}d[^%]*)");
+    static const std::regex patternRe(R"((?:[^%]|%%)*%0?\d{0,2}d(?:[^%]|%%)*)");
     if (options.frames > 0 && path->find('%') != std::string::npos &&
         !std::regex_match(*path, patternRe))
       throw Error(option, "",
-                  "a frame pattern may hold one %d, of width at most 99 (e.g. frame_%04d.png)");
+                  "a frame pattern may hold one %d, of width at most 99 (e.g. frame_%04d.png), "
+                  "and %% for a percent sign");
   }
   // An animation's outputs that something else holds fail before the first frame is written.
   std::error_code ec;
@@ -452,6 +453,7 @@ int dem(const DemOptions& o) {
 }
 
 int info(const std::string& path) {
+  if (path.empty()) throw Error("info", "", "give a scene file, or a GIS file or raster");
   // Scenes are JSON; anything else is GIS data for GDAL to recognise (or reject clearly).
   if (std::filesystem::path(path).extension() != ".json") return gisInfo(path);
   const Scene scene = loadScene(path);
