@@ -726,6 +726,9 @@ TEST_F(VolumeImportTest, RawBadInput) {
               {"/headerBytes", "negative"});
   expectError([&] { importVolume(raw("u8", "[2, 2, 2]", eight, R"(, "spacing": [1, 0, 1])")); },
               {"/spacing", "singular"});
+  // Beyond the reach of a scene (1e300's squares overflowed, and MetaImage called it singular).
+  expectError([&] { importVolume(raw("u8", "[2, 2, 2]", eight, R"(, "spacing": [1e20, 1, 1])")); },
+              {"/spacing", "an entry of magnitude 1e+20, beyond the 1e15 a scene may reach"});
   expectError([&] { importVolume(raw("u8", "[2, 2, 2]", eight, R"(, "spacing": [1, 1])")); },
               {"/spacing", "3 numbers"});
   expectError([&] { importVolume(write("bad.json", R"({"file": "x.raw", "dims": [1, 1, 1],)")); },

@@ -36,6 +36,7 @@
 #include "core/json_reader.hpp"
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/scene/scene.hpp"
 #include "io/wire_fields.hpp"
 
 namespace cutaway {
@@ -151,6 +152,15 @@ glm::mat4 checkTransform(const glm::dmat4& m, const Where& where) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
       if (!std::isfinite(m[c][r])) where.fail("the voxel-to-world transform is not finite");
+  // Beyond a scene's reach it is no use, and 1e300's squares overflowed into "singular".
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (std::abs(m[c][r]) > double(kMaxSceneReach)) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", std::abs(m[c][r]));
+        where.fail(std::string("the voxel-to-world transform has an entry of magnitude ") + text +
+                   ", beyond the 1e15 a scene may reach");
+      }
   const glm::dmat3 a(m);
   const double scale = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
   if (!(scale > 0.0) || std::abs(glm::determinant(a)) <= 1e-9 * scale)
