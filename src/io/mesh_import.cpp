@@ -21,7 +21,6 @@
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
-#include "cutaway/scene/scene.hpp"
 #include "io/ply_reader.hpp"
 #include "io/wire_fields.hpp"
 

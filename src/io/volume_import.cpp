@@ -36,7 +36,7 @@
 #include "core/json_reader.hpp"
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
-#include "cutaway/scene/scene.hpp"
+#include "cutaway/geometry/mesh.hpp"
 #include "io/wire_fields.hpp"
 
 namespace cutaway {

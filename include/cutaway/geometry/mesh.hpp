@@ -9,6 +9,8 @@
 //   cutaway::MeshReport r = cutaway::analyzeTopology(m);   // r.watertight == true
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -16,6 +18,14 @@
 #include <glm/glm.hpp>
 
 namespace cutaway {
+
+// How far from the origin a scene's coordinates (its parts, the camera) may lie: beyond, 32-bit
+// floats overflow the view's squared distances and the camera turns NaN (a blank image).
+constexpr float kMaxSceneReach = 1e15f;
+// How far p lies from the origin along an axis: what kMaxSceneReach bounds.
+inline float sceneReach(const glm::vec3& p) {
+  return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+}
 
 struct Bounds {
   glm::vec3 min{1e30f}, max{-1e30f};

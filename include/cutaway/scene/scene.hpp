@@ -288,14 +288,6 @@ SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part,
 // circle through its corners.
 SceneObject shaftObject(const PipeNetwork& net, int network, bool inner);
 
-// How far from the origin a scene's coordinates (its parts, the camera) may lie: beyond, 32-bit
-// floats overflow the view's squared distances and the camera turns NaN (a blank image).
-constexpr float kMaxSceneReach = 1e15f;
-// How far p lies from the origin along an axis: what kMaxSceneReach bounds.
-inline float sceneReach(const glm::vec3& p) {
-  return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-}
-
 // Loads and validates a scene file and imports its meshes; throws cutaway::Error naming the
 // file, the JSON pointer and the reason.
 Scene loadScene(const std::filesystem::path& path);
