@@ -29,7 +29,7 @@
 #if defined(__x86_64__) || defined(__i386__)
 #if defined(__GNUC__) && !defined(__clang__) && __GNUC__ < 13
 // GCC 12's AVX-512 intrinsics start from `__m512 __Y = __Y;` (_mm512_undefined_ps), which
-// its own -Wmaybe-uninitialized reports at every use (GCC bug 105593, fixed in 13).
+// its own -Wmaybe-uninitialized reports at every use (a false positive of its headers).
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 #include <immintrin.h>
