@@ -340,8 +340,9 @@ TEST(Viewer, AFrameWithoutMemoryKeepsTheLastGoodScene) {
       kSource + "/examples/engine-cutaway.json --size 160x120 --script " + script.string(),
       "ulimit -v 3000000; ");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.err.find("cutters.adaptive.bufferSize: out of memory for the 8192x8192 cutaway "
-                       "buffer on the CPU"),
+  EXPECT_NE(r.err.find(script.string() +
+                       ": line 4: cutters.adaptive.bufferSize: out of memory for the 8192x8192 "
+                       "cutaway buffer on the CPU"),
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("(the last good scene stays)"), std::string::npos) << r.err;
@@ -364,7 +365,8 @@ TEST(Viewer, AViewFloatsCannotDrawStaysWhereItWas) {
       runUnderXvfb(kSource + "/examples/bunny.json --size 160x120 --script " + script.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(count(r.err, '\n'), 2) << r.err;
-  EXPECT_NE(r.err.find("the view stays where it was: the camera's eye and target are"),
+  EXPECT_NE(r.err.find(script.string() +
+                       ": line 3: the view stays where it was: the camera's eye and target are"),
             std::string::npos)
       << r.err;
   const Rgba8Image first = readPng(shots[0]);
@@ -397,7 +399,11 @@ TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
                         << blue.string() << "\nscreenshot " << shots[6].string() << "\nquit\n";
   const Result r = runUnderXvfb(red.string() + " --size 160x120 --script " + script.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.err.find("cutaway-view: " + broken.string() + ": line "), std::string::npos) << r.err;
+  // Each failure names the script's line, then the file's own place.
+  EXPECT_NE(
+      r.err.find("cutaway-view: " + script.string() + ": line 3: " + broken.string() + ": line "),
+      std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find("invalid JSON"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("16 samples exceed the device's"), std::string::npos) << r.err;
   EXPECT_EQ(count(r.err, '\n'), 2) << r.err;

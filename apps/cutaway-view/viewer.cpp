@@ -735,7 +735,12 @@ void Viewer::adopt(Scene loaded, SceneDocument document, const fs::path& path, b
 
 void Viewer::report(const std::string& message) {
   state_.status = message;
-  std::fprintf(stderr, "cutaway-view: %s\n", message.c_str());
+  // In a script, what went wrong followed its last command: name that line.
+  std::string where;
+  if (script_ && scriptNext_ > 0)
+    where =
+        script_->file + ": line " + std::to_string(script_->commands[scriptNext_ - 1].line) + ": ";
+  std::fprintf(stderr, "cutaway-view: %s%s\n", where.c_str(), message.c_str());
 }
 
 void Viewer::openScene(const fs::path& path, bool keepView) {
