@@ -463,10 +463,15 @@ void Viewer::update(bool full) {
   const bool dragging = ImGui::GetCurrentContext() && ImGui::IsAnyItemActive() && !script_;
   if (state_.sceneChanged && renderer_ && dragging && rebuildMs_ > kLiveRebuildMs) return;
   if (state_.viewChanged && drawnCamera_) {
-    // A move that 32-bit floats cannot draw (a zoom of 1e30, a pan of 1e300) is undone.
+    // A move that 32-bit floats cannot draw (a zoom of 1e30, a pan of 1e300) is undone; a
+    // file just opened with such a camera goes back whole, as when its frame fails.
     if (const std::string why = viewCamera(state_).unresolvable(aspect()); !why.empty()) {
-      report("the view stays where it was: the camera's " + why);
-      state_.scene.camera = *drawnCamera_;
+      if (replaced_) {
+        restoreRendered("camera: " + why);
+      } else {
+        report("the view stays where it was: the camera's " + why);
+        state_.scene.camera = *drawnCamera_;
+      }
     }
   }
   const bool rebuilding = state_.sceneChanged;
@@ -496,7 +501,7 @@ void Viewer::renderFull() {
   // otherwise be drawn after the others (exact depth ties), src/frame/occlusion_culling.hpp.
   renderer_->setOcclusionCulling(moving());
   if (!drawLive(*renderer_)) renderer_->render(viewCamera(state_), state_.time);
-  if (shown_ != renderer_.get()) rendered_ = state_.scene;  // its first full frame
+  if (shown_ != renderer_.get()) rendered_ = state_.scene, replaced_.reset();  // its first frame
   drawnCamera_ = state_.scene.camera;
   state_.timings = renderer_->timings();  // waits for the frame's timer queries
   state_.renderMs = state_.fullMs = millisecondsSince(start);
@@ -753,23 +758,13 @@ void Viewer::openScene(const fs::path& path, bool keepView) {
     report(e.what() + std::string(kKept));
     return;
   }
-  const Scene original = original_;
-  const std::optional<SceneDocument> previousDocument = document_;
-  const ViewerState previous = state_;
-  const fs::path previousPath = options_.scene;
-  const float previousRadius = sceneRadius_;
+  Replaced previous{original_, document_, state_, options_.scene, sceneRadius_};
   adopt(std::move(*loaded), std::move(*document), path, keepView);
   if (!rebuild()) {
-    // The device refused it: everything as it was, the error kept in the status line.
-    const std::string status = state_.status;
-    original_ = original, document_ = previousDocument, state_ = previous;
-    options_.scene = previousPath, sceneRadius_ = previousRadius;
-    state_.status = status;
-    // The fallback renderer was made from the last good scene; an edit that was waiting
-    // needs a new one.
-    state_.sceneChanged = true;
+    rollBackOpen(previous);  // the device refused it
     return;
   }
+  replaced_ = std::move(previous);  // until its first frame has drawn
   if (window_)
     glfwSetWindowTitle(window_->window(), ("cutaway-view — " + path.filename().string()).c_str());
   state_.status = (keepView ? "reloaded " : "opened ") + path.string();
@@ -831,9 +826,28 @@ bool Viewer::drawLive(Renderer& renderer) {
 
 void Viewer::restoreRendered(const std::string& why) {
   report(why + std::string(kKept));
-  state_.scene = *rendered_;
-  state_.sceneChanged = true;
+  if (replaced_) {
+    rollBackOpen(*replaced_);  // a scene just opened: its file, document and view go too
+    replaced_.reset();
+  } else {
+    state_.scene = *rendered_;
+    state_.sceneChanged = true;
+  }
   rebuild();  // renderer_ anew, moving_ gone
+}
+
+void Viewer::rollBackOpen(const Replaced& replaced) {
+  // Everything as it was, the error kept in the status line.
+  const std::string status = state_.status;
+  original_ = replaced.original, document_ = replaced.document, state_ = replaced.state;
+  options_.scene = replaced.path, sceneRadius_ = replaced.radius;
+  state_.status = status;
+  // The fallback renderer was made from the last good scene; an edit that was waiting
+  // needs a new one.
+  state_.sceneChanged = true;
+  if (window_)
+    glfwSetWindowTitle(window_->window(),
+                       ("cutaway-view — " + options_.scene.filename().string()).c_str());
 }
 
 void Viewer::saveScene(const fs::path& path) {

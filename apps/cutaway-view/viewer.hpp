@@ -88,6 +88,16 @@ class Viewer {
   // its own (restoreRendered), the failure is reported, and false is returned.
   bool drawLive(Renderer& renderer);
   void restoreRendered(const std::string& why);
+  // What an `open` or a reload replaced, kept until its scene has drawn: a failure before
+  // then (the device refuses the scene, or its first frame fails) puts it all back.
+  struct Replaced {
+    Scene original;
+    std::optional<SceneDocument> document;
+    ViewerState state;
+    std::filesystem::path path;
+    float radius = 1.0f;
+  };
+  void rollBackOpen(const Replaced& replaced);
   void report(const std::string& message);
   void screenshot(const std::filesystem::path& path);
   void windowShot(const std::filesystem::path& path);
@@ -100,6 +110,7 @@ class Viewer {
   // drawn (the device refuses it, its buffers do not fit in memory) gives way to.
   std::optional<Scene> rendered_;
   std::optional<Camera> drawnCamera_;  // the live scene's camera at the last frame drawn
+  std::optional<Replaced> replaced_;
   std::optional<SceneDocument> document_;
   ViewerState state_;
   std::optional<Script> script_;
