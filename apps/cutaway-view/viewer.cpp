@@ -84,11 +84,8 @@ Viewer::Viewer(const ViewerOptions& options) : options_(options) {
   const int width = options.width > 0 ? options.width : original_.width;
   const int height = options.height > 0 ? options.height : original_.height;
   try {
-    window_ =
-        gl::WindowContext::create({.title = "cutaway-view — " + options.scene.filename().string(),
-                                   .width = width,
-                                   .height = height,
-                                   .vsync = !script_});
+    window_ = gl::WindowContext::create(
+        {.title = title(), .width = width, .height = height, .vsync = !script_});
   } catch (const Error& e) {
     throw Error(e.reason() + "; without a display, render with `cutaway render " +
                 options.scene.string() + " -o OUT.png`");
@@ -765,8 +762,7 @@ void Viewer::openScene(const fs::path& path, bool keepView) {
     return;
   }
   replaced_ = std::move(previous);  // until its first frame has drawn
-  if (window_)
-    glfwSetWindowTitle(window_->window(), ("cutaway-view — " + path.filename().string()).c_str());
+  showTitle();
   state_.status = (keepView ? "reloaded " : "opened ") + path.string();
   std::printf("%s\n", state_.status.c_str());
   std::fflush(stdout);
@@ -836,6 +832,14 @@ void Viewer::restoreRendered(const std::string& why) {
   rebuild();  // renderer_ anew, moving_ gone
 }
 
+std::string Viewer::title() const {
+  return "cutaway-view — " + options_.scene.filename().string();
+}
+
+void Viewer::showTitle() {
+  if (window_) glfwSetWindowTitle(window_->window(), title().c_str());
+}
+
 void Viewer::rollBackOpen(const Replaced& replaced) {
   // Everything as it was, the error kept in the status line.
   const std::string status = state_.status;
@@ -845,9 +849,7 @@ void Viewer::rollBackOpen(const Replaced& replaced) {
   // The fallback renderer was made from the last good scene; an edit that was waiting
   // needs a new one.
   state_.sceneChanged = true;
-  if (window_)
-    glfwSetWindowTitle(window_->window(),
-                       ("cutaway-view — " + options_.scene.filename().string()).c_str());
+  showTitle();
 }
 
 void Viewer::saveScene(const fs::path& path) {

@@ -98,6 +98,9 @@ class Viewer {
     float radius = 1.0f;
   };
   void rollBackOpen(const Replaced& replaced);
+  // "cutaway-view — FILE" for the scene file, and the window showing it.
+  std::string title() const;
+  void showTitle();
   void report(const std::string& message);
   void screenshot(const std::filesystem::path& path);
   void windowShot(const std::filesystem::path& path);

@@ -263,7 +263,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::vector<ImportedNode> nodes;
   std::map<std::string, int> nameCount;
   std::set<std::string> taken;
-  float far = 0.0f;         // of every node's positions, for noTriangles
+  float far = 0.0f;         // of the nodes left without triangles, for noTriangles
   std::size_t dropped = 0;  // degenerate triangles of every node
   auto visit = [&](auto&& self, const aiNode* node, const glm::mat4& parent) -> void {
     const glm::mat4 transform = parent * toGlm(node->mTransformation);
@@ -313,12 +313,13 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
         }
       }
       out.mesh.report.normalsComputed = normalsComputed;
-      far = std::max(far, farthest(out.mesh));
       out.mesh.report.droppedDegenerate = dropDegenerateTriangles(out.mesh);
       dropped += out.mesh.report.droppedDegenerate;
       if (!out.mesh.triangles.empty()) {
         analyzeTopology(out.mesh);
         nodes.push_back(std::move(out));
+      } else {
+        far = std::max(far, farthest(out.mesh));  // only a file without triangles asks
       }
     }
     for (unsigned i = 0; i < node->mNumChildren; ++i) self(self, node->mChildren[i], transform);

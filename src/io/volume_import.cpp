@@ -147,20 +147,19 @@ std::size_t checkDims(const std::int64_t d[3], const VolumeLimits& limits, const
   return count;
 }
 
-// Refuses a transform that cannot place voxels: non-finite entries or a singular 3×3 part.
+// Refuses a transform that cannot place voxels: non-finite entries, entries beyond a scene's
+// reach (1e300's squares overflowed into "singular"), or a singular 3×3 part.
 glm::mat4 checkTransform(const glm::dmat4& m, const Where& where) {
   for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
+    for (int r = 0; r < 4; ++r) {
       if (!std::isfinite(m[c][r])) where.fail("the voxel-to-world transform is not finite");
-  // Beyond a scene's reach it is no use, and 1e300's squares overflowed into "singular".
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r)
       if (std::abs(m[c][r]) > double(kMaxSceneReach)) {
         char text[32];
         std::snprintf(text, sizeof text, "%.3g", std::abs(m[c][r]));
         where.fail(std::string("the voxel-to-world transform has an entry of magnitude ") + text +
                    ", beyond the 1e15 a scene may reach");
       }
+    }
   const glm::dmat3 a(m);
   const double scale = glm::length(a[0]) * glm::length(a[1]) * glm::length(a[2]);
   if (!(scale > 0.0) || std::abs(glm::determinant(a)) <= 1e-9 * scale)
