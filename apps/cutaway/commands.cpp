@@ -640,14 +640,35 @@ struct Measurement {
 
 // How every run of one bench invocation renders.
 struct Timing {
-  const gl::ContextInfo& info;
+  const gl::HeadlessContext& context;  // the run's
   int frames;
   bool occlusionCulling;
 };
 
+// A context of a row's own, current while it lives; the run's context is current again after.
+// A row then starts as a `render` run does, and what the rasteriser keeps from a context's
+// frames (its binned scenes, its buffers at the last size) neither carries into the next row's
+// times nor piles up in the run's peak memory (bench/RESULTS.md, tenth session).
+class RowContext {
+ public:
+  explicit RowContext(const gl::HeadlessContext& run) : run_(run) {}
+  ~RowContext() {
+    own_.reset();
+    run_.makeCurrent();
+  }
+  RowContext(const RowContext&) = delete;
+  RowContext& operator=(const RowContext&) = delete;
+  const gl::ContextInfo& info() const { return own_->info(); }
+
+ private:
+  const gl::HeadlessContext& run_;
+  std::unique_ptr<gl::HeadlessContext> own_ = gl::HeadlessContext::create();
+};
+
 // Renders `frames` frames (after a warm-up) and gathers per-pass and whole-frame times.
 Measurement measure(const std::string& label, const Scene& scene, const Timing& timing) {
-  Renderer renderer(scene, timing.info);
+  const RowContext context(timing.context);
+  Renderer renderer(scene, context.info());
   renderer.setOcclusionCulling(timing.occlusionCulling);
   const int frames = timing.frames;
   const Camera camera = scene.resolvedCamera();
@@ -771,7 +792,7 @@ int bench(const BenchOptions& options) {
   applyOverrides(scene, options.overrides);
   const auto context = gl::HeadlessContext::create();
   const gl::ContextInfo& info = context->info();
-  const Timing timing{info, options.frames, !options.noOcclusionCulling};
+  const Timing timing{*context, options.frames, !options.noOcclusionCulling};
   std::vector<Measurement> runs;
   nlohmann::json references = nlohmann::json::object(), accuracy = nlohmann::json::object();
   constexpr int kAccuracySize = 256;
