@@ -45,6 +45,48 @@ TEST(Mesh, LargeFacesKeepTheirAreaAndNormalsDegenerateOnesAreDropped) {
   }
 }
 
+// analyzeTopology's edge counts against a count written out here: on random triangle soups
+// over few positions (shared edges, both directions, three or more uses, repeated corners,
+// duplicated positions that weld, −0 with +0), every edge's uses in each direction tallied
+// pair by pair.
+TEST(Mesh, TopologyCountsEveryEdgesUsesInEachDirection) {
+  std::uint32_t state = 12345;
+  const auto next = [&](std::uint32_t n) {
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) % n;
+  };
+  for (int round = 0; round < 200; ++round) {
+    Mesh mesh;
+    const std::uint32_t points = 3 + next(6);
+    for (std::uint32_t i = 0; i < points; ++i)
+      mesh.positions.emplace_back(float(i % 4), i < 4 ? 0.0f : -0.0f, 0);
+    for (std::uint32_t t = 0, n = 1 + next(12); t < n; ++t)
+      mesh.triangles.emplace_back(next(points), next(points), next(points));
+    // The same edges, pair by pair: positions weld when equal (here i % 4).
+    std::vector<std::pair<unsigned, unsigned>> directed;
+    for (const glm::uvec3& t : mesh.triangles)
+      for (int e = 0; e < 3; ++e) {
+        const unsigned a = t[e] % 4, b = t[(e + 1) % 3] % 4;
+        if (a != b) directed.emplace_back(a, b);
+      }
+    std::size_t boundary = 0, nonManifold = 0, misoriented = 0;
+    for (unsigned a = 0; a < 4; ++a)
+      for (unsigned b = a + 1; b < 4; ++b) {
+        const auto forward = std::count(directed.begin(), directed.end(), std::pair{a, b});
+        const auto backward = std::count(directed.begin(), directed.end(), std::pair{b, a});
+        if (forward + backward == 1) ++boundary;
+        if (forward + backward > 2) ++nonManifold;
+        if (forward + backward == 2 && forward != 1) ++misoriented;
+      }
+    analyzeTopology(mesh);
+    SCOPED_TRACE("round " + std::to_string(round));
+    EXPECT_EQ(mesh.report.boundaryEdges, boundary);
+    EXPECT_EQ(mesh.report.nonManifoldEdges, nonManifold);
+    EXPECT_EQ(mesh.report.misorientedEdges, misoriented);
+    EXPECT_EQ(mesh.report.watertight, boundary + nonManifold + misoriented == 0);
+  }
+}
+
 namespace {
 
 // A PLY file in the temporary folder with the given text; its path.

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <map>
-#include <unordered_map>
+#include <numeric>
 
 namespace cutaway {
 
@@ -130,43 +132,70 @@ void computeVertexNormals(Mesh& mesh, float creaseAngle) {
 }
 
 void analyzeTopology(Mesh& mesh) {
+  // Welding: positions sorted by their coordinates' bits (−0 read as +0) share an index where
+  // equal; a position with a NaN equals none. Sorting, not hashing: a hash node per position
+  // made large terrains slow to load.
   struct Key {
-    float x, y, z;
-    bool operator==(const Key&) const = default;
+    std::array<std::uint32_t, 3> bits;
+    unsigned position;
   };
-  struct Hash {
-    std::size_t operator()(const Key& k) const {
-      const auto h = [](float f) { return std::hash<float>{}(f); };
-      return h(k.x) * 73856093u ^ h(k.y) * 19349663u ^ h(k.z) * 83492791u;
-    }
-  };
-  std::unordered_map<Key, unsigned, Hash> weld;
+  std::vector<Key> keys;
+  keys.reserve(mesh.positions.size());
   std::vector<unsigned> welded(mesh.positions.size());
+  unsigned welds = 0;
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const auto& p = mesh.positions[i];
-    welded[i] = weld.emplace(Key{p.x, p.y, p.z}, unsigned(weld.size())).first->second;
-  }
-  // Per undirected edge: uses in each direction (low→high, high→low).
-  std::map<std::pair<unsigned, unsigned>, std::array<int, 2>> edges;
-  for (const auto& t : mesh.triangles) {
-    const unsigned v[3] = {welded[t.x], welded[t.y], welded[t.z]};
-    for (int e = 0; e < 3; ++e) {
-      const unsigned a = v[e], b = v[(e + 1) % 3];
-      if (a == b) continue;
-      auto& uses = edges[{std::min(a, b), std::max(a, b)}];
-      ++uses[a < b ? 0 : 1];
+    const glm::vec3& p = mesh.positions[i];
+    if (std::isnan(p.x) || std::isnan(p.y) || std::isnan(p.z)) {
+      welded[i] = welds++;
+      continue;
     }
+    Key k{{}, unsigned(i)};
+    for (int c = 0; c < 3; ++c) k.bits[std::size_t(c)] = std::bit_cast<std::uint32_t>(p[c] + 0.0f);
+    keys.push_back(k);
   }
+  std::sort(keys.begin(), keys.end(), [](const Key& x, const Key& y) { return x.bits < y.bits; });
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (i > 0 && keys[i].bits != keys[i - 1].bits) ++welds;
+    welded[keys[i].position] = welds;
+  }
+  if (!keys.empty()) ++welds;
+  // Each undirected edge's uses in each direction (low→high, high→low), grouped by the edge's
+  // lower end and sorted within the group: a few words per use, where a map's node per edge
+  // made large terrains slow to load.
+  const auto forEachEdge = [&](const auto& f) {
+    for (const auto& t : mesh.triangles) {
+      const unsigned v[3] = {welded[t.x], welded[t.y], welded[t.z]};
+      for (int e = 0; e < 3; ++e)
+        if (v[e] != v[(e + 1) % 3]) f(v[e], v[(e + 1) % 3]);
+    }
+  };
+  std::vector<std::size_t> start(welds + 1, 0);
+  forEachEdge([&](unsigned a, unsigned b) { ++start[std::min(a, b) + 1]; });
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  // The higher end and, in the lowest bit, whether the use runs high→low.
+  std::vector<std::uint64_t> uses(start.back());
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  forEachEdge([&](unsigned a, unsigned b) {
+    uses[next[std::min(a, b)]++] = std::uint64_t(std::max(a, b)) << 1 | std::uint64_t(a > b);
+  });
   MeshReport& r = mesh.report;
   r.boundaryEdges = r.nonManifoldEdges = r.misorientedEdges = 0;
-  for (const auto& [edge, uses] : edges) {
-    const int total = uses[0] + uses[1];
-    if (total == 1)
-      ++r.boundaryEdges;
-    else if (total > 2)
-      ++r.nonManifoldEdges;
-    else if (uses[0] != 1)
-      ++r.misorientedEdges;
+  for (std::size_t low = 0; low + 1 < start.size(); ++low) {
+    const auto first = uses.begin() + std::ptrdiff_t(start[low]),
+               last = uses.begin() + std::ptrdiff_t(start[low + 1]);
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      int count[2] = {0, 0};
+      const std::uint64_t high = *i >> 1;
+      for (; i != last && *i >> 1 == high; ++i) ++count[*i & 1];
+      const int total = count[0] + count[1];
+      if (total == 1)
+        ++r.boundaryEdges;
+      else if (total > 2)
+        ++r.nonManifoldEdges;
+      else if (count[0] != 1)
+        ++r.misorientedEdges;
+    }
   }
   r.watertight = !mesh.triangles.empty() && r.boundaryEdges == 0 && r.nonManifoldEdges == 0 &&
                  r.misorientedEdges == 0;
