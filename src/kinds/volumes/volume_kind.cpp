@@ -31,11 +31,26 @@ std::vector<glm::vec4> voxelGradients(const SceneVolume& sv) {
     for (float value : sv.volume->values) opacity.values.push_back(sv.material(value).opacity);
   }
   const Volume& v = sv.labels ? opacity : *sv.volume;
-  std::vector<glm::vec4> out;
-  out.reserve(v.voxelCount());
+  // voxelGradient's differences a row at a time: the neighbouring rows clamped once per row,
+  // the row's ends per voxel (the same values, in a loop the compiler vectorises).
+  std::vector<glm::vec4> out(v.voxelCount());
+  const auto row = [&](int j, int k) {
+    return std::size_t(v.dims.x) * (std::size_t(j) + std::size_t(v.dims.y) * std::size_t(k));
+  };
   for (int k = 0; k < v.dims.z; ++k)
-    for (int j = 0; j < v.dims.y; ++j)
-      for (int i = 0; i < v.dims.x; ++i) out.emplace_back(voxelGradient(v, {i, j, k}), 0.0f);
+    for (int j = 0; j < v.dims.y; ++j) {
+      const float* here = &v.values[row(j, k)];
+      const float* down = &v.values[row(std::max(j - 1, 0), k)];
+      const float* up = &v.values[row(std::min(j + 1, v.dims.y - 1), k)];
+      const float* back = &v.values[row(j, std::max(k - 1, 0))];
+      const float* front = &v.values[row(j, std::min(k + 1, v.dims.z - 1))];
+      glm::vec4* o = &out[row(j, k)];
+      for (int i = 0; i < v.dims.x; ++i) {
+        const int left = std::max(i - 1, 0), right = std::min(i + 1, v.dims.x - 1);
+        o[i] = glm::vec4(
+            0.5f * glm::vec3(here[right] - here[left], up[i] - down[i], front[i] - back[i]), 0.0f);
+      }
+    }
   return out;
 }
 
