@@ -10,6 +10,9 @@
 #include <fstream>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cutaway/geometry/ground_height.hpp"
 #include "cutaway/geometry/mesh.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "expect_error.hpp"
@@ -85,6 +88,57 @@ TEST(Mesh, TopologyCountsEveryEdgesUsesInEachDirection) {
     EXPECT_EQ(mesh.report.misorientedEdges, misoriented);
     EXPECT_EQ(mesh.report.watertight, boundary + nonManifold + misoriented == 0);
   }
+}
+
+// GroundHeight against rays cast straight down (Möller–Trumbore, rayHits) through every
+// triangle: a rotated, scaled and moved random grid and a tilted quad over part of it, at
+// random points on, between and off them; the highest surface counts.
+TEST(GroundHeight, IsTheHighestSurfaceARayFromAboveMeets) {
+  std::uint32_t state = 777;
+  const auto unit = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / 16777216.0f;
+  };
+  Mesh grid;
+  const int columns = 11, rows = 7;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c) grid.positions.emplace_back(c, 3.0f * unit(), r);
+  for (int r = 0; r + 1 < rows; ++r)
+    for (int c = 0; c + 1 < columns; ++c) {
+      const unsigned a = unsigned(r * columns + c), b = a + 1, d = a + columns, e = d + 1;
+      grid.triangles.emplace_back(a, d, b);
+      grid.triangles.emplace_back(b, d, e);
+    }
+  Mesh quad;
+  quad.positions = {{2, 1, 1}, {5, 4, 1}, {5, 4, 4}, {2, 1, 4}};
+  quad.triangles = {{0, 2, 1}, {0, 3, 2}};
+  grid.normals.assign(grid.positions.size(), glm::vec3(0, 1, 0));  // one per position
+  quad.normals.assign(quad.positions.size(), glm::vec3(0, 1, 0));
+  const glm::mat4 gridPlace = glm::scale(
+      glm::rotate(glm::translate(glm::mat4(1.0f), {40, -2, 7}), 0.6f, {0, 1, 0}), {3, 1, 2});
+  const glm::mat4 quadPlace = glm::translate(gridPlace, {0, 0.5f, 0});
+  const GroundHeight ground({&grid, &quad}, {gridPlace, quadPlace});
+  ASSERT_FALSE(ground.empty());
+  Mesh world;
+  world.append(grid, gridPlace);
+  world.append(quad, quadPlace);
+  const Bounds box = world.bounds();
+  int on = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const glm::vec2 xz(box.min.x - 5 + (box.max.x - box.min.x + 10) * unit(),
+                       box.min.z - 5 + (box.max.z - box.min.z + 10) * unit());
+    const float top = box.max.y + 10;
+    const std::vector<float> hits = rayHits(world, {xz.x, top, xz.y}, {0, -1, 0});
+    const std::optional<float> y = ground.at(xz);
+    SCOPED_TRACE("at " + std::to_string(xz.x) + ", " + std::to_string(xz.y));
+    ASSERT_EQ(y.has_value(), !hits.empty());
+    if (!y) continue;
+    ++on;
+    EXPECT_NEAR(*y, top - *std::min_element(hits.begin(), hits.end()), 1e-3f);
+  }
+  EXPECT_GT(on, 300);  // the points found the terrain, not only the space around it
+  EXPECT_TRUE(GroundHeight({}, {}).empty());
+  EXPECT_FALSE(GroundHeight({}, {}).at({0, 0}));
 }
 
 namespace {
