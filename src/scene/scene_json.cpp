@@ -24,6 +24,7 @@
 #include "cutaway/core/image.hpp"
 #include "cutaway/geometry/convex_hull.hpp"
 #include "cutaway/geometry/extrude.hpp"
+#include "cutaway/geometry/ground_height.hpp"
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/io/raster_terrain.hpp"
@@ -321,47 +322,6 @@ std::shared_ptr<Mesh> rasterMesh(const Context& ctx, const json& j, const std::s
   }
 }
 
-// The terrain heights under points of the footprint object's space: Möller–Trumbore rays cast
-// straight down against the triangles of `terrain` (already in that space) whose horizontal
-// bounds overlap the footprint's, so that a large grid is searched once per footprint.
-class TerrainProbe {
- public:
-  explicit TerrainProbe(Mesh terrain) : terrain_(std::move(terrain)) {
-    const Bounds b = terrain_.bounds();
-    top_ = b.max.y + 1.0f + 1e-3f * std::abs(b.max.y);
-    for (const glm::uvec3& t : terrain_.triangles) {
-      Bounds tb;
-      for (int k = 0; k < 3; ++k) tb.extend(terrain_.positions[t[k]]);
-      bounds_.push_back(glm::vec4(tb.min.x, tb.min.z, tb.max.x, tb.max.z));
-    }
-  }
-  // The lowest terrain height under the points (x, z), or nothing when none lies over it.
-  std::optional<float> lowest(const std::vector<glm::vec2>& points) const {
-    glm::vec2 lo(1e30f), hi(-1e30f);
-    for (const glm::vec2& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-    Mesh near;
-    near.positions = terrain_.positions;  // shared indices; only the triangles are selected
-    for (std::size_t i = 0; i < bounds_.size(); ++i)
-      if (bounds_[i].x <= hi.x && bounds_[i].z >= lo.x && bounds_[i].y <= hi.y &&
-          bounds_[i].w >= lo.y)
-        near.triangles.push_back(terrain_.triangles[i]);
-    std::optional<float> lowest;
-    for (const glm::vec2& p : points) {
-      const std::vector<float> hits = rayHits(near, {p.x, top_, p.y}, {0.0f, -1.0f, 0.0f});
-      if (hits.empty()) continue;
-      // The first hit from above is the ground surface (an overhang's underside is not).
-      const float ground = top_ - *std::min_element(hits.begin(), hits.end());
-      lowest = lowest ? std::min(*lowest, ground) : ground;
-    }
-    return lowest;
-  }
-
- private:
-  Mesh terrain_;
-  float top_ = 0.0f;
-  std::vector<glm::vec4> bounds_;  // per triangle: min x, min z, max x, max z
-};
-
 // "footprints": polygons of a GIS layer extruded to blocks, all of them one mesh. `objects`
 // are those read so far, for "on"; `transform` is this object's.
 std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std::string& ptr,
@@ -403,12 +363,12 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
   } catch (const Error& e) {
     ctx.fail(r.at("file"), fromFile(e, file));
   }
-  std::optional<TerrainProbe> probe;
-  if (ground) {  // the terrain at rest, in this object's space
-    Mesh terrain;
-    terrain.append(*ground->mesh, glm::inverse(transform) * ground->transform);
-    probe.emplace(std::move(terrain));
-  }
+  // The terrain at rest, in this object's space: the highest surface over a point is the
+  // ground there (an overhang's underside is not).
+  std::optional<GroundHeight> terrain;
+  if (ground)
+    terrain.emplace(std::vector<const Mesh*>{ground->mesh.get()},
+                    std::vector<glm::mat4>{glm::inverse(transform) * ground->transform});
   auto mesh = std::make_shared<Mesh>();
   for (const GisPolygon& polygon : polygons.polygons) {
     Footprint footprint;
@@ -432,8 +392,12 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
                                                 "\" value, and no \"default\" is given");
     }
     float base = 0.0f;
-    if (probe) {
-      const std::optional<float> lowest = probe->lowest(footprint.outer);
+    if (terrain) {
+      // The lowest ground under the footprint's outline.
+      std::optional<float> lowest;
+      for (const glm::vec2& p : footprint.outer)
+        if (const std::optional<float> y = terrain->at(p))
+          lowest = std::min(lowest.value_or(*y), *y);
       if (!lowest)
         ctx.fail(r.at("on"), feature + " of " + file.string() + " lies outside object \"" +
                                  ground->name + "\"");
