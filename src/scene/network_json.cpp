@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -110,6 +111,9 @@ Pipe makePipe(const Context& ctx, const std::string& where, std::int64_t feature
 
 void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Scene& scene) {
   if (!j.is_array()) ctx.fail(ptr, "expected an array of networks, got " + typeName(j));
+  // The ground under networks on the same terrain objects, built once (a large grid's takes
+  // seconds).
+  std::map<std::vector<std::size_t>, GroundHeight> grounds;  // by the objects' indices
   for (std::size_t n = 0; n < j.size(); ++n) {
     const std::string np = ptr + "/" + std::to_string(n);
     ObjectReader r(ctx, j[n], np);
@@ -120,19 +124,26 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
         ctx.fail(r.at("name"), "two networks are named \"" + net.name + "\"");
 
     // Heights come from the terrain objects: nodes without z, and the shafts' rims.
-    std::vector<const Mesh*> meshes;
-    std::vector<glm::mat4> transforms;
+    std::vector<std::size_t> terrain;
     std::string terrainPattern;
     if (const json* v = r.take("terrain")) {
       const std::regex pattern = regex(ctx, *v, r.at("terrain"));
       terrainPattern = string(ctx, *v, r.at("terrain"));
-      for (const auto& o : scene.objects)
-        if (!o.proxy && o.named(pattern))
-          meshes.push_back(o.mesh.get()), transforms.push_back(o.transform);
-      if (meshes.empty())
+      for (std::size_t i = 0; i < scene.objects.size(); ++i)
+        if (!scene.objects[i].proxy && scene.objects[i].named(pattern)) terrain.push_back(i);
+      if (terrain.empty())
         ctx.fail(r.at("terrain"), "no object name matches \"" + terrainPattern + "\"");
     }
-    const GroundHeight ground(meshes, transforms);
+    auto found = grounds.find(terrain);
+    if (found == grounds.end()) {
+      std::vector<const Mesh*> meshes;
+      std::vector<glm::mat4> transforms;
+      for (std::size_t i : terrain)
+        meshes.push_back(scene.objects[i].mesh.get()),
+            transforms.push_back(scene.objects[i].transform);
+      found = grounds.emplace(terrain, GroundHeight(meshes, transforms)).first;
+    }
+    const GroundHeight& ground = found->second;
     const auto groundAt = [&](glm::vec2 xz) -> float { return ground.at(xz).value_or(0.0f); };
 
     PipeAttributes defaults;
