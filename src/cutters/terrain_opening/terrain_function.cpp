@@ -2,6 +2,7 @@
 // terrain_opening.glsl.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/fields/distance_transform.hpp"
@@ -54,9 +55,8 @@ TerrainField terrainField(const TerrainOpeningOptions& options, const Bounds& te
     d = fields::segmentDistanceField(f.resolution, f.resolution, segments,
                                      l1 ? fields::Metric::L1 : fields::Metric::Euclidean, kFar);
   }
-  f.distance.resize(d.distance.size());
-  for (std::size_t i = 0; i < d.distance.size(); ++i)
-    f.distance[i] = std::min(d.distance[i], kFar) / kFar;
+  f.distance = std::move(d.distance);
+  for (float& v : f.distance) v = std::min(v, kFar) / kFar;
   return f;
 }
 
