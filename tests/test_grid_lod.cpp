@@ -76,6 +76,43 @@ TEST(GridLod, OnlyAMeshLaidOutAsItsGridSaysGetsOne) {
   EXPECT_FALSE(appended.grid);
 }
 
+// A grid may leave its triangles implied by its layout's cell: the same triangles, in the same
+// order, the same levels of detail, and an appended copy stores them.
+TEST(GridLod, ImpliedTrianglesAreTheStoredOnes) {
+  for (const Pattern& p : {kCity, kRaster, kMainDiagonal}) {
+    const Mesh stored =
+        gridMesh(70, 9, p, [](int c, int r) { return std::sin(0.3f * float(c)) * float(r); });
+    Mesh implied = stored;
+    implied.triangles.clear();
+    implied.grid->cell = p;
+    ASSERT_TRUE(implied.impliedTriangles());
+    ASSERT_EQ(implied.triangleCount(), stored.triangles.size());
+    for (std::size_t i = 0; i < stored.triangles.size(); ++i)
+      ASSERT_EQ(implied.triangle(i), stored.triangles[i]) << i;
+    const auto a = GridLod::build(stored), b = GridLod::build(implied);
+    ASSERT_TRUE(a && b);
+    for (int mix = 0; mix < 8; ++mix) {
+      std::vector<std::uint8_t> levels(std::size_t(a->chunkCount()));
+      for (std::size_t i = 0; i < levels.size(); ++i)
+        levels[i] = std::uint8_t((i * 5 + std::size_t(mix) * 3) % GridLod::kLevels);
+      EXPECT_EQ(a->triangles(levels), b->triangles(levels));
+    }
+    Mesh appended;
+    appended.append(implied, glm::mat4(1.0f));
+    EXPECT_EQ(appended.triangles, stored.triangles);
+    implied.append(flatGrid(2, 2), glm::mat4(1.0f));  // the grid's own triangles kept
+    EXPECT_EQ(implied.triangles.size(), stored.triangles.size() + 2);
+    EXPECT_FALSE(implied.grid);
+  }
+  // A cell the layout does not split in two gets no level of detail.
+  Mesh bad = flatGrid(5, 5);
+  bad.triangles.clear();
+  bad.grid->cell = {{{0, 1, 2}, {0, 1, 2}}};
+  EXPECT_FALSE(GridLod::build(bad));
+  bad.grid->cell = {{{0, 1, 4}, {1, 3, 2}}};
+  EXPECT_FALSE(GridLod::build(bad));
+}
+
 TEST(GridLod, ALevelsErrorIsTheLargestDistanceToItsSurface) {
   // h = a c²: between kept nodes s apart the level's surface is the chord, which lies
   // a t (s − t) above the node t past the cell's start: ε_l = a (2^l / 2)² = a 4^(l−1).

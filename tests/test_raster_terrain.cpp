@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/geometry/grid_lod.hpp"
 #include "cutaway/io/raster_terrain.hpp"
 #include "expect_error.hpp"
 
@@ -70,18 +71,21 @@ TEST_F(RasterTerrainTest, GridNodesSitAtPixelCentresInTheSceneFrame) {
   EXPECT_EQ(t.rows, 3);
   EXPECT_EQ(t.crs.authority, "EPSG:27700");
   ASSERT_EQ(t.mesh.positions.size(), 12u);
-  EXPECT_EQ(t.mesh.triangles.size(), 2u * 3u * 2u);
+  ASSERT_TRUE(t.mesh.impliedTriangles());
+  EXPECT_EQ(t.mesh.triangleCount(), 2u * 3u * 2u);
   // Node (1, 2): E = 265015, N = 149975, h = 10 → x = 15, y = 2·10 − 5, z = −(75).
   EXPECT_EQ(t.mesh.positions[t.node(1, 2)], glm::vec3(15.0f, 15.0f, -75.0f));
   EXPECT_EQ(t.mesh.positions[t.node(0, 0)], glm::vec3(5.0f, -3.0f, -95.0f));
   EXPECT_EQ(t.minHeight, 1.0);
   EXPECT_EQ(t.maxHeight, 12.0);
   // Triangles face up, and so do the smooth normals of this plane-like ramp.
-  for (const glm::uvec3& tri : t.mesh.triangles)
+  for (std::size_t i = 0; i < t.mesh.triangleCount(); ++i) {
+    const glm::uvec3 tri = t.mesh.triangle(i);
     EXPECT_GT(glm::cross(t.mesh.positions[tri.y] - t.mesh.positions[tri.x],
                          t.mesh.positions[tri.z] - t.mesh.positions[tri.x])
                   .y,
               0.0f);
+  }
   for (const glm::vec3& n : t.mesh.normals) {
     EXPECT_GT(n.y, 0.0f);
     EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
@@ -90,6 +94,27 @@ TEST_F(RasterTerrainTest, GridNodesSitAtPixelCentresInTheSceneFrame) {
   // plane's gradient (heights ×2: dy/dx = 0.2, dy/dz = 0.2·4·… per 10 m = 0.8).
   const glm::vec3 expected = glm::normalize(glm::vec3(-0.2f, 1.0f, -0.8f));
   EXPECT_NEAR(glm::distance(t.mesh.normals[t.node(1, 1)], expected), 0.0f, 1e-5f);
+}
+
+// Rasters stored south-up (dy > 0) or east-to-west (dx < 0) mirror the grid: their implied
+// triangles still face up, and the level of detail takes the layout.
+TEST_F(RasterTerrainTest, MirroredRastersFaceUpToo) {
+  for (const std::vector<double>& transform :
+       {std::vector<double>{0, 1, 0, 0, 0, 1}, std::vector<double>{4, -1, 0, 3, 0, -1},
+        std::vector<double>{0, 1, 0, 3, 0, -1}, std::vector<double>{4, -1, 0, 0, 0, 1}}) {
+    const fs::path file = tiff("dem.tif", 4, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}, transform);
+    const RasterTerrain t = importRasterTerrain(file, {});
+    SCOPED_TRACE("dx " + std::to_string(transform[1]) + ", dy " + std::to_string(transform[5]));
+    ASSERT_EQ(t.mesh.triangleCount(), 12u);
+    for (std::size_t i = 0; i < t.mesh.triangleCount(); ++i) {
+      const glm::uvec3 tri = t.mesh.triangle(i);
+      EXPECT_GT(glm::cross(t.mesh.positions[tri.y] - t.mesh.positions[tri.x],
+                           t.mesh.positions[tri.z] - t.mesh.positions[tri.x])
+                    .y,
+                0.0f);
+    }
+    EXPECT_TRUE(GridLod::build(t.mesh));
+  }
 }
 
 TEST_F(RasterTerrainTest, StepTakesEveryKthSample) {

@@ -462,7 +462,7 @@ int info(const std::string& path) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const SceneObject& o = scene.objects[i];
     const MeshReport& r = o.mesh->report;
-    triangles += o.proxy ? 0 : o.mesh->triangles.size();
+    triangles += o.proxy ? 0 : o.mesh->triangleCount();
     nlohmann::json params = nlohmann::json::object();
     for (const auto& param : o.params)
       std::visit([&](auto value) { params[param.first] = value; }, param.second);
@@ -475,7 +475,7 @@ int info(const std::string& path) {
                        {"importance", o.importance},
                        {"proxy", o.proxy},
                        {"params", params},
-                       {"triangles", o.mesh->triangles.size()},
+                       {"triangles", o.mesh->triangleCount()},
                        {"vertices", o.mesh->positions.size()},
                        {"bounds", boundsJson(o.worldBounds())},
                        {"watertight", r.watertight},

@@ -7,11 +7,25 @@
 
 namespace cutaway {
 
+namespace {
+
+// The mesh's triangles as an index list: its own, or a grid's implied ones written out into
+// `written`.
+const std::vector<glm::uvec3>& indexList(const cutaway::Mesh& mesh,
+                                         std::vector<glm::uvec3>& written) {
+  if (!mesh.impliedTriangles()) return mesh.triangles;
+  written.resize(mesh.triangleCount());
+  for (std::size_t i = 0; i < written.size(); ++i) written[i] = mesh.triangle(i);
+  return written;
+}
+
+}  // namespace
+
 GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles)
     : source_(&mesh), lod_(GridLod::build(mesh)), bounds_(mesh.bounds()) {
   // glDrawElements counts indices in a GLsizei.
-  if (mesh.triangles.size() > maxTriangles)
-    throw Error(std::to_string(mesh.triangles.size()) + " triangles exceed the limit of " +
+  if (mesh.triangleCount() > maxTriangles)
+    throw Error(std::to_string(mesh.triangleCount()) + " triangles exceed the limit of " +
                 std::to_string(maxTriangles) + " per mesh");
   vertexArray_ = gl::VertexArray::create();
   const GLuint vao = vertexArray_.id();
@@ -24,7 +38,8 @@ GpuMesh::GpuMesh(const cutaway::Mesh& mesh, std::size_t maxTriangles)
     levels_.assign(std::size_t(lod_->chunkCount()), GridLod::kLevels - 1);
     upload(mesh, lod_->triangles(levels_), true);
   } else {
-    upload(mesh, mesh.triangles, false);
+    std::vector<glm::uvec3> written;
+    upload(mesh, indexList(mesh, written), false);
   }
 }
 
@@ -90,18 +105,21 @@ void GpuMesh::selectDetail(const GridLod::View& view) {
     if (version == version_) return;
     version_ = version;
     const cutaway::Mesh& mesh = version == 0 ? *source_ : *coarser_[version - 1].mesh;
-    upload(mesh, mesh.triangles, false);
+    std::vector<glm::uvec3> written;
+    upload(mesh, indexList(mesh, written), false);
     return;
   }
   if (!lod_) return;
   std::vector<std::uint8_t> levels = lod_->select(view);
   if (levels == levels_) return;
   levels_ = std::move(levels);
-  // Full detail everywhere is the mesh itself (pixelError 0): no copy, no renumbering.
-  if (std::all_of(levels_.begin(), levels_.end(), [](std::uint8_t l) { return l == 0; }))
-    upload(*source_, source_->triangles, false);
-  else
+  // Full detail everywhere is the mesh itself (pixelError 0): no renumbering.
+  if (std::all_of(levels_.begin(), levels_.end(), [](std::uint8_t l) { return l == 0; })) {
+    std::vector<glm::uvec3> written;
+    upload(*source_, indexList(*source_, written), false);
+  } else {
     upload(*source_, lod_->triangles(levels_), true);
+  }
 }
 
 void GpuMesh::draw() const {

@@ -33,7 +33,7 @@ std::optional<GridLod> GridLod::build(const Mesh& mesh) {
   const int columns = mesh.grid->columns, rows = mesh.grid->rows;
   if (columns < 2 || rows < 2 ||
       mesh.positions.size() != std::size_t(columns) * std::size_t(rows) ||
-      mesh.triangles.size() != 2 * std::size_t(columns - 1) * std::size_t(rows - 1))
+      mesh.triangleCount() != 2 * std::size_t(columns - 1) * std::size_t(rows - 1))
     return std::nullopt;
   GridLod lod;
   lod.columns_ = columns, lod.rows_ = rows;
@@ -41,10 +41,17 @@ std::optional<GridLod> GridLod::build(const Mesh& mesh) {
     return std::array<std::uint32_t, 4>{lod.node(c, r), lod.node(c + 1, r), lod.node(c, r + 1),
                                         lod.node(c + 1, r + 1)};
   };
-  // The pattern from the first cell, then every cell checked against it.
+  // The pattern: the layout's for implied triangles, else the first cell's, then every cell
+  // checked against it.
   const auto first = corners(0, 0);
   for (int t = 0; t < 2; ++t)
     for (int k = 0; k < 3; ++k) {
+      if (mesh.impliedTriangles()) {
+        const int corner = mesh.grid->cell[std::size_t(t)][std::size_t(k)];
+        if (corner < 0 || corner > 3) return std::nullopt;
+        lod.pattern_[std::size_t(t)][std::size_t(k)] = corner;
+        continue;
+      }
       const auto at = std::find(first.begin(), first.end(), mesh.triangles[std::size_t(t)][k]);
       if (at == first.end()) return std::nullopt;
       lod.pattern_[std::size_t(t)][std::size_t(k)] = int(at - first.begin());
@@ -60,7 +67,7 @@ std::optional<GridLod> GridLod::build(const Mesh& mesh) {
   lod.mainDiagonal_ = inBoth[0] == 2 && inBoth[3] == 2;
   if (!lod.mainDiagonal_ && !(inBoth[1] == 2 && inBoth[2] == 2)) return std::nullopt;
   std::size_t cell = 0;
-  for (int r = 0; r + 1 < rows; ++r)
+  for (int r = 0; r + 1 < rows && !mesh.impliedTriangles(); ++r)
     for (int c = 0; c + 1 < columns; ++c, ++cell) {
       const auto n = corners(c, r);
       for (int t = 0; t < 2; ++t) {

@@ -19,7 +19,7 @@ GroundHeight::GroundHeight(const std::vector<const Mesh*>& meshes,
       points_.push_back(glm::vec3(transforms[m] * glm::vec4(p, 1.0f)));
       box.extend(points_.back());
     }
-    triangles += meshes[m]->triangles.size();
+    triangles += meshes[m]->triangleCount();
     if (triangles >= std::size_t(UINT32_MAX))
       throw Error("", "", "a terrain of more than 4294967294 triangles");
     triangleStart_.push_back(std::uint32_t(triangles));
@@ -59,7 +59,7 @@ glm::vec3 GroundHeight::corner(std::uint32_t t, int c) const {
       std::size_t(std::upper_bound(triangleStart_.begin(), triangleStart_.end(), t) -
                   triangleStart_.begin()) -
       1;
-  return points_[pointStart_[m] + meshes_[m]->triangles[t - triangleStart_[m]][c]];
+  return points_[pointStart_[m] + meshes_[m]->triangle(t - triangleStart_[m])[c]];
 }
 
 std::optional<float> GroundHeight::at(glm::vec2 xz) const {

@@ -13,7 +13,8 @@ SurfaceMoments surfaceMoments(const Mesh& mesh) {
   SurfaceMoments m;
   glm::dmat3 second(0.0);  // Σ A_i/12 (9 m mᵀ + p pᵀ + q qᵀ + r rᵀ)
   glm::dvec3 first(0.0);   // Σ A_i m_i
-  for (const auto& t : mesh.triangles) {
+  for (std::size_t i = 0, n = mesh.triangleCount(); i < n; ++i) {
+    const glm::uvec3 t = mesh.triangle(i);
     const glm::dvec3 p(mesh.positions[t.x]), q(mesh.positions[t.y]), r(mesh.positions[t.z]);
     const double area = 0.5 * glm::length(glm::cross(q - p, r - p));
     const glm::dvec3 centroid = (p + q + r) / 3.0;

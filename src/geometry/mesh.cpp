@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <numeric>
+#include <utility>
 
 namespace cutaway {
 
@@ -31,6 +32,12 @@ Bounds Mesh::bounds() const {
 }
 
 void Mesh::append(const Mesh& other, const glm::mat4& m) {
+  // A grid's implied triangles are stored first: the result is no grid.
+  if (impliedTriangles()) {
+    std::vector<glm::uvec3> own(triangleCount());
+    for (std::size_t i = 0; i < own.size(); ++i) own[i] = triangle(i);
+    triangles = std::move(own);
+  }
   grid.reset();
   const auto base = unsigned(positions.size());
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
@@ -42,8 +49,10 @@ void Mesh::append(const Mesh& other, const glm::mat4& m) {
     const float len = glm::length(n);
     normals.push_back(len > 0.0f ? n / len : n);
   }
-  for (const auto& t : other.triangles)
+  for (std::size_t i = 0, n = other.triangleCount(); i < n; ++i) {
+    const glm::uvec3 t = other.triangle(i);
     triangles.push_back(mirrored ? glm::uvec3(t.x, t.z, t.y) + base : t + base);
+  }
 }
 
 std::size_t dropDegenerateTriangles(Mesh& mesh) {
@@ -163,7 +172,8 @@ void analyzeTopology(Mesh& mesh) {
   // lower end and sorted within the group: a few words per use, where a map's node per edge
   // made large terrains slow to load.
   const auto forEachEdge = [&](const auto& f) {
-    for (const auto& t : mesh.triangles) {
+    for (std::size_t i = 0, n = mesh.triangleCount(); i < n; ++i) {
+      const glm::uvec3 t = mesh.triangle(i);
       const unsigned v[3] = {welded[t.x], welded[t.y], welded[t.z]};
       for (int e = 0; e < 3; ++e)
         if (v[e] != v[(e + 1) % 3]) f(v[e], v[(e + 1) % 3]);
@@ -197,7 +207,7 @@ void analyzeTopology(Mesh& mesh) {
         ++r.misorientedEdges;
     }
   }
-  r.watertight = !mesh.triangles.empty() && r.boundaryEdges == 0 && r.nonManifoldEdges == 0 &&
+  r.watertight = mesh.triangleCount() > 0 && r.boundaryEdges == 0 && r.nonManifoldEdges == 0 &&
                  r.misorientedEdges == 0;
 }
 
@@ -228,7 +238,8 @@ Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi) {
 
 std::vector<float> rayHits(const Mesh& mesh, const glm::vec3& origin, const glm::vec3& direction) {
   std::vector<float> hits;
-  for (const auto& tri : mesh.triangles) {
+  for (std::size_t i = 0, n = mesh.triangleCount(); i < n; ++i) {
+    const glm::uvec3 tri = mesh.triangle(i);
     const glm::vec3 p0 = mesh.positions[tri.x];
     const glm::vec3 e1 = mesh.positions[tri.y] - p0, e2 = mesh.positions[tri.z] - p0;
     const glm::vec3 q = glm::cross(direction, e2);

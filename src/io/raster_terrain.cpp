@@ -73,7 +73,8 @@ std::int64_t fillNodata(std::vector<double>& heights, const std::vector<bool>& v
 // Area-weighted vertex normals: a smooth surface with no creases, whatever the grid's shape.
 void smoothNormals(Mesh& mesh) {
   mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
-  for (const glm::uvec3& t : mesh.triangles) {
+  for (std::size_t i = 0, count = mesh.triangleCount(); i < count; ++i) {
+    const glm::uvec3 t = mesh.triangle(i);
     const glm::vec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x],
                                    mesh.positions[t.z] - mesh.positions[t.x]);
     for (int k = 0; k < 3; ++k) mesh.normals[t[k]] += n;
@@ -224,21 +225,14 @@ RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
     mesh.positions[i] = glm::vec3(float(xs[i] - options.offset.x),
                                   float(heights[i] * options.heightScale - options.offset.z),
                                   float(-(ys[i] - options.offset.y)));
-  // Row r + 1 lies south of row r (towards +z): (c, r), (c, r+1), (c+1, r) turns clockwise
-  // seen from above, so the triangles face up.
-  for (int r = 0; r + 1 < out.rows; ++r)
-    for (int c = 0; c + 1 < out.columns; ++c) {
-      const std::uint32_t a = out.node(c, r), b = out.node(c + 1, r), d = out.node(c, r + 1),
-                          e = out.node(c + 1, r + 1);
-      // A west-to-east raster (dx > 0) keeps that; a mirrored one flips each cell's order.
-      if ((gt[1] > 0.0) == (gt[5] < 0.0)) {
-        mesh.triangles.emplace_back(a, d, b);
-        mesh.triangles.emplace_back(b, d, e);
-      } else {
-        mesh.triangles.emplace_back(a, b, d);
-        mesh.triangles.emplace_back(b, e, d);
-      }
-    }
+  // The triangles are implied by the grid. Row r + 1 lies south of row r (towards +z):
+  // (c, r), (c, r+1), (c+1, r) turns clockwise seen from above, so the triangles face up. A
+  // west-to-east raster (dx > 0) keeps that; a mirrored one flips each cell's order.
+  mesh.grid = GridLayout{out.columns, out.rows};
+  if ((gt[1] > 0.0) == (gt[5] < 0.0))
+    mesh.grid->cell = {{{0, 2, 1}, {1, 2, 3}}};
+  else
+    mesh.grid->cell = {{{0, 1, 2}, {1, 3, 2}}};
   smoothNormals(mesh);
   mesh.report.normalsComputed = true;
   return out;
@@ -279,9 +273,7 @@ RasterInfo describeRaster(const std::filesystem::path& file) {
 
 RasterTerrain importRasterTerrain(const std::filesystem::path& file,
                                   const RasterTerrainOptions& options) {
-  RasterTerrain terrain = containedTerrain(file, options);
-  terrain.mesh.grid = GridLayout{terrain.columns, terrain.rows};
-  return terrain;
+  return containedTerrain(file, options);
 }
 
 double syntheticDemHeight(const SyntheticDemOptions& o, double easting, double northing) {

@@ -16,8 +16,13 @@ void wireFields(Archive& a, MeshReport& r) {
 }
 
 template <class Archive>
+void wireFields(Archive& a, GridLayout& g) {
+  a(g.columns, g.rows, g.cell);
+}
+
+template <class Archive>
 void wireFields(Archive& a, Mesh& m) {
-  a(m.positions, m.normals, m.triangles, m.report);
+  a(m.positions, m.normals, m.triangles, m.report, m.grid);
 }
 
 template <class Archive>

@@ -32,8 +32,9 @@ class GridLod {
   static constexpr int kChunkCells = 64;
   static constexpr int kLevels = 7;  // strides 1, 2, …, 64: the coarsest chunk is one cell
 
-  // The mesh's grid, checked: nothing when `mesh.grid` is absent or its triangles are not two
-  // per cell, cell by cell, all split and wound alike (then the mesh is drawn whole).
+  // The mesh's grid, checked: nothing when `mesh.grid` is absent or its stored triangles are
+  // not two per cell, cell by cell, all split and wound alike, or its layout's `cell` does not
+  // split a cell in two (then the mesh is drawn whole).
   static std::optional<GridLod> build(const Mesh& mesh);
 
   struct View {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -56,24 +57,50 @@ struct MeshReport {
 
 // A mesh whose nodes form a grid: `columns × rows` positions row by row, and two triangles
 // per cell, cell by cell, every cell split and wound alike (terrains). Renderers then draw it
-// with a level of detail (cutaway/geometry/grid_lod.hpp).
+// with a level of detail (cutaway/geometry/grid_lod.hpp). The triangles may be stored, or
+// left implied (`Mesh::triangles` empty): then each cell's two are `cell`'s, by its corners
+// 0 = (c, r), 1 = (c + 1, r), 2 = (c, r + 1), 3 = (c + 1, r + 1), and a large terrain keeps
+// no index per triangle (Mesh::triangleCount, Mesh::triangle read either way).
 struct GridLayout {
   int columns = 0, rows = 0;
+  std::array<std::array<int, 3>, 2> cell{{{0, 1, 2}, {1, 3, 2}}};
 };
 
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // one per position
-  std::vector<glm::uvec3> triangles;
+  std::vector<glm::uvec3> triangles;  // empty for a grid whose layout implies them
   MeshReport report;
   std::optional<GridLayout> grid;  // checked where it is used: edits may have broken it
 
+  // The triangles, stored or implied by the grid (none when the grid and the positions
+  // disagree).
+  bool impliedTriangles() const {
+    return grid && triangles.empty() && grid->columns > 1 && grid->rows > 1 &&
+           positions.size() == std::size_t(grid->columns) * std::size_t(grid->rows);
+  }
+  std::size_t triangleCount() const {
+    return impliedTriangles() ? 2 * std::size_t(grid->columns - 1) * std::size_t(grid->rows - 1)
+                              : triangles.size();
+  }
+  glm::uvec3 triangle(std::size_t i) const {
+    if (!impliedTriangles()) return triangles[i];
+    const std::size_t cell = i / 2, cells = std::size_t(grid->columns - 1);
+    const std::size_t c = cell % cells, r = cell / cells, columns = std::size_t(grid->columns);
+    const std::size_t corner[4] = {r * columns + c, r * columns + c + 1, (r + 1) * columns + c,
+                                   (r + 1) * columns + c + 1};
+    const std::array<int, 3>& t = grid->cell[i % 2];
+    // A corner outside 0–3 reads as another (GridLod refuses such a layout).
+    return {unsigned(corner[t[0] & 3]), unsigned(corner[t[1] & 3]), unsigned(corner[t[2] & 3])};
+  }
+
   Bounds bounds() const;
-  // Appends `other` transformed by `m` (normals by its inverse transpose); the result is no
-  // grid.
+  // Appends `other` transformed by `m` (normals by its inverse transpose), its triangles
+  // stored; the result is no grid.
   void append(const Mesh& other, const glm::mat4& m);
 };
 
+// The next two work on stored triangles (meshes read from files), not on implied ones.
 // Removes triangles of zero area in float arithmetic (repeated indices, coincident vertices,
 // exactly collinear vertices, or non-finite positions); returns how many were removed.
 // Thin but valid triangles stay: removing slivers would open holes in closed meshes.

@@ -204,7 +204,8 @@ std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, con
   std::vector<glm::vec3> world(mesh.positions.size());
   for (std::size_t i = 0; i < world.size(); ++i)
     world[i] = glm::vec3(model * glm::vec4(mesh.positions[i], 1.0f));
-  for (const auto& tri : mesh.triangles) {
+  for (std::size_t i = 0, count = mesh.triangleCount(); i < count; ++i) {
+    const glm::uvec3 tri = mesh.triangle(i);
     float dLow = 1e30f, dHigh = -1e30f;
     glm::vec2 lo(1e30f), hi(-1e30f);
     for (int c = 0; c < 3; ++c) {
