@@ -59,6 +59,18 @@ class RasterTerrainTest : public ::testing::Test {
   fs::path dir_;
 };
 
+// Every triangle of the mesh, stored or implied, turns counter-clockwise seen from above.
+void expectFacingUp(const Mesh& mesh) {
+  for (std::size_t i = 0; i < mesh.triangleCount(); ++i) {
+    const glm::uvec3 t = mesh.triangle(i);
+    EXPECT_GT(
+        glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x])
+            .y,
+        0.0f)
+        << "triangle " << i;
+  }
+}
+
 }  // namespace
 
 TEST_F(RasterTerrainTest, GridNodesSitAtPixelCentresInTheSceneFrame) {
@@ -79,13 +91,7 @@ TEST_F(RasterTerrainTest, GridNodesSitAtPixelCentresInTheSceneFrame) {
   EXPECT_EQ(t.minHeight, 1.0);
   EXPECT_EQ(t.maxHeight, 12.0);
   // Triangles face up, and so do the smooth normals of this plane-like ramp.
-  for (std::size_t i = 0; i < t.mesh.triangleCount(); ++i) {
-    const glm::uvec3 tri = t.mesh.triangle(i);
-    EXPECT_GT(glm::cross(t.mesh.positions[tri.y] - t.mesh.positions[tri.x],
-                         t.mesh.positions[tri.z] - t.mesh.positions[tri.x])
-                  .y,
-              0.0f);
-  }
+  expectFacingUp(t.mesh);
   for (const glm::vec3& n : t.mesh.normals) {
     EXPECT_GT(n.y, 0.0f);
     EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
@@ -106,13 +112,7 @@ TEST_F(RasterTerrainTest, MirroredRastersFaceUpToo) {
     const RasterTerrain t = importRasterTerrain(file, {});
     SCOPED_TRACE("dx " + std::to_string(transform[1]) + ", dy " + std::to_string(transform[5]));
     ASSERT_EQ(t.mesh.triangleCount(), 12u);
-    for (std::size_t i = 0; i < t.mesh.triangleCount(); ++i) {
-      const glm::uvec3 tri = t.mesh.triangle(i);
-      EXPECT_GT(glm::cross(t.mesh.positions[tri.y] - t.mesh.positions[tri.x],
-                           t.mesh.positions[tri.z] - t.mesh.positions[tri.x])
-                    .y,
-                0.0f);
-    }
+    expectFacingUp(t.mesh);
     EXPECT_TRUE(GridLod::build(t.mesh));
   }
 }
