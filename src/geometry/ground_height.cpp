@@ -17,7 +17,10 @@ GroundHeight::GroundHeight(const std::vector<const Mesh*>& meshes,
     pointStart_.push_back(points_.size());
     for (const glm::vec3& p : meshes[m]->positions) {
       points_.push_back(glm::vec3(transforms[m] * glm::vec4(p, 1.0f)));
-      box.extend(points_.back());
+      // A node no triangle keeps may be infinite (dropDegenerateTriangles); the box spans
+      // the finite ones.
+      const glm::vec3& q = points_.back();
+      if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) box.extend(q);
     }
     triangles += meshes[m]->triangleCount();
     if (triangles >= std::size_t(UINT32_MAX))
@@ -67,16 +70,16 @@ std::optional<float> GroundHeight::at(glm::vec2 xz) const {
   const glm::vec2 g = (xz - min_) / cellSize_;
   if (g.x < 0 || g.y < 0 || g.x > float(cells_) || g.y > float(cells_)) return std::nullopt;
   const int i = std::min(int(g.x), cells_ - 1), j = std::min(int(g.y), cells_ - 1);
-  const std::size_t c = std::size_t(j) * std::size_t(cells_) + std::size_t(i);
+  const std::size_t here = std::size_t(j) * std::size_t(cells_) + std::size_t(i);
   std::optional<float> best;
-  for (std::uint32_t k = cellStart_[c]; k < cellStart_[c + 1]; ++k) {
+  for (std::uint32_t k = cellStart_[here]; k < cellStart_[here + 1]; ++k) {
     const std::uint32_t t = cellTriangles_[k];
     const glm::vec3 p[3] = {corner(t, 0), corner(t, 1), corner(t, 2)};
     // Barycentric coordinates in plan.
-    const glm::vec2 a(p[0].x, p[0].z), b(p[1].x, p[1].z), cc(p[2].x, p[2].z);
-    const float det = (b.x - a.x) * (cc.y - a.y) - (cc.x - a.x) * (b.y - a.y);
+    const glm::vec2 a(p[0].x, p[0].z), b(p[1].x, p[1].z), c(p[2].x, p[2].z);
+    const float det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
     if (std::abs(det) < 1e-12f) continue;
-    const float l1 = ((xz.x - a.x) * (cc.y - a.y) - (cc.x - a.x) * (xz.y - a.y)) / det;
+    const float l1 = ((xz.x - a.x) * (c.y - a.y) - (c.x - a.x) * (xz.y - a.y)) / det;
     const float l2 = ((b.x - a.x) * (xz.y - a.y) - (xz.x - a.x) * (b.y - a.y)) / det;
     const float l0 = 1.0f - l1 - l2, eps = -1e-5f;
     if (l0 < eps || l1 < eps || l2 < eps) continue;
