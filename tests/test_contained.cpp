@@ -45,6 +45,12 @@ void expectSameMesh(const Mesh& a, const Mesh& b) {
   EXPECT_EQ(a.positions, b.positions);
   EXPECT_EQ(a.normals, b.normals);
   EXPECT_EQ(a.triangles, b.triangles);
+  ASSERT_EQ(a.grid.has_value(), b.grid.has_value());
+  if (a.grid) {
+    EXPECT_EQ(a.grid->columns, b.grid->columns);
+    EXPECT_EQ(a.grid->rows, b.grid->rows);
+    EXPECT_EQ(a.grid->cell, b.grid->cell);
+  }
   EXPECT_EQ(a.report.droppedDegenerate, b.report.droppedDegenerate);
   EXPECT_EQ(a.report.normalsComputed, b.report.normalsComputed);
   EXPECT_EQ(a.report.boundaryEdges, b.report.boundaryEdges);

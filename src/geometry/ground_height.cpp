@@ -15,19 +15,18 @@ GroundHeight::GroundHeight(const std::vector<const Mesh*>& meshes,
   std::size_t triangles = 0;
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     pointStart_.push_back(points_.size());
-    for (const glm::vec3& p : meshes[m]->positions) {
+    for (const glm::vec3& p : meshes[m]->positions)
       points_.push_back(glm::vec3(transforms[m] * glm::vec4(p, 1.0f)));
-      // A node no triangle keeps may be infinite (dropDegenerateTriangles); the box spans
-      // the finite ones.
-      const glm::vec3& q = points_.back();
-      if (std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) box.extend(q);
-    }
     triangles += meshes[m]->triangleCount();
     if (triangles >= std::size_t(UINT32_MAX))
       throw Error("", "", "a terrain of more than 4294967294 triangles");
     triangleStart_.push_back(std::uint32_t(triangles));
   }
   if (triangles == 0) return;
+  // The box of the triangles' corners: a node no triangle keeps may lie anywhere, or be
+  // infinite (dropDegenerateTriangles), and would thin out the cells.
+  for (std::uint32_t t = 0; t < triangleStart_.back(); ++t)
+    for (int c = 0; c < 3; ++c) box.extend(corner(t, c));
   // About one triangle per cell.
   cells_ = std::clamp(int(std::sqrt(double(triangles))), 1, 4096);
   min_ = {box.min.x, box.min.z};
