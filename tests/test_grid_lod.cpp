@@ -104,6 +104,13 @@ TEST(GridLod, ImpliedTrianglesAreTheStoredOnes) {
     EXPECT_EQ(implied.triangles.size(), stored.triangles.size() + 2);
     EXPECT_FALSE(implied.grid);
   }
+  // A grid whose stored triangles are all dropped as degenerate (a flat line of nodes) is no
+  // grid, not one whose triangles are implied.
+  Mesh collapsed = gridMesh(4, 3, kCity, [](int, int) { return 0.0f; });
+  for (glm::vec3& p : collapsed.positions) p.z = 0.0f;
+  EXPECT_EQ(cutaway::dropDegenerateTriangles(collapsed), 12u);
+  EXPECT_FALSE(collapsed.grid);
+  EXPECT_EQ(collapsed.triangleCount(), 0u);
   // A cell the layout does not split in two gets no level of detail.
   Mesh bad = flatGrid(5, 5);
   bad.triangles.clear();

@@ -78,6 +78,8 @@ std::size_t dropDegenerateTriangles(Mesh& mesh) {
   }
   const std::size_t dropped = mesh.triangles.size() - kept;
   mesh.triangles.resize(kept);
+  // A grid that lost stored triangles is none; left empty, it would read as implied ones.
+  if (dropped > 0) mesh.grid.reset();
   return dropped;
 }
 
