@@ -25,9 +25,9 @@ flat in int vPipe;
 layout(location = PIPE_CLASS_LOCATION) out float outPipeClass;
 layout(binding = UNIT_PIPE_OWNER) uniform isampler2D uProxyOwner;  // global pipe id + 1; 0: none
 layout(binding = UNIT_PIPE_OWNER_DEPTH) uniform sampler2D uProxyDepth;  // that proxy's depth
-// The pixel's samples at stencil 0 (bits 0–15) and 2 (bits 16–31): pipe_stencil_masks.frag.
+// The pixel's samples at stencil 0 (x's bits 0–15), 2 (x's bits 16–31) and 1 (y):
+// pipe_stencil_masks.frag.
 layout(binding = UNIT_PIPE_STENCIL_MASKS) uniform isampler2D uStencilMasks;
-layout(location = 37) uniform int uPass;  // 0 outside, 1 inside
 
 // `onTube`: the point of the tube (or water) the fragment shows, where the shadow map is
 // read; the quad itself lies through the axis, half of it behind the light's quad.
@@ -54,21 +54,30 @@ void write(SurfacePoint s, float pipeClass) {
 }
 
 void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  ivec2 masks = texelFetch(uStencilMasks, pixel, 0).rg;
+  // llvmpipe (Mesa 22.3, 4 samples) runs the whole shader for a fragment whose samples all
+  // fail the stencil test; a discard at every lane ends it early. Most of the inside pass's
+  // fragments lie over no inside sample: the benchmark city's `pipes` pass took half the time
+  // with this test (bench/RESULTS.md, 2026-12-06).
+#if INSIDE_PASS
+  if ((gl_SampleMaskIn[0] & masks.y) == 0) discard;
+#endif
   bool cut = inCutStretch(vPipe, vArc);
   vec3 up = cutUp(vDirection);
   bool upper = dot(vWorld - vAxis, up) > 0.0;
-  ivec2 pixel = ivec2(gl_FragCoord.xy);
   bool own = texelFetch(uProxyOwner, pixel, 0).r == int(uPipes[vPipe].radii.w) + 1 &&
              (cut || gl_FragCoord.z > texelFetch(uProxyDepth, pixel, 0).r);
   vec3 tube = normalize(vNormal + vFace);  // eq. 11
-  int masks = uPass == 0 ? texelFetch(uStencilMasks, pixel, 0).r : 0;
-  int removed = (cut && upper ? masks & 0xffff : 0) | (own ? masks >> 16 : 0);
-#ifdef SINGLE_SAMPLE
-  if (removed != 0) discard;
-#else
+#if !INSIDE_PASS
+  int removed = (cut && upper ? masks.x & 0xffff : 0) | (own ? masks.x >> 16 : 0);
+  if ((gl_SampleMaskIn[0] & ~removed & ~masks.y) == 0) discard;  // nothing left to write
+#ifndef SINGLE_SAMPLE
   gl_SampleMask[0] = ~removed;  // written by every invocation: else it is undefined
 #endif
-  if (uPass == 0 || !own) {
+  write(surface(vWorld, tube, uPipeColor, vAxis + outerRadius(vPipe) * tube), kClassOutside);
+#else
+  if (!own) {
     write(surface(vWorld, tube, uPipeColor, vAxis + outerRadius(vPipe) * tube), kClassOutside);
     return;
   }
@@ -97,4 +106,5 @@ void main() {
   }
   vec3 inward = normalize(vFace - vNormal);
   write(surface(vWorld, inward, uInsideColor, vAxis - innerR * inward), kClassInside);
+#endif
 }

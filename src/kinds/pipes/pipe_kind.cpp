@@ -197,9 +197,15 @@ void PipeKind::prepare(const std::vector<ActiveCutter>&) {
     extra.insert(defines.begin(), defines.end());
     return gl::buildProgram(setup_.geometryProgram(std::move(stages), std::move(extra)));
   };
-  billboardProgram_ = build({{GL_VERTEX_SHADER, "kinds/pipes/billboard.vert"},
-                             {GL_GEOMETRY_SHADER, "kinds/pipes/billboard.geom"},
-                             {GL_FRAGMENT_SHADER, "kinds/pipes/billboard.frag"}});
+  // The billboards' two passes as two programs, each with the other's code folded away.
+  const auto billboards = [&](bool inside) {
+    return build({{GL_VERTEX_SHADER, "kinds/pipes/billboard.vert"},
+                  {GL_GEOMETRY_SHADER, "kinds/pipes/billboard.geom"},
+                  {GL_FRAGMENT_SHADER, "kinds/pipes/billboard.frag"}},
+                 {{"INSIDE_PASS", inside ? "1" : "0"}});
+  };
+  outsideProgram_ = billboards(false);
+  insideProgram_ = billboards(true);
   if (scene.style.shadows.enabled)
     shadowProgram_ = setup_.bindings.build(
         {.stages = {{GL_VERTEX_SHADER, "kinds/pipes/billboard.vert"},
@@ -224,7 +230,7 @@ void PipeKind::prepare(const std::vector<ActiveCutter>&) {
 
   owner_ = frame.declare("pipeOwner", {.format = GL_R32I});
   ownerDepth_ = frame.declare("pipeOwnerDepth", {.format = GL_DEPTH_COMPONENT32F});
-  stencilMasks_ = frame.declare("pipeStencilMasks", {.format = GL_R32I});
+  stencilMasks_ = frame.declare("pipeStencilMasks", {.format = GL_RG32I});
   pipeClass_ = frame.declare("scenePipeClass", {.format = GL_R8, .samples = scene.samples});
   stencilAov_ = frame.declare(
       "pipeStencil",
@@ -273,9 +279,9 @@ void PipeKind::addPassesAfterGeometry(Frame& frame) {
                  .writes = {stencilMasks_},
                  .run = [this](const PassContext&) {
                    if (!cutOpen_) {  // no proxies: every sample at stencil 0
-                     const GLint allOutside = 0xffff;
-                     glClearTexImage(setup_.frame.texture(stencilMasks_).id(), 0, GL_RED_INTEGER,
-                                     GL_INT, &allOutside);
+                     const GLint allOutside[2] = {0xffff, 0};
+                     glClearTexImage(setup_.frame.texture(stencilMasks_).id(), 0, GL_RG_INTEGER,
+                                     GL_INT, allOutside);
                      return;
                    }
                    glDisable(GL_DEPTH_TEST);
@@ -401,17 +407,16 @@ void PipeKind::drawPipes() {
   glEnable(GL_STENCIL_TEST);
   glDepthMask(GL_TRUE);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  const GLuint billboard = billboardProgram_.id();
-  glUseProgram(billboard);
   glBindTextureUnit(ownerUnit_, setup_.frame.texture(owner_).id());
   glBindTextureUnit(ownerDepthUnit_, setup_.frame.texture(ownerDepth_).id());
   glBindTextureUnit(stencilMasksUnit_, setup_.frame.texture(stencilMasks_).id());
   glEnable(GL_PRIMITIVE_RESTART);
   glPrimitiveRestartIndex(kPrimitiveRestart);
-  for (const int pass : {0, 1}) {
-    if (pass == 1 && !cutOpen_) break;  // no proxies: no sample at stencil 1
-    glStencilFunc(pass == 0 ? GL_NOTEQUAL : GL_EQUAL, kStencilInside, 0xff);
-    glProgramUniform1i(billboard, kPass, pass);
+  for (const bool inside : {false, true}) {
+    if (inside && !cutOpen_) break;  // no proxies: no sample at stencil 1
+    glStencilFunc(inside ? GL_EQUAL : GL_NOTEQUAL, kStencilInside, 0xff);
+    const GLuint billboard = (inside ? insideProgram_ : outsideProgram_).id();
+    glUseProgram(billboard);
     for (const NetworkGpu& n : networks_) {
       setNetworkUniforms(billboard, n);
       glBindVertexArray(n.nodeArray.id());

@@ -4,7 +4,7 @@
 //   pipeOwners  the proxies' nearest pipe id per pixel (the §9 interference fix)
 //   pipeProxies stencil cleared; proxy pass 1 (cut surface, stencil 2), pass 2 (inside,
 //               stencil 1), Fig. 10's back-face reset (stencil 4)
-//   pipeStencilMasks  each pixel's samples at stencil 0 and at 2, as bit masks
+//   pipeStencilMasks  each pixel's samples at stencil 0, 2 and 1, as bit masks
 //   pipes       billboards: the outside over stencil 0, 2 and 4 (the samples each leaves out
 //               taken from the masks), the inside over 1; shaft water
 //   pipeAovs    the stencil after the proxy passes and the pipe class, as AOVs
@@ -57,8 +57,8 @@ class PipeKind : public GeometryKind {
   FrameSetup& setup_;
   const Scene& scene_;
   std::vector<NetworkGpu> networks_;
-  gl::Program billboardProgram_, shadowProgram_, rearHullProgram_, proxyProgram_, ownerProgram_,
-      waterProgram_, aovProgram_, stencilMasksProgram_;
+  gl::Program outsideProgram_, insideProgram_, shadowProgram_, rearHullProgram_, proxyProgram_,
+      ownerProgram_, waterProgram_, aovProgram_, stencilMasksProgram_;
   gl::Texture stencilView_;
   FullscreenTriangle fullscreen_;
   GLuint gbufferTargets_ = 0;
