@@ -112,7 +112,7 @@ PipeKind::PipeKind(FrameSetup& setup)
   for (std::size_t k = 0; k < scene.networks.size(); ++k) {
     const PipeNetwork& net = scene.networks[k];
     if (net.mode != PipeNetwork::Mode::Billboards) continue;
-    NetworkGpu g{k, int(scene.objects.size() + k), {}, {}, {}, {}, {}, {}, {}, {}, 0, 0, 0};
+    NetworkGpu g{k, int(scene.objects.size() + k), {}, {}, {}, {}, {}, {}, {}, {}, {}, 0, 0, 0, 0};
     std::vector<Node> nodes;
     std::vector<GLuint> indices;
     std::vector<PipeRecord> records;
@@ -158,9 +158,15 @@ PipeKind::PipeKind(FrameSetup& setup)
 
     g.proxy = upload(proxies);
     g.proxyVertexCount = GLsizei(proxies.size());
+    std::vector<GLuint> ends;
+    for (std::size_t v = 0; v < proxies.size(); ++v)
+      if (proxies[v].kind == 0) ends.push_back(GLuint(v));
+    g.endTriangles = upload(ends);
+    g.endTriangleIndexCount = GLsizei(ends.size());
     g.proxyArray = gl::VertexArray::create();
     vao = g.proxyArray.id();
     glVertexArrayVertexBuffer(vao, 0, g.proxy.id(), 0, sizeof(ProxyVertex));
+    glVertexArrayElementBuffer(vao, g.endTriangles.id());
     glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(ProxyVertex, axis));
     glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, offsetof(ProxyVertex, offset));
     glVertexArrayAttribFormat(vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(ProxyVertex, uv));
@@ -373,7 +379,10 @@ void PipeKind::drawProxies() {
       if (n.proxyVertexCount == 0) continue;
       setNetworkUniforms(proxy, n);
       glBindVertexArray(n.proxyArray.id());
-      glDrawArrays(GL_TRIANGLES, 0, n.proxyVertexCount);
+      if (pass == 3)
+        glDrawElements(GL_TRIANGLES, n.endTriangleIndexCount, GL_UNSIGNED_INT, nullptr);
+      else
+        glDrawArrays(GL_TRIANGLES, 0, n.proxyVertexCount);
     }
   };
   // Pass 1: the cut surface (eqs. 13, 16), drawn and marked 2.
@@ -391,9 +400,14 @@ void PipeKind::drawProxies() {
   proxies(2);
   // Fig. 10: an end triangle seen from behind resets its area to the pipe's outside, marked
   // apart (4): there the closed tube's end covers the disc beyond the flat end of its quad,
-  // so the cut stretch's quad keeps its upper half.
+  // so the cut stretch's quad keeps its upper half. Only the end triangles, their front
+  // faces culled: llvmpipe would rasterise and shade the rest for proxy.frag to discard.
   glStencilFunc(GL_EQUAL, kStencilBackEnd, kStencilCut);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
   proxies(3);
+  glCullFace(GL_BACK);
+  glDisable(GL_CULL_FACE);
   colorWrites(true);
   glDisable(GL_STENCIL_TEST);
 }

@@ -43,8 +43,9 @@ class PipeKind : public GeometryKind {
     int objectId;
     gl::Buffer pipes;  // PipeRecord per pipe (src/kinds/pipes/pipes.glsl)
     gl::VertexArray nodeArray, proxyArray, waterArray;
-    gl::Buffer nodes, nodeIndices, proxy, water;
-    GLsizei nodeIndexCount = 0, proxyVertexCount = 0, waterCount = 0;
+    gl::Buffer nodes, nodeIndices, proxy, endTriangles, water;
+    // endTriangles: the proxies' end-triangle vertices (Fig. 10's pass draws only those).
+    GLsizei nodeIndexCount = 0, proxyVertexCount = 0, endTriangleIndexCount = 0, waterCount = 0;
   };
   void setNetworkUniforms(GLuint program, const NetworkGpu& n) const;
   // Every network's billboards with `program`, only the radii set (shadow casters, rear hulls).
