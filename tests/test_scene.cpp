@@ -536,6 +536,14 @@ TEST(SceneErrors, ParseSceneNamesTheDisplayNameAndCountsLines) {
     EXPECT_EQ(e.place(), "line 3, column 23") << e.what();
     EXPECT_NE(e.reason().find("invalid JSON"), std::string::npos) << e.what();
   }
+  // nlohmann's parser ends its input at a NUL byte: what follows one was ignored.
+  try {
+    (void)parseScene(std::string("{}\n") + '\0' + "not JSON", "nul.json", kMeshes);
+    FAIL() << "text after a NUL byte was ignored";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.place(), "line 2, column 1") << e.what();
+    EXPECT_EQ(e.reason(), "invalid JSON: a NUL byte") << e.what();
+  }
   try {
     (void)parseScene("", "empty.json", kMeshes);
     FAIL() << "empty text was accepted";

@@ -733,6 +733,16 @@ TEST_F(VolumeImportTest, RawBadInput) {
               {"/spacing", "3 numbers"});
   expectError([&] { importVolume(write("bad.json", R"({"file": "x.raw", "dims": [1, 1, 1],)")); },
               {"bad.json", "invalid JSON"});
+  expectError([&] { importVolume(raw("u8", "[2, 2, 2]", eight, R"(, "origin": [1e20, 0, 0])")); },
+              {"volume.json", "/origin/0", "magnitude 1e+20 is beyond the 1e15"});
+  // nlohmann's parser ends its input at a NUL byte: what follows one was ignored.
+  expectError(
+      [&] {
+        importVolume(write(
+            "nul.json", std::string(R"({"file": "volume.raw", "dims": [2, 2, 2], "type": "u8"})") +
+                            '\0' + "garbage"));
+      },
+      {"nul.json", "line 1, column 56", "invalid JSON: a NUL byte"});
   expectError(
       [&] {
         importVolume(write("v.json", R"({"file": "nowhere.raw", "dims": [1, 1, 1],

@@ -32,6 +32,47 @@ struct Context {
   }
 };
 
+// The JSON text, or an error at the line and column where it fails.
+inline json parse(const Context& ctx, const std::string& text) {
+  // Turn a 1-based byte offset into a line and column a person can find.
+  const auto lineColumn = [&text](std::size_t byte) {
+    std::size_t line = 1, column = 1;
+    for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+      if (text[i] == '\n')
+        ++line, column = 1;
+      else
+        ++column;
+    }
+    return "line " + std::to_string(line) + ", column " + std::to_string(column);
+  };
+  // nlohmann's lexer ends the input at a NUL byte, and would ignore what follows it; JSON
+  // allows none anywhere.
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    throw Error(ctx.file, lineColumn(nul + 1), "invalid JSON: a NUL byte");
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string reason = e.what();
+    if (auto p = reason.find(": syntax error"); p != std::string::npos)
+      reason = reason.substr(p + 2);
+    throw Error(ctx.file, lineColumn(e.byte), "invalid JSON: " + reason);
+  } catch (const json::exception& e) {
+    // A number too large for a double ("1e999") is out_of_range, not a parse_error, and has
+    // no offset: place it at the first occurrence of the literal the message quotes.
+    std::string reason = e.what();
+    if (auto p = reason.find("] "); p != std::string::npos) reason = reason.substr(p + 2);
+    std::string place;
+    const auto open = reason.find('\''), close = reason.rfind('\'');
+    if (open != std::string::npos && close > open + 1)
+      if (const auto at = text.find(reason.substr(open + 1, close - open - 1));
+          at != std::string::npos)
+        place = lineColumn(at + (close - open - 1));
+    throw Error(ctx.file, place, "invalid JSON: " + reason);
+  }
+  return root;
+}
+
 inline std::string typeName(const json& j) {
   return j.type_name();
 }

@@ -29,6 +29,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -717,16 +718,11 @@ std::int64_t jsonInteger(const json_reader::Context& ctx, const json_reader::jso
 Volume loadRawJson(const fs::path& file, const VolumeLimits& limits) {
   using json_reader::json;
   const json_reader::Context ctx{file.string(), file.parent_path(), {}};
-  std::ifstream stream(file);
+  std::ifstream stream(file, std::ios::binary);
   if (!stream) ctx.fail("", "cannot open for reading: " + std::string(std::strerror(errno)));
-  json root;
-  try {
-    root = json::parse(stream);
-  } catch (const json::exception& e) {
-    std::string reason = e.what();
-    if (const auto p = reason.find("] "); p != std::string::npos) reason = reason.substr(p + 2);
-    throw Error(file.string(), "", "invalid JSON: " + reason);
-  }
+  std::stringstream text;
+  text << stream.rdbuf();
+  const json root = json_reader::parse(ctx, text.str());
 
   json_reader::ObjectReader r(ctx, root, "");
   const std::string raw = json_reader::string(ctx, r.require("file"), "/file");
@@ -759,7 +755,15 @@ Volume loadRawJson(const fs::path& file, const VolumeLimits& limits) {
   Volume v;
   v.dims = glm::ivec3(int(d[0]), int(d[1]), int(d[2]));
   v.voxelType = type->name;
-  // Voxel (i, j, k) at origin + spacing·(i, j, k); a zero spacing is singular.
+  // Voxel (i, j, k) at origin + spacing·(i, j, k); a zero spacing is singular. The origin is
+  // checked apart so that an error names it; checkTransform names the spacing.
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(origin[a]) > double(kMaxSceneReach)) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g", std::abs(origin[a]));
+      ctx.fail("/origin/" + std::to_string(a),
+               std::string("magnitude ") + text + " is beyond the 1e15 a scene may reach");
+    }
   glm::dmat4 m(1.0);
   for (int a = 0; a < 3; ++a) m[a][a] = spacing[a], m[3][a] = origin[a];
   v.indexToWorld = checkTransform(m, {file.string(), "/spacing"});

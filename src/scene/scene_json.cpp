@@ -832,43 +832,6 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
   return s;
 }
 
-// The JSON text, or an error at the line and column where it fails.
-json parseJson(const Context& ctx, const std::string& text) {
-  // Turn a 1-based byte offset into a line and column a person can find.
-  const auto lineColumn = [&text](std::size_t byte) {
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
-      if (text[i] == '\n')
-        ++line, column = 1;
-      else
-        ++column;
-    }
-    return "line " + std::to_string(line) + ", column " + std::to_string(column);
-  };
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string reason = e.what();
-    if (auto p = reason.find(": syntax error"); p != std::string::npos)
-      reason = reason.substr(p + 2);
-    throw Error(ctx.file, lineColumn(e.byte), "invalid JSON: " + reason);
-  } catch (const json::exception& e) {
-    // A number too large for a double ("1e999") is out_of_range, not a parse_error, and has
-    // no offset: place it at the first occurrence of the literal the message quotes.
-    std::string reason = e.what();
-    if (auto p = reason.find("] "); p != std::string::npos) reason = reason.substr(p + 2);
-    std::string place;
-    const auto open = reason.find('\''), close = reason.rfind('\'');
-    if (open != std::string::npos && close > open + 1)
-      if (const auto at = text.find(reason.substr(open + 1, close - open - 1));
-          at != std::string::npos)
-        place = lineColumn(at + (close - open - 1));
-    throw Error(ctx.file, place, "invalid JSON: " + reason);
-  }
-  return root;
-}
-
 // Names unique across objects and volumes, and everything within float reach. Also what the
 // file's reader checks where it reads a name or a colour, for objects made otherwise (a
 // split file's nodes, the Python module's arrays).
@@ -932,7 +895,7 @@ void checkAcross(const Context& ctx, Scene& scene) {
 Scene parseScene(const std::string& text, const std::filesystem::path& displayName,
                  const std::filesystem::path& baseDir, const SceneArrays& arrays) {
   Context ctx{displayName.string(), baseDir, {}};
-  const json root = parseJson(ctx, text);
+  const json root = parse(ctx, text);
   Scene scene;
   scene.file = displayName;
   ObjectReader r(ctx, root, "");
@@ -1011,7 +974,7 @@ void appendVolume(Scene& scene, const std::string& text, const std::string& disp
                   const std::filesystem::path& baseDir, const SceneArrays& arrays) {
   const Context ctx{displayName, baseDir, scene.geo};
   Scene grown = scene;  // the scene is left as it was when the entry fails
-  readVolume(ctx, parseJson(ctx, text), "", arrays, grown);
+  readVolume(ctx, parse(ctx, text), "", arrays, grown);
   checkAcross(ctx, grown);
   scene = std::move(grown);
 }
