@@ -192,6 +192,16 @@ TEST_F(RasterTerrainTest, ErrorsNameTheFileAndTheReason) {
   const fs::path good = tiff("good.tif", 2, {1, 2, 3, 4}, {0, 1, 0, 2, 0, -1});
   expectError([&] { importRasterTerrain(good, {.targetCrs = "EPSG:999999"}); },
               {"good.tif", "unknown target CRS"});
+  // Geotransforms that cannot place distinct nodes: none, or nodes beyond float's reach.
+  std::ofstream(dir_ / "zero.asc") << "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 0\n"
+                                      "1 2\n3 4\n";
+  expectError([&] { importRasterTerrain(dir_ / "zero.asc"); }, {"zero.asc", "the cell size is 0"});
+  const fs::path far = tiff("far.tif", 2, {1, 2, 3, 4}, {1e300, 1, 0, 2, 0, -1});
+  expectError([&] { importRasterTerrain(far); },
+              {"far.tif", "grid node (0, 0) lies", "beyond the 1e15"});
+  const fs::path tiny = tiff("tiny.tif", 2, {1, 2, 3, 4}, {0, 1e-300, 0, 2, 0, -1});
+  expectError([&] { importRasterTerrain(tiny); },
+              {"tiny.tif", "grid node (0, 0) and grid node (1, 0) fall on one point"});
   // A header claiming 64752 × 65535 samples (34 GB of grid; fuzzing): refused before reading.
   const fs::path huge =
       fs::path(CUTAWAY_TEST_DATA) / "fuzz/raster/header-claims-64752-by-65535.tif";

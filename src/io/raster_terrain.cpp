@@ -8,10 +8,13 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <limits>
 #include <memory>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "cutaway/core/atomic_file.hpp"
@@ -129,8 +132,11 @@ RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
   if (dataset->GetGeoTransform(out.geoTransform.data()) != CE_None)
     throw Error(name, "", "the raster has no geotransform (it is not georeferenced)");
   const std::array<double, 6>& gt = out.geoTransform;
+  if (!std::all_of(gt.begin(), gt.end(), [](double v) { return std::isfinite(v); }))
+    throw Error(name, "", "the geotransform is not finite");
   if (gt[2] != 0.0 || gt[4] != 0.0)
     throw Error(name, "", "rotated geotransforms are not supported (warp it north-up first)");
+  if (gt[1] == 0.0 || gt[5] == 0.0) throw Error(name, "", "the cell size is 0");
   const OGRSpatialReference* source = dataset->GetSpatialRef();
   out.crs = gdal::describeCrs(source);
   out.sceneCrs = out.crs;
@@ -221,10 +227,35 @@ RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
   }
   Mesh& mesh = out.mesh;
   mesh.positions.resize(nodes);
-  for (std::size_t i = 0; i < nodes; ++i)
-    mesh.positions[i] = glm::vec3(float(xs[i] - options.offset.x),
-                                  float(heights[i] * options.heightScale - options.offset.z),
-                                  float(-(ys[i] - options.offset.y)));
+  const auto nodeName = [&](std::size_t i) {
+    return "grid node (" + std::to_string(i % std::size_t(out.columns)) + ", " +
+           std::to_string(i / std::size_t(out.columns)) + ")";
+  };
+  for (std::size_t i = 0; i < nodes; ++i) {
+    const glm::vec3 p(float(xs[i] - options.offset.x),
+                      float(heights[i] * options.heightScale - options.offset.z),
+                      float(-(ys[i] - options.offset.y)));
+    // Beyond float's reach (a corner at 1e300) the nodes would become infinite.
+    if (!(sceneReach(p) <= kMaxSceneReach)) {
+      std::ostringstream message;
+      message << nodeName(i) << " lies " << sceneReach(p)
+              << " scene units from the origin, beyond the 1e15 a scene may reach";
+      throw Error(name, "", message.str());
+    }
+    mesh.positions[i] = p;
+  }
+  // Cells too small for floats where the grid lies would leave triangles of no area.
+  for (int r = 0; r < out.rows; ++r)
+    for (int c = 0; c < out.columns; ++c) {
+      const glm::vec3& p = mesh.positions[out.node(c, r)];
+      for (const std::size_t n : {c + 1 < out.columns ? out.node(c + 1, r) : nodes,
+                                  r + 1 < out.rows ? out.node(c, r + 1) : nodes})
+        if (n < nodes && mesh.positions[n].x == p.x && mesh.positions[n].z == p.z)
+          throw Error(name, "",
+                      nodeName(out.node(c, r)) + " and " + nodeName(n) +
+                          " fall on one point in the scene's 32-bit floats: cells too small "
+                          "for where the grid lies");
+    }
   // The triangles are implied by the grid. Row r + 1 lies south of row r (towards +z):
   // (c, r), (c, r+1), (c+1, r) turns clockwise seen from above, so the triangles face up. A
   // west-to-east raster (dx > 0) keeps that; a mirrored one flips each cell's order.
