@@ -78,6 +78,19 @@ std::vector<std::uint8_t> readPngPixels(const std::filesystem::path& path, png_i
     png_image_free(&png);
     throw Error(path.string(), "", "cannot read PNG: " + reason);
   }
+  // A header may claim any size: one of 69 bytes claiming 46000 × 46000 had 2 GB allocated
+  // before its data ran out. Deflate packs at most 1032 bytes into one, and a 1-bit image
+  // holds 8 pixels a byte; the file's format as libpng's simplified API gives it counts
+  // 8 bits a sample and more.
+  std::error_code ec;
+  const std::uintmax_t fileBytes = std::filesystem::file_size(path, ec);
+  if (!ec && double(PNG_IMAGE_SIZE(png)) > 8.0 * 1032.0 * double(fileBytes) + 65536.0) {
+    const std::string size = std::to_string(png.width) + " × " + std::to_string(png.height);
+    png_image_free(&png);
+    throw Error(path.string(), "",
+                "the header claims " + size + " pixels, more than a file of " +
+                    std::to_string(fileBytes) + " bytes can hold");
+  }
   choose(png);
   std::vector<std::uint8_t> bytes(PNG_IMAGE_SIZE(png));
   if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) {
