@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <random>
@@ -16,7 +17,9 @@
 #include "cutaway/cutters/clip_surfaces.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "cutaway/render/renderer.hpp"
+#include "cutaway/render/techniques.hpp"
 #include "cutters/clip_surfaces/clip_surfaces.hpp"
+#include "expect_error.hpp"
 #include "gl_test_context.hpp"
 #include "mismatches.hpp"
 #include "render_aovs.hpp"
@@ -24,6 +27,7 @@
 
 using namespace cutaway;
 using test::aov;
+using test::expectError;
 using test::renderAovs;
 
 namespace {
@@ -204,6 +208,40 @@ TEST(OffsetMap, SixteenBitPngKeepsItsLevels) {
   std::filesystem::remove(file);
 }
 
+// A header may claim any size; a 1 × 1 PNG whose header says 46000 × 46000 (its CRC made
+// good) is refused before its pixels are allocated, not after 2 GB.
+TEST(OffsetMap, APngHeaderClaimingMoreThanItsFileHoldsIsRefused) {
+  const std::filesystem::path file = test::scratchPath("clip", "claims.png");
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png.height = 1;
+  png.format = PNG_FORMAT_GRAY;
+  const std::uint8_t pixel = 7;
+  png_alloc_size_t size = 0;
+  ASSERT_TRUE(png_image_write_to_memory(&png, nullptr, &size, 0, &pixel, 0, nullptr));
+  std::vector<std::uint8_t> bytes(size);
+  ASSERT_TRUE(png_image_write_to_memory(&png, bytes.data(), &size, 0, &pixel, 0, nullptr));
+  // IHDR's data starts at byte 16 (signature 8, length 4, type 4): width, height big-endian;
+  // its CRC (over type and data) follows the 13 data bytes.
+  const auto put = [&](std::size_t at, std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) bytes[at + std::size_t(k)] = std::uint8_t(v >> (24 - 8 * k));
+  };
+  put(16, 46000);
+  put(20, 46000);
+  std::uint32_t crc = 0xffffffffu;
+  for (std::size_t i = 12; i < 29; ++i) {
+    crc ^= bytes[i];
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  put(29, ~crc);
+  std::ofstream(file, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  expectError([&] { (void)readPngGray(file); },
+              {"claims.png", "the header claims 46000 × 46000 pixels, more than a file of " +
+                                 std::to_string(bytes.size()) + " bytes can hold"});
+  std::filesystem::remove(file);
+}
+
 // Trapp13 §5.1 drawn where it can be: the tiles capTiles keeps for a torus (axis ẑ, tube 0.35
 // around radius 1) cut by a surface through z = 0 with a relief up to S_z = 0.1 below it. The
 // cut is the annulus 1 − √(0.35² − z²) ≤ ρ ≤ 1 + √(0.35² − z²) for z ∈ [−0.1, 0]: every tile
@@ -313,6 +351,19 @@ const std::string kFlatSurface =
 
 // The GPU's per-fragment test against clipSurfaceFunction on the plain frame's world
 // positions: surface points the C++ form clips are gone, the others stay, pixel by pixel.
+TEST(ClipSurface, SetOptionRefusesAnEntryPastTheSurfaces) {
+  writeTorus();
+  Scene scene = parseScene(torusScene(kNoisySurface, false), "torus.json", kData);
+  setOption(scene, "cutters.clipSurfaces.surfaces.0.enabled", "false");
+  EXPECT_FALSE(scene.cutters.find<ClipSurfaceOptions>()->surfaces[0].enabled);
+  // The write would be lost: the scene has one surface.
+  expectError([&] { setOption(scene, "cutters.clipSurfaces.surfaces.3.position", "5"); },
+              {"cutters.clipSurfaces.surfaces.3.position", "no entry 3: \"surfaces\" has 1 entry"});
+  scene.cutters.erase(ClipSurfaceOptions::kKey);
+  expectError([&] { setOption(scene, "cutters.clipSurfaces.surfaces.0.position", "5"); },
+              {"no entry 0: \"surfaces\" has 0 entries"});
+}
+
 TEST(ClipSurfaceGpu, RemovesExactlyWhatTheCppFunctionClips) {
   writeTorus();
   const Scene clipped = parseScene(torusScene(kNoisySurface, false), "torus.json", kData);

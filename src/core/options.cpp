@@ -78,14 +78,21 @@ OptionValue readValue(const json_reader::Context& ctx, const OptionSpec& spec, c
 
 // `spec` re-rooted: its struct is reached from the root through `member`, under `prefix`.
 // `enable`, when given, switches the struct on before a write (a switchable group's child).
+// `missing` says why a write is lost where `member` finds no struct (an array entry).
 OptionSpec reroot(OptionSpec spec, const std::string& prefix, std::function<void*(void*)> member,
                   std::function<bool(const void*)> applies,
                   std::shared_ptr<const OptionsSchema> inner,
-                  std::function<void(void*)> enable = {}) {
+                  std::function<void(void*)> enable = {},
+                  std::function<std::string(const void*)> missing = {}) {
   spec.key = prefix + spec.key;
   auto get = spec.get;
   auto set = spec.set;
   auto own = spec.applies;
+  if (missing || spec.absent)
+    spec.absent = [missing, member, inner = spec.absent](const void* o) -> std::string {
+      if (const void* p = member(const_cast<void*>(o))) return inner ? inner(p) : "";
+      return missing ? missing(o) : "";
+    };
   // A missing struct (an unset optional group, an array entry past the end) shows defaults
   // and ignores writes.
   spec.get = [get, member, inner](const void* o) {
@@ -200,8 +207,14 @@ std::vector<OptionSpec> OptionsSchema::flatten() const {
           const auto member = [n, i](void* o) -> void* {
             return i < n->size(o) ? n->element(o, i) : nullptr;
           };
+          const auto missing = [n, i](const void* o) {
+            const std::size_t size = n->size(o);
+            return "no entry " + std::to_string(i) + ": \"" + n->spec.key + "\" has " +
+                   std::to_string(size) + (size == 1 ? " entry" : " entries");
+          };
           for (const OptionSpec& s : n->inner->flatten())
-            out.push_back(reroot(s, n->spec.key + "." + std::to_string(i) + ".", member, {}, n->inner));
+            out.push_back(reroot(s, n->spec.key + "." + std::to_string(i) + ".", member, {},
+                                 n->inner, {}, missing));
         }
         break;
     }

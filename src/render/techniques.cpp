@@ -33,6 +33,13 @@ OptionSpec onScene(OptionSpec spec, const OptionsSchema& schema, const Holder& h
     const std::any* a = holder.find(*static_cast<const Scene*>(s));
     return a && (!applies || applies(schema.data(*a)));
   };
+  if (const auto absent = spec.absent)  // a technique switched off: its defaults
+    spec.absent = [absent, &schema, holder](const void* s) {
+      if (const std::any* a = holder.find(*static_cast<const Scene*>(s)))
+        return absent(schema.data(*a));
+      std::any defaults = schema.makeDefault();
+      return absent(schema.data(defaults));
+    };
   return spec;
 }
 
@@ -81,6 +88,10 @@ std::vector<SceneOption> makeSceneOptions() {
     if (s.applies)
       spec.applies = [applies = s.applies](const void* scene) {
         return applies(&static_cast<const Scene*>(scene)->style);
+      };
+    if (s.absent)
+      spec.absent = [absent = s.absent](const void* scene) {
+        return absent(&static_cast<const Scene*>(scene)->style);
       };
     spec.key = "style." + s.key;
     out.push_back({spec.key, "style", spec});
@@ -149,6 +160,9 @@ void setOption(Scene& scene, const std::string& path, const std::string& text) {
       for (const TechniqueInfo& t : techniques()) known += (known.empty() ? "" : ", ") + t.path;
     throw Error(path, "", "no such option (known: " + known + ")");
   }
+  if (option->spec.absent)
+    if (const std::string why = option->spec.absent(&scene); !why.empty())
+      throw Error(path, "", why);
   try {
     option->spec.set(&scene, parseOptionValue(option->spec, text));
   } catch (const std::invalid_argument& e) {

@@ -78,6 +78,9 @@ struct OptionSpec {
   std::function<OptionValue(const void*)> get;
   std::function<void(void*, const OptionValue&)> set;
   std::function<bool(const void*)> applies;  // null: always
+  // Why a write would be lost (its struct does not exist: an array entry past the end), or
+  // empty. Null: never.
+  std::function<std::string(const void*)> absent;
 };
 
 // Parses text for `spec` ("true"/"false"/"on"/"off", a number, a choice, "x,y,z"); throws
