@@ -165,6 +165,28 @@ TEST(Cli, AnAnimationsTakenOutputsFailBeforeTheFirstFrame) {
   EXPECT_FALSE(fs::exists(dir / "aovs" / "0001"));
 }
 
+// A camera path whose eye passes through its target half-way: no frame is written, and the
+// error names the file, the frame and its time.
+TEST(Cli, AnAnimationsUnresolvableCameraFailsBeforeTheFirstFrame) {
+  const fs::path dir = scratch("camera-through");
+  fs::create_directories(dir);
+  const fs::path scene = dir / "scene.json";
+  std::ofstream(scene) << R"({"objects": [{"name": "plane", "file": ")" + kData +
+                              R"(/meshes/cube.obj"}],
+    "camera": {"path": [{"time": 0, "eye": [0, 0, 3], "target": [0, 0, -3]},
+                        {"time": 1, "eye": [0, 0, -3], "target": [0, 0, 3]}]}})";
+  Result r = run("render " + scene.string() + " --size 32x24 --frames 3 -o " +
+                 (dir / "f_%d.png").string());
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("scene.json: /camera: at frame 2, 0.5 s: eye and target are 0 apart"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "f_1.png"));
+  r = run("render " + scene.string() + " --size 32x24 --time 0.5 -o " + (dir / "t.png").string());
+  EXPECT_NE(r.err.find("/camera: at 0.5 s: eye and target"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "t.png"));
+}
+
 TEST(Cli, InfoPrintsObjectsAndWatertightness) {
   const Result r = run("info " + kSource + "/examples/fan-room.json");
   ASSERT_EQ(r.exitCode, 0) << r.err;

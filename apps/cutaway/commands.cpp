@@ -321,6 +321,22 @@ int render(const RenderOptions& options) {
     if (std::filesystem::exists(folder, ec) && !std::filesystem::is_directory(folder, ec))
       throw Error(folder, "", "--aov needs a directory for each frame; this is a file");
   }
+  // Every frame's camera before the first is written: an animation stops half-written else.
+  const float aspect = float(scene.width) / float(scene.height);
+  const float duration = scene.duration();
+  const auto frameTime = [&](int i) {
+    return options.frames > 1 ? duration * float(i) / float(options.frames - 1) : 0.0f;
+  };
+  for (int i = 0; i < std::max(options.frames, 1); ++i) {
+    const float time = options.frames == 0 ? options.time : frameTime(i);
+    if (const std::string why = scene.resolvedCamera(time).unresolvable(aspect); !why.empty()) {
+      char at[32];
+      std::snprintf(at, sizeof at, "%.4g s", double(time));
+      throw Error(scene.file.string(), "/camera",
+                  "at " + (options.frames > 0 ? "frame " + std::to_string(i + 1) + ", " : "") + at +
+                      ": " + why);
+    }
+  }
   if (!options.svg.empty() &&
       std::none_of(scene.volumes.begin(), scene.volumes.end(),
                    [](const SceneVolume& v) { return v.lines.has_value(); }))
@@ -329,7 +345,6 @@ int render(const RenderOptions& options) {
                     " has \"lines\"");
   const auto context = gl::HeadlessContext::create();
   Renderer renderer(scene, context->info());
-  const float aspect = float(scene.width) / float(scene.height);
   auto renderOne = [&](float time, const std::string& out, const std::string& aovDir,
                        const std::string& svg) {
     const Camera camera = scene.resolvedCamera(time);
@@ -351,10 +366,9 @@ int render(const RenderOptions& options) {
       std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
     return 0;
   }
-  const float duration = scene.duration();
   const bool progress = ::isatty(STDERR_FILENO);
   for (int i = 0; i < options.frames; ++i) {
-    const float time = options.frames > 1 ? duration * float(i) / float(options.frames - 1) : 0.0f;
+    const float time = frameTime(i);
     const std::string aovDir = options.aovDir.empty() ? "" : aovFrameFolder(options.aovDir, i + 1);
     renderOne(time, framePath(options.output, i + 1), aovDir,
               options.svg.empty() ? "" : framePath(options.svg, i + 1));

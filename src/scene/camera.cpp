@@ -39,9 +39,14 @@ std::string Camera::unresolvable(float aspect) const {
   const glm::mat4 m = projectionMatrix(aspect) * view();
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
-      if (!std::isfinite(m[c][r]))
+      if (!std::isfinite(m[c][r])) {
+        const glm::dvec3 along = (glm::dvec3(target) - glm::dvec3(eye)) / distance;
+        if (!(glm::length(glm::cross(along, glm::dvec3(up))) > 1e-6 * glm::length(glm::dvec3(up))))
+          return "the up vector (" + text(up.x) + ", " + text(up.y) + ", " + text(up.z) +
+                 ") is zero or parallel to the view direction";
         return "its view and projection are not finite in 32-bit floats (eye and target " +
                text(distance) + " apart, near " + text(near) + ", far " + text(far) + ")";
+      }
   return "";
 }
 
