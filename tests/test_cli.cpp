@@ -337,7 +337,7 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
       {"-o " + png + " --cutaway-angle nan", "finite"},
       {"-o " + png + " --eye 1,1e39,2", "x,y,z"},
       {"-o " + png + " --eye 1e14,0,0 --target 99999990000000,0,0",
-       "camera: eye and target are 8.39e+06 apart at 1e+14 from the origin, too close"},
+       "/camera: at 0 s: eye and target are 8.39e+06 apart at 1e+14 from the origin, too close"},
       {"-o " + png + " --svg " + (dir / "lines.txt").string(), "give it a .svg name"},
       {"-o " + (dir / "a-file" / "out.png").string(), "a-file/out.png: not a folder: "},
       {"-o " + png + " --svg " + (dir / "lines.svg").string(), "no volume of"},
