@@ -526,7 +526,8 @@ TEST(Cli, ImportanceByNameOrGroupChangesTheContextualCutaway) {
            {"pistons=1.5", "importance must lie in [0, 1]"},
            {"pistons", "expected PATTERN=V"},
            {"pistons=high", "expected PATTERN=V"},
-           {"'(=0.5'", "invalid regular expression \"(\""}}) {
+           {"'(=0.5'", "invalid regular expression \"(\""},
+           {"'c{99999}=0.5'", "\"c{99999}\": it needs more states than a pattern may have"}}) {
     const fs::path out = scratch("importance-bad.png");
     const Result bad = run("render " + scene + " -o " + out.string() + " --importance " + set);
     EXPECT_EQ(bad.exitCode, 1) << set;

@@ -62,8 +62,12 @@ inline std::regex compileNamePattern(const std::string& pattern) {
   try {
     return std::regex(pattern, kNamePatternSyntax);
   } catch (const std::regex_error& e) {
-    throw std::invalid_argument("invalid regular expression " + quotedNamePattern(pattern) + ": " +
-                                e.what());
+    // libstdc++'s own words for a pattern of too many states ask to rebuild it larger.
+    throw std::invalid_argument(
+        "invalid regular expression " + quotedNamePattern(pattern) + ": " +
+        (e.code() == std::regex_constants::error_space
+             ? "it needs more states than a pattern may have (repeat less, e.g. a smaller {n})"
+             : e.what()));
   }
 }
 
