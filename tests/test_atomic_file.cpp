@@ -1,6 +1,7 @@
 // Files written together (core/atomic_file.hpp): all of them or none, whatever fails where.
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,6 +11,7 @@
 
 #include "cutaway/core/atomic_file.hpp"
 #include "cutaway/core/error.hpp"
+#include "expect_error.hpp"
 #include "run_command.hpp"
 
 namespace fs = std::filesystem;
@@ -95,4 +97,54 @@ TEST(AtomicFiles, APathNamedTwiceIsRefusedBeforeAnythingIsWritten) {
           {{dir / "a.txt", text("one")}, {dir / "c.txt", text("c")}, {dir / "a.txt", text("two")}}),
       Error);
   EXPECT_EQ(contents(dir), before);
+}
+
+// A path that is a symbolic link (or a chain of them, one relative, one dangling) has the file
+// it points to replaced, as open() would write through it; the links stay links.
+TEST(AtomicFiles, ALinkHasTheFileItPointsToReplaced) {
+  const fs::path dir = folderWithTwoFiles("links");
+  fs::create_directories(dir / "sub");
+  fs::create_symlink("a.txt", dir / "to-a");
+  fs::create_symlink(dir / "to-a", dir / "to-to-a");
+  fs::create_symlink("sub/new.txt", dir / "dangling");
+  writeFilesAtomically({{dir / "to-to-a", text("new a")}, {dir / "dangling", text("new")}});
+  EXPECT_TRUE(fs::is_symlink(dir / "to-a"));
+  EXPECT_TRUE(fs::is_symlink(dir / "to-to-a"));
+  EXPECT_TRUE(fs::is_symlink(dir / "dangling"));
+  const std::map<std::string, std::string> expected{{"a.txt", "new a"},   {"b.txt", "old b"},
+                                                    {"sub", "<folder>"},  {"to-a", "new a"},
+                                                    {"to-to-a", "new a"}, {"dangling", "new"}};
+  EXPECT_EQ(contents(dir), expected);
+  EXPECT_EQ(contents(dir / "sub"), (std::map<std::string, std::string>{{"new.txt", "new"}}));
+  // Two names of one file are one file named twice.
+  test::expectError(
+      [&] {
+        writeFilesAtomically({{dir / "a.txt", text("x")}, {dir / "to-a", text("y")}});
+      },
+      {"named twice"});
+  fs::create_symlink("loop", dir / "loop");
+  test::expectError([&] { writeFileAtomically(dir / "loop", text("x")); },
+                    {"too many levels of symbolic links"});
+}
+
+// A program stopped by a signal while it writes (`timeout`, Ctrl-C, a closed terminal) leaves
+// no temporary behind once it took removeTemporariesOnSignals(); it still ends by the signal.
+TEST(AtomicFilesDeathTest, ASignalWhileWritingLeavesNoTemporary) {
+  for (const int signal : {SIGTERM, SIGINT, SIGHUP}) {
+    const fs::path dir = folderWithTwoFiles("signal-" + std::to_string(signal));
+    EXPECT_EXIT(
+        {
+          removeTemporariesOnSignals();
+          writeFilesAtomically(
+              {{dir / "c.txt", text("new c")}, {dir / "a.txt", [&](std::ostream& os) {
+                                                  os << "half of a";
+                                                  os.flush();
+                                                  std::raise(signal);
+                                                }}});
+        },
+        ::testing::KilledBySignal(signal), "");
+    EXPECT_EQ(contents(dir),
+              (std::map<std::string, std::string>{{"a.txt", "old a"}, {"b.txt", "old b"}}))
+        << "signal " << signal;
+  }
 }

@@ -392,6 +392,19 @@ TEST_F(GisImportTest, PolygonsWithHolesForFootprints) {
   const fs::path lines = geojson(
       "lines.geojson", feature(R"({"type": "LineString", "coordinates": [[0, 0], [1, 1]]})", ""));
   expectError([&] { importGisPolygons(lines); }, {"lines.geojson", "not polygons"});
+  // A bow tie's two lobes cancel: its ring encloses no area, and the error says so.
+  const fs::path bowtie = geojson("bowtie.geojson", feature(R"({"type": "Polygon", "coordinates":
+                   [[[0, 0], [10, 10], [10, 0], [0, 10], [0, 0]]]})",
+                                                            ""));
+  expectError([&] { importGisPolygons(bowtie); },
+              {"bowtie.geojson", "no polygon with three distinct nodes enclosing an area"});
+  // Nodes beyond float's reach are named as such, not left to collapse onto one another.
+  const fs::path far = geojson("far.geojson", feature(R"({"type": "Polygon", "coordinates":
+                   [[[1e300, 0], [2e300, 0], [2e300, 1e300], [1e300, 0]]]})",
+                                                      ""));
+  expectError([&] { importGisPolygons(far); },
+              {"far.geojson", "layer far, feature 0",
+               "a node lies 1e+300 scene units from the origin, beyond the 1e15"});
 }
 
 TEST_F(GisImportTest, OrdnanceSurveyBuildingFootprints) {

@@ -1159,6 +1159,9 @@ TEST_F(VolumeImportTest, MetaImageBadInput) {
               {"sp.mha", "line 13", "ElementSpacing", "singular"});
   expectError(bad("nan.mha", header("Offset = 0 nan 0\n") + voxels),
               {"Offset: expected 3 finite numbers"});
+  expectError(bad("allnan.mha",
+                  header("", "2 3 4", "MET_FLOAT") + encode(std::vector<float>(24, std::nanf("")))),
+              {"allnan.mha: no voxel holds a finite value (all are NaN or infinite)"});
   expectError(bad("b.mha", header("BinaryData = maybe\n") + voxels),
               {"BinaryData: expected True or False, got \"maybe\""});
   expectError(bad("short.mha", header("") + voxels.substr(0, 47)),
@@ -1741,11 +1744,11 @@ TEST(VolumeRange, IgnoresNanAndInfinities) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   v.values = {nan, INFINITY, -INFINITY};
   v.minValue = v.maxValue = 5.0f;
-  v.updateRange();
+  EXPECT_FALSE(v.updateRange()) << "no finite value";
   EXPECT_EQ(v.minValue, 0.0f);
   EXPECT_EQ(v.maxValue, 0.0f);
   v.values = {nan, 3.0f, -INFINITY, -2.0f, INFINITY, nan};
-  v.updateRange();
+  EXPECT_TRUE(v.updateRange());
   EXPECT_EQ(v.minValue, -2.0f);
   EXPECT_EQ(v.maxValue, 3.0f);
 }
@@ -1813,4 +1816,8 @@ TEST(VolumeFromMemory, RefusesBadTypesDimsAndPlacements) {
   m.indexToWorld = glm::dmat4(1.0);
   m.indexToWorld[2][3] = 0.5;  // a projective last row
   expectError([&] { volumeFromMemory(m, "array", ""); }, {"last row is not 0 0 0 1"});
+  m.indexToWorld = glm::dmat4(1.0);
+  one = std::numeric_limits<float>::quiet_NaN();  // nothing but missing data: nothing to show
+  expectError([&] { volumeFromMemory(m, "array", "/volumes/1"); },
+              {"array: /volumes/1: no voxel holds a finite value (all are NaN or infinite)"});
 }

@@ -7,12 +7,14 @@
 #include <cstdlib>
 #include <regex>
 
+#include "cutaway/core/atomic_file.hpp"
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
 #include "viewer.hpp"
 
 int main(int argc, char** argv) {
   cutaway::startContainedHelper();  // while the process is small (cutaway/core/contained.hpp)
+  cutaway::removeTemporariesOnSignals();  // a stopped run leaves no partial file behind
   CLI::App app{
       "cutaway-view: explore a scene with cutaways (mouse: orbit, pan, zoom; "
       "see docs/viewer.md)"};

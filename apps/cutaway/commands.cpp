@@ -80,8 +80,14 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   }
   if (glm::length(c.up) < 1e-9f) throw Error("--up", "", "up must not be the zero vector");
   if (glm::length(c.eye - c.target) < 1e-9f) throw Error("--eye", "", "eye and target coincide");
-  if (glm::length(glm::cross(glm::normalize(c.eye - c.target), glm::normalize(c.up))) < 1e-6f)
-    throw Error("--up", "", "up is parallel to the viewing direction");
+  if (glm::length(glm::cross(glm::normalize(c.eye - c.target), glm::normalize(c.up))) < 1e-6f) {
+    if (o.up) throw Error("--up", "", "up is parallel to the viewing direction");
+    char up[96];
+    std::snprintf(up, sizeof up, "%g,%g,%g", double(c.up.x), double(c.up.y), double(c.up.z));
+    throw Error(o.eye ? "--eye" : "--target", "",
+                std::string("the viewing direction is parallel to the scene's up vector (") + up +
+                    "); give --up too");
+  }
   if (!o.style.empty()) scene.style.name = o.style;
   if (o.shadows) scene.style.shadows.enabled = true;
   if (o.samples) scene.samples = *o.samples;
@@ -117,6 +123,21 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   }
   // What the options set now make of the scene, checked as a scene file would be.
   if (!o.set.empty()) checkScene(scene, "--set");
+}
+
+// The renderer says a device limit at the scene's key (/samples, /resolution); where an option
+// set that key, the error names the option.
+template <class Run>
+auto blamingOverrides(const SceneOverrides& o, const Scene& scene, Run&& run) {
+  try {
+    return run();
+  } catch (const Error& e) {
+    const std::string size = std::to_string(scene.width) + "×" + std::to_string(scene.height);
+    if (e.place() == "/samples" && o.samples) throw Error("--samples", "", e.reason());
+    if (e.place() == "/resolution" && !o.size.empty() && e.reason().rfind(size, 0) == 0)
+      throw Error("--size", "", e.reason());
+    throw;
+  }
 }
 
 nlohmann::json vec(const glm::vec3& v) {
@@ -344,7 +365,8 @@ int render(const RenderOptions& options) {
                 "--svg writes the volumes' lines, and no volume of " + scene.file.string() +
                     " has \"lines\"");
   const auto context = gl::HeadlessContext::create();
-  Renderer renderer(scene, context->info());
+  Renderer renderer =
+      blamingOverrides(options.overrides, scene, [&] { return Renderer(scene, context->info()); });
   auto renderOne = [&](float time, const std::string& out, const std::string& aovDir,
                        const std::string& svg) {
     const Camera camera = scene.resolvedCamera(time);
@@ -805,9 +827,10 @@ void pipeTable(const Scene& scene, const Timing& timing, std::vector<Measurement
     }
 }
 
-int bench(const BenchOptions& options) {
-  Scene scene = sceneOrCity(options.scene, options.city, "bench");
-  applyOverrides(scene, options.overrides);
+namespace {
+
+// `bench` on its scene, the options applied.
+int benchScene(const BenchOptions& options, const Scene& scene) {
   const auto context = gl::HeadlessContext::create();
   const gl::ContextInfo& info = context->info();
   const Timing timing{*context, options.frames, !options.noOcclusionCulling};
@@ -1037,6 +1060,14 @@ int bench(const BenchOptions& options) {
       std::printf("  %-8s %9.4f%%\n", name.c_str(), 100.0 * fraction.get<double>());
   }
   return 0;
+}
+
+}  // namespace
+
+int bench(const BenchOptions& options) {
+  Scene scene = sceneOrCity(options.scene, options.city, "bench");
+  applyOverrides(scene, options.overrides);
+  return blamingOverrides(options.overrides, scene, [&] { return benchScene(options, scene); });
 }
 
 namespace {

@@ -6,12 +6,17 @@
 //   cutaway info /usr/share/plplot5.15.0/ss/ss64ne_Building_Area.shp
 //   cutaway dem --extent 265000 145000 270000 150000 --crs EPSG:27700 -o dem.tif
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <new>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
+#include "cutaway/core/atomic_file.hpp"
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/render/techniques.hpp"
@@ -23,20 +28,39 @@ namespace {
 std::string parseVec3(const std::string& text, glm::vec3& out) {
   std::istringstream in(text);
   char c1 = 0, c2 = 0;
-  if (!(in >> out.x >> c1 >> out.y >> c2 >> out.z) || c1 != ',' || c2 != ',' || !in.eof())
+  glm::dvec3 v;
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof())
     return "expected three comma-separated numbers x,y,z";
+  for (int i = 0; i < 3; ++i)
+    if (!(std::abs(v[i]) <= double(std::numeric_limits<float>::max())))
+      return "\"" + text + "\": a coordinate lies beyond a 32-bit float's range";
+  out = glm::vec3(v);
   return "";
 }
 
-// CLI11's ranges let NaN through (every comparison with it is false).
-const CLI::Validator kFinite(
-    [](std::string& text) {
-      double v = 0.0;
-      std::istringstream in(text);
-      in >> v;
-      return in && std::isfinite(v) ? std::string() : "not a finite number: " + text;
-    },
-    "FINITE");
+// A finite number in [least, most] (above `least` where `aboveLeast`). CLI11's ranges let NaN
+// through (every comparison with it is false), and their messages print DBL_MAX in full.
+CLI::Validator finiteNumber(double least = -HUGE_VAL, double most = HUGE_VAL,
+                            bool aboveLeast = false) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0.0;
+        std::istringstream in(text);
+        in >> v;
+        const bool low = aboveLeast ? !(v > least) : !(v >= least);
+        if (!in || !std::isfinite(v) || low || !(v <= most)) {
+          std::ostringstream need;
+          need << "a finite number";
+          if (most != HUGE_VAL)
+            need << " in " << (aboveLeast ? "(" : "[") << least << ", " << most << "]";
+          else if (least != -HUGE_VAL)
+            need << (aboveLeast ? " above " : " of at least ") << least;
+          return "expected " + need.str() + ", got \"" + text + "\"";
+        }
+        return "";
+      },
+      "NUMBER");
+}
 
 void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
   command->add_option("--size", o.size, "Image size WxH, e.g. 1024x768 (overrides the scene)");
@@ -56,7 +80,7 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
   command
       ->add_option_function<float>(
           "--fov", [&o](float f) { o.fov = f; }, "Vertical field of view in degrees")
-      ->check(kFinite & CLI::Range(1.0f, 170.0f));
+      ->check(finiteNumber(1.0, 170.0));
   command->add_option("--projection", o.projection, "Camera projection")
       ->check(CLI::IsMember({"perspective", "orthographic"}));
   command->add_flag("--fit", o.fit, "Fit the camera to the scene (keeps the viewing direction)");
@@ -72,12 +96,12 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
           "--pixel-error", [&o](float e) { o.pixelError = e; },
           "Screen-space error in pixels that terrain grids and shafts may show where drawn "
           "coarser (0: every triangle)")
-      ->check(kFinite & CLI::Range(0.0f, 100.0f));
+      ->check(finiteNumber(0.0, 100.0));
   command
       ->add_option_function<float>(
           "--cutaway-angle", [&o](float a) { o.cutawayAngle = a; },
           "Adaptive cutaway angle θ in degrees (adds the cutter if the scene has none)")
-      ->check(kFinite & CLI::Range(0.0f, 90.0f));
+      ->check(finiteNumber(0.0, 90.0));
   command->add_flag("--no-cutaway", o.noCutaway,
                     "Render without any of the scene's cutters (the plain model)");
   command->add_option("--set", o.set,
@@ -93,6 +117,36 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
 }
 
+// The edits (insert, delete, replace a letter) that turn `a` into `b`.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      diagonal = std::exchange(row[j], std::min({row[j] + 1, row[j - 1] + 1,
+                                                 diagonal + (a[i - 1] != b[j - 1] ? 1 : 0)}));
+  }
+  return row[b.size()];
+}
+
+// CLI11 reads a mistyped command as none at all ("A subcommand is required"): name it, and the
+// command it is closest to.
+std::string unknownCommand(CLI::App& app, const std::string& word) {
+  std::string names, closest;
+  std::size_t best = 3;  // at most two edits away
+  for (const CLI::App* command : app.get_subcommands({})) {
+    const std::string& name = command->get_name();
+    if (name == word) return "";
+    names += (names.empty() ? "" : ", ") + name;
+    if (const std::size_t d = editDistance(word, name); d < best) best = d, closest = name;
+  }
+  return "unknown command \"" + word + "\"" +
+         (closest.empty() ? "" : " (did you mean " + closest + "?)") + "; the commands are " +
+         names;
+}
+
 constexpr const char* kCityHelp =
     "Konev18's generated benchmark city of Table 1 (1190 pipes, 1156 shafts, a 2.9M-triangle "
     "terrain) times this scale, instead of a scene file";
@@ -101,6 +155,7 @@ constexpr const char* kCityHelp =
 
 int main(int argc, char** argv) {
   cutaway::startContainedHelper();  // while the process is small (cutaway/core/contained.hpp)
+  cutaway::removeTemporariesOnSignals();  // a stopped run leaves no partial file behind
   CLI::App app{"cutaway: cutaway illustrations of 3-D scenes"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "cutaway 0.1.0");
@@ -136,7 +191,7 @@ int main(int argc, char** argv) {
                                   "frame number is appended to its stem")
                      ->check(CLI::Range(1, 100000));
   render->add_option("--time", renderOptions.time, "Render the single instant T (seconds)")
-      ->check(kFinite & CLI::Range(0.0f, 1e6f))
+      ->check(finiteNumber(0.0, 1e6))
       ->excludes(frames);
   addSceneOverrides(render, renderOptions.overrides);
 
@@ -157,16 +212,16 @@ int main(int argc, char** argv) {
   dem->add_option("--crs", demOptions.crs, "CRS (EPSG:27700, WKT, PROJ string)")->required();
   dem->add_option("--cell", demOptions.cell, "Cell size; the extent must hold whole cells")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finiteNumber(0.0, HUGE_VAL, true));
   dem->add_option("--relief", demOptions.relief, "Height range above the base")
       ->capture_default_str()
-      ->check(kFinite);
+      ->check(finiteNumber(0.0));
   dem->add_option("--base", demOptions.base, "Lowest height")
       ->capture_default_str()
-      ->check(kFinite);
+      ->check(finiteNumber());
   dem->add_option("--wavelength", demOptions.wavelength, "Size of the largest hills")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finiteNumber(0.0, HUGE_VAL, true));
   dem->add_option("--octaves", demOptions.octaves, "Noise octaves")
       ->capture_default_str()
       ->check(CLI::Range(1, 16));
@@ -201,6 +256,11 @@ int main(int argc, char** argv) {
                   "compare)");
   addSceneOverrides(bench, benchOptions.overrides);
 
+  if (argc > 1 && argv[1][0] != '-')
+    if (const std::string why = unknownCommand(app, argv[1]); !why.empty()) {
+      std::fprintf(stderr, "cutaway: error: %s (see --help)\n", why.c_str());
+      return 2;
+    }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

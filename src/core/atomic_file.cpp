@@ -2,9 +2,13 @@
 
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <fstream>
+#include <memory>
 
 #include "cutaway/core/error.hpp"
 
@@ -17,6 +21,64 @@ std::filesystem::path beside(const std::filesystem::path& path, const std::strin
   std::filesystem::path p = path;
   p += "." + what + "-" + std::to_string(::getpid());
   return p;
+}
+
+// The file a path names: a symbolic link's target (followed as open() would), so that writing
+// through a link replaces the file it points to, not the link.
+std::filesystem::path followLinks(std::filesystem::path path) {
+  namespace fs = std::filesystem;
+  for (int hop = 0; hop < 40; ++hop) {  // Linux's own limit on a chain of links
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
+    const fs::path target = fs::read_symlink(path, ec);
+    if (ec) return path;
+    path = target.is_absolute() ? target : path.parent_path() / target;
+  }
+  throw Error(path.string(), "", "too many levels of symbolic links");
+}
+
+// The temporaries being written, removed by the signal handler a program may install
+// (removeTemporariesOnSignals); fixed slots, as a handler may not allocate or lock.
+constexpr std::size_t kPathBytes = 4096;  // PATH_MAX
+struct Pending {
+  std::atomic<bool> used{false};
+  std::atomic<bool> ready{false};
+  std::array<char, kPathBytes> path{};
+};
+std::array<Pending, 64> pending;
+
+// Holds one temporary's name in a slot while it lives.
+class PendingFile {
+ public:
+  explicit PendingFile(const std::filesystem::path& tmp) {
+    const std::string& name = tmp.native();
+    if (name.size() >= kPathBytes) return;
+    for (Pending& p : pending) {
+      bool expected = false;
+      if (!p.used.compare_exchange_strong(expected, true)) continue;
+      std::memcpy(p.path.data(), name.c_str(), name.size() + 1);
+      p.ready = true;
+      slot_ = &p;
+      return;
+    }
+  }
+  ~PendingFile() {
+    if (!slot_) return;
+    slot_->ready = false;
+    slot_->used = false;
+  }
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+ private:
+  Pending* slot_ = nullptr;
+};
+
+extern "C" void removeTemporariesAndDie(int signal) {
+  for (Pending& p : pending)
+    if (p.ready) ::unlink(p.path.data());
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
 }
 
 // Writes `path`'s temporary and returns its name; removes it again if the writing failed.
@@ -44,9 +106,22 @@ std::filesystem::path writeTemporary(const std::filesystem::path& path, const Fi
 
 }  // namespace
 
-void replaceFileAtomically(const std::filesystem::path& path,
+void removeTemporariesOnSignals() {
+  for (const int signal : {SIGTERM, SIGINT, SIGHUP}) {
+    struct sigaction now {};
+    if (::sigaction(signal, nullptr, &now) != 0 || now.sa_handler != SIG_DFL) continue;
+    struct sigaction handler {};
+    handler.sa_handler = removeTemporariesAndDie;
+    sigemptyset(&handler.sa_mask);
+    ::sigaction(signal, &handler, nullptr);
+  }
+}
+
+void replaceFileAtomically(const std::filesystem::path& named,
                            const std::function<void(const std::filesystem::path&)>& write) {
+  const std::filesystem::path path = followLinks(named);
   const std::filesystem::path tmp = beside(path, "tmp");
+  const PendingFile pendingFile(tmp);
   try {
     write(tmp);
     std::error_code ec;
@@ -63,14 +138,18 @@ void writeFileAtomically(const std::filesystem::path& path, const FileWriter& wr
   writeFilesAtomically({{path, write}});
 }
 
-void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, FileWriter>>& files) {
+void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, FileWriter>>& named) {
   namespace fs = std::filesystem;
+  std::vector<std::pair<fs::path, FileWriter>> files;
+  files.reserve(named.size());
+  for (const auto& [path, write] : named) files.emplace_back(followLinks(path), write);
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (files[i].first == files[j].first)
         throw Error(files[i].first.string(), "", "named twice among the files written together");
   std::vector<fs::path> temporaries;
   temporaries.reserve(files.size());
+  std::vector<std::unique_ptr<PendingFile>> pendingFiles;  // until the temporaries are renamed
   // Each path in turn gets its temporary renamed over it, which replaces it atomically. Where a
   // later path could still fail, its old file is kept first as a backup (a second link to it,
   // or moved aside where the file system has no links), and put back if one does.
@@ -79,7 +158,10 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
   backedUp.reserve(files.size());
   std::size_t placed = 0;
   try {
-    for (const auto& [path, write] : files) temporaries.push_back(writeTemporary(path, write));
+    for (const auto& [path, write] : files) {
+      pendingFiles.push_back(std::make_unique<PendingFile>(beside(path, "tmp")));
+      temporaries.push_back(writeTemporary(path, write));
+    }
     for (; placed < files.size(); ++placed) {
       const fs::path& path = files[placed].first;
       std::error_code ec;

@@ -13,12 +13,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <mutex>
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/geometry/mesh.hpp"
 #include "io/gdal_support.hpp"
 #include "io/wire_fields.hpp"
 
@@ -198,7 +200,17 @@ class FeatureReader {
                       ") to " + crs_.name + gdal::QuietErrors::lastMessage());
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
       throw Error(file_.string(), featurePlace(layer_, fid), "non-finite coordinate");
-    return glm::vec3(float(x - offset_.x), float(y - offset_.y), float(z - offset_.z));
+    const glm::dvec3 p(x - offset_.x, y - offset_.y, z - offset_.z);
+    // Beyond float's reach the nodes would become infinite, or collapse onto one another.
+    if (const double reach = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        reach > double(kMaxSceneReach)) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g", reach);
+      throw Error(file_.string(), featurePlace(layer_, fid),
+                  std::string("a node lies ") + text +
+                      " scene units from the origin, beyond the 1e15 a scene may reach");
+    }
+    return glm::vec3(p);
   }
 
  private:
@@ -368,8 +380,8 @@ GisPoints importPointsHere(const std::filesystem::path& file, const GisImportOpt
 }
 
 // A ring's nodes without repeats (as float) and without the closing node, or empty when fewer
-// than three distinct nodes or no area are left: such a ring bounds nothing a triangulation or
-// an extrusion could use.
+// than three distinct nodes or no area are left (a bow tie's two lobes cancel): such a ring bounds
+// nothing a triangulation or an extrusion could use.
 std::vector<glm::vec3> readRing(const OGRLinearRing& ring, FeatureReader& reader, GIntBig fid,
                                 GisImportReport& report) {
   std::vector<glm::vec3> nodes;
@@ -398,7 +410,7 @@ std::vector<glm::vec3> readRing(const OGRLinearRing& ring, FeatureReader& reader
 GisPolygons importPolygonsHere(const std::filesystem::path& file, const GisImportOptions& options) {
   return importParts<OGRPolygon, OGRMultiPolygon>(
       file, options, wkbPolygon, wkbMultiPolygon, "polygon", &GisPolygons::polygons,
-      " with three distinct nodes",
+      " with three distinct nodes enclosing an area",
       [](GisPolygons& out, FeatureReader& reader, GIntBig fid, int part, const OGRPolygon& shape,
          const std::vector<double>& attributes) {
         const OGRLinearRing* exterior = shape.getExteriorRing();

@@ -42,7 +42,7 @@
 
 namespace cutaway {
 
-void Volume::updateRange() {
+bool Volume::updateRange() {
   bool any = false;
   float lo = 0.0f, hi = 0.0f;
   for (const float v : values) {
@@ -53,6 +53,7 @@ void Volume::updateRange() {
   }
   minValue = lo;
   maxValue = hi;
+  return any;
 }
 
 namespace {
@@ -2187,6 +2188,13 @@ bool endsWith(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// `v` with its range; refused when no voxel holds a number (NaN marks missing data, and ±inf
+// no colour), as there would be nothing to show.
+Volume withValues(Volume v, const Where& where) {
+  if (!v.updateRange()) where.fail("no voxel holds a finite value (all are NaN or infinite)");
+  return v;
+}
+
 }  // namespace
 
 // GDCM is the one third-party reader among the volumes': a series is read in a worker, as
@@ -2230,8 +2238,7 @@ Volume volumeFromMemory(const MemoryVoxels& voxels, const std::string& source,
           convert(*type, row + i * s[0], 1, voxels.swapped, {}, out++);
       }
     }
-  v.updateRange();
-  return v;
+  return withValues(std::move(v), where);
 }
 
 Volume importVolume(const std::filesystem::path& file) {
@@ -2240,11 +2247,8 @@ Volume importVolume(const std::filesystem::path& file) {
 
 Volume importVolume(const std::filesystem::path& file, const VolumeLimits& limits) {
   std::error_code ec;
-  if (fs::is_directory(file, ec)) {
-    Volume v = containedDicomSeries(file, limits);
-    v.updateRange();
-    return v;
-  }
+  if (fs::is_directory(file, ec))
+    return withValues(containedDicomSeries(file, limits), {file.string(), ""});
   std::string name = file.filename().string();
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
@@ -2264,9 +2268,7 @@ Volume importVolume(const std::filesystem::path& file, const VolumeLimits& limit
     throw Error(
         file.string(), "",
         fs::exists(file, ec) ? "volume file is not a regular file" : "volume file not found");
-  Volume v = reader(file, limits);
-  v.updateRange();
-  return v;
+  return withValues(reader(file, limits), {file.string(), ""});
 }
 
 }  // namespace cutaway

@@ -1,7 +1,8 @@
 // cutaway/core/atomic_file.hpp — write a file so that a failure never leaves a partial one.
 //
 // The content goes to "<path>.tmp-<pid>" first and is renamed over <path> only when the
-// writer returned without throwing.
+// writer returned without throwing. A path that is a symbolic link has the file it points to
+// replaced, as writing through open() would.
 //
 //   cutaway::writeFileAtomically("out.json", [&](std::ostream& os) { os << text; });
 #pragma once
@@ -27,5 +28,9 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
 // For writers that need a path (C libraries): `write` receives the temporary path.
 void replaceFileAtomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
+
+// A program's handlers for SIGTERM, SIGINT and SIGHUP (where it has none of its own) that remove
+// the temporaries being written, then end the program as the signal would have.
+void removeTemporariesOnSignals();
 
 }  // namespace cutaway

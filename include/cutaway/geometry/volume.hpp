@@ -44,8 +44,8 @@ struct Volume {
     return b;
   }
   Bounds bounds() const { return indexBounds().transformed(indexToWorld); }
-  // Recomputes minValue and maxValue from the values.
-  void updateRange();
+  // Recomputes minValue and maxValue from the finite values; false when there is none.
+  bool updateRange();
 };
 
 }  // namespace cutaway

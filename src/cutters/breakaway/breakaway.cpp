@@ -68,10 +68,13 @@ std::vector<BreakawayCluster> breakawayClusters(const Scene& scene,
     try {
       c.outerHull = inflatedHull(points, extent.offset);
       c.innerHull = inflatedHull(points, extent.offset - extent.wallThickness);
-    } catch (const Error& e) {
-      throw Error(scene.file.string(), "interior cluster \"" + name + "\"",
-                  "no breakaway hull: " + e.reason() +
-                      " (give the breakaway an offset > 0 for flat interior objects)");
+    } catch (const Error&) {  // a hull of no volume
+      throw Error(
+          scene.file.string(),
+          "/objects/" + std::to_string(c.objects.front()) + (c.group.empty() ? "" : "/group"),
+          "interior cluster \"" + name +
+              "\" is flat (its points lie in one plane or on one line), so its breakaway "
+              "hull has no inside; give the breakaway an offset > its wall thickness");
     }
   }
   return clusters;

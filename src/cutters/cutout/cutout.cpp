@@ -64,9 +64,16 @@ std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
     }
     try {
       unit.axes = principalAxes(points);
-    } catch (const Error& e) {
-      throw Error(scene.file.string(), "exterior \"" + unit.name + "\"",
-                  "no main axis: " + e.reason() + " (a flat exterior has no inside to show)");
+    } catch (const Error&) {  // the convex hull has no volume
+      const std::string place =
+          unit.objects.empty()
+              ? "/volumes/" + std::to_string(unit.volumes.front())
+              : "/objects/" + std::to_string(unit.objects.front()) +
+                    (scene.objects[unit.objects.front()].group.empty() ? "" : "/group");
+      throw Error(scene.file.string(), place,
+                  "exterior \"" + unit.name +
+                      "\" is flat (its points lie in one plane or on one line): it has no main "
+                      "axis and no inside to show");
     }
   }
   return units;
