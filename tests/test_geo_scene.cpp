@@ -13,6 +13,7 @@
 
 #include "cutaway/io/raster_terrain.hpp"
 #include "cutaway/scene/scene.hpp"
+#include "expect_error.hpp"
 
 namespace fs = std::filesystem;
 using namespace cutaway;
@@ -102,6 +103,37 @@ TEST(GeoScene, PipeRadiiComeFromAFieldPerFeature) {
   EXPECT_FLOAT_EQ(radius.begin()->second, 0.3f);             // 600 × 0.0005
   EXPECT_FLOAT_EQ(std::next(radius.begin())->second, 0.2f);  // 0: the default
   EXPECT_FLOAT_EQ(std::prev(radius.end())->second, 0.2f);    // null: the default
+  fs::remove_all(dir);
+}
+
+// Shafts from a point layer (docs/scene-format.md, "networks"): without a height or "depth",
+// the floor lies under the lowest stretch of a pipe within the shaft's radius, also where the
+// pipe passes between its nodes; a floor at or above the terrain is refused with its feature.
+TEST(GeoScene, AShaftsFloorLiesUnderThePipePassingBeneathIt) {
+  const fs::path dir = fs::temp_directory_path() / ("cutaway-shafts-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  // A pipe falling from height −1 to −4 over 12 units; a manhole over its middle.
+  std::ofstream(dir / "p.geojson") << R"({"type": "FeatureCollection", "features": [
+     {"type": "Feature", "properties": {}, "geometry": {"type": "LineString",
+      "coordinates": [[0, 0, -1], [12, 0, -4]]}}]})";
+  const auto points = [&](const std::string& coordinates) {
+    std::ofstream(dir / "m.geojson") << R"({"type": "FeatureCollection", "features": [
+       {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": )"
+                                     << coordinates << "}}]}";
+  };
+  const std::string text = R"({"objects": [],
+    "networks": [{"name": "n", "radius": 0.5, "pipes": [{"file": "p.geojson"}],
+                  "shafts": {"file": "m.geojson", "radius": 1}}]})";
+  points("[6, 0]");
+  const Scene scene = parseScene(text, "shafts.json", dir);
+  ASSERT_EQ(scene.networks.at(0).shafts.size(), 1u);
+  // Within the radius the pipe spans x ∈ [5, 7]: lowest at x = 7, −1 − 3·7/12 = −2.75.
+  EXPECT_FLOAT_EQ(scene.networks[0].shafts[0].bottom.y, -2.75f - 0.5f);
+  EXPECT_FLOAT_EQ(scene.networks[0].shafts[0].top, 0.0f);
+  points("[6, 0, 5]");  // a floor 5 above the ground
+  test::expectError([&] { parseScene(text, "shafts.json", dir); },
+                    {"shafts.json: /networks/0/shafts/file: shaft feature 0: its floor (height 5) "
+                     "lies at or above the terrain there (0)"});
   fs::remove_all(dir);
 }
 

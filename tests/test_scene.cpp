@@ -223,6 +223,8 @@ const BadScene kBadScenes[] = {
      "no such offset map"},
     {"clip_offset_map_not_png.json", "/cutters/clipSurfaces/surfaces/0/offsetMap",
      "cannot read PNG"},
+    {"clip_u_too_long.json", "/cutters/clipSurfaces/surfaces/0/u",
+     "its length, 1e+20, lies outside [1e-15, 1e15] scene units"},
     {"clip_uv_not_orthogonal.json", "/cutters/clipSurfaces/surfaces/0/v",
      "u and v must be orthogonal"},
     {"clip_five_surfaces.json", "/cutters/clipSurfaces/surfaces", "expected 1 to 4 entries, got 5"},

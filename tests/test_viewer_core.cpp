@@ -134,6 +134,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "s.txt: line 1: \"orbit\" takes 2 numbers, got 1 argument"},
         BadLine{"NotANumber", "zoom fast\n", "s.txt: line 1: expected a number, got \"fast\""},
         BadLine{"ZoomNotPositive", "zoom 0\n", "s.txt: line 1: zoom factor must be greater than 0"},
+        BadLine{"ScreenshotJpeg", "screenshot out.jpg\n",
+                "s.txt: line 1: screenshot writes PNG only: give the file a .png name"},
+        BadLine{"BeyondFloat", "orbit 1e300 0\n",
+                "s.txt: line 1: \"1e300\" lies beyond a 32-bit float's range"},
+        BadLine{"BelowFloat", "zoom 1e-300\n",
+                "s.txt: line 1: \"1e-300\" lies beyond a 32-bit float's range"},
         BadLine{"FractionalWait", "wait 1.5\n",
                 "s.txt: line 1: wait takes a whole number of frames in [0, 100000]"},
         BadLine{"ImportanceRange", "\n\nimportance 2\n",
@@ -171,6 +177,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadLine{"Panels", "panels maybe\n", "s.txt: line 1: panels takes on or off, got \"maybe\""},
         BadLine{"Moving", "moving 1\n", "s.txt: line 1: moving takes on or off, got \"1\""}),
     [](const testing::TestParamInfo<BadLine>& info) { return std::string(info.param.name); });
+
+// A NUL byte would cut the rest of its line from the messages.
+TEST(ViewerScript, ANulByteIsNamedWhereItIs) {
+  EXPECT_EQ(scriptError(std::string("wait 1\nzoom 1\0 2\n", 16)),
+            "s.txt: line 2, column 7: a NUL byte: a script is text");
+}
 
 TEST(ViewerScript, UnknownParameterListsTheKnownOnes) {
   const std::string e = scriptError("set cutters.adaptive.anlge 30\n");

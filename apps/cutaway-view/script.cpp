@@ -2,7 +2,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -85,6 +87,9 @@ float number(const std::string& text) {
   const auto [ptr, ec] = std::from_chars(text.data(), end, v);
   if (ec != std::errc() || ptr != end || !std::isfinite(v))
     throw std::invalid_argument("expected a number, got \"" + text + "\"");
+  // Moves and values are 32-bit floats: 1e300 would become infinite, 1e-300 zero.
+  if (std::abs(v) > double(std::numeric_limits<float>::max()) || (v != 0.0 && float(v) == 0.0f))
+    throw std::invalid_argument("\"" + text + "\" lies beyond a 32-bit float's range");
   return float(v);
 }
 
@@ -216,6 +221,14 @@ ScriptCommand parseLine(const std::string& line) {
         throw std::invalid_argument(name + " takes on or off, got \"" + args[0] + "\"");
       c.on = args[0] == "on";
       break;
+    case Kind::Screenshot:
+    case Kind::ScreenshotWindow: {
+      std::string suffix = std::filesystem::path(c.text).extension().string();
+      for (char& ch : suffix) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+      if (suffix != ".png")
+        throw std::invalid_argument(name + " writes PNG only: give the file a .png name");
+      break;
+    }
     default:
       break;
   }
@@ -239,6 +252,9 @@ Script parseScript(const std::string& text, const std::string& file) {
   int number = 0;
   for (std::string line; std::getline(in, line);) {
     ++number;
+    if (const auto nul = line.find('\0'); nul != std::string::npos)
+      throw Error(file, "line " + std::to_string(number) + ", column " + std::to_string(nul + 1),
+                  "a NUL byte: a script is text");
     // '#' starts a comment only at the start of a line: paths may contain it.
     const std::string content = trim(line);
     if (content.empty() || content[0] == '#') continue;

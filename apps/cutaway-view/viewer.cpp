@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -721,6 +722,9 @@ void Viewer::adopt(Scene loaded, SceneDocument document, const fs::path& path, b
   camera.fit = false;
   camera.eye = resolved.eye, camera.target = resolved.target, camera.height = resolved.height;
   if (keepView) camera = view;
+  // Before the first frame (a script's first command), a move that cannot be drawn goes back
+  // to the camera the file opened with.
+  if (!drawnCamera_) drawnCamera_ = camera;
   // The frame keeps the window's size (resized, --size), not the file's resolution.
   if (width_ > 0) state_.scene.width = width_, state_.scene.height = height_;
   // Indices into the scene's objects and volumes of before.
@@ -862,6 +866,9 @@ void Viewer::saveScene(const fs::path& path) {
 }
 
 void Viewer::screenshot(const fs::path& path) {
+  std::string suffix = path.extension().string();
+  for (char& c : suffix) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (suffix != ".png") throw Error(path.string(), "", "only PNG is written: give it a .png name");
   update(true);
   writePng(path, renderer_->readColor());
   state_.status = "wrote " + path.string() + " (" + std::to_string(width_) + "x" +

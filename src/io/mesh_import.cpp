@@ -5,9 +5,12 @@
 #include <assimp/scene.h>
 #include <zlib.h>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/MemoryIOWrapper.h>
 #include <algorithm>
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -17,7 +20,9 @@
 #include <map>
 #include <regex>
 #include <set>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
@@ -166,6 +171,20 @@ float farthest(const Mesh& mesh) {
   return far;
 }
 
+// A vertex that 32-bit floats cannot hold (NaN or infinite in the file, or beyond ~3.4e38 once
+// read or placed) is an error, as in the Python module's arrays: the triangles it belongs to
+// would be dropped without a word.
+void checkFinite(const std::filesystem::path& file, const std::string& place, const Mesh& mesh) {
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3& p = mesh.positions[i];
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
+    char text[96];
+    std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+    throw Error(file.string(), place.empty() ? "vertex " + std::to_string(i) : place,
+                std::string("a vertex at ") + text + " is not finite in 32-bit floats");
+  }
+}
+
 // A file without a triangle to draw: where they all collapsed because their corners lie
 // where 32-bit floats no longer tell them apart (a node translated by 1e20), or were dropped
 // as degenerate (`dropped` of them), it says so rather than "no triangles".
@@ -188,6 +207,55 @@ float farthest(const Mesh& mesh) {
 }
 
 // The import itself, in whichever process runs it.
+// The files a model names (an OBJ's mtllib, a glTF's buffers) are read only where they are
+// regular files: a FIFO would block the reader, a device feed it without end.
+class RegularFilesOnly : public Assimp::DefaultIOSystem {
+ public:
+  bool Exists(const char* file) const override {  // Assimp's own opens the file to see
+    std::error_code ec;
+    return std::filesystem::is_regular_file(file, ec);
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) return nullptr;
+    return DefaultIOSystem::Open(file, mode);
+  }
+};
+
+// Assimp's warnings on this thread while it lives: some readers drop what they cannot read (a
+// glTF face naming a vertex past the end) and say so only in the log.
+class AssimpWarnings {
+ public:
+  AssimpWarnings() {
+    static const bool attached = [] {
+      Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);  // no default streams
+      Assimp::DefaultLogger::get()->attachStream(new Stream, Assimp::Logger::Warn);
+      return true;
+    }();
+    (void)attached;
+    current_ = &messages_;
+  }
+  ~AssimpWarnings() { current_ = nullptr; }
+  AssimpWarnings(const AssimpWarnings&) = delete;
+  AssimpWarnings& operator=(const AssimpWarnings&) = delete;
+  const std::vector<std::string>& messages() const { return messages_; }
+
+ private:
+  struct Stream : Assimp::LogStream {
+    void write(const char* message) override {
+      if (!current_) return;
+      std::string text = message;
+      // "Warn,  T0: Some faces …\n" → "Some faces …"
+      if (const auto colon = text.find(": "); colon != std::string::npos) text.erase(0, colon + 2);
+      while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+      current_->push_back(std::move(text));
+    }
+  };
+  static thread_local std::vector<std::string>* current_;
+  std::vector<std::string> messages_;
+};
+thread_local std::vector<std::string>* AssimpWarnings::current_ = nullptr;
+
 std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
@@ -206,6 +274,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     // "bunny.ply.gz" → "bunny"
     node.name = (gzip ? file.stem().stem() : file.stem()).string();
     node.mesh = readPly(file, data.data(), data.size());
+    checkFinite(file, "", node.mesh);
     node.mesh.report.normalsComputed = useOrComputeNormals(node.mesh);
     node.mesh.report.droppedDegenerate = dropDegenerateTriangles(node.mesh);
     if (node.mesh.triangles.empty())
@@ -214,32 +283,37 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     return {std::move(node)};
   }
   Assimp::Importer importer;
+  importer.SetIOHandler(new RegularFilesOnly);  // the importer owns it
   // Points and lines carry no surface: drop them rather than fail.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  // Validation first: the later steps index vertices the file claims without checking. They
-  // run once the primitive types are corrected (below).
-  const unsigned flags = aiProcess_ValidateDataStructure;
+  const AssimpWarnings warnings;
   const aiScene* scene = nullptr;
   if (gzip) {
     const std::vector<char> data = readGzip(file);
-    scene = importer.ReadFileFromMemory(data.data(), data.size(), flags, format.c_str());
+    scene = importer.ReadFileFromMemory(data.data(), data.size(), 0, format.c_str());
   } else {
     if (format == "glb") checkGlbHeader(file);
-    scene = importer.ReadFile(file.string(), flags);
+    scene = importer.ReadFile(file.string(), 0);
   }
   if (scene && scene->mRootNode) {
     // A reader may return faces without vertices and claim primitive types its faces do not
-    // have (a truncated PLY: empty faces, called polygons), and Assimp's triangulation then
-    // aborts on an assertion (found by fuzzing), which its validation lets through: empty
-    // faces are refused, and the types set from the faces before the steps that trust them.
+    // have (a truncated PLY: empty faces, called polygons; an OBJ face of one or two
+    // vertices, called a triangle), which Assimp's validation refuses in its own words and its
+    // triangulation aborts on (found by fuzzing): empty faces are refused, and the types set
+    // from the faces before validation and the steps that trust them.
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+      const std::string place = "mesh " + std::to_string(i);
+      if (!scene->mMeshes || !scene->mMeshes[i])
+        throw Error(file.string(), place, "missing (corrupt file?)");
       aiMesh& mesh = *scene->mMeshes[i];
+      if (mesh.mNumFaces > 0 && !mesh.mFaces)
+        throw Error(file.string(), place, "faces missing (corrupt file?)");
       unsigned types = 0;
       for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
         const unsigned n = mesh.mFaces[f].mNumIndices;
         if (n == 0)
-          throw Error(file.string(), "mesh " + std::to_string(i) + ", face " + std::to_string(f),
+          throw Error(file.string(), place + ", face " + std::to_string(f),
                       "a face without vertices (truncated or corrupt file?)");
         types |= n == 1   ? aiPrimitiveType_POINT
                  : n == 2 ? aiPrimitiveType_LINE
@@ -248,9 +322,17 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
       }
       mesh.mPrimitiveTypes = types;
     }
-    scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
-                                         aiProcess_JoinIdenticalVertices);
+    // Validation before the steps that index vertices the file claims without checking.
+    scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
+    if (scene)
+      scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
+                                           aiProcess_JoinIdenticalVertices);
   }
+  // A reader that drops what it cannot read says so only in its log.
+  for (const std::string& warning : warnings.messages())
+    if (warning.find("out-of-range indices") != std::string::npos)  // glTF 2
+      throw Error(file.string(), "",
+                  "faces name vertices past the end of their mesh (corrupt file?)");
   if (!scene || !scene->mRootNode) {
     // A file read from memory goes by Assimp's stand-in name: give the user's back.
     std::string reason = importer.GetErrorString();
@@ -312,6 +394,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
             out.color = glm::clamp(glm::vec3(c.r, c.g, c.b), 0.0f, 1.0f);
         }
       }
+      checkFinite(file, "node \"" + out.name + "\"", out.mesh);
       out.mesh.report.normalsComputed = normalsComputed;
       out.mesh.report.droppedDegenerate = dropDegenerateTriangles(out.mesh);
       dropped += out.mesh.report.droppedDegenerate;

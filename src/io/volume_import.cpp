@@ -224,7 +224,7 @@ class FileSource : public Source {
 class GzSource : public Source {
  public:
   GzSource(const std::string& file, const Where& where)
-      : gz_(gzopen(file.c_str(), "rb")), where_(where) {
+      : gz_(gzopen(file.c_str(), "rb")), where_(where), file_(file) {
     if (!gz_) where.fail("cannot open for reading: " + std::string(std::strerror(errno)));
   }
   ~GzSource() override { gzclose(gz_); }
@@ -236,7 +236,9 @@ class GzSource : public Source {
       const int got = gzread(gz_, out + done, ask);
       if (got < 0) {
         int code = 0;
-        where_.fail("corrupt gzip data: " + std::string(gzerror(gz_, &code)));
+        std::string reason = gzerror(gz_, &code);
+        if (reason.starts_with(file_ + ": ")) reason.erase(0, file_.size() + 2);  // named already
+        where_.fail("corrupt gzip data: " + reason);
       }
       done += std::size_t(got);
       if (unsigned(got) < ask) break;  // the end, or a truncated stream (zlib's Z_BUF_ERROR)
@@ -249,6 +251,7 @@ class GzSource : public Source {
  private:
   gzFile gz_;
   Where where_;
+  std::string file_;  // zlib's messages start with it
 };
 
 constexpr std::size_t kChunkBytes = std::size_t(1) << 20;
@@ -368,7 +371,15 @@ Volume loadNifti(const fs::path& file, const VolumeLimits& limits) {
       nifti2 ? double(load<std::int64_t>(h + 168, swap)) : double(load<float>(h + 108, swap));
   if (!(voxOffset >= 0.0 && voxOffset < 0x1p62))
     header.fail("invalid vox_offset " + std::to_string(voxOffset));
-  const std::uint64_t offset = std::max(std::uint64_t(voxOffset), std::uint64_t(hdrSize));
+  // In a single file the voxels follow the header (and its 4-byte extension flag, 352 or 544).
+  if (voxOffset < double(hdrSize)) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.10g", voxOffset);
+    header.fail(std::string("vox_offset ") + text + " lies inside the " + std::to_string(hdrSize) +
+                "-byte header (a single-file image's voxels start at " + (nifti2 ? "544" : "352") +
+                ")");
+  }
+  const std::uint64_t offset = std::uint64_t(voxOffset);
 
   nifti_set_debug_level(0);  // libnifti reports on stderr what we report by throwing
   nifti_1_header h1;

@@ -28,6 +28,10 @@ std::string Camera::unresolvable(float aspect) const {
   // Eight float steps (2⁻²³ relative each) apart at least: fewer leave the view's direction,
   // or its depth, to the rounding. (Lengths in double: a float's squares underflow at 1e-20.)
   constexpr double kSteps = 8.0 / double(1 << 23);
+  for (const auto& [name, point] : {std::pair{"eye", eye}, std::pair{"target", target}})
+    if (!std::isfinite(point.x) || !std::isfinite(point.y) || !std::isfinite(point.z))
+      return std::string(name) + " (" + text(point.x) + ", " + text(point.y) + ", " +
+             text(point.z) + ") is not finite in 32-bit floats";
   const double distance = glm::length(glm::dvec3(eye) - glm::dvec3(target));
   const double magnitude = std::max(glm::length(glm::dvec3(eye)), glm::length(glm::dvec3(target)));
   if (!(distance > kSteps * magnitude))

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -105,6 +106,32 @@ Pipe makePipe(const Context& ctx, const std::string& where, std::int64_t feature
   p.wallThickness = float(std::clamp(wall, 1e-6 * radius, radius));
   p.waterLevel = float(std::clamp(water, 0.0, 2.0 * double(p.innerRadius())));
   return p;
+}
+
+// The lowest height of `pipe`'s axis over the disc of `radius` around `at` (horizontal x, z),
+// or +∞ where it does not pass: along a segment the height is linear, so it is lowest at one
+// end of the stretch within the disc.
+float lowestWithin(const Pipe& pipe, glm::vec2 at, float radius) {
+  float lowest = std::numeric_limits<float>::infinity();
+  for (std::size_t i = 0; i + 1 < pipe.nodes.size(); ++i) {
+    const glm::vec3 a = pipe.nodes[i], b = pipe.nodes[i + 1];
+    const glm::dvec2 d(b.x - a.x, b.z - a.z), f(a.x - at.x, a.z - at.y);
+    // |f + t·d|² = r²: the stretch [t0, t1] of the segment inside the disc.
+    const double dd = glm::dot(d, d), fd = glm::dot(f, d);
+    const double c = glm::dot(f, f) - double(radius) * double(radius);
+    double t0 = 0.0, t1 = 0.0;
+    if (dd == 0.0) {
+      if (c > 0.0) continue;
+    } else {
+      const double disc = fd * fd - dd * c;
+      if (disc < 0.0) continue;
+      t0 = std::max(0.0, (-fd - std::sqrt(disc)) / dd);
+      t1 = std::min(1.0, (-fd + std::sqrt(disc)) / dd);
+      if (t0 > t1) continue;
+    }
+    for (const double t : {t0, t1}) lowest = std::min(lowest, float(a.y + t * (b.y - a.y)));
+  }
+  return lowest;
 }
 
 }  // namespace
@@ -313,17 +340,21 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
                                         ": wall thickness must be less than the radius");
           s.top = groundAt({p.x, p.z});
           // The floor: the point's own height, else `depth` under the terrain, else under
-          // the lowest pipe node within the shaft.
+          // the lowest pipe within the shaft.
           float bottom = points.hasZ ? p.y : s.top - depth;
           if (!points.hasZ && depth < 0) {
             bottom = s.top;
             for (const Pipe& pipe : net.pipes)
-              for (const glm::vec3& node : pipe.nodes)
-                if (glm::length(glm::vec2(node.x - p.x, node.z - p.z)) <= s.radius)
-                  bottom = std::min(bottom, node.y - pipe.radius);
+              bottom = std::min(bottom, lowestWithin(pipe, {p.x, p.z}, s.radius) - pipe.radius);
             if (bottom >= s.top)
               ctx.fail(sr.at("file"), "shaft feature " + std::to_string(q.featureId) +
                                           " meets no pipe and has no height: give \"depth\"");
+          }
+          if (!(bottom < s.top)) {
+            std::ostringstream where;
+            where << "shaft feature " << q.featureId << ": its floor (height " << bottom
+                  << ") lies at or above the terrain there (" << s.top << ")";
+            ctx.fail(sr.at("file"), where.str());
           }
           s.bottom = glm::vec3(p.x, bottom, p.z);
           s.waterLevel = float(std::clamp(get(water), 0.0, double(s.top - bottom)));

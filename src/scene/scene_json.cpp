@@ -593,14 +593,17 @@ std::vector<TransferPoint> transferPoints(const Context& ctx, const json& j,
   for (std::size_t i = 0; i < j.size(); ++i) {
     ObjectReader r(ctx, j[i], ptr + "/" + std::to_string(i));
     TransferPoint p;
-    p.value = float(number(ctx, r.require("value"), r.at("value"), -1e30, 1e30));
+    const double value = number(ctx, r.require("value"), r.at("value"), -1e30, 1e30);
+    p.value = float(value);
     if (const json* v = r.take("color")) p.color = color(ctx, *v, r.at("color"));
     p.opacity = float(number(ctx, r.require("opacity"), r.at("opacity"), 0, 1));
     if (const json* v = r.take("importance"))
       p.importance = float(number(ctx, *v, r.at("importance"), 0, 1));
     r.finish();
     if (!points.empty() && !(p.value > points.back().value))
-      ctx.fail(r.at("value"), "control points must have increasing values");
+      ctx.fail(r.at("value"), value > double(points.back().value)
+                                  ? "control points must have increasing values as 32-bit floats"
+                                  : "control points must have increasing values");
     points.push_back(p);
   }
   return points;

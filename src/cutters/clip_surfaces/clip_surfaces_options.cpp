@@ -1,7 +1,9 @@
 // The clip-surface cutter's options as the scene file, the viewer and the CLI name them.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "core/json_reader.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
@@ -71,10 +73,12 @@ OptionsSchema surfaceSchema() {
       // The placement is checked as a whole (U ⟂ V, S > 0): the viewer moves it along N and
       // scales its height through the derived values below.
       .vec3("origin", &S::origin, -1e30, 1e30,
-            {.doc = "O: a corner of the cap's extent (Trapp13 §4.1).", .required = true,
+            {.doc = "O: a corner of the cap's extent (Trapp13 §4.1).",
+             .required = true,
              .fileOnly = true})
       .vec3("u", &S::u, -1e30, 1e30,
-            {.doc = "U: the extent's first side; orthogonal to V, N = Û × V̂.", .required = true,
+            {.doc = "U: the extent's first side; orthogonal to V, N = Û × V̂.",
+             .required = true,
              .fileOnly = true})
       .vec3("v", &S::v, -1e30, 1e30,
             {.doc = "V: the extent's second side.", .required = true, .fileOnly = true})
@@ -82,7 +86,8 @@ OptionsSchema surfaceSchema() {
             {.doc = "S: offset-map repeats along U and V; S_z: the height in scene units (eq. 1).",
              .fileOnly = true})
       .value("enabled", &S::enabled,
-             {.label = "on", .doc = "Whether this surface clips (§4.5: each surface can be switched).",
+             {.label = "on",
+              .doc = "Whether this surface clips (§4.5: each surface can be switched).",
               .live = true})
       .optional("capColor", &S::capColor, Type::Color, 0, 1, glm::vec3(0.5f),
                 {.label = "cap colour",
@@ -96,17 +101,20 @@ OptionsSchema surfaceSchema() {
             const glm::vec3 n = cs.normal();
             cs.origin += (float(std::get<double>(v)) - glm::dot(cs.origin, n)) * n;
           },
-          {.label = "position along N", .doc = "Moves the surface along its normal N (scene units: N·O).",
+          {.label = "position along N",
+           .doc = "Moves the surface along its normal N (scene units: N·O).",
            .live = true})
       .derived(
           "height", Type::Float, 0, 1e30,
           [](const S& cs) -> OptionValue { return double(cs.scale.z); },
           [](S& cs, const OptionValue& v) { cs.scale.z = float(std::get<double>(v)); },
-          {.label = "height S_z", .doc = "Scale of the offset map along −N, scene units (eq. 1).",
+          {.label = "height S_z",
+           .doc = "Scale of the offset map along −N, scene units (eq. 1).",
            .live = true})
       // The offset map (a PNG, a recipe or a blend) and the optional diffuse map (§6.1).
       .readHook([](const Context& ctx, ObjectReader& r, S& cs) {
-        if (const json* v = r.take("offsetMap")) cs.offsetMap = offsetMap(ctx, *v, r.at("offsetMap"));
+        if (const json* v = r.take("offsetMap"))
+          cs.offsetMap = offsetMap(ctx, *v, r.at("offsetMap"));
         if (const json* v = r.take("diffuseMap")) {
           if (!v->is_string()) ctx.fail(r.at("diffuseMap"), "expected a PNG file name");
           const std::filesystem::path file = ctx.baseDir / string(ctx, *v, r.at("diffuseMap"));
@@ -121,9 +129,19 @@ OptionsSchema surfaceSchema() {
         }
       })
       .check([](const Context& ctx, ObjectReader& r, S& cs) {
-        const float lu = glm::length(cs.u), lv = glm::length(cs.v);
-        if (lu <= 0.0f || lv <= 0.0f) ctx.fail(r.pointer(), "u and v must not be zero vectors");
-        if (std::abs(glm::dot(cs.u, cs.v)) > 1e-4f * lu * lv)
+        const glm::dvec3 u(cs.u), v(cs.v);
+        const double lu = glm::length(u), lv = glm::length(v);
+        if (lu <= 0.0 || lv <= 0.0) ctx.fail(r.pointer(), "u and v must not be zero vectors");
+        // The shaders square them in 32-bit floats (T of eq. 3): keep the squares normal.
+        for (const auto& [key, length] : {std::pair{"u", lu}, std::pair{"v", lv}})
+          if (!(length >= 1e-15 && length <= 1e15)) {
+            char text[32];
+            std::snprintf(text, sizeof text, "%.3g", length);
+            ctx.fail(r.at(key), std::string("its length, ") + text +
+                                    ", lies outside [1e-15, 1e15] scene units (32-bit floats "
+                                    "square it)");
+          }
+        if (std::abs(glm::dot(u, v)) > 1e-4 * lu * lv)
           ctx.fail(r.at("v"), "u and v must be orthogonal (Trapp13 §4.1)");
         if (r.has("scale") && (cs.scale.x <= 0.0f || cs.scale.y <= 0.0f || cs.scale.z < 0.0f))
           ctx.fail(r.at("scale"), "repeats (x, y) must be > 0 and the height (z) >= 0");

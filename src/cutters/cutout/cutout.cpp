@@ -60,6 +60,10 @@ std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
     }
     for (const std::size_t i : unit.volumes) {
       const std::vector<glm::vec3> hull = volumeHullPoints(scene.volumes[i]);
+      if (hull.empty())
+        throw Error(scene.file.string(), "/volumes/" + std::to_string(i),
+                    "exterior \"" + unit.name +
+                        "\" shows no material: its transfer function makes every voxel clear");
       points.insert(points.end(), hull.begin(), hull.end());
     }
     try {
