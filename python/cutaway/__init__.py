@@ -38,17 +38,22 @@ def _json_default(value):
     raise TypeError("%s is not a number, string, list or dict" % type(value).__name__)
 
 
-def _check_finite(value, place):
+def _check_finite(value, place, within=()):
     # JSON has no NaN or infinity: json.dumps would write them, and the parser would then
-    # name a line and column of text the user never wrote.
+    # name a line and column of text the user never wrote. `within`: the containers around
+    # `value`, so that one holding itself is named rather than recursed into.
     if isinstance(value, (float, np.floating)) and not math.isfinite(value):
         raise Error("<dict>: %s: %r is not a finite number" % (place or "/", float(value)))
+    if isinstance(value, (dict, list, tuple)):
+        if any(value is outer for outer in within):
+            raise Error("<dict>: %s: holds itself (a cycle): JSON cannot write it" % (place or "/"))
+        within = within + (value,)
     if isinstance(value, dict):
         for key, item in value.items():
-            _check_finite(item, "%s/%s" % (place, key))
+            _check_finite(item, "%s/%s" % (place, key), within)
     elif isinstance(value, (list, tuple)):
         for i, item in enumerate(value):
-            _check_finite(item, "%s/%d" % (place, i))
+            _check_finite(item, "%s/%d" % (place, i), within)
     elif isinstance(value, np.ndarray) and value.dtype.kind == "f" and not np.isfinite(value).all():
         at = tuple(int(i) for i in np.argwhere(~np.isfinite(value))[0])
         raise Error("<dict>: %s%s: %r is not a finite number"
@@ -56,9 +61,11 @@ def _check_finite(value, place):
 
 
 def _dumps(value):
-    _check_finite(value, "")
     try:
+        _check_finite(value, "")
         return json.dumps(value, default=_json_default, allow_nan=False)
+    except RecursionError:
+        raise Error("<dict>: nested deeper than Python's recursion limit") from None
     except (TypeError, ValueError) as e:
         raise Error("<dict>: %s" % e) from None
 

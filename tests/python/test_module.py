@@ -190,6 +190,17 @@ def test_a_number_json_cannot_hold_is_named_by_its_place():
     camera = dict(cube_scene()["camera"], eye=np.array([3.0, np.inf, 4.0]))
     with pytest.raises(cutaway.Error, match=r"^<dict>: /camera/eye/1: inf is not a finite number$"):
         cutaway.from_dict(cube_scene(camera=camera))
+    # A dict that holds itself, and one nested past the recursion limit: named, not a
+    # RecursionError.
+    scene = cube_scene()
+    scene["camera"]["self"] = scene["camera"]
+    with pytest.raises(cutaway.Error, match=r"^<dict>: /camera/self: holds itself \(a cycle\)"):
+        cutaway.from_dict(scene)
+    deep = cube_scene()
+    for _ in range(100000):
+        deep = {"objects": deep}
+    with pytest.raises(cutaway.Error, match=r"^<dict>: nested deeper than Python's recursion limit$"):
+        cutaway.from_dict(deep)
 
 
 def test_a_frame_comes_first_and_its_time_is_checked():
