@@ -112,8 +112,7 @@ class Viewer {
   // The live scene as a renderer last drew it in full: what a scene that cannot be made or
   // drawn (the device refuses it, its buffers do not fit in memory) gives way to.
   std::optional<Scene> rendered_;
-  std::optional<Camera>
-      drawnCamera_;  // the live scene's camera at the last frame drawn (or opened)
+  std::optional<Camera> drawnCamera_;  // the live scene's camera when last drawn, or opened
   std::optional<Replaced> replaced_;
   std::optional<SceneDocument> document_;
   ViewerState state_;

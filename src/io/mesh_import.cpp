@@ -206,7 +206,6 @@ void checkFinite(const std::filesystem::path& file, const std::string& place, co
   throw Error(file.string(), "", "the file contains no triangles");
 }
 
-// The import itself, in whichever process runs it.
 // The files a model names (an OBJ's mtllib, a glTF's buffers) are read only where they are
 // regular files: a FIFO would block the reader, a device feed it without end.
 class RegularFilesOnly : public Assimp::DefaultIOSystem {
@@ -256,6 +255,7 @@ class AssimpWarnings {
 };
 thread_local std::vector<std::string>* AssimpWarnings::current_ = nullptr;
 
+// The import itself, in whichever process runs it.
 std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec))
