@@ -258,6 +258,8 @@ const BadScene kBadScenes[] = {
      "no object name matches \"houses.*\""},
     // Cutters: Konev18 terrain opening.
     {"terrain_no_network.json", "/cutters/terrainOpening", "no network"},
+    {"terrain_line_one_node.json", "/cutters/terrainOpening/lines/1",
+     "a polyline needs at least two distinct [x, z] nodes"},
     {"terrain_matches_nothing.json", "/cutters/terrainOpening/terrain", "no object name matches"},
     {"terrain_network_missing.json", "/cutters/terrainOpening/network/0", "no-such.shp"},
     {"object_param_solid_number.json", "/objects/0/params/solid",

@@ -45,9 +45,11 @@ void readNetwork(const Context& ctx, ObjectReader& r, O& o) {
       for (std::size_t k = 0; k < line.size(); ++k) {
         const std::string q = p + "/" + std::to_string(k);
         if (!line[k].is_array() || line[k].size() != 2) ctx.fail(q, "expected [x, z]");
-        xz.emplace_back(float(number(ctx, line[k][0], q + "/0", -1e9, 1e9)),
-                        float(number(ctx, line[k][1], q + "/1", -1e9, 1e9)));
+        const glm::vec2 node(float(number(ctx, line[k][0], q + "/0", -1e9, 1e9)),
+                             float(number(ctx, line[k][1], q + "/1", -1e9, 1e9)));
+        if (xz.empty() || node != xz.back()) xz.push_back(node);  // as a GIS layer's repeats
       }
+      if (xz.size() < 2) ctx.fail(p, "a polyline needs at least two distinct [x, z] nodes");
       o.lines.push_back(std::move(xz));
     }
   }
