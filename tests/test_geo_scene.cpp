@@ -106,34 +106,39 @@ TEST(GeoScene, PipeRadiiComeFromAFieldPerFeature) {
   fs::remove_all(dir);
 }
 
-// Shafts from a point layer (docs/scene-format.md, "networks"): without a height or "depth",
-// the floor lies under the lowest stretch of a pipe within the shaft's radius, also where the
-// pipe passes between its nodes; a floor at or above the terrain is refused with its feature.
+// Shafts from a point layer (docs/scene-format.md, "networks"): without a height under the
+// terrain or a "depth", the floor lies under the lowest stretch of a pipe within the shaft's
+// radius, also where the pipe passes between its nodes or drops vertically; a z at or above
+// the terrain is the cover's; a shaft over no pipe is refused with its feature.
 TEST(GeoScene, AShaftsFloorLiesUnderThePipePassingBeneathIt) {
   const fs::path dir = fs::temp_directory_path() / ("cutaway-shafts-" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  // A pipe falling from height −1 to −4 over 12 units; a manhole over its middle.
+  // A pipe falling from height −1 to −4 over 12 units, then dropping vertically to −6 at
+  // x = 20.
   std::ofstream(dir / "p.geojson") << R"({"type": "FeatureCollection", "features": [
      {"type": "Feature", "properties": {}, "geometry": {"type": "LineString",
-      "coordinates": [[0, 0, -1], [12, 0, -4]]}}]})";
-  const auto points = [&](const std::string& coordinates) {
+      "coordinates": [[0, 0, -1], [12, 0, -4], [20, 0, -4], [20, 0, -6]]}}]})";
+  const auto floorAt = [&](const std::string& coordinates) {
     std::ofstream(dir / "m.geojson") << R"({"type": "FeatureCollection", "features": [
        {"type": "Feature", "properties": {}, "geometry": {"type": "Point", "coordinates": )"
                                      << coordinates << "}}]}";
+    const Scene scene = parseScene(R"({"objects": [],
+      "networks": [{"name": "n", "radius": 0.5, "pipes": [{"file": "p.geojson"}],
+                    "shafts": {"file": "m.geojson", "radius": 1}}]})",
+                                   "shafts.json", dir);
+    EXPECT_EQ(scene.networks.at(0).shafts.size(), 1u);
+    EXPECT_FLOAT_EQ(scene.networks[0].shafts.at(0).top, 0.0f);
+    return scene.networks[0].shafts.at(0).bottom.y;
   };
-  const std::string text = R"({"objects": [],
-    "networks": [{"name": "n", "radius": 0.5, "pipes": [{"file": "p.geojson"}],
-                  "shafts": {"file": "m.geojson", "radius": 1}}]})";
-  points("[6, 0]");
-  const Scene scene = parseScene(text, "shafts.json", dir);
-  ASSERT_EQ(scene.networks.at(0).shafts.size(), 1u);
   // Within the radius the pipe spans x ∈ [5, 7]: lowest at x = 7, −1 − 3·7/12 = −2.75.
-  EXPECT_FLOAT_EQ(scene.networks[0].shafts[0].bottom.y, -2.75f - 0.5f);
-  EXPECT_FLOAT_EQ(scene.networks[0].shafts[0].top, 0.0f);
-  points("[6, 0, 5]");  // a floor 5 above the ground
-  test::expectError([&] { parseScene(text, "shafts.json", dir); },
-                    {"shafts.json: /networks/0/shafts/file: shaft feature 0: its floor (height 5) "
-                     "lies at or above the terrain there (0)"});
+  EXPECT_FLOAT_EQ(floorAt("[6, 0]"), -2.75f - 0.5f);
+  EXPECT_FLOAT_EQ(floorAt("[6, 0, 0]"), -2.75f - 0.5f);  // the cover's height
+  EXPECT_FLOAT_EQ(floorAt("[6, 0, 5]"), -2.75f - 0.5f);
+  EXPECT_FLOAT_EQ(floorAt("[6, 0, -8]"), -8.0f);        // its own floor
+  EXPECT_FLOAT_EQ(floorAt("[20.5, 0]"), -6.0f - 0.5f);  // over the vertical drop
+  test::expectError([&] { floorAt("[40, 0]"); },
+                    {"shafts.json: /networks/0/shafts/file: shaft feature 0 meets no pipe under "
+                     "the terrain and has no height below it: give \"depth\""});
   fs::remove_all(dir);
 }
 

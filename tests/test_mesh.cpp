@@ -302,14 +302,14 @@ TEST(PlyReader, BadFilesAreRefusedWithTheirPlaceAndReason) {
   refuse("flat.ply", kPlyHeader + "3 0 1 1\n", {"flat.ply", "its one triangle has no area ("});
   refuse("nan.ply",
          kPlyHeader.substr(0, kPlyHeader.find("0 0 0")) + "nan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
-         {"nan.ply: vertex 0: a vertex at (nan, 0, 0) is not finite in 32-bit floats"});
+         {"nan.ply: vertex 0: a triangle's corner at (nan, 0, 0) is not finite in 32-bit floats"});
 }
 
-// A vertex 32-bit floats cannot hold (NaN or infinite in the file, or finite there and beyond
-// float's range) is refused with its place, in PLY (its vertex) and through Assimp (its node),
-// rather than its triangles dropped without a word; as are glTF faces naming vertices past the
-// end, which Assimp drops and reports only in its log. OBJ faces of one or two vertices are
-// points and lines: dropped, the triangle kept.
+// A triangle's corner 32-bit floats cannot hold (NaN or infinite in the file, or finite there
+// and beyond float's range) is refused with its place, in PLY (its vertex) and through Assimp
+// (its node), rather than the triangle dropped without a word; as are glTF faces naming
+// vertices past the end, which Assimp drops and reports only in its log. OBJ faces of one or
+// two vertices are points and lines: dropped, the triangle kept.
 TEST(MeshImport, NonFiniteVerticesAndFacesPastTheEndAreRefused) {
   const std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
@@ -333,6 +333,12 @@ TEST(MeshImport, NonFiniteVerticesAndFacesPastTheEndAreRefused) {
           "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)"
       "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAEAAAACAAAAAAAAAGDqAAACAAAA\"}]}";
   refuse("past.gltf", gltf, {"past.gltf", "faces name vertices past the end of their mesh"});
+  // A vertex no triangle uses may be anything (a depth sensor's mesh keeps NaN for pixels
+  // without depth).
+  const std::filesystem::path unused =
+      plyFile("unused.ply", ply + "nan nan nan\n3 0 1 2\n3 2 1 0\n");
+  EXPECT_EQ(importMeshNodes(unused).at(0).mesh.triangles.size(), 2u);
+  std::filesystem::remove(unused);
   const std::filesystem::path obj =
       plyFile("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\nf 3\n");
   const std::vector<ImportedNode> nodes = importMeshNodes(obj);

@@ -155,6 +155,14 @@ TEST(Viewer, ScriptLineFailingAtRunTimeNamesTheLine) {
                            ": line 2: set: /cutters/breakaway: no object has role \"exterior\": "
                            "nothing to cut (give the outside objects or volumes that role, or "
                            "match objects by name with \"overrides\")\n");
+  // An option of a surface the scene does not have, named as `cutaway render --set` names it.
+  std::ofstream(script) << "wait 1\nset cutters.clipSurfaces.surfaces.0.position 0.5\nquit\n";
+  const Result entry =
+      runUnderXvfb(kSource + "/examples/bunny.json --size 160x120 --script " + script.string());
+  EXPECT_EQ(entry.exitCode, 1) << entry.err;
+  EXPECT_EQ(entry.err, "cutaway-view: error: " + script.string() +
+                           ": line 2: cutters.clipSurfaces.surfaces.0.position: no entry 0: "
+                           "\"surfaces\" has 0 entries\n");
 }
 
 // The scenario: orbit, select the pistons, change the cutter, look at the cutaway

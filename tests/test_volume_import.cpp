@@ -646,12 +646,16 @@ TEST_F(VolumeImportTest, NiftiBadInput) {
   expectError([&] { importVolume(write("magic.nii", noMagic)); }, {"magic.nii", "magic"});
   expectError([&] { importVolume(write("text.nii", std::string(400, 'x'))); },
               {"text.nii", "not a NIfTI-1 or NIfTI-2 file"});
-  // A vox_offset inside the header would read its extension flag as voxels.
-  std::string early = good;
-  const float ten = 10.0f;
+  // A vox_offset inside the header would read its extension flag as voxels; 0 is "unset":
+  // the voxels right after the flag, as NiBabel reads it.
+  std::string early = good, unset = good;
+  const float ten = 10.0f, none = 0.0f;
   early.replace(108, 4, reinterpret_cast<const char*>(&ten), 4);
   expectError([&] { importVolume(write("early.nii", early)); },
               {"early.nii", "header", "vox_offset 10 lies inside the 348-byte header"});
+  unset.replace(108, 4, reinterpret_cast<const char*>(&none), 4);
+  EXPECT_EQ(importVolume(write("unset.nii", unset)).values,
+            importVolume(write("good.nii", good)).values);
 }
 
 TEST_F(VolumeImportTest, NiftiGzTruncatedOrOverTheLimit) {

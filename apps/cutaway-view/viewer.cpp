@@ -346,6 +346,9 @@ void Viewer::execute(const ScriptCommand& c) {
       // As `cutaway render --set`: the scene must still pass the checks across it (a cutter
       // without the roles it needs is refused, not drawn as if it were off).
       Scene checked = state_.scene;
+      if (c.parameter->absent)  // an array entry past the end: said as such
+        if (const std::string why = c.parameter->absent(&checked); !why.empty())
+          throw Error(c.parameter->key, "", why);
       c.parameter->assign(checked, c.value);
       checkScene(checked, "set");
       setParameter(state_, *c.parameter, c.value);

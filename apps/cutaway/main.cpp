@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <new>
 #include <sstream>
@@ -44,11 +45,11 @@ CLI::Validator finiteNumber(double least = -HUGE_VAL, double most = HUGE_VAL,
                             bool aboveLeast = false) {
   return CLI::Validator(
       [=](std::string& text) -> std::string {
-        double v = 0.0;
-        std::istringstream in(text);
-        in >> v;
+        // As CLI11 converts it afterwards (strtod: hexadecimal too), the whole text.
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
         const bool low = aboveLeast ? !(v > least) : !(v >= least);
-        if (!in || !std::isfinite(v) || low || !(v <= most)) {
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || low || !(v <= most)) {
           std::ostringstream need;
           need << "a finite number";
           if (most != HUGE_VAL)

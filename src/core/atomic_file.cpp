@@ -1,5 +1,7 @@
 #include "cutaway/core/atomic_file.hpp"
 
+#include <pthread.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <array>
@@ -9,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <optional>
 
 #include "cutaway/core/error.hpp"
 
@@ -74,7 +77,37 @@ class PendingFile {
   Pending* slot_ = nullptr;
 };
 
+// Writers placing their files (renames, and their undoing): a signal waits for them to end, so
+// that a set of files is replaced whole or not at all.
+std::atomic<int> placing{0};
+
+// Holds SIGTERM, SIGINT and SIGHUP on this thread, and marks the placing for the handler on
+// any other thread, while it lives.
+class Placing {
+ public:
+  Placing() {
+    sigset_t held;
+    sigemptyset(&held);
+    for (const int signal : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&held, signal);
+    pthread_sigmask(SIG_BLOCK, &held, &before_);
+    ++placing;
+  }
+  ~Placing() {
+    --placing;
+    pthread_sigmask(SIG_SETMASK, &before_, nullptr);
+  }
+  Placing(const Placing&) = delete;
+  Placing& operator=(const Placing&) = delete;
+
+ private:
+  sigset_t before_;
+};
+
 extern "C" void removeTemporariesAndDie(int signal) {
+  while (placing.load() > 0) {  // a few renames: milliseconds at most
+    const timespec pause{0, 1000000};
+    nanosleep(&pause, nullptr);
+  }
   for (Pending& p : pending)
     if (p.ready) ::unlink(p.path.data());
   std::signal(signal, SIG_DFL);
@@ -157,11 +190,13 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
   std::vector<bool> backedUp;
   backedUp.reserve(files.size());
   std::size_t placed = 0;
+  std::optional<Placing> holding;  // from the first rename to the last removal of a backup
   try {
     for (const auto& [path, write] : files) {
       pendingFiles.push_back(std::make_unique<PendingFile>(beside(path, "tmp")));
       temporaries.push_back(writeTemporary(path, write));
     }
+    holding.emplace();
     for (; placed < files.size(); ++placed) {
       const fs::path& path = files[placed].first;
       std::error_code ec;

@@ -171,18 +171,21 @@ float farthest(const Mesh& mesh) {
   return far;
 }
 
-// A vertex that 32-bit floats cannot hold (NaN or infinite in the file, or beyond ~3.4e38 once
-// read or placed) is an error, as in the Python module's arrays: the triangles it belongs to
-// would be dropped without a word.
+// A triangle's corner that 32-bit floats cannot hold (NaN or infinite in the file, or beyond
+// ~3.4e38 once read or placed) is an error, as in the Python module's arrays: the triangle
+// would be dropped without a word. Vertices no triangle uses may be anything (a depth
+// sensor's mesh keeps NaN for pixels without depth).
 void checkFinite(const std::filesystem::path& file, const std::string& place, const Mesh& mesh) {
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::vec3& p = mesh.positions[i];
-    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
-    char text[96];
-    std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
-    throw Error(file.string(), place.empty() ? "vertex " + std::to_string(i) : place,
-                std::string("a vertex at ") + text + " is not finite in 32-bit floats");
-  }
+  for (const glm::uvec3& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& p = mesh.positions[t[k]];
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
+      char text[96];
+      std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+      throw Error(
+          file.string(), place.empty() ? "vertex " + std::to_string(t[k]) : place,
+          std::string("a triangle's corner at ") + text + " is not finite in 32-bit floats");
+    }
 }
 
 // A file without a triangle to draw: where they all collapsed because their corners lie
@@ -227,7 +230,9 @@ class AssimpWarnings {
  public:
   AssimpWarnings() {
     static const bool attached = [] {
-      Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);  // no default streams
+      // A host program's own logger stays; the stream joins it (which then owns it).
+      if (Assimp::DefaultLogger::isNullLogger())
+        Assimp::DefaultLogger::create("", Assimp::Logger::NORMAL, 0);  // no default streams
       Assimp::DefaultLogger::get()->attachStream(new Stream, Assimp::Logger::Warn);
       return true;
     }();

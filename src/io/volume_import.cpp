@@ -371,15 +371,16 @@ Volume loadNifti(const fs::path& file, const VolumeLimits& limits) {
       nifti2 ? double(load<std::int64_t>(h + 168, swap)) : double(load<float>(h + 108, swap));
   if (!(voxOffset >= 0.0 && voxOffset < 0x1p62))
     header.fail("invalid vox_offset " + std::to_string(voxOffset));
-  // In a single file the voxels follow the header (and its 4-byte extension flag, 352 or 544).
-  if (voxOffset < double(hdrSize)) {
+  // In a single file the voxels follow the header. 0 is "unset" (as NiBabel reads it): right
+  // after the header and its 4-byte extension flag.
+  if (voxOffset > 0.0 && voxOffset < double(hdrSize)) {
     char text[32];
     std::snprintf(text, sizeof text, "%.10g", voxOffset);
     header.fail(std::string("vox_offset ") + text + " lies inside the " + std::to_string(hdrSize) +
-                "-byte header (a single-file image's voxels start at " + (nifti2 ? "544" : "352") +
-                ")");
+                "-byte header");
   }
-  const std::uint64_t offset = std::uint64_t(voxOffset);
+  const std::uint64_t offset =
+      voxOffset == 0.0 ? std::uint64_t(hdrSize) + 4 : std::uint64_t(voxOffset);
 
   nifti_set_debug_level(0);  // libnifti reports on stderr what we report by throwing
   nifti_1_header h1;

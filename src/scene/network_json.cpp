@@ -119,8 +119,8 @@ float lowestWithin(const Pipe& pipe, glm::vec2 at, float radius) {
     // |f + t·d|² = r²: the stretch [t0, t1] of the segment inside the disc.
     const double dd = glm::dot(d, d), fd = glm::dot(f, d);
     const double c = glm::dot(f, f) - double(radius) * double(radius);
-    double t0 = 0.0, t1 = 0.0;
-    if (dd == 0.0) {
+    double t0 = 0.0, t1 = 1.0;
+    if (dd == 0.0) {  // vertical: within the disc whole, or not at all
       if (c > 0.0) continue;
     } else {
       const double disc = fd * fd - dd * c;
@@ -298,7 +298,10 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       std::string layer;
       if (const json* x = sr.take("layer")) layer = string(ctx, *x, sr.at("layer"));
       float depth = -1.0f;
-      if (const json* x = sr.take("depth")) depth = float(number(ctx, *x, sr.at("depth"), 0, 1e4));
+      if (const json* x = sr.take("depth")) {
+        depth = float(number(ctx, *x, sr.at("depth"), 0, 1e4));
+        if (!(depth > 0.0f)) ctx.fail(sr.at("depth"), "a shaft's depth must be greater than 0");
+      }
       sr.finish();
       if (!!file == !!generate)
         ctx.fail(r.at("shafts"),
@@ -339,18 +342,22 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
             ctx.fail(sr.at("file"), "shaft feature " + std::to_string(q.featureId) +
                                         ": wall thickness must be less than the radius");
           s.top = groundAt({p.x, p.z});
-          // The floor: the point's own height, else `depth` under the terrain, else under
-          // the lowest pipe within the shaft.
-          float bottom = points.hasZ ? p.y : s.top - depth;
-          if (!points.hasZ && depth < 0) {
+          // The floor: the point's own height where it lies under the terrain (one at or
+          // above it is the cover's), else `depth` under the terrain, else under the lowest
+          // pipe within the shaft.
+          float bottom = s.top - depth;
+          if (points.hasZ && p.y < s.top) {
+            bottom = p.y;
+          } else if (depth < 0) {
             bottom = s.top;
             for (const Pipe& pipe : net.pipes)
               bottom = std::min(bottom, lowestWithin(pipe, {p.x, p.z}, s.radius) - pipe.radius);
             if (bottom >= s.top)
               ctx.fail(sr.at("file"), "shaft feature " + std::to_string(q.featureId) +
-                                          " meets no pipe and has no height: give \"depth\"");
+                                          " meets no pipe under the terrain and has no height "
+                                          "below it: give \"depth\"");
           }
-          if (!(bottom < s.top)) {
+          if (!(bottom < s.top)) {  // a depth too small for floats at the terrain's height
             std::ostringstream where;
             where << "shaft feature " << q.featureId << ": its floor (height " << bottom
                   << ") lies at or above the terrain there (" << s.top << ")";
