@@ -217,6 +217,7 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
   computeVertexNormals(mesh);
   mesh.report.normalsComputed = true;
   analyzeTopology(mesh);
+  orientOutward(mesh);
   return std::make_shared<const Mesh>(std::move(mesh));
 }
 

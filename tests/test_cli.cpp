@@ -1052,3 +1052,76 @@ TEST(Cli, CapsLieOnTheReliefReadFromTheAovFilesAlone) {
   EXPECT_EQ(off, 0) << "of " << caps << " worst " << worst;
   EXPECT_GT(offFlipped, caps / 3) << "of " << caps;
 }
+
+// A closed mesh wound inward (a CAD export, marching cubes) is turned outward on import, so
+// that every cutter reads its outside as the outside: the cutout, the adaptive cutaway and the
+// box cut draw it as they draw the same cube wound outward, and `info` says it was turned. A
+// hollow shell (a cavity wound inward inside an outward cube) keeps its winding.
+TEST(Cli, AClosedMeshWoundInwardIsTurnedOutward) {
+  std::ifstream in(kData + "/meshes/cube.obj");
+  std::string outward, inward, hollow;
+  for (std::string line; std::getline(in, line);) {
+    outward += line + "\n";
+    std::istringstream words(line);
+    std::string f, a, b, c;
+    if (words >> f >> a >> b >> c && f == "f") {
+      inward += "f " + a + " " + c + " " + b + "\n";
+      hollow += line + "\n";
+    } else {
+      inward += line + "\n";
+      hollow += line + "\n";
+    }
+  }
+  // The cavity: the cube shrunk about its centre, its faces turned inward.
+  for (int i = 0; i < 8; ++i) {
+    const int x = (i == 1 || i == 2 || i == 5 || i == 6),
+              y = (i == 2 || i == 3 || i == 6 || i == 7), z = i >= 4;
+    hollow += "v " + std::to_string(0.25 + 0.5 * x) + " " + std::to_string(0.25 + 0.5 * y) + " " +
+              std::to_string(0.25 + 0.5 * z) + "\n";
+  }
+  std::istringstream faces(outward);
+  for (std::string line; std::getline(faces, line);) {
+    std::istringstream words(line);
+    std::string f;
+    int a, b, c;
+    if (words >> f >> a >> b >> c && f == "f")
+      hollow += "f " + std::to_string(a + 8) + " " + std::to_string(c + 8) + " " +
+                std::to_string(b + 8) + "\n";
+  }
+  std::ofstream(scratch("outward.obj")) << outward;
+  std::ofstream(scratch("inward.obj")) << inward;
+  std::ofstream(scratch("hollow.obj")) << hollow;
+  const auto scene = [&](const std::string& mesh, const std::string& cutter) {
+    const fs::path file =
+        scratch(mesh + "-" + std::to_string(std::hash<std::string>()(cutter)) + ".json");
+    std::ofstream(file) << R"({"resolution": [96, 72], "samples": 1,
+      "camera": {"eye": [3, 2, 4], "target": [0.5, 0.5, 0.5], "fov": 40},
+      "objects": [{"name": "box", "file": ")"
+                        << mesh << R"(.obj", "role": "exterior"},
+                  {"name": "tetra", "file": ")"
+                        << kData << R"(/meshes/tetra.obj", "role": "interior",
+                   "transform": {"translate": [0.3, 0.3, 0.3], "scale": 0.4}}],
+      "cutters": )" << cutter
+                        << "}";
+    return file.string();
+  };
+  for (const std::string cutter : {R"({"cutout": true})", R"({"adaptive": true})",
+                                   R"({"boxCut": {"center": [1, 1, 1], "size": [1, 1, 1]}})"}) {
+    const fs::path a = scratch("outward.png"), b = scratch("inward.png");
+    const Result ra = run("render " + scene("outward", cutter) + " -o " + a.string());
+    const Result rb = run("render " + scene("inward", cutter) + " -o " + b.string());
+    ASSERT_EQ(ra.exitCode, 0) << ra.err;
+    ASSERT_EQ(rb.exitCode, 0) << rb.err;
+    EXPECT_EQ(readPng(a).pixels, readPng(b).pixels) << cutter;
+  }
+  const auto turned = [&](const std::string& mesh) {
+    const Result r = run("info " + scene(mesh, R"({"cutout": true})"));
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_TRUE(j["objects"][0]["watertight"].get<bool>()) << mesh;
+    return j["objects"][0]["windingReversed"].get<bool>();
+  };
+  EXPECT_FALSE(turned("outward"));
+  EXPECT_TRUE(turned("inward"));
+  EXPECT_FALSE(turned("hollow"));
+}

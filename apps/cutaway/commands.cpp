@@ -518,6 +518,7 @@ int info(const std::string& path) {
                        {"boundaryEdges", r.boundaryEdges},
                        {"nonManifoldEdges", r.nonManifoldEdges},
                        {"misorientedEdges", r.misorientedEdges},
+                       {"windingReversed", r.windingReversed},
                        {"droppedDegenerateTriangles", r.droppedDegenerate},
                        {"normalsComputed", r.normalsComputed}});
   }

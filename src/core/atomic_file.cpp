@@ -46,6 +46,7 @@ constexpr std::size_t kPathBytes = 4096;  // PATH_MAX
 struct Pending {
   std::atomic<bool> used{false};
   std::atomic<bool> ready{false};
+  std::atomic<unsigned> version{0};  // odd while `path` is written: the handler's seqlock
   std::array<char, kPathBytes> path{};
 };
 std::array<Pending, 64> pending;
@@ -59,7 +60,9 @@ class PendingFile {
     for (Pending& p : pending) {
       bool expected = false;
       if (!p.used.compare_exchange_strong(expected, true)) continue;
+      ++p.version;
       std::memcpy(p.path.data(), name.c_str(), name.size() + 1);
+      ++p.version;
       p.ready = true;
       slot_ = &p;
       return;
@@ -108,8 +111,14 @@ extern "C" void removeTemporariesAndDie(int signal) {
     const timespec pause{0, 1000000};
     nanosleep(&pause, nullptr);
   }
-  for (Pending& p : pending)
-    if (p.ready) ::unlink(p.path.data());
+  for (Pending& p : pending) {
+    // A name copied whole while no thread rewrote its slot (another may free and reuse it).
+    const unsigned before = p.version.load();
+    if (!p.ready || before % 2 == 1) continue;
+    char name[kPathBytes];
+    std::memcpy(name, p.path.data(), kPathBytes);
+    if (p.version.load() == before && p.ready) ::unlink(name);
+  }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }

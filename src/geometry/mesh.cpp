@@ -213,6 +213,33 @@ void analyzeTopology(Mesh& mesh) {
                  r.misorientedEdges == 0;
 }
 
+bool orientOutward(Mesh& mesh) {
+  if (!mesh.report.watertight || mesh.triangles.empty()) return false;
+  // Six times the signed volume, relative to a vertex (exact for a closed mesh wherever the
+  // origin lies; nearer numbers round less).
+  const glm::dvec3 o(mesh.positions[mesh.triangles.front().x]);
+  const auto at = [&](unsigned i) { return glm::dvec3(mesh.positions[i]) - o; };
+  double volume = 0.0;
+  for (const glm::uvec3& t : mesh.triangles)
+    volume += glm::dot(at(t.x), glm::cross(at(t.y), at(t.z)));
+  if (!(volume < 0.0)) return false;
+  // Normals that agree with the inward winding (computed from it) turn with it; a file's
+  // normals that already point out (its winding alone reversed) stay.
+  const bool normals = mesh.normals.size() == mesh.positions.size();
+  double agreement = 0.0;
+  for (glm::uvec3& t : mesh.triangles) {
+    std::swap(t.y, t.z);
+    const glm::dvec3 face = glm::cross(at(t.y) - at(t.x), at(t.z) - at(t.x));
+    if (normals)
+      agreement +=
+          glm::dot(face, glm::dvec3(mesh.normals[t.x] + mesh.normals[t.y] + mesh.normals[t.z]));
+  }
+  if (agreement < 0.0)
+    for (glm::vec3& n : mesh.normals) n = -n;
+  mesh.report.windingReversed = true;
+  return true;
+}
+
 Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi) {
   Mesh m;
   // Each face: outward normal n and in-plane axes un, vn = n × un, so un × vn = n and the

@@ -285,6 +285,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     if (node.mesh.triangles.empty())
       noTriangles(file, farthest(node.mesh), node.mesh.report.droppedDegenerate);
     analyzeTopology(node.mesh);
+    orientOutward(node.mesh);
     return {std::move(node)};
   }
   Assimp::Importer importer;
@@ -405,6 +406,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
       dropped += out.mesh.report.droppedDegenerate;
       if (!out.mesh.triangles.empty()) {
         analyzeTopology(out.mesh);
+        orientOutward(out.mesh);
         nodes.push_back(std::move(out));
       } else {
         far = std::max(far, farthest(out.mesh));  // only a file without triangles asks

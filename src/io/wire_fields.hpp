@@ -12,7 +12,7 @@ namespace cutaway {
 template <class Archive>
 void wireFields(Archive& a, MeshReport& r) {
   a(r.droppedDegenerate, r.normalsComputed, r.boundaryEdges, r.nonManifoldEdges, r.misorientedEdges,
-    r.watertight);
+    r.watertight, r.windingReversed);
 }
 
 template <class Archive>

@@ -510,8 +510,10 @@ void readObject(const Context& ctx, const json& j, const std::string& ptr, MeshC
       mesh->append(node->mesh, glm::mat4(1.0f));
       mesh->report.droppedDegenerate += node->mesh.report.droppedDegenerate;
       mesh->report.normalsComputed |= node->mesh.report.normalsComputed;
+      mesh->report.windingReversed |= node->mesh.report.windingReversed;
     }
     analyzeTopology(*mesh);
+    orientOutward(*mesh);  // the nodes may close only together
     SceneObject o = base;
     o.source = file.string();
     if (!colorGiven && selected.front()->color) o.material.color = *selected.front()->color;

@@ -53,6 +53,7 @@ struct MeshReport {
   std::size_t nonManifoldEdges = 0;   // edges used by three or more triangles
   std::size_t misorientedEdges = 0;   // edges used twice in the same direction
   bool watertight = false;
+  bool windingReversed = false;  // closed and wound inward in the file: turned (orientOutward)
 };
 
 // A mesh whose nodes form a grid: `columns × rows` positions row by row, and two triangles
@@ -112,6 +113,11 @@ std::size_t dropDegenerateTriangles(Mesh& mesh);
 void computeVertexNormals(Mesh& mesh, float creaseAngle = 40.0f);
 // Edge topology after welding equal positions; fills the edge counts and `watertight`.
 void analyzeTopology(Mesh& mesh);
+// A watertight mesh (analyzeTopology first) wound inward, as CAD exports and marching cubes
+// may give, has a negative signed volume: its triangles are turned, and its normals where
+// they followed the winding, so that front faces are its outside (what the cutters' back-face
+// cut surfaces, walls and parity caps read). Sets `windingReversed`; true when it turned.
+bool orientOutward(Mesh& mesh);
 
 // Ray parameters t > 0 at which origin + t·direction meets the mesh's triangles
 // (Möller & Trumbore 1997), unsorted; the references that GPU tests compare against.
