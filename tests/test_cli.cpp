@@ -1125,3 +1125,62 @@ TEST(Cli, AClosedMeshWoundInwardIsTurnedOutward) {
   EXPECT_TRUE(turned("inward"));
   EXPECT_FALSE(turned("hollow"));
 }
+
+// The cutout's wedge and the breakaway's hulls follow animated objects: an exterior cube
+// moving over 2 s is cut at t = 2 as the cube placed there is, and a tetrahedron moving inside
+// a cube opens the hole where it is (both were taken at the rest pose).
+TEST(Cli, CutoutAndBreakawayFollowTheirAnimatedObjects) {
+  const std::string cube = kData + "/meshes/cube.obj", tetra = kData + "/meshes/tetra.obj";
+  const auto scene = [&](const std::string& name, const std::string& exterior,
+                         const std::string& interior, const std::string& cutter) {
+    const fs::path file = scratch(name + ".json");
+    std::ofstream(file) << R"({"resolution": [96, 72], "samples": 1,
+      "camera": {"eye": [2.5, 2, 3.5], "target": [0.8, 0.6, 0.5], "fov": 40},
+      "objects": [{"name": "box", "file": ")"
+                        << cube << R"(", "role": "exterior", )" << exterior << R"(},
+                  {"name": "tetra", "file": ")"
+                        << tetra << R"(", "role": "interior", )" << interior << R"(}],
+      "cutters": )" << cutter
+                        << "}";
+    return file.string();
+  };
+  const std::string inside = R"("transform": {"translate": [0.55, 0.45, 0.3], "scale": 0.35})";
+  const std::string breakaway = R"({"breakaway": {"offset": 0.1, "wallThickness": 0.05}})";
+  const std::vector<std::pair<std::string, std::string>> pairs = {
+      {scene("cutout-moving",
+             R"("animation": [{"time": 0}, {"time": 2, "translate": [0.4, 0.3, 0]}])",
+             R"("transform": {"translate": [0.95, 0.75, 0.3], "scale": 0.35})",
+             R"({"cutout": true})"),
+       scene("cutout-there", R"("transform": {"translate": [0.4, 0.3, 0]})",
+             R"("transform": {"translate": [0.95, 0.75, 0.3], "scale": 0.35})",
+             R"({"cutout": true})")},
+      {scene("breakaway-moving", R"("color": [0.6, 0.65, 0.75])",
+             R"("transform": {"translate": [0.15, 0.15, 0.3], "scale": 0.35},
+                "animation": [{"time": 0}, {"time": 2, "translate": [0.4, 0.3, 0]}])",
+             breakaway),
+       scene("breakaway-there", R"("color": [0.6, 0.65, 0.75])", inside, breakaway)}};
+  for (const auto& [moving, there] : pairs) {
+    const fs::path a = scratch("moving.png"), b = scratch("there.png"), rest = scratch("rest.png");
+    const Result ra = run("render " + moving + " -o " + a.string() + " --time 2");
+    const Result rb = run("render " + there + " -o " + b.string());
+    const Result rr = run("render " + moving + " -o " + rest.string() + " --time 0");
+    ASSERT_EQ(ra.exitCode, 0) << ra.err;
+    ASSERT_EQ(rb.exitCode, 0) << rb.err;
+    ASSERT_EQ(rr.exitCode, 0) << rr.err;
+    // Pixels apart by more than 8 levels in a channel; the moved pose is composed in float
+    // (rest transform, then the animation's), so a hull edge may round to its neighbour pixel.
+    const auto apart = [](const Rgba8Image& x, const Rgba8Image& y) {
+      int n = 0;
+      for (std::size_t i = 0; i + 3 < x.pixels.size(); i += 4)
+        for (std::size_t c = 0; c < 3; ++c)
+          if (std::abs(int(x.pixels[i + c]) - int(y.pixels[i + c])) > 8) {
+            ++n;
+            break;
+          }
+      return n;
+    };
+    const Rgba8Image moved = readPng(a);
+    EXPECT_LE(apart(moved, readPng(b)), 96 * 72 / 200) << moving;  // 0.5 %
+    EXPECT_GE(apart(moved, readPng(rest)), 96 * 72 / 50) << moving << ": it should move";
+  }
+}

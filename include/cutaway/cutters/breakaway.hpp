@@ -51,7 +51,8 @@ struct BreakawayExtent {
   float offset, wallThickness;
 };
 BreakawayExtent breakawayExtent(const struct Scene& scene, const BreakawayOptions& options);
+// The clusters with their hulls around the objects' pose at `time`.
 std::vector<BreakawayCluster> breakawayClusters(const struct Scene& scene,
-                                                const BreakawayOptions& options);
+                                                const BreakawayOptions& options, float time = 0.0f);
 
 }  // namespace cutaway

@@ -85,14 +85,15 @@ float cutoutDistance(const CutoutWedge& wedge, const CutoutJitter& jitter, const
 
 // Rule 3: the wedge lies on the main axis of the outside object. Exterior objects of one
 // group share one wedge (the axes of their joint hull); an ungrouped exterior object has its
-// own. Axes are taken at the objects' rest pose (time 0). An exterior volume is a unit of its
-// own, its hull that of its material: the voxels its transfer function does not make clear.
+// own. Axes are taken at the objects' pose at `time` (the frame's: an animated exterior takes
+// its wedge along). An exterior volume is a unit of its own, its hull that of its material:
+// the voxels its transfer function does not make clear.
 struct ExteriorUnit {
   std::string name;                  // the group, or the object's or volume's name
   std::vector<std::size_t> objects;  // indices into scene.objects
   std::vector<std::size_t> volumes;  // indices into scene.volumes
   PrincipalAxes axes;
 };
-std::vector<ExteriorUnit> exteriorUnits(const struct Scene& scene);
+std::vector<ExteriorUnit> exteriorUnits(const struct Scene& scene, float time = 0.0f);
 
 }  // namespace cutaway

@@ -45,8 +45,8 @@ BreakawayExtent breakawayExtent(const Scene& scene, const BreakawayOptions& opti
   return {offset, std::min(thickness, offset)};
 }
 
-std::vector<BreakawayCluster> breakawayClusters(const Scene& scene,
-                                                const BreakawayOptions& options) {
+std::vector<BreakawayCluster> breakawayClusters(const Scene& scene, const BreakawayOptions& options,
+                                                float time) {
   std::vector<BreakawayCluster> clusters;
   std::map<std::string, std::size_t> clusterOfGroup;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -60,7 +60,7 @@ std::vector<BreakawayCluster> breakawayClusters(const Scene& scene,
   for (auto& c : clusters) {
     std::vector<glm::vec3> points;
     for (const std::size_t i : c.objects) {
-      const glm::mat4 m = scene.objects[i].transformAt(0.0f);
+      const glm::mat4 m = scene.objects[i].transformAt(time);
       for (const auto& p : scene.objects[i].mesh->positions)
         points.push_back(glm::vec3(m * glm::vec4(p, 1.0f)));
     }
@@ -103,10 +103,9 @@ Breakaway::Breakaway(FrameSetup& setup)
       clipUnit_(setup.bindings.textureUnit("BREAKAWAY_CLIP_DEPTH")),
       innerUnit_(setup.bindings.textureUnit("BREAKAWAY_INNER_DEPTH")),
       normalUnit_(setup.bindings.textureUnit("BREAKAWAY_HULL_NORMAL")) {
-  for (const auto& c : breakawayClusters(setup.scene, options())) {
-    outer_.emplace_back(c.outerHull);
-    inner_.emplace_back(c.innerHull);
-  }
+  buildHulls(0.0f);
+  for (const SceneObject& o : setup.scene.objects)
+    animated_ = animated_ || (o.role == Role::Interior && !o.proxy && !o.animation.empty());
   hullProgram_ =
       gl::buildProgram({.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
                                    {GL_FRAGMENT_SHADER, "cutters/breakaway/hull.frag"}}});
@@ -126,6 +125,20 @@ Breakaway::Breakaway(FrameSetup& setup)
                                .meaning = "the same for the smaller hulls (offset minus wall "
                                           "thickness) that clip exterior back faces"});
   hullNormal_ = frame.declare("breakawayHullNormal", {.format = GL_RGBA16F});
+}
+
+void Breakaway::buildHulls(float time) {
+  outer_.clear();
+  inner_.clear();
+  for (const auto& c : breakawayClusters(setup_.scene, options(), time)) {
+    outer_.emplace_back(c.outerHull);
+    inner_.emplace_back(c.innerHull);
+  }
+  hullsTime_ = time;
+}
+
+void Breakaway::beginFrame(const FrameState& state) {
+  if (animated_ && state.time != hullsTime_) buildHulls(state.time);  // around this frame's pose
 }
 
 void Breakaway::addPreparationPasses(Frame& frame) {

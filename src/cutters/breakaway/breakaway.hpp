@@ -15,6 +15,8 @@ class Breakaway : public Cutter {
  public:
   // Builds the hulls, declares the clip targets and allocates its texture units.
   explicit Breakaway(FrameSetup& setup);
+  // An interior object that moves takes its hull along: built again at the frame's time.
+  void beginFrame(const FrameState& state) override;
   void addPreparationPasses(Frame& frame) override;
   std::vector<Target> geometryInputs() const override { return {clipDepth_, innerDepth_, hullNormal_}; }
   void bindForGeometry() const override;
@@ -29,9 +31,12 @@ class Breakaway : public Cutter {
     return *setup_.scene.cutters.find<BreakawayOptions>();
   }
   void drawClipDepth(GLuint framebuffer, const std::vector<GpuMesh>& hulls) const;
+  void buildHulls(float time);
 
   FrameSetup& setup_;
   std::vector<GpuMesh> outer_, inner_;
+  bool animated_ = false;
+  float hullsTime_ = 0.0f;
   gl::Program hullProgram_;
   GLuint clipUnit_, innerUnit_, normalUnit_;
   Target clipDepth_, innerDepth_, hullNormal_;

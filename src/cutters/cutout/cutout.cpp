@@ -34,7 +34,7 @@ std::vector<glm::vec3> volumeHullPoints(const SceneVolume& v) {
 
 }  // namespace
 
-std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
+std::vector<ExteriorUnit> exteriorUnits(const Scene& scene, float time) {
   std::vector<ExteriorUnit> units;
   std::map<std::string, std::size_t> unitOfGroup;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -55,7 +55,7 @@ std::vector<ExteriorUnit> exteriorUnits(const Scene& scene) {
     std::vector<glm::vec3> points;
     for (const std::size_t i : unit.objects) {
       const SceneObject& o = scene.objects[i];
-      const glm::mat4 m = o.transformAt(0.0f);
+      const glm::mat4 m = o.transformAt(time);
       for (const auto& p : o.mesh->positions) points.push_back(glm::vec3(m * glm::vec4(p, 1.0f)));
     }
     for (const std::size_t i : unit.volumes) {
@@ -110,7 +110,10 @@ Cutout::Cutout(FrameSetup& setup)
       axisLocation_(setup.bindings.uniformLocation("CUTOUT_AXIS")),
       jitterLocation_(setup.bindings.uniformLocation("CUTOUT_JITTER")) {
   for (std::size_t u = 0; u < units_.size(); ++u) {
-    for (const std::size_t i : units_[u].objects) unitOfObject_[i] = int(u);
+    for (const std::size_t i : units_[u].objects) {
+      unitOfObject_[i] = int(u);
+      animated_ = animated_ || !setup.scene.objects[i].animation.empty();
+    }
     for (const std::size_t i : units_[u].volumes) unitOfVolume_[i] = int(u);
   }
   wedges_.resize(units_.size());
@@ -137,6 +140,10 @@ Cutout::Cutout(FrameSetup& setup)
 }
 
 void Cutout::beginFrame(const FrameState& state) {
+  if (animated_ && state.time != unitsTime_) {  // the units' axes at this frame's pose
+    units_ = exteriorUnits(setup_.scene, state.time);
+    unitsTime_ = state.time;
+  }
   const Camera& camera = state.camera;
   for (std::size_t u = 0; u < units_.size(); ++u) {
     const PrincipalAxes& axes = units_[u].axes;

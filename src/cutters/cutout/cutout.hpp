@@ -40,6 +40,8 @@ class Cutout : public Cutter {
   FrameSetup& setup_;
   const CutoutOptions::Method method_;
   std::vector<ExteriorUnit> units_;
+  bool animated_ = false;  // an exterior object moves: the units follow it frame by frame
+  float unitsTime_ = 0.0f;
   std::vector<int> unitOfObject_;  // -1: not exterior
   std::vector<int> unitOfVolume_;
   std::vector<CutoutWedge> wedges_;
