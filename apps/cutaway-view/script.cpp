@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -11,6 +10,7 @@
 
 #include "colormap.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/core/image.hpp"
 
 namespace cutaway::view {
 
@@ -222,13 +222,10 @@ ScriptCommand parseLine(const std::string& line) {
       c.on = args[0] == "on";
       break;
     case Kind::Screenshot:
-    case Kind::ScreenshotWindow: {
-      std::string suffix = std::filesystem::path(c.text).extension().string();
-      for (char& ch : suffix) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-      if (suffix != ".png")
+    case Kind::ScreenshotWindow:
+      if (!isPngName(c.text))
         throw std::invalid_argument(name + " writes PNG only: give the file a .png name");
       break;
-    }
     default:
       break;
   }

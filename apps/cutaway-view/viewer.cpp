@@ -8,7 +8,6 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -869,9 +868,7 @@ void Viewer::saveScene(const fs::path& path) {
 }
 
 void Viewer::screenshot(const fs::path& path) {
-  std::string suffix = path.extension().string();
-  for (char& c : suffix) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (suffix != ".png") throw Error(path.string(), "", "only PNG is written: give it a .png name");
+  if (!isPngName(path)) throw Error(path.string(), "", "only PNG is written: give it a .png name");
   update(true);
   writePng(path, renderer_->readColor());
   state_.status = "wrote " + path.string() + " (" + std::to_string(width_) + "x" +

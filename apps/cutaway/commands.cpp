@@ -283,9 +283,7 @@ MadeFolders checkOutputs(const RenderOptions& options) {
   std::error_code ec;
   if (std::filesystem::is_directory(out, ec))
     throw Error(options.output, "", "is a directory, not a file name");
-  std::string ext = out.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (ext != ".png")
+  if (!isPngName(out))
     throw Error(options.output, "", "only PNG is written: give the output a .png name");
   checkFolderOf(options.output);
   if (!options.svg.empty()) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -43,6 +44,12 @@ void FloatImage::flipVertically() {
 
 void writePng(const std::filesystem::path& path, const Rgba8Image& image) {
   writeFileAtomically(path, [&](std::ostream& os) { writePng(os, image, path); });
+}
+
+bool isPngName(const std::filesystem::path& path) {
+  std::string suffix = path.extension().string();
+  for (char& c : suffix) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return suffix == ".png";
 }
 
 void writePng(std::ostream& os, const Rgba8Image& image, const std::filesystem::path& path) {

@@ -41,6 +41,8 @@ struct FloatImage {
 
 // PNG, 8-bit RGBA. Written to a temporary file and renamed; errors throw cutaway::Error.
 void writePng(const std::filesystem::path& path, const Rgba8Image& image);
+// Whether `path` ends in ".png" (any case): the one format the programs write pictures in.
+bool isPngName(const std::filesystem::path& path);
 // The same into a stream; errors name `path`.
 void writePng(std::ostream& os, const Rgba8Image& image, const std::filesystem::path& path);
 // Reads any PNG (gray, RGB, palette, 8 or 16 bit) converted to 8-bit RGBA.
