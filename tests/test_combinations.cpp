@@ -237,3 +237,60 @@ TEST(Combinations, CityBuildingsCutAroundThePipesWhileTheTerrainOpens) {
   // What the buildings hid of the pipes shows now.
   EXPECT_GT(pipesAfter, pipesBefore);
 }
+
+// A part resting on a table: the box's bottom and the slab's top are one plane. Seen through
+// a cut, the box's bottom (a back face) stands for the box's cut surface, which lies in front
+// of it; where the two planes tie, rounding used to decide row by row, and the slab's top
+// showed through the cut in stripes (hundreds of pixels at some eye heights). Every cutter
+// that shows cut surfaces on back faces, at several eye heights and sizes: no pixel of the
+// slab's top (uncut) lies between two of the box's cut surface, along a row or a column.
+TEST(Combinations, APartOnATableShowsItsCutSurfaceWhereItStandsOnTheTable) {
+  const std::string objects = R"("objects": [
+      {"name": "box", "file": "meshes/cube.obj", "ROLE_BOX
+       "transform": {"translate": [-1, -1, -1], "scale": 2}},
+      {"name": "inner", "file": "meshes/cube.obj", "ROLE_INNER
+       "transform": {"translate": [-0.3, -0.3, -0.3], "scale": 0.6}},
+      {"name": "slab", "file": "meshes/cube.obj", "ROLE_BOX
+       "transform": {"translate": [-3, -1.4, -3], "scale": [6, 0.4, 6]}}])";
+  struct Cut {
+    const char *name, *box, *inner, *cutters;
+  };
+  const Cut cuts[] = {
+      {"adaptive", "role\": \"context\",", "role\": \"interest\",",
+       R"({"adaptive": {"bufferSize": 128}})"},
+      {"box cut", "role\": \"context\",", "role\": \"context\",",
+       R"({"boxCut": {"center": [0.8, 0.3, 0.8], "size": [1.6, 3, 1.6]}})"},
+      {"cutout", "role\": \"exterior\",", "role\": \"interior\",", R"({"cutout": true})"}};
+  for (const Cut& c : cuts)
+    for (const float eyeHeight : {2.0f, 0.5f, -0.3f})
+      for (const int width : {320, 1024}) {
+        SCOPED_TRACE(std::string(c.name) + ", eye height " + std::to_string(eyeHeight) + ", " +
+                     std::to_string(width) + " wide");
+        std::string json = R"({"resolution": [)" + std::to_string(width) + ", " +
+                           std::to_string(width * 3 / 4) + R"(], "samples": 1,
+            "camera": {"eye": [3, )" +
+                           std::to_string(eyeHeight) +
+                           R"(, 4], "target": [0, 0, 0], "fov": 40},
+            "cutters": )" + c.cutters +
+                           ", " + objects + "}";
+        for (const auto& [key, role] :
+             {std::pair{"\"ROLE_BOX", c.box}, std::pair{"\"ROLE_INNER", c.inner}})
+          for (std::size_t at; (at = json.find(key)) != std::string::npos;)
+            json.replace(at, std::string(key).size(), std::string("\"") + role);
+        const auto aovs = renderAovs(parseScene(json, "table.json", CUTAWAY_TEST_DATA));
+        const FloatImage &ids = aov(aovs, "objectId"), &cutMask = aov(aovs, "cutMask");
+        const auto boxCut = [&](int x, int y) {
+          return id(ids, x, y) == 0 && cutMask.at(x, y)[0] > 0.0f;
+        };
+        int boxCutPixels = 0, slabBetween = 0;
+        for (int y = 1; y + 1 < ids.height; ++y)
+          for (int x = 1; x + 1 < ids.width; ++x) {
+            boxCutPixels += boxCut(x, y);
+            if (id(ids, x, y) == 2 && cutMask.at(x, y)[0] == 0.0f &&
+                ((boxCut(x - 1, y) && boxCut(x + 1, y)) || (boxCut(x, y - 1) && boxCut(x, y + 1))))
+              ++slabBetween;
+          }
+        EXPECT_GT(boxCutPixels, ids.width * ids.height / 30);  // the cut shows
+        EXPECT_EQ(slabBetween, 0);
+      }
+}
