@@ -25,6 +25,7 @@ struct ClipSurfaceBlock {
 // its tile's (x, y) (cap.vert): (nx+1)(ny+1) vertices at (s, t) ∈ [0,1]², two triangles per
 // cell; a side of fewer texels takes a tile of fewer cells (a power of two).
 constexpr int kCapTileCells = 16, kCapTileSizes = 5;  // 1, 2, 4, 8, 16 cells
+constexpr float kNestedCapUnits = 8.0f;
 
 struct CapTile {
   gl::VertexArray vertexArray;
@@ -463,12 +464,29 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     c.cutter->setProgramUniforms(program);
   }
   glUseProgram(program);
+  // A solid modelled inside another without a cavity (a part in a housing, an organ in a
+  // body) has its cap in the plane of the outer one's, which covers it too: the inner cap
+  // wins that tie, nearer by kNestedCapUnits of depth resolution per box it lies in.
+  std::vector<Bounds> boxes;
+  for (const std::size_t index : capped_)
+    boxes.push_back(g.capBounds[boxes.size()].transformed(scene.objects[index].transformAt(time)));
+  const auto nesting = [&](std::size_t k) {
+    int depth = 0;
+    for (std::size_t j = 0; j < boxes.size(); ++j)
+      if (j != k && glm::all(glm::lessThanEqual(boxes[j].min, boxes[k].min)) &&
+          glm::all(glm::greaterThanEqual(boxes[j].max, boxes[k].max)) &&
+          (j < k || boxes[j].min != boxes[k].min || boxes[j].max != boxes[k].max))
+        ++depth;
+    return depth;
+  };
+  glEnable(GL_POLYGON_OFFSET_FILL);
   std::size_t object = capped_.size();
   for (const CapDraw& d : draws) {
     const std::size_t k = d.k;
     const SceneObject& o = scene.objects[capped_[k]];
     if (k != object) {
       object = k;
+      glPolygonOffset(0.0f, -kNestedCapUnits * float(nesting(k)));
       setCutUniforms(program, {kCutBy}, cutters, objectCut(cutters, capped_[k], ownSlot),
                      capped_[k], glm::vec3(0.0f));
       const DepthSpriteGpu& sprite = g.sprites[k];
@@ -495,6 +513,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     glDrawElementsInstancedBaseInstance(GL_TRIANGLES, tile.indexCount, GL_UNSIGNED_INT, nullptr,
                                         GLsizei(d.count), d.first);
   }
+  glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
 void ClipSurfaceCutter::addPassesAfterGeometry(Frame& frame) {
