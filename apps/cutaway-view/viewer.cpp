@@ -469,7 +469,7 @@ void Viewer::update(bool full) {
       if (replaced_) {
         restoreRendered("camera: " + why);
       } else {
-        report("the view stays where it was: the camera's " + why);
+        report("the view stays where it was (camera: " + why + ")");
         state_.scene.camera = *drawnCamera_;
       }
     }
@@ -682,9 +682,13 @@ std::string Viewer::valueAt(int x, int y) const {
     const int id = int(std::lround(objectIds_[std::size_t(row) * width_ + x]));
     return "pixel (" + std::to_string(x) + ", " + std::to_string(y) + "): " + objectAt(id);
   }
-  // AOVs of another size (the cutaway buffer is n×n over the whole view) are stretched.
-  const int tx = std::min(aovImage_.width - 1, x * aovImage_.width / width_);
-  const int ty = std::min(aovImage_.height - 1, row * aovImage_.height / height_);
+  // AOVs of another size (the cutaway buffer is n×n over the whole view) are stretched: the
+  // texel under the pixel's centre.
+  const auto under = [](int pixel, int pixels, int texels) {
+    return std::min(texels - 1,
+                    int((2 * std::int64_t(pixel) + 1) * texels / (2 * std::int64_t(pixels))));
+  };
+  const int tx = under(x, width_, aovImage_.width), ty = under(row, height_, aovImage_.height);
   const float* v = aovImage_.at(tx, ty);
   // The texel as [column, row] with rows from the top, as in the saved PFM's image.
   out = state_.aov + " [" + std::to_string(tx) + ", " + std::to_string(aovImage_.height - 1 - ty) +

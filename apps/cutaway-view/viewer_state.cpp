@@ -53,8 +53,24 @@ void setLocalAngle(ViewerState& state, std::optional<float> degrees) {
 }
 
 void setParameter(ViewerState& state, const Parameter& p, const ParameterValue& value) {
+  if (!p.live) {
+    p.assign(state.scene, value);
+    state.sceneChanged = true;
+    return;
+  }
+  // Setting an option of a switchable group that is off switches it on (OptionSpec), which
+  // the group's switch, not a uniform, says: a rebuild, as `cutaway render --set` draws it.
+  const auto switches = [&] {
+    std::vector<ParameterValue> values;
+    for (const ParameterGroup& g : parameterGroups())
+      for (const Parameter& q : g.parameters)
+        if (!q.live && q.type == Parameter::Type::Bool && q.appliesTo(state.scene))
+          values.push_back(q.value(state.scene));
+    return values;
+  };
+  const std::vector<ParameterValue> before = switches();
   p.assign(state.scene, value);
-  (p.live ? state.viewChanged : state.sceneChanged) = true;
+  (switches() == before ? state.viewChanged : state.sceneChanged) = true;
 }
 
 Bounds selectionBounds(const ViewerState& state) {
