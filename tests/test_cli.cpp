@@ -1158,7 +1158,15 @@ TEST(Cli, CutoutAndBreakawayFollowTheirAnimatedObjects) {
              R"("transform": {"translate": [0.15, 0.15, 0.3], "scale": 0.35},
                 "animation": [{"time": 0}, {"time": 2, "translate": [0.4, 0.3, 0]}])",
              breakaway),
-       scene("breakaway-there", R"("color": [0.6, 0.65, 0.75])", inside, breakaway)}};
+       scene("breakaway-there", R"("color": [0.6, 0.65, 0.75])", inside, breakaway)},
+      // The default offset (5 % of the interior's size) from its size at rest, not from the
+      // box its motion sweeps: the same rim as the object placed there.
+      {scene("breakaway-default-moving", R"("color": [0.6, 0.65, 0.75])",
+             R"("transform": {"translate": [0.15, 0.15, 0.3], "scale": 0.35},
+                "animation": [{"time": 0}, {"time": 2, "translate": [0.4, 0.3, 0]}])",
+             R"({"breakaway": true})"),
+       scene("breakaway-default-there", R"("color": [0.6, 0.65, 0.75])", inside,
+             R"({"breakaway": true})")}};
   for (const auto& [moving, there] : pairs) {
     const fs::path a = scratch("moving.png"), b = scratch("there.png"), rest = scratch("rest.png");
     const Result ra = run("render " + moving + " -o " + a.string() + " --time 2");
@@ -1183,4 +1191,10 @@ TEST(Cli, CutoutAndBreakawayFollowTheirAnimatedObjects) {
     EXPECT_LE(apart(moved, readPng(b)), 96 * 72 / 200) << moving;  // 0.5 %
     EXPECT_GE(apart(moved, readPng(rest)), 96 * 72 / 50) << moving << ": it should move";
   }
+  const auto offsetOf = [&](const std::string& file) {
+    const Result r = run("info " + file);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return nlohmann::json::parse(r.out)["cutters"]["breakaway"]["offset"].get<double>();
+  };
+  EXPECT_EQ(offsetOf(pairs[2].first), offsetOf(pairs[2].second));
 }

@@ -35,7 +35,8 @@ const OptionsSchema& breakawaySchema();
 // The convex hull of `points` grown by `offset`: the hull of the points moved by `offset`
 // along 42 directions (an icosahedron's vertices and edge midpoints), a convex polyhedron
 // inside the exact offset body that contains everything within 0.9·offset of the points.
-// Throws cutaway::Error for coplanar or collinear points with offset 0.
+// Points in one plane or on one line grow into a solid too; with offset 0 they throw
+// cutaway::Error (no volume).
 Mesh inflatedHull(const std::vector<glm::vec3>& points, float offset);
 
 // The breakaway's clusters of interior objects: one per group ("" holds the ungrouped ones),

@@ -1,5 +1,6 @@
 #include "cutters/breakaway/breakaway.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "cutaway/core/error.hpp"
@@ -8,6 +9,60 @@
 #include "cutaway/gl/shader.hpp"
 
 namespace cutaway {
+
+namespace {
+
+// The vertices of the convex hull of `points` (Qhull's), or where they span no volume, of
+// their hull in the plane they lie in (a sheet: Andrew's monotone chain), or the two ends of
+// the line they lie on.
+std::vector<glm::vec3> hullVertices(const std::vector<glm::vec3>& points) {
+  try {
+    return convexHull(points).positions;
+  } catch (const Error&) {
+  }
+  const glm::dvec3 p0(points.front());
+  glm::dvec3 p1 = p0, p2 = p0;
+  double far = -1.0;
+  for (const glm::vec3& p : points)
+    if (const double d = glm::length(glm::dvec3(p) - p0); d > far) far = d, p1 = p;
+  const glm::dvec3 u = far > 0.0 ? (p1 - p0) / far : glm::dvec3(1, 0, 0);
+  double off = -1.0;
+  for (const glm::vec3& p : points)
+    if (const double d = glm::length(glm::cross(u, glm::dvec3(p) - p0)); d > off) off = d, p2 = p;
+  std::vector<std::pair<glm::dvec2, glm::vec3>> plane;
+  if (!(off > 1e-6 * far)) {  // on one line (or one point): its two ends
+    const auto along = [&](const glm::vec3& p) { return glm::dot(glm::dvec3(p) - p0, u); };
+    const auto [lo, hi] = std::minmax_element(
+        points.begin(), points.end(),
+        [&](const glm::vec3& a, const glm::vec3& b) { return along(a) < along(b); });
+    return {*lo, *hi};
+  }
+  const glm::dvec3 n = glm::normalize(glm::cross(u, p2 - p0)), v = glm::cross(n, u);
+  for (const glm::vec3& p : points)
+    plane.emplace_back(glm::dvec2(glm::dot(glm::dvec3(p) - p0, u), glm::dot(glm::dvec3(p) - p0, v)),
+                       p);
+  std::sort(plane.begin(), plane.end(), [](const auto& a, const auto& b) {
+    return a.first.x < b.first.x || (a.first.x == b.first.x && a.first.y < b.first.y);
+  });
+  const auto turn = [](glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  std::vector<std::pair<glm::dvec2, glm::vec3>> chain(2 * plane.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < plane.size(); ++i) {  // lower hull
+    while (k >= 2 && turn(chain[k - 2].first, chain[k - 1].first, plane[i].first) <= 0.0) --k;
+    chain[k++] = plane[i];
+  }
+  for (std::size_t i = plane.size() - 1, lower = k + 1; i-- > 0;) {  // upper hull
+    while (k >= lower && turn(chain[k - 2].first, chain[k - 1].first, plane[i].first) <= 0.0) --k;
+    chain[k++] = plane[i];
+  }
+  std::vector<glm::vec3> out;
+  for (std::size_t i = 0; i + 1 < k; ++i) out.push_back(chain[i].second);
+  return out;
+}
+
+}  // namespace
 
 Mesh inflatedHull(const std::vector<glm::vec3>& points, float offset) {
   if (offset <= 0.0f) return convexHull(points);
@@ -27,19 +82,22 @@ Mesh inflatedHull(const std::vector<glm::vec3>& points, float offset) {
     for (std::size_t j = i + 1; j < ico.size(); ++j)
       if (glm::dot(ico[i], ico[j]) > 0.4f)  // neighbours: cos 63.4° = 0.447
         directions.push_back(glm::normalize(ico[i] + ico[j]));
-  // Only the hull's own vertices matter.
-  const Mesh hull = convexHull(points);
+  // Only the hull's own vertices matter; a flat cluster (a sheet, a wire) grows into a solid.
+  const std::vector<glm::vec3> vertices = hullVertices(points);
   std::vector<glm::vec3> grown;
-  grown.reserve(hull.positions.size() * directions.size());
-  for (const auto& p : hull.positions)
+  grown.reserve(vertices.size() * directions.size());
+  for (const auto& p : vertices)
     for (const auto& d : directions) grown.push_back(p + offset * d);
   return convexHull(grown);
 }
 
 BreakawayExtent breakawayExtent(const Scene& scene, const BreakawayOptions& options) {
+  // At the rest pose: the hole keeps its rim as the objects move (their motion's sweep is
+  // no part of their size).
   Bounds interior;
   for (const auto& o : scene.objects)
-    if (!o.proxy && o.role == Role::Interior) interior.extend(o.worldBounds());
+    if (!o.proxy && o.role == Role::Interior && o.mesh)
+      interior.extend(o.mesh->bounds().transformed(o.transformAt(0.0f)));
   const float offset = options.offset ? *options.offset : 0.05f * interior.radius();
   const float thickness = options.wallThickness ? *options.wallThickness : 0.5f * offset;
   return {offset, std::min(thickness, offset)};
@@ -73,8 +131,9 @@ std::vector<BreakawayCluster> breakawayClusters(const Scene& scene, const Breaka
           scene.file.string(),
           "/objects/" + std::to_string(c.objects.front()) + (c.group.empty() ? "" : "/group"),
           "interior cluster \"" + name +
-              "\" is flat (its points lie in one plane or on one line), so its breakaway "
-              "hull has no inside; give the breakaway an offset > its wall thickness");
+              "\" is flat (its points lie in one plane or on one line) and its inner hull "
+              "is not grown (wallThickness ≥ offset), so it has no inside; give the breakaway "
+              "an offset > its wall thickness");
     }
   }
   return clusters;
