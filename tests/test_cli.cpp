@@ -936,6 +936,22 @@ TEST(Cli, FarCoordinatesAreWarnedAbout) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("about [265005, 145000]"), std::string::npos) << r.err;
+  // Nearer than 1e5 too, where a step is over a thousandth of the thing's size (a box 2.8
+  // across at 9e4: steps of 0.008 speckle its lines); not a box 1000 across there, nor a unit
+  // box at 1000.
+  for (const auto& [translate, scale, warned] :
+       {std::tuple{"[90000, 90000, 0]", "2.8", true},
+        std::tuple{"[90000, 90000, 0]", "1000", false}, std::tuple{"[1000, 0, 0]", "1", false}}) {
+    std::ofstream(scene) << R"({"resolution": [40, 30], "samples": 1, "camera": {"fit": true},
+      "objects": [{"name": "box", "file": ")"
+                         << kData << R"(/meshes/cube.obj", "transform": {"translate": )"
+                         << translate << R"(, "scale": )" << scale << "}}]}";
+    const Result near = run("render " + scene.string() + " -o " + scratch("far.png").string());
+    ASSERT_EQ(near.exitCode, 0) << near.err;
+    EXPECT_EQ(near.err.find("warning: " + scene.string() + ": \"box\" lies"),
+              warned ? 0u : std::string::npos)
+        << translate << " " << scale << ": " << near.err;
+  }
 }
 
 // Issue 17: aovs.json says enough to recompute the cutaway depth from the files alone. On a

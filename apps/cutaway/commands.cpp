@@ -223,14 +223,17 @@ void warnAboutUncappedObjects(const Scene& scene) {
 // camera placed near the origin sees nothing. GIS data in projected coordinates (British
 // National Grid, UTM: 10⁵–10⁶ m) needs the geo frame's offset. Names the farthest part.
 void warnAboutFarCoordinates(const Scene& scene) {
+  // Far from the origin floats step coarsely against a thing's size (shading and lines then
+  // speckle): beyond 1e5, or where a step is over a thousandth of its bounding radius.
   std::string name;
   Bounds farthest;
-  float reach = 1e5f;
+  float reach = 0.0f, worst = 0.0f;
   const auto consider = [&](const std::string& what, const Bounds& b) {
     if (b.empty()) return;
     const glm::vec3 c = glm::abs(b.center());
-    if (std::max({c.x, c.y, c.z}) > reach)
-      reach = std::max({c.x, c.y, c.z}), name = what, farthest = b;
+    const float at = std::max({c.x, c.y, c.z}), step = std::nextafter(at, 2 * at) - at;
+    const float score = std::max(at / 1e5f, b.radius() > 0.0f ? step / (1e-3f * b.radius()) : 0.0f);
+    if (score > 1.0f && score > worst) worst = score, reach = at, name = what, farthest = b;
   };
   for (const auto& n : scene.networks) consider(n.name, n.bounds());
   for (const auto& v : scene.volumes) consider(v.name, v.worldBounds());
