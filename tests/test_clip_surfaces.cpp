@@ -242,6 +242,34 @@ TEST(OffsetMap, APngHeaderClaimingMoreThanItsFileHoldsIsRefused) {
   std::filesystem::remove(file);
 }
 
+// libpng's "Read Error" said plainly: an empty file, one that ends within the signature, one
+// that is no PNG, and a PNG cut off in its image data.
+TEST(OffsetMap, EmptyShortForeignAndTruncatedFilesSayWhat) {
+  const std::filesystem::path file = test::scratchPath("clip", "broken.png");
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png.height = 64;
+  png.format = PNG_FORMAT_GRAY;
+  std::vector<std::uint8_t> pixels(64 * 64);
+  for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = std::uint8_t(i * 37 % 251);
+  png_alloc_size_t size = 0;
+  ASSERT_TRUE(png_image_write_to_memory(&png, nullptr, &size, 0, pixels.data(), 0, nullptr));
+  std::vector<std::uint8_t> bytes(size);
+  ASSERT_TRUE(png_image_write_to_memory(&png, bytes.data(), &size, 0, pixels.data(), 0, nullptr));
+  const std::string foreign = "v 0 0 0\nv 1 0 0\n";
+  for (const auto& [content, reason] :
+       {std::pair{std::string(), "cannot read PNG: the file is empty"},
+        std::pair{std::string(reinterpret_cast<const char*>(bytes.data()), 5),
+                  "cannot read PNG: the file ends within its signature"},
+        std::pair{foreign, "cannot read PNG: not a PNG file (no PNG signature)"},
+        std::pair{std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size() / 2),
+                  "the file ends early (truncated)"}}) {
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << content;
+    expectError([&] { (void)readPngGray(file); }, {"broken.png", reason});
+  }
+  std::filesystem::remove(file);
+}
+
 // Trapp13 §5.1 drawn where it can be: the tiles capTiles keeps for a torus (axis ẑ, tube 0.35
 // around radius 1) cut by a surface through z = 0 with a relief up to S_z = 0.1 below it. The
 // cut is the annulus 1 − √(0.35² − z²) ≤ ρ ≤ 1 + √(0.35² − z²) for z ∈ [−0.1, 0]: every tile

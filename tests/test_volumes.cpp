@@ -882,6 +882,49 @@ TEST_F(VolumeTest, AVolumesShadowIsTheBeerLambertTransmittanceTowardsTheLight) {
   }
 }
 
+// The faces a box cut leaves on a solid block all face a light that shines into the cut,
+// which holds no material: each is lit whole. A face's samples lie up to a step inside the
+// kept material, and the shadow ray from there met that material first where the light
+// grazes the face (bands of shadow on the face, by the sample lattice's phase).
+TEST_F(VolumeTest, ACutsFacesLitThroughTheCutHaveNoShadowBands) {
+  const fs::path file = volume("block", 48, 1.0f, [](glm::vec3 p) {
+    return glm::all(glm::lessThan(glm::abs(p), glm::vec3(0.85f))) ? 1.0f : 0.0f;
+  });
+  Scene s =
+      scene(R"({"name": "block", "file": ")" + file.string() +
+                R"(", "shadows": true, "jitter": false,
+                  "transferFunction": [{"value": 0, "opacity": 0}, {"value": 1, "opacity": 0.9}]})",
+            R"(, "lights": [{"type": "directional", "direction": [-1, -2, -0.5], "space": "world"}],
+                  "cutters": {"boxCut": {"center": [1, 1, 1], "size": [2, 2, 2]}})");
+  s.width = 192, s.height = 144;
+  s.camera.eye = {2.6f, 2.0f, 3.0f};
+  const auto aovs = renderAovs(s);
+  const FloatImage &light = aov(aovs, "volumeLightTransmittance"),
+                   &hit = aov(aovs, "volumeHitDepth");
+  const Camera c = s.resolvedCamera();
+  const glm::mat4 inverse = glm::inverse(c.projectionMatrix(float(s.width) / s.height) * c.view());
+  int faces = 0, shadowed = 0;
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      if (std::isnan(hit.at(x, y)[0])) continue;
+      const glm::vec3 d = pixelRay(inverse, {(x + 0.5f) / s.width, 1.0f - (y + 0.5f) / s.height}).d;
+      const glm::vec3 p =
+          c.eye + hit.at(x, y)[0] / glm::dot(d, glm::normalize(c.target - c.eye)) * d;
+      // On one of the cut's three faces (one coordinate ≈ 0), away from the edges between them
+      // and from the block's rim.
+      int on = 0, inside = 0;
+      for (int k = 0; k < 3; ++k) {
+        on += std::abs(p[k]) < 0.05f;
+        inside += p[k] > 0.12f && p[k] < 0.75f;
+      }
+      if (on != 1 || inside != 2) continue;
+      ++faces;
+      shadowed += light.at(x, y)[0] < 0.9f;
+    }
+  EXPECT_GT(faces, 1500);
+  EXPECT_EQ(shadowed, 0) << "of " << faces;
+}
+
 // A mesh inside the volume stops the rays: in front of it the volume is cast up to its depth,
 // exactly as the CPU reference casts it with that depth.
 TEST_F(VolumeTest, AMeshInsideTheVolumeStopsTheRays) {
@@ -1164,6 +1207,25 @@ TEST_F(VolumeTest, AsTranslucencyRScalesEachSamplesOpacity) {
   std::printf("worst opacity difference %.4f over %d pixels\n", worst, compared);
   EXPECT_GT(compared, 5000);
   EXPECT_GT(reduced, 500) << "R makes material in front of the cube translucent";
+}
+
+// Eq. 2.2 on a volume: the block's material is uniform (its gradient zero everywhere), so it
+// faces the viewer wherever it is looked at, (1 − n·v)^k = 0, and edge highlights reduce each
+// sample's opacity by R as translucency does (eq. 2.1). (The zero normal read as facing away
+// left such material whole.)
+TEST_F(VolumeTest, EdgeHighlightsReduceUniformMaterialAsTranslucencyDoes) {
+  const auto translucent = renderAovs(contextualBlock(0.3f, "translucency"));
+  const auto highlighted = renderAovs(contextualBlock(0.3f, "edgeHighlights"));
+  const FloatImage &a = aov(translucent, "volumeOpacity"), &b = aov(highlighted, "volumeOpacity");
+  int reduced = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const float expected = a.at(x, y)[0], got = b.at(x, y)[0];
+      if (std::isnan(expected)) continue;
+      ASSERT_NEAR(got, expected, 1e-5f) << x << "," << y;
+      reduced += expected < 0.9f;
+    }
+  EXPECT_GT(reduced, 500);
 }
 
 // Diepstraten03 §5 on an exterior volume: the breakaway removes the samples in front of the

@@ -80,9 +80,21 @@ std::vector<std::uint8_t> readPngPixels(const std::filesystem::path& path, png_i
                                         Choose choose) {
   png = png_image{};
   png.version = PNG_IMAGE_VERSION;
+  // libpng says "Read Error" for a file too short for its signature: said plainly here.
+  {
+    std::ifstream in(path, std::ios::binary);
+    char signature[8] = {};
+    if (in && !in.read(signature, sizeof signature))
+      throw Error(path.string(), "",
+                  in.gcount() == 0 ? "cannot read PNG: the file is empty"
+                                   : "cannot read PNG: the file ends within its signature");
+    if (in && png_sig_cmp(reinterpret_cast<png_const_bytep>(signature), 0, sizeof signature) != 0)
+      throw Error(path.string(), "", "cannot read PNG: not a PNG file (no PNG signature)");
+  }
   if (!png_image_begin_read_from_file(&png, path.c_str())) {
     std::string reason = png.message;
     png_image_free(&png);
+    if (reason == "Read Error") reason = "the file ends early (truncated)";
     throw Error(path.string(), "", "cannot read PNG: " + reason);
   }
   // A header may claim any size: one of 69 bytes claiming 46000 × 46000 had 2 GB allocated
@@ -103,6 +115,7 @@ std::vector<std::uint8_t> readPngPixels(const std::filesystem::path& path, png_i
   if (!png_image_finish_read(&png, nullptr, bytes.data(), 0, nullptr)) {
     std::string reason = png.message;
     png_image_free(&png);
+    if (reason == "Read Error") reason = "the file ends early (truncated)";
     throw Error(path.string(), "", "cannot decode PNG: " + reason);
   }
   return bytes;

@@ -115,7 +115,10 @@ float gTransmittance;  // the last shaded sample's key-light transmittance
 
 // The sample's colour: the transfer function's, shaded with the normal `n` (zero: unshaded),
 // emphasised by its importance (Burns11 eqs. 3.1–3.4).
-vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
+// The key light's transmittance is taken from `shadowFrom`: p, or for a sample of a cut's face
+// the removed sample in front of the face (from p, a step inside the kept material, a grazing
+// light's first shadow samples would lie in that material: bands of shadow on the face).
+vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n, vec3 shadowFrom) {
   gTransmittance = 1.0;
   if (!kShading || n == vec3(0.0)) return emphasize(base, base, importance);
   SurfacePoint s;
@@ -127,7 +130,7 @@ vec3 shadeSample(vec3 p, vec3 base, float importance, vec3 n) {
   s.shininess = 32.0;
 #ifdef SHADOWS
   float sampleImportance = gSampleImportance;  // the shadow ray's samples set their own
-  gTransmittance = volumeTransmittance(p);
+  gTransmittance = volumeTransmittance(shadowFrom);
   gSampleImportance = sampleImportance;
 #endif
   s.keyLightVisibility = keyLightVisibility(p) * gTransmittance;
@@ -227,12 +230,15 @@ void main() {
     }
     float depth = -(uView * vec4(p, 1.0)).z;
     if (isnan(entry)) entry = depth;
-    // Entering kept material from removed material: the cut's face, lit by its normal.
+    // Entering kept material from removed material: the cut's face, lit by its normal. Both
+    // samples are decided as this sample's material (with its importance): a face is where
+    // the cut of this material passes between them, not where other material ends.
     if (kCut && !previousKept && t - uStep > tIn &&
         sampleFate(p - uStep * direction, true, cutNormal) == kDiscard &&
         sampleFate(p, false, cutNormal) == kCutSurface)
       tCut = t, faceNormal = cutNormal;
     bool onCut = t - tCut < cutSkin;
+    vec3 shadowFrom = onCut ? origin + (tCut - uStep) * direction : p;
     if (kMode == 1) {
       if (value > maxValue) maxValue = value, maxT = t;
     } else if (kMode == 2) {
@@ -245,7 +251,7 @@ void main() {
         vec2 iso = transferCoordinates(uIsoValue, o + tHit * d);
         float importance = uInterest != 0 ? 1.0 : texture(uMaterialImportance, iso).r;
         vec3 n = onCut ? faceNormal : normalAt(o + tHit * d);
-        sum = vec4(shadeSample(q, texture(uTransfer, iso).rgb, importance, n), 1.0);
+        sum = vec4(shadeSample(q, texture(uTransfer, iso).rgb, importance, n, onCut ? shadowFrom : q), 1.0);
         hit = -(uView * vec4(q, 1.0)).z;
         hitTransmittance = gTransmittance;
         break;
@@ -255,9 +261,12 @@ void main() {
       float alpha = 1.0 - pow(1.0 - c.a, uOpacityExponent);
       vec3 n = onCut ? faceNormal : normalAt(index);
       vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - p);
-      // Burns11 ch. 2 per sample: what a grading cutter leaves of its opacity.
-      if (kCut) alpha *= cutOpacity(uCutBy, CutFragment(p, n, true), n, toEye).x;
-      vec3 color = shadeSample(p, c.rgb, gSampleImportance, n);
+      // Burns11 ch. 2 per sample: what a grading cutter leaves of its opacity. Eq. 2.2 reads
+      // the normal facing the viewer, as a two-sided mesh's; inside uniform material (no
+      // gradient) the material faces the viewer whichever way it is looked at.
+      vec3 facing = n == vec3(0.0) ? toEye : dot(n, toEye) < 0.0 ? -n : n;
+      if (kCut) alpha *= cutOpacity(uCutBy, CutFragment(p, facing, true), facing, toEye).x;
+      vec3 color = shadeSample(p, c.rgb, gSampleImportance, n, shadowFrom);
       sum += (1.0 - sum.a) * vec4(clamp(color, 0.0, 1.0) * alpha, alpha);
       if (isnan(hit) && sum.a >= 0.5) hit = depth, hitTransmittance = gTransmittance;
       if (sum.a > 0.995) break;  // early ray termination
