@@ -638,6 +638,43 @@ TEST_F(VolumeTest, AVolumeBeyondTheGpusTextureSizeIsRefused) {
       {"long.json", std::to_string(n) + "×1×1", "3-D texture size of " + std::to_string(maxSize)});
 }
 
+// A label volume's table holds a texel per label of its transfer function's span and a clear
+// one at each end: a span the GPU's 2-D texture size allows draws its labels, one more is
+// refused at the transfer function (it sampled as black).
+TEST_F(VolumeTest, ALabelSpanBeyondTheGpusTextureSizeIsRefused) {
+  test::glContext();  // current, for the query
+  GLint maxSize = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  ASSERT_GT(maxSize, 2);
+  for (const int last : {maxSize - 2, maxSize - 1}) {
+    SCOPED_TRACE(last);
+    const fs::path file =
+        volume("span", 8, 1.0f, [&](glm::vec3 p) { return p.x < 0.0f ? 1.0f : float(last); });
+    const Scene s = scene(R"({"name": "span", "file": ")" + file.string() +
+                          R"(", "labels": true, "shading": false, "transferFunction": [
+                            {"value": 1, "color": [1, 0, 0], "opacity": 1},
+                            {"value": )" +
+                          std::to_string(last) + R"(, "color": [0, 0, 1], "opacity": 1}]})");
+    if (last == maxSize - 1) {
+      expectError(
+          [&] { Renderer renderer(s, test::glContext().info()); },
+          {"/volumes/0/transferFunction", "its labels span " + std::to_string(last) + " values",
+           "2-D texture size of " + std::to_string(maxSize)});
+      continue;
+    }
+    Renderer renderer(s, test::glContext().info());
+    renderer.render();
+    const Rgba8Image color = renderer.readColor();
+    int red = 0, blue = 0;
+    for (std::size_t i = 0; i + 3 < color.pixels.size(); i += 4) {
+      red += color.pixels[i] > 200 && color.pixels[i + 2] < 50;
+      blue += color.pixels[i + 2] > 200 && color.pixels[i] < 50;
+    }
+    EXPECT_GT(red, 300);
+    EXPECT_GT(blue, 300);
+  }
+}
+
 namespace {
 
 // The volume AOVs and the colour (emission only over black) of scene `s` as the CPU reference

@@ -180,6 +180,19 @@ VolumeKind::VolumeKind(FrameSetup& setup)
 void VolumeKind::uploadTransfer(std::size_t i) const {
   const SceneVolume& v = setup_.scene.volumes[i];
   VolumeGpu& gpu = volumes_[i];
+  const TransferTable table = transferTable(v);
+  // A label table holds a texel per label of its span: beyond the GPU's 2-D texture size it
+  // would sample as nothing (black).
+  GLint maxWidth = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxWidth);
+  if (table.width > maxWidth)
+    throw Error(setup_.scene.file.string(), "/volumes/" + std::to_string(i) + "/transferFunction",
+                "its labels span " + std::to_string(table.width - 2) + " values (" +
+                    std::to_string(long(table.first) + 1) + " to " +
+                    std::to_string(long(table.last) - 1) + "), beyond the " +
+                    std::to_string(maxWidth - 2) + " that" + " this GPU's 2-D texture size of " +
+                    std::to_string(maxWidth) +
+                    " allows (a texel per label and a clear one at each end)");
   // A label volume's gradient is that of its materials' opacity.
   if (v.labels)
     gpu.gradient =
@@ -195,7 +208,6 @@ void VolumeKind::uploadTransfer(std::size_t i) const {
   // An integer texture is complete only without mipmap filtering.
   glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(gpu.occupancy.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  const TransferTable table = transferTable(v);
   const glm::ivec2 size(table.width, table.height);
   const GLenum filter = v.labels ? GL_NEAREST : GL_LINEAR;
   gpu.transfer = texture2D(GL_RGBA32F, size, table.colorOpacity.data(), filter);
