@@ -208,19 +208,29 @@ TEST(OffsetMap, SixteenBitPngKeepsItsLevels) {
   std::filesystem::remove(file);
 }
 
+namespace {
+
+// An 8-bit grey PNG of w × h pixels, encoded in memory.
+std::vector<std::uint8_t> grayPng(int w, int h, const std::uint8_t* pixels) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png_uint_32(w), png.height = png_uint_32(h);
+  png.format = PNG_FORMAT_GRAY;
+  png_alloc_size_t size = 0;
+  EXPECT_TRUE(png_image_write_to_memory(&png, nullptr, &size, 0, pixels, 0, nullptr));
+  std::vector<std::uint8_t> bytes(size);
+  EXPECT_TRUE(png_image_write_to_memory(&png, bytes.data(), &size, 0, pixels, 0, nullptr));
+  return bytes;
+}
+
+}  // namespace
+
 // A header may claim any size; a 1 × 1 PNG whose header says 46000 × 46000 (its CRC made
 // good) is refused before its pixels are allocated, not after 2 GB.
 TEST(OffsetMap, APngHeaderClaimingMoreThanItsFileHoldsIsRefused) {
   const std::filesystem::path file = test::scratchPath("clip", "claims.png");
-  png_image png{};
-  png.version = PNG_IMAGE_VERSION;
-  png.width = png.height = 1;
-  png.format = PNG_FORMAT_GRAY;
   const std::uint8_t pixel = 7;
-  png_alloc_size_t size = 0;
-  ASSERT_TRUE(png_image_write_to_memory(&png, nullptr, &size, 0, &pixel, 0, nullptr));
-  std::vector<std::uint8_t> bytes(size);
-  ASSERT_TRUE(png_image_write_to_memory(&png, bytes.data(), &size, 0, &pixel, 0, nullptr));
+  std::vector<std::uint8_t> bytes = grayPng(1, 1, &pixel);
   // IHDR's data starts at byte 16 (signature 8, length 4, type 4): width, height big-endian;
   // its CRC (over type and data) follows the 13 data bytes.
   const auto put = [&](std::size_t at, std::uint32_t v) {
@@ -246,16 +256,9 @@ TEST(OffsetMap, APngHeaderClaimingMoreThanItsFileHoldsIsRefused) {
 // that is no PNG, and a PNG cut off in its image data.
 TEST(OffsetMap, EmptyShortForeignAndTruncatedFilesSayWhat) {
   const std::filesystem::path file = test::scratchPath("clip", "broken.png");
-  png_image png{};
-  png.version = PNG_IMAGE_VERSION;
-  png.width = png.height = 64;
-  png.format = PNG_FORMAT_GRAY;
   std::vector<std::uint8_t> pixels(64 * 64);
   for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = std::uint8_t(i * 37 % 251);
-  png_alloc_size_t size = 0;
-  ASSERT_TRUE(png_image_write_to_memory(&png, nullptr, &size, 0, pixels.data(), 0, nullptr));
-  std::vector<std::uint8_t> bytes(size);
-  ASSERT_TRUE(png_image_write_to_memory(&png, bytes.data(), &size, 0, pixels.data(), 0, nullptr));
+  const std::vector<std::uint8_t> bytes = grayPng(64, 64, pixels.data());
   const std::string foreign = "v 0 0 0\nv 1 0 0\n";
   for (const auto& [content, reason] :
        {std::pair{std::string(), "cannot read PNG: the file is empty"},
