@@ -602,17 +602,24 @@ TEST(Cutout, ClipPlanesDrawTheSecondFrameAsTheFirst) {
   EXPECT_EQ(renderer.readColor().pixels, first.pixels);
 }
 
-// A solid cluster, a sheet (points in a tilted plane: a flat interior object) and a wire
-// (points on a line) all grow into a solid.
+// A solid cluster, sheets (points in a plane: a flat interior object; in an axis plane, and
+// turned off the axes, where floats leave them nearly coplanar), a wire (points on a line),
+// a triangle and one point repeated all grow into a solid.
 TEST(Breakaway, InflatedHullContainsTheOffsetBody) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  for (const int dimensions : {3, 2, 1}) {
-    SCOPED_TRACE(dimensions);
+  const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), 0.7f, glm::normalize(glm::vec3(1, 2, 3))));
+  for (const std::string cluster :
+       {"solid", "sheet", "turned sheet", "wire", "triangle", "point"}) {
+    SCOPED_TRACE(cluster);
     std::vector<glm::vec3> points;
-    for (int i = 0; i < 60; ++i)
-      points.emplace_back(2.0f * u(rng), dimensions > 1 ? u(rng) : 0.5f,
-                          dimensions > 2 ? 0.5f * u(rng) : 0.5f);
+    for (int i = 0; i < 60; ++i) {
+      const glm::vec3 p(2.0f * u(rng), cluster == "wire" ? 0.5f : u(rng),
+                        cluster == "solid" ? 0.5f * u(rng) : 0.5f);
+      points.push_back(cluster == "turned sheet" ? turn * p : p);
+    }
+    if (cluster == "triangle") points.resize(3);
+    if (cluster == "point") points.assign(5, glm::vec3(0.3f, -0.2f, 0.1f));
     const float offset = 0.3f;
     const Mesh hull = inflatedHull(points, offset);
     EXPECT_TRUE(hull.report.watertight);

@@ -221,10 +221,10 @@ void warnAboutUncappedObjects(const Scene& scene) {
 
 // The GPU works in 32-bit floats: far from the origin they step by centimetres or more, and a
 // camera placed near the origin sees nothing. GIS data in projected coordinates (British
-// National Grid, UTM: 10⁵–10⁶ m) needs the geo frame's offset. Names the farthest part.
+// National Grid, UTM: 10⁵–10⁶ m) needs the geo frame's offset. Warned beyond 1e5, or where a
+// step is over a thousandth of a thing's bounding radius (its shading and lines speckle);
+// names the thing where it is worst.
 void warnAboutFarCoordinates(const Scene& scene) {
-  // Far from the origin floats step coarsely against a thing's size (shading and lines then
-  // speckle): beyond 1e5, or where a step is over a thousandth of its bounding radius.
   std::string name;
   Bounds farthest;
   float reach = 0.0f, worst = 0.0f;
@@ -243,10 +243,11 @@ void warnAboutFarCoordinates(const Scene& scene) {
   const glm::dvec3 at = glm::dvec3(GeoFrame::fromScene(farthest.center())) + scene.geo.offset;
   std::fprintf(stderr,
                "warning: %s: \"%s\" lies %.3g scene units from the origin, where floats step by "
-               "%.2g; move it nearer (GIS data: a \"geo\" offset near its coordinates, about "
-               "[%.0f, %.0f])\n",
+               "%.2g (its bounding radius is %.3g); move it nearer (GIS data: a \"geo\" offset "
+               "near its coordinates, about [%.0f, %.0f])\n",
                scene.file.string().c_str(), name.c_str(), double(reach),
-               double(std::nextafter(reach, 2 * reach) - reach), at.x, at.y);
+               double(std::nextafter(reach, 2 * reach) - reach), double(farthest.radius()), at.x,
+               at.y);
 }
 
 // A file to be written: its folder exists and may be written to.

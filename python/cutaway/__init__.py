@@ -135,6 +135,9 @@ def from_dict(scene, base_dir="."):
 
 def _option_text(value):
     # The --set syntax: true/false, numbers, comma-separated vectors and colours, names.
+    # NumPy scalars and 0-d arrays are their Python values.
+    if isinstance(value, (np.generic, np.ndarray)) and np.ndim(value) == 0:
+        value = value.item()
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, (list, tuple, np.ndarray)):
@@ -166,10 +169,19 @@ Scene.add_volume = _add_volume
 class Image(np.ndarray):
     """An RGBA uint8 frame that a notebook shows as a picture."""
 
+    def __array_wrap__(self, array, context=None, return_scalar=False):
+        # What arithmetic and reductions make of a frame is plain data: an ndarray, or a
+        # number where the result has no axes.
+        plain = np.asarray(array).view(np.ndarray)
+        return plain[()] if plain.ndim == 0 else plain
+
     def _repr_png_(self):
+        # Only a whole frame is a picture (a slice or a view of another type shows as an array).
+        if self.dtype != np.uint8 or self.ndim != 3 or self.shape[2] != 4:
+            return None
         from PIL import Image as PilImage
         out = io.BytesIO()
-        PilImage.fromarray(np.asarray(self), "RGBA").save(out, format="PNG")
+        PilImage.fromarray(np.ascontiguousarray(self), "RGBA").save(out, format="PNG")
         return out.getvalue()
 
 

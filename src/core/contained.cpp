@@ -230,6 +230,13 @@ class Helper {
   // Runs one request; the messages that came back, the worker's reply first.
   void run(const std::string& file, const std::string& parser, const Request& request,
            std::string& reply, int& replyFd, int& status, bool& timedOut) {
+    if (pid_ > 0 && owner_ != ::getpid()) {
+      // This process was forked from the one the helper serves (a Python worker pool):
+      // sharing its socket, the processes would read each other's replies. The parent's
+      // helper is left to it; this process starts its own.
+      ::close(socket_);
+      pid_ = -1;
+    }
     if (pid_ <= 0) start();
     ByteWriter w;
     w(const_cast<Request&>(request));
@@ -275,6 +282,7 @@ class Helper {
     }
     ::close(ends[1]);
     pid_ = pid;
+    owner_ = ::getpid();
     socket_ = ends[0];
   }
 
@@ -290,7 +298,7 @@ class Helper {
     stop();
     throw Error(file, "", "the helper process running " + parser + " stopped");
   }
-  pid_t pid_ = -1;
+  pid_t pid_ = -1, owner_ = -1;  // the helper, and the process it serves
   int socket_ = -1;
 };
 

@@ -81,15 +81,16 @@ std::vector<std::uint8_t> readPngPixels(const std::filesystem::path& path, png_i
   png = png_image{};
   png.version = PNG_IMAGE_VERSION;
   // libpng says "Read Error" for a file too short for its signature: said plainly here.
-  {
+  if (std::error_code ec; std::filesystem::is_regular_file(path, ec)) {
     std::ifstream in(path, std::ios::binary);
     char signature[8] = {};
-    if (in && !in.read(signature, sizeof signature))
-      throw Error(path.string(), "",
-                  in.gcount() == 0 ? "cannot read PNG: the file is empty"
-                                   : "cannot read PNG: the file ends within its signature");
-    if (in && png_sig_cmp(reinterpret_cast<png_const_bytep>(signature), 0, sizeof signature) != 0)
+    in.read(signature, sizeof signature);
+    const std::size_t read = std::size_t(in.gcount());
+    if (read == 0) throw Error(path.string(), "", "cannot read PNG: the file is empty");
+    if (png_sig_cmp(reinterpret_cast<png_const_bytep>(signature), 0, read) != 0)
       throw Error(path.string(), "", "cannot read PNG: not a PNG file (no PNG signature)");
+    if (read < sizeof signature)
+      throw Error(path.string(), "", "cannot read PNG: the file ends within its signature");
   }
   if (!png_image_begin_read_from_file(&png, path.c_str())) {
     std::string reason = png.message;

@@ -9,6 +9,7 @@
 //   for (auto& [name, ms] : timer.collect()) std::printf("%s %.3f ms\n", name.c_str(), ms);
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,7 +24,8 @@ class PassTimer {
   void begin(const std::string& pass);
   void end();
   // Waits for all queries begun since the last collect or restart and returns (pass,
-  // milliseconds).
+  // milliseconds; NaN where the driver's result exceeds the wall clock since the pass began,
+  // as llvmpipe's first query in a renderer does).
   std::vector<std::pair<std::string, double>> collect();
   // Forgets the passes not collected: their queries are begun again by the next passes, so
   // frames that nobody collects keep one query per pass.
@@ -33,6 +35,7 @@ class PassTimer {
   bool flushAfterBegin_;
   std::vector<Query> pool_;
   std::vector<std::string> names_;
+  std::vector<std::chrono::steady_clock::time_point> begun_;
   bool active_ = false;
 };
 

@@ -16,6 +16,7 @@ namespace {
 // their hull in the plane they lie in (a sheet: Andrew's monotone chain), or the two ends of
 // the line they lie on.
 std::vector<glm::vec3> hullVertices(const std::vector<glm::vec3>& points) {
+  if (points.empty()) throw Error("a hull of no points");
   try {
     return convexHull(points).positions;
   } catch (const Error&) {

@@ -26,6 +26,7 @@ struct ClipSurfaceBlock {
 // cell; a side of fewer texels takes a tile of fewer cells (a power of two).
 constexpr int kCapTileCells = 16, kCapTileSizes = 5;  // 1, 2, 4, 8, 16 cells
 constexpr float kNestedCapUnits = 8.0f;
+constexpr int kMostNestedCaps = 4;
 
 struct CapTile {
   gl::VertexArray vertexArray;
@@ -466,7 +467,8 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   glUseProgram(program);
   // A solid modelled inside another without a cavity (a part in a housing, an organ in a
   // body) has its cap in the plane of the outer one's, which covers it too: the inner cap
-  // wins that tie, nearer by kNestedCapUnits of depth resolution per box it lies in.
+  // wins that tie, nearer by kNestedCapUnits of depth resolution per box it lies in (of equal
+  // boxes, the one listed later counts as inside), at most kMostNestedCaps boxes deep.
   std::vector<Bounds> boxes;
   for (const std::size_t index : capped_)
     boxes.push_back(g.capBounds[boxes.size()].transformed(scene.objects[index].transformAt(time)));
@@ -477,7 +479,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
           glm::all(glm::greaterThanEqual(boxes[j].max, boxes[k].max)) &&
           (j < k || boxes[j].min != boxes[k].min || boxes[j].max != boxes[k].max))
         ++depth;
-    return depth;
+    return std::min(depth, kMostNestedCaps);
   };
   glEnable(GL_POLYGON_OFFSET_FILL);
   std::size_t object = capped_.size();

@@ -180,19 +180,22 @@ VolumeKind::VolumeKind(FrameSetup& setup)
 void VolumeKind::uploadTransfer(std::size_t i) const {
   const SceneVolume& v = setup_.scene.volumes[i];
   VolumeGpu& gpu = volumes_[i];
+  // A label table holds a texel per label of its span and a clear one at each end (as
+  // transferTable builds it): beyond the GPU's 2-D texture size it would sample as black.
+  if (v.labels) {
+    const std::vector<TransferPoint>& points = v.transfer.rows.front().points;
+    const double first = points.front().value, last = points.back().value;
+    GLint maxWidth = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxWidth);
+    if (last - first + 3.0 > double(maxWidth))
+      throw Error(setup_.scene.file.string(), "/volumes/" + std::to_string(i) + "/transferFunction",
+                  "its labels span " + std::to_string(long(last - first) + 1) + " values (" +
+                      std::to_string(long(first)) + " to " + std::to_string(long(last)) +
+                      "), beyond the " + std::to_string(maxWidth - 2) +
+                      " that this GPU's 2-D texture size of " + std::to_string(maxWidth) +
+                      " allows (a texel per label and a clear one at each end)");
+  }
   const TransferTable table = transferTable(v);
-  // A label table holds a texel per label of its span: beyond the GPU's 2-D texture size it
-  // would sample as nothing (black).
-  GLint maxWidth = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxWidth);
-  if (table.width > maxWidth)
-    throw Error(setup_.scene.file.string(), "/volumes/" + std::to_string(i) + "/transferFunction",
-                "its labels span " + std::to_string(table.width - 2) + " values (" +
-                    std::to_string(long(table.first) + 1) + " to " +
-                    std::to_string(long(table.last) - 1) + "), beyond the " +
-                    std::to_string(maxWidth - 2) + " that" + " this GPU's 2-D texture size of " +
-                    std::to_string(maxWidth) +
-                    " allows (a texel per label and a clear one at each end)");
   // A label volume's gradient is that of its materials' opacity.
   if (v.labels)
     gpu.gradient =
