@@ -26,7 +26,10 @@ __all__ = ["Error", "Scene", "Renderer", "Image", "load", "from_dict", "live_con
 
 def load(path):
     """The scene file at `path` (docs/scene-format.md)."""
-    return Scene.load(os.fspath(path))
+    path = os.fspath(path)
+    if ("\0" if isinstance(path, str) else b"\0") in path:
+        raise Error("%r: a file name cannot hold a NUL character" % path)
+    return Scene.load(path)
 
 
 def _json_default(value):

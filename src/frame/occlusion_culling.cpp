@@ -1,5 +1,7 @@
 #include "frame/occlusion_culling.hpp"
 
+#include "frame/depth_offsets.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,8 +11,9 @@ namespace cutaway {
 namespace {
 
 // Depth units (glPolygonOffset) the boxes come nearer by: more than the rounding of the
-// depths interpolated over the object's triangles and over the box's faces.
-constexpr float kDepthUnits = 4.0f;
+// depths interpolated over the object's triangles and over the box's faces, and than the
+// offsets that draw surfaces nearer than they lie (frame/depth_offsets.hpp).
+constexpr float kDepthUnits = 4.0f + kMostUnitsNearer;
 
 // The view depths of a box's nearest and farthest corners.
 std::pair<float, float> viewDepthRange(const Bounds& b, const glm::mat4& view) {

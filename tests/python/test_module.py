@@ -274,6 +274,15 @@ def test_the_frame_shows_itself_and_bench_reports_figures():
     assert "geometry" in figures["passes_gpu_ms"] and figures["device"]
 
 
+def test_a_nul_in_an_argument_is_shown_not_the_end_of_the_message():
+    scene = cutaway.from_dict(cube_scene())
+    with pytest.raises(cutaway.Error) as e:
+        scene.set("cutters.adaptive.angle\0x", 30)
+    assert "cutters.adaptive.angle\\0x" in str(e.value) and len(str(e.value)) > 30, str(e.value)
+    with pytest.raises(cutaway.Error, match="cannot hold a NUL"):
+        cutaway.load("/tmp/x\0.json")
+
+
 def test_numpy_values_set_options():
     scene = cutaway.from_dict(cube_scene())
     scene.set("cutters.adaptive.outlines", np.False_)

@@ -32,7 +32,11 @@ class Error : public std::runtime_error {
     std::string s;
     if (!file.empty()) s += file + ": ";
     if (!place.empty()) s += place + ": ";
-    return s + reason;
+    s += reason;
+    // what() is read as a C string: a NUL in a quoted name or value would end the message.
+    for (std::size_t at = 0; (at = s.find('\0', at)) != std::string::npos; at += 2)
+      s.replace(at, 1, "\\0");
+    return s;
   }
   std::string file_, place_, reason_;
 };

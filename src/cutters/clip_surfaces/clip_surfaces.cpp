@@ -6,6 +6,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/gl/shader.hpp"
+#include "frame/depth_offsets.hpp"
 #include "frame/fullscreen.hpp"
 #include "frame/samples.hpp"
 
@@ -25,8 +26,6 @@ struct ClipSurfaceBlock {
 // its tile's (x, y) (cap.vert): (nx+1)(ny+1) vertices at (s, t) ∈ [0,1]², two triangles per
 // cell; a side of fewer texels takes a tile of fewer cells (a power of two).
 constexpr int kCapTileCells = 16, kCapTileSizes = 5;  // 1, 2, 4, 8, 16 cells
-constexpr float kNestedCapUnits = 8.0f;
-constexpr int kMostNestedCaps = 4;
 
 struct CapTile {
   gl::VertexArray vertexArray;

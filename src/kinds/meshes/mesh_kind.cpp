@@ -9,15 +9,6 @@ namespace {
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
                 kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kImportance = 16, kFirstLayer = 17,
                 kClipPlane = 18, kCutColor = 24;
-// A back face seen through a cut stands for the cut surface in front of it (Burns08 §4.1) and
-// keeps its own depth, so that a cavity's wall between the two still hides it. Where another
-// surface lies in the back face's very plane (a part resting on a table: its bottom and the
-// table's top), rounding decided that tie row by row and the table showed through the cut in
-// stripes; the back faces win it, brought forward by a few units of depth resolution (a slope
-// factor would also move them past the front faces at every silhouette). All of a cut
-// object's back faces take it (an open mesh's inside too), and gl_FragCoord.z includes it;
-// a cut that moves a fragment back (CUT_WRITES_DEPTH) writes the cut's own depth instead.
-constexpr float kBackFaceUnits = -4.0f;
 // A cut object's front faces by `front`, then its back faces by `back` (mesh.frag's
 // FRONT_FACES, BACK_FACES), `prepare` setting each program's uniforms before it draws.
 void drawSides(GLuint front, GLuint back, const SceneMeshes::DrawWith& drawWith,
@@ -26,13 +17,8 @@ void drawSides(GLuint front, GLuint back, const SceneMeshes::DrawWith& drawWith,
   for (const auto& [culled, program] : {std::pair{GL_BACK, front}, std::pair{GL_FRONT, back}}) {
     prepare(program);
     glCullFace(culled);
-    if (culled == GL_FRONT) {
-      glEnable(GL_POLYGON_OFFSET_FILL);
-      glPolygonOffset(0.0f, kBackFaceUnits);
-    }
     drawWith(program);
   }
-  glDisable(GL_POLYGON_OFFSET_FILL);
 }
 
 }  // namespace
