@@ -378,6 +378,15 @@ const std::string kNoisySurface =
 const std::string kFlatSurface =
     R"({"origin": [-1.5, -1.5, 0.05], "u": [0, 3, 0], "v": [3, 0, 0], "scale": [1, 1, 0]})";
 
+// Where the view ray through the centre of pixel (x, y) of `image` (rows top down) meets
+// kFlatSurface's plane z = 0.05; `inverse`: the inverse view-projection.
+glm::vec3 onFlatSurface(const glm::mat4& inverse, const FloatImage& image, int x, int y) {
+  const glm::vec2 ndc((x + 0.5f) / image.width * 2 - 1, 1 - (y + 0.5f) / image.height * 2);
+  const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
+  const glm::vec3 from = glm::vec3(a) / a.w, to = glm::vec3(b) / b.w;
+  return from + (0.05f - from.z) / (to.z - from.z) * (to - from);
+}
+
 }  // namespace
 
 // The GPU's per-fragment test against clipSurfaceFunction on the plain frame's world
@@ -667,12 +676,7 @@ TEST(ClipSurfaceGpu, CapsCoverExactlyTheCut) {
   int expected = 0, covered = 0, outside = 0, capPixels = 0, tested = 0;
   for (int y = 0; y < cap.height; ++y)
     for (int x = 0; x < cap.width; ++x) {
-      const glm::vec2 ndc((x + 0.5f) / cap.width * 2 - 1, 1 - (y + 0.5f) / cap.height * 2);
-      const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
-      const glm::vec3 from = glm::vec3(a) / a.w, to = glm::vec3(b) / b.w;
-      const float t = (0.05f - from.z) / (to.z - from.z);
-      const glm::vec3 onPlane = from + t * (to - from);
-      if (insideMesh(mesh, onPlane)) {
+      if (insideMesh(mesh, onFlatSurface(inverse, cap, x, y))) {
         ++expected;
         covered += cap.at(x, y)[0] == 1.0f;
       }
@@ -716,11 +720,7 @@ TEST(ClipSurfaceGpu, TheCapOfASolidInsideAnotherShowsInItsCut) {
     int inTorus = 0, torusCap = 0, blockCapInTorus = 0, blockCap = 0;
     for (int y = 0; y < cap.height; ++y)
       for (int x = 0; x < cap.width; ++x) {
-        const glm::vec2 ndc((x + 0.5f) / cap.width * 2 - 1, 1 - (y + 0.5f) / cap.height * 2);
-        const glm::vec4 a = inverse * glm::vec4(ndc, -1, 1), b = inverse * glm::vec4(ndc, 1, 1);
-        const glm::vec3 from = glm::vec3(a) / a.w, to = glm::vec3(b) / b.w;
-        const float t = (0.05f - from.z) / (to.z - from.z);
-        const bool inside = insideMesh(mesh, from + t * (to - from));
+        const bool inside = insideMesh(mesh, onFlatSurface(inverse, cap, x, y));
         const bool isCap = cap.at(x, y)[0] == 1.0f;
         const int id = int(ids.at(x, y)[0]);
         blockCap += isCap && id == 0;
