@@ -153,6 +153,76 @@ TEST(ClipSurface, OffsetShiftsTheSurfaceBySz) {
   EXPECT_TRUE(clippedBySurfaces(options, {0.6f, 5, 0}));
 }
 
+// The renderer draws an object whose box the surfaces keep whole without the clip test
+// (clipSurfacesKeepBox): such a box must hold no clipped point, for random surfaces with
+// reliefs, random boxes and both combination rules; and the bound must not be vacuous.
+TEST(ClipSurface, ABoxKeptWholeHoldsNoClippedPoint) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), fraction(0.0f, 1.0f);
+  const auto direction = [&] {
+    glm::vec3 d(unit(random), unit(random), unit(random));
+    return glm::length(d) > 0.1f ? glm::normalize(d) : glm::vec3(0, 0, 1);
+  };
+  int kept = 0, notKept = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    ClipSurfaceOptions options;
+    options.combine =
+        trial % 2 ? ClipSurfaceOptions::Combine::Intersection : ClipSurfaceOptions::Combine::Union;
+    std::vector<glm::vec2> heights;
+    for (int k = 0; k < 1 + trial % 3; ++k) {
+      const glm::vec3 u = direction() * (0.5f + 2.0f * fraction(random));
+      const glm::vec3 v =
+          glm::normalize(glm::cross(u, direction())) * (0.5f + 2.0f * fraction(random));
+      ClipSurface cs{.origin = 2.0f * glm::vec3(unit(random), unit(random), unit(random)),
+                     .u = u,
+                     .v = v,
+                     .scale = {1.0f + 3.0f * fraction(random), 1.0f + 3.0f * fraction(random),
+                               fraction(random)}};
+      cs.offsetMap = makeOffsetMap(
+          {.pattern = OffsetPattern::Ridged, .size = 32, .frequency = 2, .seed = unsigned(trial)});
+      cs.enabled = (trial + k) % 5 != 0;
+      const auto [low, high] =
+          std::minmax_element(cs.offsetMap.data.begin(), cs.offsetMap.data.end());
+      heights.emplace_back(*low, *high);
+      options.surfaces.push_back(std::move(cs));
+    }
+    const glm::vec3 center = 3.0f * glm::vec3(unit(random), unit(random), unit(random));
+    const glm::vec3 half = 1.5f * glm::vec3(fraction(random), fraction(random), fraction(random));
+    const Bounds box{.min = center - half, .max = center + half};
+    bool clipped = false;
+    for (int i = 0; i < 400; ++i)
+      clipped |= clippedBySurfaces(
+          options,
+          glm::mix(box.min, box.max,
+                   i < 8 ? glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1)
+                         : glm::vec3(fraction(random), fraction(random), fraction(random))));
+    if (clipSurfacesKeepBox(options, heights, box)) {
+      ++kept;
+      EXPECT_FALSE(clipped) << "trial " << trial;
+    } else {
+      ++notKept;
+    }
+  }
+  EXPECT_GT(kept, 60);
+  EXPECT_GT(notKept, 60);
+  // The plane x = 0 under a flat map (N = x̂): kept exactly where the box lies beyond it.
+  ClipSurface plane{.origin = {0, 0, 0}, .u = {0, 1, 0}, .v = {0, 0, 1}, .scale = {1, 1, 0}};
+  plane.offsetMap = makeOffsetMap({.pattern = OffsetPattern::Flat, .size = 4});
+  const ClipSurfaceOptions one{.surfaces = {plane}};
+  EXPECT_TRUE(clipSurfacesKeepBox(one, {{0, 0}}, {.min = {0.01f, -5, -5}, .max = {3, 5, 5}}));
+  EXPECT_FALSE(clipSurfacesKeepBox(one, {{0, 0}}, {.min = {-0.01f, -5, -5}, .max = {3, 5, 5}}));
+  // A relief lifting the surface by S_z·h: h ∈ [0.2, 0.4] with S_z = 1 keeps x > −0.2 − margin.
+  ClipSurfaceOptions lifted = one;
+  lifted.surfaces[0].scale.z = 1.0f;
+  EXPECT_TRUE(
+      clipSurfacesKeepBox(lifted, {{0.2f, 0.4f}}, {.min = {-0.19f, 0, 0}, .max = {1, 1, 1}}));
+  EXPECT_FALSE(
+      clipSurfacesKeepBox(lifted, {{0.2f, 0.4f}}, {.min = {-0.21f, 0, 0}, .max = {1, 1, 1}}));
+  // No surface enabled: nothing is clipped.
+  lifted.surfaces[0].enabled = false;
+  EXPECT_TRUE(clipSurfacesKeepBox(lifted, {{0.2f, 0.4f}}, {.min = {-9, -9, -9}, .max = {9, 9, 9}}));
+}
+
 TEST(OffsetMap, PatternsTileStayInRangeAndBlend) {
   for (auto pattern : {OffsetPattern::Sawtooth, OffsetPattern::Noise, OffsetPattern::Ridged}) {
     const FloatImage m = makeOffsetMap({.pattern = pattern, .size = 64, .frequency = 4});

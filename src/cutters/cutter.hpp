@@ -92,6 +92,11 @@ class Cutter {
   // Whether its GLSL decides the fragments of scene object `index` (a mesh object): by its
   // own rule, and only if the object allows it (SceneObject::mayBeCutBy its key).
   virtual bool cuts(std::size_t index) const = 0;
+  // Whether its GLSL may remove or cut any fragment of object `index` (one it cuts) in this
+  // frame, as beginFrame found it; where not (the object lies wholly where it keeps
+  // everything), the object draws without its code: llvmpipe runs a cutter's code for every
+  // fragment it decides, and a `discard` in a program delays its depth writes on any GPU.
+  virtual bool reaches(std::size_t /*index*/) const { return true; }
   // Whether its GLSL decides the ray samples of scene volume `index` (kinds/volumes), each
   // sample a front-facing CutFragment at its position, its window position CUT_FRAG_COORD
   // (cutters/fate.glsl); per volume, its GLSL reads the bits and setVolumeUniforms'.

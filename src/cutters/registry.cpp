@@ -34,7 +34,7 @@ ObjectCut objectCut(const std::vector<ActiveCutter>& cutters, std::size_t object
   ObjectCut cut;
   for (const ActiveCutter& c : cutters) {
     if (c.slot == exceptSlot) continue;
-    const bool cuts = c.cutter->cuts(object);
+    const bool cuts = c.cutter->cuts(object) && c.cutter->reaches(object);
     const int passes = c.cutter->clipPasses(object);
     if (!cuts && passes == 0) continue;
     const CutLook look = c.cutter->look(object);

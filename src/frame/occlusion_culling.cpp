@@ -15,19 +15,6 @@ namespace {
 // offsets that draw surfaces nearer than they lie (frame/depth_offsets.hpp).
 constexpr float kDepthUnits = 4.0f + kMostUnitsNearer;
 
-// The view depths of a box's nearest and farthest corners.
-std::pair<float, float> viewDepthRange(const Bounds& b, const glm::mat4& view) {
-  float nearest = std::numeric_limits<float>::max(), farthest = -nearest;
-  for (int i = 0; i < 8; ++i) {
-    const glm::vec3 corner{(i & 1) ? b.max.x : b.min.x, (i & 2) ? b.max.y : b.min.y,
-                           (i & 4) ? b.max.z : b.min.z};
-    const float depth = -(view * glm::vec4(corner, 1.0f)).z;
-    nearest = std::min(nearest, depth);
-    farthest = std::max(farthest, depth);
-  }
-  return {nearest, farthest};
-}
-
 }  // namespace
 
 OcclusionCulling::OcclusionCulling(FrameSetup& setup, bool layers) : setup_(setup) {
@@ -56,13 +43,8 @@ void OcclusionCulling::beginFrame(const FrameState& state) {
     glGetNamedBufferSubData(visible_.id(), 0, GLsizeiptr(shown_.size() * sizeof(GLuint)),
                             shown_.data());
   }
-  const FrameUniforms& u = state.uniforms;
-  view_ = u.view;
-  orthographic_ = u.counts.y == 1;
+  uniforms_ = state.uniforms;
   near_ = state.camera.near;
-  // A pixel spans 2 / (size · P₀₀) (or P₁₁) view-plane units at depth 1, or anywhere orthographic.
-  worldPerPixel_ = {2.0f / (u.viewport.x * u.projection[0][0]),
-                    2.0f / (u.viewport.y * u.projection[1][1])};
 }
 
 void OcclusionCulling::draw(const Batch& drawn, float time,
@@ -126,13 +108,11 @@ std::vector<bool> OcclusionCulling::boxesPass(const std::vector<std::size_t>& ca
     Bounds box = local.transformed(setup_.scene.objects[i].transformAt(time));
     // Half a pixel where the box is farthest (its margin is more pixels everywhere nearer), so
     // rasterisation's snapping cannot put one of the object's samples outside the box.
-    const float farthest = viewDepthRange(box, view_).second;
-    const float pixel = std::max(worldPerPixel_.x, worldPerPixel_.y) *
-                        (orthographic_ ? 1.0f : std::max(farthest, 0.0f));
-    const float grow = std::max(1e-4f * glm::length(box.max - box.min), 0.5f * pixel);
+    const float grow =
+        std::max(1e-4f * glm::length(box.max - box.min), 0.5f * worldPixel(box, uniforms_));
     box.min -= glm::vec3(grow);
     box.max += glm::vec3(grow);
-    if (viewDepthRange(box, view_).first <= near_ + 1e-3f * std::abs(near_)) {
+    if (viewDepthRange(box, uniforms_.view).first <= near_ + 1e-3f * std::abs(near_)) {
       passed[i] = true;  // cut by the near plane, or around the eye
       continue;
     }

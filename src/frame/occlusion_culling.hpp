@@ -78,9 +78,7 @@ class OcclusionCulling {
   mutable std::size_t culled_ = 0;
   mutable std::vector<bool> hidden_;  // this frame's, by object
   // This frame's view.
-  glm::mat4 view_{1.0f};
-  glm::vec2 worldPerPixel_{0.0f};  // at view depth 1 (perspective) or anywhere (orthographic)
-  bool orthographic_ = false;
+  FrameUniforms uniforms_{};  // this frame's
   float near_ = 0.0f;
 
   // Whether object i is drawn in the first batch: shown by the last frame (every object in the

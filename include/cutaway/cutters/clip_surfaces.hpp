@@ -99,6 +99,11 @@ const OptionsSchema& clipSurfacesSchema();
 
 // Whether `p` is clipped by the enabled surfaces under `options.combine`.
 bool clippedBySurfaces(const ClipSurfaceOptions& options, const glm::vec3& p);
+// Whether no point of `box` (world space) is clipped under `options.combine`, whatever each
+// enabled surface's relief within `heights[i]` (its offset map's least and greatest h): eq. 1's
+// least value over the box, with a margin for the shaders' 32-bit rounding.
+bool clipSurfacesKeepBox(const ClipSurfaceOptions& options, const std::vector<glm::vec2>& heights,
+                         const Bounds& box);
 
 // A surface's derived maps (§4.2; the renderer derives them again when S changes), one RGBA
 // texel per offset-map texel: r = height h, g = ∂h/∂s and b = ∂h/∂t (per unit of texture

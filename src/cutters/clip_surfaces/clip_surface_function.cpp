@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "cutaway/core/noise.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
@@ -108,6 +109,35 @@ bool clippedBySurfaces(const ClipSurfaceOptions& options, const glm::vec3& p) {
   }
   if (!enabled) return false;
   return options.combine == ClipSurfaceOptions::Combine::Union ? any : all;
+}
+
+bool clipSurfacesKeepBox(const ClipSurfaceOptions& options, const std::vector<glm::vec2>& heights,
+                         const Bounds& box) {
+  bool enabled = false, anyKeeps = false, allKeep = true;
+  for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
+    const ClipSurface& cs = options.surfaces[i];
+    if (!cs.enabled) continue;
+    enabled = true;
+    // Eq. 1 is linear in P: its least value over the box is at a corner, plus the least lift
+    // (S_z ≥ 0).
+    const glm::dvec3 n(cs.normal());
+    const double offset = glm::dot(n, glm::dvec3(cs.origin));
+    double least = std::numeric_limits<double>::max(), terms = std::abs(offset);
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                              (k & 4) ? box.max.z : box.min.z};
+      least = std::min(least, glm::dot(corner, n) - offset);
+      terms = std::max(terms, std::abs(glm::dot(corner, n)) + std::abs(offset));
+    }
+    const double lift = double(std::min(heights[i].x, heights[i].y)) * double(cs.scale.z);
+    const double most =
+        double(std::max(std::abs(heights[i].x), std::abs(heights[i].y))) * double(cs.scale.z);
+    const bool keeps = least + lift > 1e-5 * (terms + most);
+    anyKeeps |= keeps;
+    allKeep &= keeps;
+  }
+  if (!enabled) return true;
+  return options.combine == ClipSurfaceOptions::Combine::Union ? allKeep : anyKeeps;
 }
 
 FloatImage deriveReliefMaps(const ClipSurface& cs) {

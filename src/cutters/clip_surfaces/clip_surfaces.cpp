@@ -20,6 +20,7 @@ struct ClipSurfaceBlock {
       scale[kMaxClipSurfaces];
   glm::ivec4 count;
   glm::vec4 capStyle;
+  glm::vec4 plane[kMaxClipSurfaces], toS[kMaxClipSurfaces], toT[kMaxClipSurfaces];
 };
 
 // A cap's grid is drawn as instances of a tile of up to kCapTileCells² cells, each placed by
@@ -277,8 +278,19 @@ void ClipSurfaceCutter::uploadRelief(GLuint texture, const ClipSurface& cs) {
 
 // The block of clip_surfaces.glsl from the options as they are now: the surfaces' placement,
 // switches and the cap style are live.
-void ClipSurfaceCutter::beginFrame(const FrameState&) {
+void ClipSurfaceCutter::beginFrame(const FrameState& state) {
   const ClipSurfaceOptions& options = live();
+  const Scene& scene = setup_.scene;
+  reaches_.assign(scene.objects.size(), true);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Bounds& local = setup_.meshes.mesh(i).bounds();
+    if (local.empty() || !cuts(i)) continue;
+    Bounds box = local.transformed(scene.objects[i].transformAt(state.time));
+    const float pixel = worldPixel(box, state.uniforms);
+    box.min -= glm::vec3(pixel);
+    box.max += glm::vec3(pixel);
+    reaches_[i] = !clipSurfacesKeepBox(options, gpu_->reliefRange, box);
+  }
   ClipSurfaceBlock block{};
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
     const ClipSurface& cs = options.surfaces[i];
@@ -290,6 +302,12 @@ void ClipSurfaceCutter::beginFrame(const FrameState&) {
     block.origin[i] = glm::vec4(cs.origin, cs.enabled ? 1.0f : 0.0f);
     block.u[i] = glm::vec4(cs.u, 0.0f);
     block.v[i] = glm::vec4(cs.v, 0.0f);
+    // Eq. 1's plane, and eq. 2 as (P − O)·Û S_x / |U| (Û ⊥ N: P_N − O and P − O project alike).
+    const glm::vec3 n = cs.normal();
+    block.plane[i] = glm::vec4(n, glm::dot(n, cs.origin));
+    const glm::dvec3 u(cs.u), v(cs.v);
+    block.toS[i] = glm::vec4(glm::vec3(u / glm::dot(u, u) * double(cs.scale.x)), 0.0f);
+    block.toT[i] = glm::vec4(glm::vec3(v / glm::dot(v, v) * double(cs.scale.y)), 0.0f);
     const glm::vec2 h = gpu_->reliefRange[i];
     block.scale[i] = glm::vec4(cs.scale, std::max(h.x * cs.scale.z, h.y * cs.scale.z));
   }

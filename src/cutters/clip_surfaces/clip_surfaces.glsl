@@ -12,6 +12,9 @@ layout(std140, binding = BLOCK_CLIP_SURFACES) uniform ClipSurfaces {
   vec4 uClipScale[kMaxClipSurfaces];   // xyz: S, w: the relief's largest lift, max h·S_z
   ivec4 uClipCount;                    // x: surfaces, y: 1 = intersection, z: normal map on caps
   vec4 uCapStyle;                      // x: occlusion strength, y: solid texture, z: its frequency
+  vec4 uClipSurfacePlane[kMaxClipSurfaces];   // xyz: N = Û × V̂, w: N·O
+  vec4 uClipToS[kMaxClipSurfaces];     // xyz: Û S_x / |U| (eq. 2's s = (P − O)·this)
+  vec4 uClipToT[kMaxClipSurfaces];     // xyz: V̂ S_y / |V|
 };
 // Per surface: r = offset h, g = ∂h/∂s, b = ∂h/∂t, a = ambient occlusion (derived at load).
 layout(binding = UNIT_CLIP_RELIEF) uniform sampler2D uClipRelief[kMaxClipSurfaces];
@@ -31,22 +34,19 @@ vec4 clipRelief(int i, vec2 st) {
 }
 
 vec3 clipSurfaceNormal(int i) {
-  return normalize(cross(normalize(uClipU[i].xyz), normalize(uClipV[i].xyz)));
+  return uClipSurfacePlane[i].xyz;
 }
 
 // Trapp13 eq. 2 with eq. 3: texture coordinates of P's projection onto the plane.
 vec2 clipSurfaceTexCoord(int i, vec3 p) {
-  vec3 n = clipSurfaceNormal(i), o = uClipOrigin[i].xyz, u = uClipU[i].xyz, v = uClipV[i].xyz;
-  vec3 pn = p - dot(p - o, n) * n;
-  float lu = length(u), lv = length(v);
-  return vec2(dot(pn - o, u / lu) / lu * uClipScale[i].x, dot(pn - o, v / lv) / lv * uClipScale[i].y);
+  vec3 d = p - uClipOrigin[i].xyz;
+  return vec2(dot(d, uClipToS[i].xyz), dot(d, uClipToT[i].xyz));
 }
 
 // Trapp13 eq. 1: P·N − N·O + f(OM, T)·S_z; χ = 1 (clipped) where it is < 0.
 float clipSurfaceFunction(int i, vec3 p) {
-  vec3 n = clipSurfaceNormal(i);
   float h = clipRelief(i, clipSurfaceTexCoord(i, p)).r;
-  return dot(p, n) - dot(n, uClipOrigin[i].xyz) + h * uClipScale[i].z;
+  return dot(p, uClipSurfacePlane[i].xyz) - uClipSurfacePlane[i].w + h * uClipScale[i].z;
 }
 
 // The combination rule over the enabled surfaces other than `except` (-1: all): union (any

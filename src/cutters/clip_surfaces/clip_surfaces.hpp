@@ -42,6 +42,8 @@ class ClipSurfaceCutter : public Cutter {
   // Clears the clip-mask and parity images; binds the block, relief textures and images.
   void bindForGeometry() const override;
   bool cuts(std::size_t index) const override;
+  // Not where the object's box (grown by a pixel) lies wholly where the surfaces keep all.
+  bool reaches(std::size_t index) const override { return reaches_[index]; }
   bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   // Every cap of every capped object (cap.vert + cap.frag).
@@ -67,6 +69,7 @@ class ClipSurfaceCutter : public Cutter {
   struct Gpu;
   std::unique_ptr<Gpu> gpu_;
   std::vector<std::size_t> capped_, uncappable_;
+  std::vector<bool> reaches_;  // per scene object, this frame
   GLuint blockBinding_, reliefUnit_, layersUnit_, diffuseUnit_, clipMaskImage_, parityImage_;
   Target clipMask_, capParity_, capMask_;
 };
