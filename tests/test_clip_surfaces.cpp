@@ -154,16 +154,18 @@ TEST(ClipSurface, OffsetShiftsTheSurfaceBySz) {
 }
 
 // The renderer draws an object whose box the surfaces keep whole without the clip test
-// (clipSurfacesKeepBox): such a box must hold no clipped point, for random surfaces with
-// reliefs, random boxes and both combination rules; and the bound must not be vacuous.
-TEST(ClipSurface, ABoxKeptWholeHoldsNoClippedPoint) {
+// (clipSurfacesKeepBox), and of an object one surface decides the part beyond its slab's kept
+// plane without it and the part beyond its removed plane not at all (clipSurfacesSlab): no
+// point may lie on the wrong side, for random surfaces with reliefs, random boxes and both
+// combination rules; and the bounds must not be vacuous.
+TEST(ClipSurface, ABoxKeptWholeOrSlabbedHoldsNoPointOnTheWrongSide) {
   std::mt19937 random(7);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f), fraction(0.0f, 1.0f);
   const auto direction = [&] {
     glm::vec3 d(unit(random), unit(random), unit(random));
     return glm::length(d) > 0.1f ? glm::normalize(d) : glm::vec3(0, 0, 1);
   };
-  int kept = 0, notKept = 0;
+  int kept = 0, notKept = 0, slabbed = 0;
   for (int trial = 0; trial < 300; ++trial) {
     ClipSurfaceOptions options;
     options.combine =
@@ -189,13 +191,21 @@ TEST(ClipSurface, ABoxKeptWholeHoldsNoClippedPoint) {
     const glm::vec3 center = 3.0f * glm::vec3(unit(random), unit(random), unit(random));
     const glm::vec3 half = 1.5f * glm::vec3(fraction(random), fraction(random), fraction(random));
     const Bounds box{.min = center - half, .max = center + half};
+    const std::optional<ClipSurfaceSlab> slab = clipSurfacesSlab(options, heights, box);
     bool clipped = false;
-    for (int i = 0; i < 400; ++i)
-      clipped |= clippedBySurfaces(
-          options,
+    for (int i = 0; i < 400; ++i) {
+      const glm::vec3 p =
           glm::mix(box.min, box.max,
                    i < 8 ? glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1)
-                         : glm::vec3(fraction(random), fraction(random), fraction(random))));
+                         : glm::vec3(fraction(random), fraction(random), fraction(random)));
+      const bool c = clippedBySurfaces(options, p);
+      clipped |= c;
+      // The mesh kind draws the slab's kept side without the clip test and leaves out its
+      // removed side.
+      if (slab && glm::dot(slab->kept, glm::vec4(p, 1.0f)) >= 0.0f) EXPECT_FALSE(c) << trial;
+      if (slab && glm::dot(slab->removed, glm::vec4(p, 1.0f)) < 0.0f) EXPECT_TRUE(c) << trial;
+      slabbed += slab ? 1 : 0;
+    }
     if (clipSurfacesKeepBox(options, heights, box)) {
       ++kept;
       EXPECT_FALSE(clipped) << "trial " << trial;
@@ -205,6 +215,7 @@ TEST(ClipSurface, ABoxKeptWholeHoldsNoClippedPoint) {
   }
   EXPECT_GT(kept, 60);
   EXPECT_GT(notKept, 60);
+  EXPECT_GT(slabbed, 400 * 30);
   // The plane x = 0 under a flat map (N = x̂): kept exactly where the box lies beyond it.
   ClipSurface plane{.origin = {0, 0, 0}, .u = {0, 1, 0}, .v = {0, 0, 1}, .scale = {1, 1, 0}};
   plane.offsetMap = makeOffsetMap({.pattern = OffsetPattern::Flat, .size = 4});
@@ -218,6 +229,20 @@ TEST(ClipSurface, ABoxKeptWholeHoldsNoClippedPoint) {
       clipSurfacesKeepBox(lifted, {{0.2f, 0.4f}}, {.min = {-0.19f, 0, 0}, .max = {1, 1, 1}}));
   EXPECT_FALSE(
       clipSurfacesKeepBox(lifted, {{0.2f, 0.4f}}, {.min = {-0.21f, 0, 0}, .max = {1, 1, 1}}));
+  // Its slab: the plane lifted by S_z·h_min (kept beyond it) and by S_z·h_max.
+  const Bounds near{.min = {-1, 0, 0}, .max = {1, 1, 1}};
+  const auto slab = clipSurfacesSlab(lifted, {{0.2f, 0.4f}}, near);
+  ASSERT_TRUE(slab);
+  EXPECT_NEAR(glm::length(slab->kept - glm::vec4(1, 0, 0, 0.2f)), 0.0f, 1e-4f);
+  EXPECT_NEAR(glm::length(slab->removed - glm::vec4(1, 0, 0, 0.4f)), 0.0f, 1e-4f);
+  // Two surfaces that both reach the box, or an intersection: no single slab.
+  ClipSurfaceOptions two = lifted;
+  two.surfaces.push_back(plane);
+  EXPECT_FALSE(clipSurfacesSlab(two, {{0.2f, 0.4f}, {0, 0}}, near));
+  two.surfaces[1].origin.x = -5;  // reaches it no more: the first alone decides
+  EXPECT_TRUE(clipSurfacesSlab(two, {{0.2f, 0.4f}, {0, 0}}, near));
+  two.combine = ClipSurfaceOptions::Combine::Intersection;
+  EXPECT_FALSE(clipSurfacesSlab(two, {{0.2f, 0.4f}, {0, 0}}, near));
   // No surface enabled: nothing is clipped.
   lifted.surfaces[0].enabled = false;
   EXPECT_TRUE(clipSurfacesKeepBox(lifted, {{0.2f, 0.4f}}, {.min = {-9, -9, -9}, .max = {9, 9, 9}}));

@@ -97,6 +97,16 @@ class Cutter {
   // everything), the object draws without its code: llvmpipe runs a cutter's code for every
   // fragment it decides, and a `discard` in a program delays its depth writes on any GPU.
   virtual bool reaches(std::size_t /*index*/) const { return true; }
+  // Where it reaches object `index`, the world slab its decisions may differ in this frame, as
+  // two planes: it keeps every point where kept·x ≥ 0 and removes every point where
+  // removed·x < 0 (a clip surface's plane lifted by its relief's least and greatest offset).
+  // The mesh kind then draws the first part without its code and leaves the second out, by
+  // hardware clip distances; nullopt: no such slab.
+  struct Slab {
+    glm::vec4 kept, removed;
+    float overlap = 0.0f;  // world units the slab's draw reaches into the kept part (no cracks)
+  };
+  virtual std::optional<Slab> slab(std::size_t /*index*/) const { return std::nullopt; }
   // Whether its GLSL decides the ray samples of scene volume `index` (kinds/volumes), each
   // sample a front-facing CutFragment at its position, its window position CUT_FRAG_COORD
   // (cutters/fate.glsl); per volume, its GLSL reads the bits and setVolumeUniforms'.

@@ -7,7 +7,9 @@ layout(location = 4) uniform mat4 uNormalMatrix;  // inverse transpose of uModel
 // Diepstraten03 §4.3 clip-plane cutout: kept where dot(uClipPlane, world) >= 0 (only while
 // GL_CLIP_DISTANCE0 is enabled).
 layout(location = 18) uniform vec4 uClipPlane;
-out float gl_ClipDistance[1];
+// Cutter::slab's parts (clip distances 1 and 2, while enabled): kept where both are ≥ 0.
+layout(location = 19) uniform vec4 uSlabClip[2];
+out float gl_ClipDistance[3];
 out vec3 vWorldPosition;
 out vec3 vWorldNormal;
 void main() {
@@ -15,5 +17,7 @@ void main() {
   vWorldPosition = world.xyz;
   vWorldNormal = mat3(uNormalMatrix) * aNormal;
   gl_ClipDistance[0] = dot(uClipPlane, world);
+  gl_ClipDistance[1] = dot(uSlabClip[0], world);
+  gl_ClipDistance[2] = dot(uSlabClip[1], world);
   gl_Position = uViewProjection * world;
 }

@@ -104,6 +104,15 @@ bool clippedBySurfaces(const ClipSurfaceOptions& options, const glm::vec3& p);
 // least value over the box, with a margin for the shaders' 32-bit rounding.
 bool clipSurfacesKeepBox(const ClipSurfaceOptions& options, const std::vector<glm::vec2>& heights,
                          const Bounds& box);
+// Where one enabled surface alone decides the points of `box` (the others keep it whole, under
+// a union), the world planes between which its relief lies, margins included: every point with
+// kept·(x, 1) ≥ 0 is kept, every point with removed·(x, 1) < 0 is clipped.
+struct ClipSurfaceSlab {
+  glm::vec4 kept, removed;
+};
+std::optional<ClipSurfaceSlab> clipSurfacesSlab(const ClipSurfaceOptions& options,
+                                                const std::vector<glm::vec2>& heights,
+                                                const Bounds& box);
 
 // A surface's derived maps (§4.2; the renderer derives them again when S changes), one RGBA
 // texel per offset-map texel: r = height h, g = ∂h/∂s and b = ∂h/∂t (per unit of texture

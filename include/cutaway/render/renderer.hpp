@@ -17,7 +17,7 @@
 //   visibleObjects
 //   [pipeOwners pipeProxies pipeStencilMasks pipes pipeAovs]
 //   [ghostGeometry visibleGhosts]
-//   [capMask]
+//   [clipMask capMask]
 //   [translucentLayers]
 //   [lines]
 //   [ghostLines]
@@ -50,7 +50,9 @@
 //   billboards' outside pass (src/kinds/pipes/README.md).
 // - ghostGeometry, ghostLines: Burns08 §4.3's removed material as faded lines; visibleGhosts
 //   marks the objects the ghost geometry shows, culled as the geometry pass's.
-// - capMask: Trapp13's cap coverage AOV.
+// - clipMask, capMask: Trapp13's clip-surface and cap coverage AOVs; clipMask runs only when
+//   read: the geometry pass leaves out what a surface removes whole (Cutter::slab), so the
+//   clipped objects are drawn again, whole, to mark where a surface clips them.
 // - translucentLayers, translucentComposite: Burns11 ch. 2's occlusion reduction by
 //   translucency, edge highlights or lines: the material a cutter reduces only partly, peeled
 //   front to back into layers with their own feature lines (frame/translucent_layers.hpp),

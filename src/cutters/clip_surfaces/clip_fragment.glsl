@@ -1,9 +1,10 @@
 // Trapp13 §4.3–4.4: a fragment is discarded where the enabled clip surfaces clip it.
 #include "clip_surfaces.glsl"
-// 1 where a fragment was removed by a clip surface (at any depth): the clip-mask AOV.
+#ifdef CUT_VOLUME_SAMPLE
+// 1 where a ray sample was removed by a clip surface: the clip-mask AOV (for meshes,
+// clip_mask.frag draws it when it is read).
 layout(binding = IMAGE_CLIP_MASK, r32ui) uniform coherent uimage2D uClipMask;
 
-#ifdef CUT_VOLUME_SAMPLE
 // The cut's normal at p: the relief normal of the enabled surface nearest to p (its cap's
 // normal in cap.frag), or its plane's without the caps' normal map.
 vec3 clipCutNormal(vec3 p) {
@@ -40,10 +41,13 @@ int clipSurfacesFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal
 #endif
     return kKeep;
   }
+#ifdef CUT_VOLUME_SAMPLE
   imageAtomicMax(uClipMask, ivec2(CUT_FRAG_COORD.xy), 1u);
+#endif
   return kDiscard;
 }
 
+#ifdef CUT_VOLUME_SAMPLE
 // The span of a view ray that the surfaces remove whatever their relief (cutters/cutter.hpp):
 // eq. 1 is < 0 wherever P·N − N·O + max(h·S_z) is, a half-space along the ray. Intersection:
 // the spans' common part; union: the first enabled surface's span (the others are asked per
@@ -70,3 +74,4 @@ vec2 clipSurfacesRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 rang
     imageAtomicMax(uClipMask, ivec2(window), 1u);
   return span;
 }
+#endif

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "cutaway/core/noise.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
@@ -111,33 +112,70 @@ bool clippedBySurfaces(const ClipSurfaceOptions& options, const glm::vec3& p) {
   return options.combine == ClipSurfaceOptions::Combine::Union ? any : all;
 }
 
+namespace {
+
+// Eq. 1 over a world box for surface `cs` whose relief lifts by S_z·h, h in `heights`: the
+// plane's part P·N − N·O at the box's corners (linear in P: its extremes are corners), and a
+// margin for the shaders' 32-bit rounding of its terms.
+struct OverBox {
+  glm::dvec3 n;
+  double offset, least, lowLift, highLift, margin;
+  bool keeps() const { return least + lowLift > margin; }
+};
+
+OverBox overBox(const ClipSurface& cs, glm::vec2 heights, const Bounds& box) {
+  OverBox o{.n = glm::dvec3(cs.normal())};
+  o.offset = glm::dot(o.n, glm::dvec3(cs.origin));
+  o.least = std::numeric_limits<double>::max();
+  double terms = std::abs(o.offset);
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                            (k & 4) ? box.max.z : box.min.z};
+    o.least = std::min(o.least, glm::dot(corner, o.n) - o.offset);
+    terms = std::max(terms, std::abs(glm::dot(corner, o.n)) + std::abs(o.offset));
+  }
+  o.lowLift = double(std::min(heights.x, heights.y)) * double(cs.scale.z);  // S_z ≥ 0
+  o.highLift = double(std::max(heights.x, heights.y)) * double(cs.scale.z);
+  o.margin = 1e-5 * (terms + std::abs(o.highLift));
+  return o;
+}
+
+}  // namespace
+
 bool clipSurfacesKeepBox(const ClipSurfaceOptions& options, const std::vector<glm::vec2>& heights,
                          const Bounds& box) {
   bool enabled = false, anyKeeps = false, allKeep = true;
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
-    const ClipSurface& cs = options.surfaces[i];
-    if (!cs.enabled) continue;
+    if (!options.surfaces[i].enabled) continue;
     enabled = true;
-    // Eq. 1 is linear in P: its least value over the box is at a corner, plus the least lift
-    // (S_z ≥ 0).
-    const glm::dvec3 n(cs.normal());
-    const double offset = glm::dot(n, glm::dvec3(cs.origin));
-    double least = std::numeric_limits<double>::max(), terms = std::abs(offset);
-    for (int k = 0; k < 8; ++k) {
-      const glm::dvec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
-                              (k & 4) ? box.max.z : box.min.z};
-      least = std::min(least, glm::dot(corner, n) - offset);
-      terms = std::max(terms, std::abs(glm::dot(corner, n)) + std::abs(offset));
-    }
-    const double lift = double(std::min(heights[i].x, heights[i].y)) * double(cs.scale.z);
-    const double most =
-        double(std::max(std::abs(heights[i].x), std::abs(heights[i].y))) * double(cs.scale.z);
-    const bool keeps = least + lift > 1e-5 * (terms + most);
+    const bool keeps = overBox(options.surfaces[i], heights[i], box).keeps();
     anyKeeps |= keeps;
     allKeep &= keeps;
   }
   if (!enabled) return true;
   return options.combine == ClipSurfaceOptions::Combine::Union ? allKeep : anyKeeps;
+}
+
+std::optional<ClipSurfaceSlab> clipSurfacesSlab(const ClipSurfaceOptions& options,
+                                                const std::vector<glm::vec2>& heights,
+                                                const Bounds& box) {
+  std::optional<OverBox> only;
+  int enabled = 0;
+  for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
+    if (!options.surfaces[i].enabled) continue;
+    ++enabled;
+    const OverBox o = overBox(options.surfaces[i], heights[i], box);
+    if (o.keeps()) continue;  // under a union, this one clips nothing of the box
+    if (only) return std::nullopt;
+    only = o;
+  }
+  // An intersection of several decides by all of them.
+  if (!only || (enabled > 1 && options.combine == ClipSurfaceOptions::Combine::Intersection))
+    return std::nullopt;
+  const glm::dvec3 n = only->n;
+  return ClipSurfaceSlab{
+      .kept = glm::vec4(glm::vec3(n), float(-only->offset + only->lowLift - only->margin)),
+      .removed = glm::vec4(glm::vec3(n), float(-only->offset + only->highLift + only->margin))};
 }
 
 FloatImage deriveReliefMaps(const ClipSurface& cs) {

@@ -163,7 +163,8 @@ CutterType clipSurfacesCutterType() {
 
 struct ClipSurfaceCutter::Gpu {
   gl::Program peel = buildDepthPeelProgram();
-  gl::Program cap, capMask;
+  gl::Program cap, capMask, clipMask;
+  gl::Framebuffer clipMaskSamples;  // no attachments: the frame's size and samples
   FullscreenTriangle fullscreen;
   gl::Buffer block;
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
@@ -265,6 +266,15 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
                                                   "cut (Trapp13 §5), else 0; sample 0"});
   g.capMask = buildFullscreenProgram("cutters/clip_surfaces/cap_mask.frag",
                                      sampleDefines(setup_.scene.samples));
+  g.clipMask = setup.bindings.build(
+      {.stages = {{GL_VERTEX_SHADER, "frame/mesh.vert"},
+                  {GL_FRAGMENT_SHADER, "cutters/clip_surfaces/clip_mask.frag"}}});
+  g.clipMaskSamples = gl::Framebuffer::create();
+  const GLuint fb = g.clipMaskSamples.id();
+  glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_WIDTH, frame.width());
+  glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, frame.height());
+  glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_SAMPLES,
+                               setup.scene.samples > 1 ? setup.scene.samples : 0);
 }
 
 ClipSurfaceCutter::~ClipSurfaceCutter() = default;
@@ -282,6 +292,7 @@ void ClipSurfaceCutter::beginFrame(const FrameState& state) {
   const ClipSurfaceOptions& options = live();
   const Scene& scene = setup_.scene;
   reaches_.assign(scene.objects.size(), true);
+  slabs_.assign(scene.objects.size(), std::nullopt);
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const Bounds& local = setup_.meshes.mesh(i).bounds();
     if (local.empty() || !cuts(i)) continue;
@@ -290,6 +301,9 @@ void ClipSurfaceCutter::beginFrame(const FrameState& state) {
     box.min -= glm::vec3(pixel);
     box.max += glm::vec3(pixel);
     reaches_[i] = !clipSurfacesKeepBox(options, gpu_->reliefRange, box);
+    if (!reaches_[i]) continue;
+    if (const auto s = clipSurfacesSlab(options, gpu_->reliefRange, box))
+      slabs_[i] = Slab{.kept = s->kept, .removed = s->removed, .overlap = pixel};
   }
   ClipSurfaceBlock block{};
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
@@ -373,16 +387,20 @@ void ClipSurfaceCutter::buildPerFrameSprites(float time) {
   }
 }
 
+void ClipSurfaceCutter::bindForMask() const {
+  glBindBufferBase(GL_UNIFORM_BUFFER, blockBinding_, gpu_->block.id());
+  for (std::size_t i = 0; i < gpu_->relief.size(); ++i)
+    glBindTextureUnit(GLuint(reliefUnit_ + i), gpu_->relief[i].id());
+  glBindImageTexture(clipMaskImage_, setup_.frame.texture(clipMask_).id(), 0, GL_FALSE, 0,
+                     GL_READ_WRITE, GL_R32UI);
+}
+
 void ClipSurfaceCutter::bindForGeometry() const {
   const GLuint zero = 0;
   const Frame& frame = setup_.frame;
   glClearTexImage(frame.texture(clipMask_).id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearTexImage(frame.texture(capParity_).id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glBindBufferBase(GL_UNIFORM_BUFFER, blockBinding_, gpu_->block.id());
-  for (std::size_t i = 0; i < gpu_->relief.size(); ++i)
-    glBindTextureUnit(GLuint(reliefUnit_ + i), gpu_->relief[i].id());
-  glBindImageTexture(clipMaskImage_, frame.texture(clipMask_).id(), 0, GL_FALSE, 0, GL_READ_WRITE,
-                     GL_R32UI);
+  bindForMask();
   glBindImageTexture(parityImage_, frame.texture(capParity_).id(), 0, GL_FALSE, 0, GL_READ_WRITE,
                      GL_R32UI);
 }
@@ -536,6 +554,28 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
 }
 
 void ClipSurfaceCutter::addPassesAfterGeometry(Frame& frame) {
+  // Rasterised as the geometry pass is (its samples, a fragment at each pixel's centre), so
+  // that the mask marks the pixels whose clipped fragments that pass would have discarded.
+  frame.addPass({.name = "clipMask",
+                 .writes = {clipMask_},
+                 .run =
+                     [this](const PassContext& pass) {
+                       glBindFramebuffer(GL_FRAMEBUFFER, gpu_->clipMaskSamples.id());
+                       glViewport(0, 0, pass.width, pass.height);
+                       glDisable(GL_DEPTH_TEST);
+                       glDisable(GL_CULL_FACE);
+                       bindForMask();
+                       setup_.meshes.draw(
+                           gpu_->clipMask.id(),
+                           [this](const SceneObject& o, std::size_t i) {
+                             return !o.proxy && cuts(i) && reaches_[i];
+                           },
+                           [](const SceneObject&, std::size_t) {});
+                       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                                       GL_TEXTURE_FETCH_BARRIER_BIT |
+                                       GL_TEXTURE_UPDATE_BARRIER_BIT);
+                     },
+                 .onRead = true});
   frame.addPass({.name = "capMask",
                  .reads = {setup_.gbuffer.cutMask()},
                  .writes = {capMask_},

@@ -44,11 +44,14 @@ class ClipSurfaceCutter : public Cutter {
   bool cuts(std::size_t index) const override;
   // Not where the object's box (grown by a pixel) lies wholly where the surfaces keep all.
   bool reaches(std::size_t index) const override { return reaches_[index]; }
+  // Where one surface alone decides the object: its plane lifted by the relief's least and
+  // greatest offset (clipSurfacesSlab).
+  std::optional<Slab> slab(std::size_t index) const override { return slabs_[index]; }
   bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   // Every cap of every capped object (cap.vert + cap.frag).
   void drawGeometry(const GeometryDraw& draw) const override;
-  // The cap mask, from the G-buffer's cut mask.
+  // The clip mask when read (clip_mask.frag), and the cap mask from the G-buffer's cut mask.
   void addPassesAfterGeometry(Frame& frame) override;
   // The depth sprites' layers.
   std::vector<Aov> extraAovs() const override;
@@ -57,6 +60,8 @@ class ClipSurfaceCutter : public Cutter {
 
  private:
   void buildPerFrameSprites(float time);
+  // Binds what clip_surfaces.glsl and the clip mask read and write.
+  void bindForMask() const;
   // Trapp13 §4.2's normal and occlusion maps of `cs`'s offset map into `texture`.
   static void uploadRelief(GLuint texture, const ClipSurface& cs);
   // The options now; `options_` keeps what a change rebuilds the renderer for (the offset
@@ -70,6 +75,7 @@ class ClipSurfaceCutter : public Cutter {
   std::unique_ptr<Gpu> gpu_;
   std::vector<std::size_t> capped_, uncappable_;
   std::vector<bool> reaches_;  // per scene object, this frame
+  std::vector<std::optional<Slab>> slabs_;
   GLuint blockBinding_, reliefUnit_, layersUnit_, diffuseUnit_, clipMaskImage_, parityImage_;
   Target clipMask_, capParity_, capMask_;
 };

@@ -8,7 +8,7 @@ namespace {
 // Uniform locations of kinds/meshes/mesh.frag and frame/mesh.vert.
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
                 kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kImportance = 16, kFirstLayer = 17,
-                kClipPlane = 18, kCutColor = 24;
+                kClipPlane = 18, kSlabClip = 19, kCutColor = 24;
 // A cut object's front faces by `front`, then its back faces by `back` (mesh.frag's
 // FRONT_FACES, BACK_FACES), `prepare` setting each program's uniforms before it draws.
 void drawSides(GLuint front, GLuint back, const SceneMeshes::DrawWith& drawWith,
@@ -96,10 +96,47 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
       drawWith(uncutProgram_.id());
       return;
     }
-    drawSides(frontProgram_.id(), backProgram_.id(), drawWith, [&](GLuint program) {
+    const ActiveCutter* slabCutter = nullptr;
+    std::optional<Cutter::Slab> slab;
+    for (const ActiveCutter& c : cutters)
+      if (!slab && cuts[i].clipPasses == 0 && (cuts[i].cutBy & (1 << c.slot)) != 0)
+        if ((slab = c.cutter->slab(i))) slabCutter = &c;
+    if (!slab) {
+      drawSides(frontProgram_.id(), backProgram_.id(), drawWith, [&](GLuint program) {
+        setObjectUniforms(program, cutters, cuts[i], o, i);
+        perProgram(program);
+      });
+      return;
+    }
+    // Each side twice, split by hardware clip distances: the part the cutter keeps whole by
+    // the program of the other cutters (none: the uncut one), then the slab by the cutter's
+    // program, reaching `overlap` into the first part so that their common edge leaves no
+    // crack; the part it removes whole is drawn by neither.
+    ObjectCut rest = cuts[i];
+    rest.cutBy &= ~(1 << slabCutter->slot);
+    const glm::vec4 keepAll(0, 0, 0, 1);
+    const glm::vec4 keptPart[2] = {slab->kept, keepAll};
+    const glm::vec4 slabPart[2] = {-slab->kept + glm::vec4(0, 0, 0, slab->overlap), slab->removed};
+    glEnable(GL_CLIP_DISTANCE1);
+    glEnable(GL_CLIP_DISTANCE2);
+    glEnable(GL_CULL_FACE);
+    for (const auto& [culled, program] :
+         {std::pair{GL_BACK, frontProgram_.id()}, std::pair{GL_FRONT, backProgram_.id()}}) {
+      glCullFace(culled);
+      const GLuint whole = rest.cutBy == 0 ? uncutProgram_.id() : program;
+      setObjectUniforms(whole, cutters, rest, o, i);
+      glProgramUniform4fv(whole, kSlabClip, 2, &keptPart[0][0]);
+      drawWith(whole);
       setObjectUniforms(program, cutters, cuts[i], o, i);
-      perProgram(program);
-    });
+      glProgramUniform4fv(program, kSlabClip, 2, &slabPart[0][0]);
+      drawWith(program);
+    }
+    // Mesa 22.3's llvmpipe clips by stale distances with clipping disabled (below).
+    const glm::vec4 none[2] = {keepAll, keepAll};
+    for (const GLuint program : {uncutProgram_.id(), frontProgram_.id(), backProgram_.id()})
+      glProgramUniform4fv(program, kSlabClip, 2, &none[0][0]);
+    glDisable(GL_CLIP_DISTANCE1);
+    glDisable(GL_CLIP_DISTANCE2);
   };
   const auto noMore = [](GLuint) {};
   // The objects of `batch` (frame/occlusion_culling.hpp), in the order below.
