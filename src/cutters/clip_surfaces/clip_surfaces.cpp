@@ -568,7 +568,7 @@ void ClipSurfaceCutter::addPassesAfterGeometry(Frame& frame) {
                        setup_.meshes.draw(
                            gpu_->clipMask.id(),
                            [this](const SceneObject& o, std::size_t i) {
-                             return !o.proxy && cuts(i) && reaches_[i];
+                             return !o.proxy && cuts(i) && reaches(i);
                            },
                            [](const SceneObject&, std::size_t) {});
                        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |

@@ -43,10 +43,14 @@ class ClipSurfaceCutter : public Cutter {
   void bindForGeometry() const override;
   bool cuts(std::size_t index) const override;
   // Not where the object's box (grown by a pixel) lies wholly where the surfaces keep all.
-  bool reaches(std::size_t index) const override { return reaches_[index]; }
+  bool reaches(std::size_t index) const override {
+    return index >= reaches_.size() || reaches_[index];  // before the first frame: all
+  }
   // Where one surface alone decides the object: its plane lifted by the relief's least and
   // greatest offset (clipSurfacesSlab).
-  std::optional<Slab> slab(std::size_t index) const override { return slabs_[index]; }
+  std::optional<Slab> slab(std::size_t index) const override {
+    return index < slabs_.size() ? slabs_[index] : std::nullopt;
+  }
   bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   // Every cap of every capped object (cap.vert + cap.frag).
