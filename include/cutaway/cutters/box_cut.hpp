@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "cutaway/core/options.hpp"
+#include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
 
@@ -33,6 +34,10 @@ const OptionsSchema& boxCutSchema();
 
 // The box's unit axes (columns of the rotation).
 glm::mat3 boxCutAxes(const BoxCutOptions& options);
+
+// Whether any point of `box` (world space, axis-aligned) may lie inside the cut box: false
+// only where an axis of either box separates them, by more than 1e-5 of their reach.
+bool boxCutMeetsBox(const BoxCutOptions& options, const Bounds& box);
 
 // What the box cut decides about a fragment at world point `x` of an object it cuts, seen
 // along the ray from `rayOrigin` (Camera::rayOrigin(x)): removed inside the box; on a back

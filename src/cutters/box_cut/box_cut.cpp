@@ -19,6 +19,22 @@ BoxCut::BoxCut(FrameSetup& setup)
       axesLocation_(setup.bindings.uniformLocation("BOX_CUT_AXES", 3)),
       halfLocation_(setup.bindings.uniformLocation("BOX_CUT_HALF")) {}
 
+void BoxCut::beginFrame(const FrameState& state) {
+  // An object the box does not meet keeps every fragment: it draws without the box's code
+  // (its back faces behind the box are no cut wall of its own).
+  const Scene& scene = setup_.scene;
+  reaches_.assign(scene.objects.size(), true);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Bounds& local = setup_.meshes.mesh(i).bounds();
+    if (local.empty() || !cuts(i)) continue;
+    Bounds box = local.transformed(scene.objects[i].transformAt(state.time));
+    const float pixel = worldPixel(box, state.uniforms);
+    box.min -= glm::vec3(pixel);
+    box.max += glm::vec3(pixel);
+    reaches_[i] = boxCutMeetsBox(options(), box);
+  }
+}
+
 bool BoxCut::cuts(std::size_t index) const {
   const SceneObject& o = setup_.scene.objects[index];
   return o.role != Role::Interest && o.mayBeCutBy(BoxCutOptions::kKey);

@@ -3,6 +3,8 @@
 // them are live).
 #pragma once
 
+#include <vector>
+
 #include "cutaway/cutters/box_cut.hpp"
 #include "cutters/cutter.hpp"
 
@@ -11,7 +13,12 @@ namespace cutaway {
 class BoxCut : public Cutter {
  public:
   explicit BoxCut(FrameSetup& setup);
+  // The objects whose boxes (grown by a pixel) meet the cut box this frame.
+  void beginFrame(const FrameState& state) override;
   bool cuts(std::size_t index) const override;
+  bool reaches(std::size_t index) const override {
+    return index >= reaches_.size() || reaches_[index];  // before the first frame: all
+  }
   bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   void setProgramUniforms(GLuint program) const override;
@@ -22,6 +29,7 @@ class BoxCut : public Cutter {
 
   FrameSetup& setup_;
   GLint centerLocation_, axesLocation_, halfLocation_;
+  std::vector<bool> reaches_;  // per scene object, this frame
 };
 
 }  // namespace cutaway

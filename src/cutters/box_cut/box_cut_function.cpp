@@ -15,6 +15,29 @@ glm::mat3 boxCutAxes(const BoxCutOptions& o) {
   return glm::mat3(m);
 }
 
+bool boxCutMeetsBox(const BoxCutOptions& o, const Bounds& box) {
+  if (box.empty()) return false;
+  const glm::mat3 axes = boxCutAxes(o);
+  const glm::vec3 half = 0.5f * o.size;
+  const float margin = 1e-5f * (sceneReach(box.min) + sceneReach(box.max) + sceneReach(o.center) +
+                                glm::length(half));
+  // The object's box in the cut box's frame, and the cut box in the world's: separated when
+  // their extents part along an axis of either.
+  Bounds local, cut;
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 corner{(k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                           (k & 4) ? box.max.z : box.min.z};
+    local.extend(glm::transpose(axes) * (corner - o.center));
+    const glm::vec3 sign{(k & 1) ? 1.0f : -1.0f, (k & 2) ? 1.0f : -1.0f, (k & 4) ? 1.0f : -1.0f};
+    cut.extend(o.center + axes * (sign * half));
+  }
+  for (int i = 0; i < 3; ++i)
+    if (local.min[i] > half[i] + margin || local.max[i] < -half[i] - margin ||
+        box.min[i] > cut.max[i] + margin || box.max[i] < cut.min[i] - margin)
+      return false;
+  return true;
+}
+
 BoxCutFate boxCutFragment(const BoxCutOptions& o, const glm::vec3& x, bool frontFacing,
                           const glm::vec3& rayOrigin) {
   const glm::mat3 axes = boxCutAxes(o);
