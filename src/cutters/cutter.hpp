@@ -150,6 +150,17 @@ class Cutter {
   virtual std::vector<std::pair<std::string, std::string>> facts() const { return {}; }
 };
 
+// Scene object `index`'s world box at `time`, grown by worldPixel on every side: it holds every
+// point a fragment of the object may be shaded at (for Cutter::reaches and Cutter::slab).
+inline Bounds shadedBox(const Scene& scene, const Bounds& local, std::size_t index, float time,
+                        const FrameUniforms& u) {
+  Bounds box = local.transformed(scene.objects[index].transformAt(time));
+  const float pixel = worldPixel(box, u);
+  box.min -= glm::vec3(pixel);
+  box.max += glm::vec3(pixel);
+  return box;
+}
+
 // A registered cutter.
 struct CutterType {
   std::string key;    // "adaptive": its JSON key under "cutters", the viewer's and CLI's prefix

@@ -27,11 +27,7 @@ void BoxCut::beginFrame(const FrameState& state) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const Bounds& local = setup_.meshes.mesh(i).bounds();
     if (local.empty() || !cuts(i)) continue;
-    Bounds box = local.transformed(scene.objects[i].transformAt(state.time));
-    const float pixel = worldPixel(box, state.uniforms);
-    box.min -= glm::vec3(pixel);
-    box.max += glm::vec3(pixel);
-    reaches_[i] = boxCutMeetsBox(options(), box);
+    reaches_[i] = boxCutMeetsBox(options(), shadedBox(scene, local, i, state.time, state.uniforms));
   }
 }
 

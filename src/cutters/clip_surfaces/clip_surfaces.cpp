@@ -296,14 +296,12 @@ void ClipSurfaceCutter::beginFrame(const FrameState& state) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const Bounds& local = setup_.meshes.mesh(i).bounds();
     if (local.empty() || !cuts(i)) continue;
-    Bounds box = local.transformed(scene.objects[i].transformAt(state.time));
-    const float pixel = worldPixel(box, state.uniforms);
-    box.min -= glm::vec3(pixel);
-    box.max += glm::vec3(pixel);
+    const Bounds box = shadedBox(scene, local, i, state.time, state.uniforms);
     reaches_[i] = !clipSurfacesKeepBox(options, gpu_->reliefRange, box);
     if (!reaches_[i]) continue;
     if (const auto s = clipSurfacesSlab(options, gpu_->reliefRange, box))
-      slabs_[i] = Slab{.kept = s->kept, .removed = s->removed, .overlap = pixel};
+      slabs_[i] =
+          Slab{.kept = s->kept, .removed = s->removed, .overlap = worldPixel(box, state.uniforms)};
   }
   ClipSurfaceBlock block{};
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
