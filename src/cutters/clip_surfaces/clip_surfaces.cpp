@@ -251,11 +251,12 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
   if (options.parity == ClipSurfaceOptions::Parity::PerFrame) g.sprites.resize(capped_.size());
 
   Frame& frame = setup.frame;
-  clipMask_ = frame.declare("clipMask", {.format = GL_R32UI,
-                                         .meaning = "1 where a clip surface removed a fragment (at "
-                                                    "any depth; for a volume, where its ray "
-                                                    "crosses clipped space inside its box), else "
-                                                    "0 (Trapp13 eq. 1)"});
+  clipMask_ = frame.declare("clipMask",
+                            {.format = GL_R32UI,
+                             .meaning = "1 where the clip surfaces clip an object they reach, at "
+                                        "any depth, hidden or removed by another cutter too (for a "
+                                        "volume, where its ray crosses clipped space inside its "
+                                        "box), else 0 (Trapp13 eq. 1)"});
   capParity_ = frame.declare(
       "capParity", {.format = GL_R32UI,
                     .meaning = "volumetric parity test of the cap fragments at this pixel (Trapp13 "
