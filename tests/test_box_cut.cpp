@@ -119,6 +119,31 @@ TEST(BoxCutFunction, ABoxItDoesNotMeetHoldsNoPointItRemoves) {
   EXPECT_FALSE(boxCutMeetsBox(axisAligned, Bounds{}));
 }
 
+// A cut box that meets no object leaves the frame as the uncut one draws it, byte for byte:
+// the objects draw without the box's code (Cutter::reaches). Among them a one-sided
+// (`doubleSided: false`) open square behind the box, seen from its back: as a cut object its
+// back faces were drawn (7155 bytes differed), where the uncut frame culls them.
+TEST(BoxCutFrame, ABoxThatMeetsNoObjectLeavesTheFrameAsUncut) {
+  const Scene scene = parseScene(R"({"resolution": [120, 90], "samples": 4,
+    "camera": {"eye": [0.5, 0.8, -6], "target": [0, 0, 0], "fov": 45},
+    "objects": [
+      {"name": "block", "file": "meshes/cube.obj", "transform": {"translate": [1.6, -0.5, -0.5]}},
+      {"name": "square", "file": "meshes/flat.obj", "params": {"doubleSided": false},
+       "transform": {"translate": [-2, -2, 3], "scale": 4}}],
+    "cutters": {"boxCut": {"center": [0, 0, 0], "size": [2, 2, 2], "rotate": [0, 30, 0]}}})",
+                                 "box.json", kData);
+  Scene plain = scene;
+  plain.cutters.clear();
+  Renderer cut(scene, test::glContext().info()), whole(plain, test::glContext().info());
+  cut.render();
+  whole.render();
+  const Rgba8Image a = cut.readColor(), b = whole.readColor();
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
+  EXPECT_EQ(differ, 0);
+}
+
 namespace {
 
 // A solid block, [−2, 2] × [−1.5, 1.5] × [−2, 2], with a small object of interest inside, cut by a
