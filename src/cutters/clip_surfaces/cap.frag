@@ -60,12 +60,11 @@ float marble(vec3 p) {
 // S_z, take the point that the clip test agrees with.
 vec3 onClipSurface(int i, vec3 x) {
   vec3 d = normalize(x - viewRayOrigin(x)), n = clipSurfaceNormal(i);
-  vec3 u = uClipU[i].xyz, v = uClipV[i].xyz;
-  vec3 perS = uClipScale[i].x * u / dot(u, u), perT = uClipScale[i].y * v / dot(v, v);
   for (int k = 0; k < 2; ++k) {
     vec4 relief = clipRelief(i, clipSurfaceTexCoord(i, x));
     float f = dot(x - uClipOrigin[i].xyz, n) + relief.r * uClipScale[i].z;
-    vec3 gradient = n + uClipScale[i].z * (relief.g * perS + relief.b * perT);
+    // ∂s/∂P and ∂t/∂P are eq. 2's axes.
+    vec3 gradient = n + uClipScale[i].z * (relief.g * uClipToS[i].xyz + relief.b * uClipToT[i].xyz);
     float slope = dot(gradient, d);
     if (abs(slope) < 1e-6) break;
     x -= clamp(f / slope, -uClipScale[i].z, uClipScale[i].z) * d;

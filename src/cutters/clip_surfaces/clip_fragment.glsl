@@ -60,7 +60,7 @@ vec2 clipSurfacesRemovedSpan(vec3 origin, vec3 direction, vec2 window, vec2 rang
   for (int i = 0; i < uClipCount.x; ++i) {
     if (uClipOrigin[i].w == 0.0) continue;
     vec3 n = clipSurfaceNormal(i);
-    float a = dot(origin, n) - dot(n, uClipOrigin[i].xyz) + uClipScale[i].w;
+    float a = dot(origin, n) - uClipSurfacePlane[i].w + uClipScale[i].w;
     float b = dot(direction, n);
     vec2 own = b > 0.0 ? vec2(-1e30, -a / b) : b < 0.0 ? vec2(-a / b, 1e30)
              : a < 0.0 ? vec2(-1e30, 1e30) : vec2(1e30, -1e30);
