@@ -6,7 +6,8 @@
 namespace cutaway {
 
 // A cap inside another solid's box, per box, at most kMostNestedCaps boxes deep, against the
-// outer solid's cap in its plane (cutters/clip_surfaces/clip_surfaces.cpp).
+// outer solid's cap in its plane (cutters/clip_surfaces/clip_surfaces.cpp; cap.frag applies it
+// to the depth it writes, as a polygon offset would).
 constexpr float kNestedCapUnits = 4.0f;
 constexpr int kMostNestedCaps = 4;
 // The most any surface is drawn nearer.

@@ -137,6 +137,11 @@ bool volumetricParityTest(const VolumetricDepthSprite& vds, const glm::vec3& p);
 // a fixed, generic direction crosses a closed mesh an odd number of times when p is inside.
 bool insideMesh(const Mesh& mesh, const glm::vec3& p);
 
+// The least and greatest bilinear, repeating sample of `map` (sampleRepeat's) over the texture
+// coordinates [lo, hi] (eq. 2's T, map repeats included): those of the texels whose footprint
+// reaches them, so the relief there lies within the range. A cap's prism (§5.1) spans it.
+glm::vec2 reliefRangeOver(const FloatImage& map, glm::vec2 lo, glm::vec2 hi);
+
 // Which tiles of a cap grid can hold a cap of `mesh` (watertight, object space, placed in the
 // world by `model`) on surface `cs` (§5.1: the grid spans `rect` = (s0, t0, s1, t1) of its
 // [0,1]² extent in tiles.x × tiles.y tiles): the tiles one of its triangles crosses within the

@@ -1,8 +1,9 @@
 #version 450 core
-// Trapp13 §5.1, §5.3–5.4, §6.1: a cap fragment is kept only inside the capped solid (the
-// volumetric parity test against its layered depth image) and where no other clip surface
-// removes it; it is shaded with the active style from the relief's normal, occlusion and an
-// optional solid texture.
+// Trapp13 §5.1, §5.3–5.4, §6.1, with §7's relief mapping: a cap fragment finds the nearest
+// point of the displaced surface along its view ray within its prism (cap.vert) that is inside
+// the capped solid (the volumetric parity test against its layered depth image) and that no
+// other clip surface removes, and writes that point's depth; it is shaded with the active
+// style from the relief's normal, occlusion and an optional solid texture.
 #include "frame/frame_uniforms.glsl"
 #include "styles/surface.glsl"
 #include "style.glsl"
@@ -12,8 +13,9 @@
 #include "styles/emphasis/emphasis.glsl"
 #include "frame/gbuffer.glsl"
 #include "cutters/composition.glsl"
-in vec3 vWorldPosition;
-in vec2 vST;
+in vec3 vWorldPosition;    // on the prism's back face, on the view ray through the pixel's centre
+flat in vec4 vPrismT;      // the prism's eq. 2 texture coordinates: least (xy), greatest (zw)
+flat in vec2 vPrismLift;   // and its extent along N, (P − O)·N: least, greatest
 layout(location = 11) uniform int uObjectId;
 layout(location = 13) uniform int uCutBy;  // the other cutters that cut the capped object
 layout(location = 16) uniform float uEmphasisImportance;  // the capped object's emphasisImportance()
@@ -22,6 +24,11 @@ layout(location = 41) uniform mat4 uCapToTexture;  // world → LDI space of the
 layout(location = 45) uniform int uDepthComplexity;
 layout(location = 46) uniform vec3 uCapColor;
 layout(location = 49) uniform int uHasDiffuse;
+// Nearer by this many steps of depth resolution (a nested cap: frame/depth_offsets.hpp).
+layout(location = 51) uniform float uDepthUnits;
+// The capped surface's relief maps (uClipRelief[uCapSurface]), read in capOnRay's loop without
+// clipRelief's switch, whose every case llvmpipe runs.
+layout(binding = UNIT_CAP_RELIEF) uniform sampler2D uCapRelief;
 layout(binding = UNIT_CAP_DIFFUSE) uniform sampler2D uCapDiffuse;  // §6.1 diffuse map, sampled at T
 // Per pixel, the parity results of cap fragments: 1 = one was outside, 2 = one was inside.
 layout(binding = IMAGE_CAP_PARITY, r32ui) uniform coherent uimage2D uCapParity;
@@ -52,47 +59,150 @@ float marble(vec3 p) {
   return 0.5 + 0.5 * sin(p.x + 6.0 * turbulence);
 }
 
-// The grid is linear between its vertices while the clip test of eq. 1 samples the map
-// bilinearly, so the two surfaces part by the map's curvature within a cell. Where a view ray
-// grazes the solid's rim, the grid's point can then lie outside the solid where the surface
-// that clipped the solid lies inside it: a pinhole in the cap. Two Newton steps along the view
-// ray onto f = 0 of eq. 1 (the relief's gradient gives f's), each at most the relief's depth
-// S_z, take the point that the clip test agrees with.
-vec3 onClipSurface(int i, vec3 x) {
-  vec3 d = normalize(x - viewRayOrigin(x)), n = clipSurfaceNormal(i);
-  for (int k = 0; k < 2; ++k) {
-    vec4 relief = clipRelief(i, clipSurfaceTexCoord(i, x));
-    float f = dot(x - uClipOrigin[i].xyz, n) + relief.r * uClipScale[i].z;
-    // ∂s/∂P and ∂t/∂P are eq. 2's axes.
-    vec3 gradient = n + uClipScale[i].z * (relief.g * uClipToS[i].xyz + relief.b * uClipToT[i].xyz);
-    float slope = dot(gradient, d);
-    if (abs(slope) < 1e-6) break;
-    x -= clamp(f / slope, -uClipScale[i].z, uClipScale[i].z) * d;
+// Where the view ray p + λq is in the slab lo ≤ · ≤ hi: [entry, exit] (empty where it runs
+// along the slab outside it).
+vec2 slabSpan(float p, float q, float lo, float hi) {
+  if (abs(q) < 1e-30) return p >= lo && p <= hi ? vec2(-1e30, 1e30) : vec2(1e30, -1e30);
+  float a = (lo - p) / q, b = (hi - p) / q;
+  return vec2(min(a, b), max(a, b));
+}
+
+// A point of the displaced surface shows the cap where it is in front of the eye, no other
+// cutter removes it (an adaptive cutaway removes it in front of its surface), it is inside the
+// capped solid (the volumetric parity test against its layered depth image) and the other
+// surfaces leave the cut open there (under a union none of them clips, under an intersection
+// all of them do). Returns its window depth, or −1.
+float capDepth(int i, vec3 x) {
+  vec4 clip = uViewProjection * vec4(x, 1.0);
+  float depth = 0.5 * clip.z / clip.w + 0.5;
+  if (clip.w <= 0.0 || depth < 0.0 || depth > 1.0) return -1.0;
+  vec3 cutPosition, cutNormal;
+  int cutter;
+  CutFragment f = CutFragment(x, -clipSurfaceNormal(i), true);
+  if (cutFragment(uCutBy, f, cutPosition, cutNormal, cutter) == kDiscard) return -1.0;
+  vec4 t = uCapToTexture * vec4(x, 1.0);
+  bool inside = volumetricParityTest(t.xyz / t.w, uDepthComplexity);
+  imageAtomicMax(uCapParity, ivec2(gl_FragCoord.xy), inside ? 2u : 1u);
+  if (!inside) return -1.0;
+  if (uClipCount.x > 1) {
+    bool others = clippedBySurfaces(x, i);
+    if (uClipCount.y == 1 ? !others : others) return -1.0;
   }
-  return x;
+  return depth;
+}
+
+// The view ray through this fragment within its prism, walked through the cells of the
+// bilinear sample (between four texel centres, the texel-centre space's unit squares) in the
+// ray's order: a 2-D grid traversal. λ is the distance along the ray from its origin.
+struct RayWalk {
+  vec3 origin, d;
+  vec2 t0, dt;     // eq. 2's T along the ray: t0 + λ dt
+  float e0, de;    // (P − O)·N along the ray
+  vec2 size, g;    // the map's texels; dT/dλ in texels
+  vec2 dir, across, next;  // the walk: its step, λ per cell, λ at the next sides
+  vec2 cell;
+  float a, exit;   // λ where this cell is entered; where the prism is left
+  float after;     // roots up to here were tried
+};
+
+RayWalk startWalk(int i) {
+  RayWalk w;
+  w.origin = viewRayOrigin(vWorldPosition);
+  vec3 ray = vWorldPosition - w.origin;
+  w.d = normalize(ray);
+  vec3 rel = w.origin - uClipOrigin[i].xyz, n = clipSurfaceNormal(i);
+  w.t0 = vec2(dot(rel, uClipToS[i].xyz), dot(rel, uClipToT[i].xyz));
+  w.dt = vec2(dot(w.d, uClipToS[i].xyz), dot(w.d, uClipToT[i].xyz));
+  w.e0 = dot(rel, n), w.de = dot(w.d, n);
+  // The prism itself (cap.vert draws it larger), a little past its sides, so that a root on the
+  // side two prisms share is found.
+  vec2 s = slabSpan(w.t0.x, w.dt.x, vPrismT.x, vPrismT.z),
+       t = slabSpan(w.t0.y, w.dt.y, vPrismT.y, vPrismT.w),
+       e = slabSpan(w.e0, w.de, vPrismLift.x, vPrismLift.y);
+  float pad = 1e-5 * length(ray);
+  w.a = max(max(max(s.x, t.x), e.x) - pad, 0.0);
+  w.exit = min(min(s.y, t.y), e.y) + pad;
+  w.after = w.a - pad;
+  w.size = vec2(textureSize(uCapRelief, 0));
+  w.g = w.dt * w.size;
+  vec2 start = (w.t0 + w.a * w.dt) * w.size - 0.5;
+  w.cell = floor(start);
+  w.dir = vec2(w.g.x >= 0.0 ? 1.0 : -1.0, w.g.y >= 0.0 ? 1.0 : -1.0);
+  w.across = vec2(abs(w.g.x) > 1e-30 ? 1.0 / abs(w.g.x) : 1e30,
+                  abs(w.g.y) > 1e-30 ? 1.0 / abs(w.g.y) : 1e30);
+  w.next = w.a + w.dir * (w.cell + max(w.dir, 0.0) - start) * w.across;
+  return w;
+}
+
+// The next λ past w.after where f = 0 of eq. 1, or −1. f is bilinear in the map's texels and
+// linear in the ray, so within a cell it is a quadratic in λ, solved exactly.
+float nextRoot(inout RayWalk w, float sz) {
+  for (int k = 0; k < 1024 && w.a < w.exit; ++k) {
+    float b = min(min(w.next.x, w.next.y), w.exit), len = b - w.a;
+    // textureGather's order: (0, 1), (1, 1), (1, 0), (0, 0) of the cell's corners.
+    vec4 h = textureGather(uCapRelief, (w.cell + 1.0) / w.size, 0);
+    float h00 = h.w, dx = h.z - h.w, dy = h.x - h.w, dxy = h.y - h.x - h.z + h.w;
+    vec2 u = (w.t0 + w.a * w.dt) * w.size - 0.5 - w.cell;  // the weights where the ray enters
+    // f(a + μ) = c0 + c1 μ + c2 μ².
+    float c0 = w.e0 + w.a * w.de + sz * (h00 + dx * u.x + dy * u.y + dxy * u.x * u.y);
+    float c1 = w.de + sz * (dx * w.g.x + dy * w.g.y + dxy * (u.x * w.g.y + u.y * w.g.x));
+    float c2 = sz * dxy * w.g.x * w.g.y;
+    vec2 roots = vec2(-1e30);
+    if (abs(c2) * len * len <= 1e-6 * (abs(c1) * len + abs(c0))) {
+      if (c1 != 0.0) roots.x = -c0 / c1;
+    } else {
+      float disc = c1 * c1 - 4.0 * c2 * c0;
+      if (disc >= 0.0) {
+        float q = -0.5 * (c1 + (c1 >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+        roots = vec2(q / c2, q != 0.0 ? c0 / q : -1e30);
+        if (roots.y < roots.x) roots = roots.yx;
+      }
+    }
+    // A root on a cell's side counts in both cells, so none falls between them.
+    float slack = 1e-4 * len;
+    roots += w.a;
+    for (int m = 0; m < 2; ++m)
+      if (roots[m] > w.after && roots[m] >= w.a - slack && roots[m] <= b + slack) return roots[m];
+    w.a = b;
+    bvec2 step = lessThanEqual(w.next, vec2(b));
+    w.cell += mix(vec2(0.0), w.dir, vec2(step));
+    w.next += mix(vec2(0.0), w.across, vec2(step));
+  }
+  return -1.0;
+}
+
+// The nearest point along this fragment's view ray, within its prism, where f = 0 and the cap
+// shows (capDepth); false where there is none, with x then where the ray crosses the middle of
+// the prism's lift: a discarded fragment's neighbours take their screen-space derivatives
+// (the hatching's texture gradients) across it.
+bool capOnRay(int i, out vec3 x, out float depth) {
+  RayWalk w = startWalk(i);
+  for (int k = 0; k < 64; ++k) {
+    float root = nextRoot(w, uClipScale[i].z);
+    if (root < 0.0) break;
+    x = w.origin + root * w.d;
+    depth = capDepth(i, x);
+    if (depth >= 0.0) return true;
+    w.after = root + 1e-5 * w.exit;
+  }
+  float middle = 0.5 * (vPrismLift.x + vPrismLift.y) - w.e0;
+  x = w.origin + (abs(w.de) > 1e-30 ? middle / w.de : 0.0) * w.d;
+  return false;
 }
 
 void main() {
   int i = uCapSurface;
-  vec3 x = onClipSurface(i, vWorldPosition);
-  // The other cutters cut the cap with its object (an adaptive cutaway removes it in front of
-  // its surface); the cap faces the viewer.
-  vec3 cutPosition, cutNormal;
-  int cutter;
-  CutFragment f = CutFragment(x, -clipSurfaceNormal(i), true);
-  if (cutFragment(uCutBy, f, cutPosition, cutNormal, cutter) == kDiscard) discard;
-  vec4 t = uCapToTexture * vec4(x, 1.0);
-  bool inside = volumetricParityTest(t.xyz / t.w, uDepthComplexity);
-  imageAtomicMax(uCapParity, ivec2(gl_FragCoord.xy), inside ? 2u : 1u);
-  if (!inside) discard;
-  // The cap of surface i bounds the clipped region where the other surfaces leave it: under a
-  // union where none of them clips, under an intersection where all of them do.
-  if (uClipCount.x > 1) {
-    bool others = clippedBySurfaces(x, i);
-    if (uClipCount.y == 1 ? !others : others) discard;
-  }
+  vec3 x;
+  float depth;
+  if (!capOnRay(i, x, depth)) discard;
+  // Nearer by uDepthUnits steps of the depth buffer's resolution at this depth, as a polygon
+  // offset would draw it (GL_DEPTH_COMPONENT32F: 2^(e − 23) for depth's exponent e).
+  int e;
+  frexp(depth, e);
+  gl_FragDepth = depth + uDepthUnits * exp2(float(e - 24));
   vec3 n = clipSurfaceNormal(i);
-  vec4 relief = clipRelief(i, vST * uClipScale[i].xy);
+  vec2 st = clipSurfaceTexCoord(i, x);
+  vec4 relief = textureLod(uCapRelief, st, 0.0);
   vec3 normal = -n;  // the cap faces the clipped side
   if (uClipCount.z != 0) {
     // Tangents of X(s,t) = O + sU + tV − S_z h(s S_x, t S_y) N.
@@ -104,7 +214,7 @@ void main() {
   vec3 toEye = uCounts.y == 1 ? -uForward.xyz : normalize(uEye.xyz - x);
   if (dot(normal, toEye) < 0.0) normal = -normal;  // seen from the kept side through a gap
   vec3 base = uCapColor;
-  if (uHasDiffuse != 0) base *= texture(uCapDiffuse, vST * uClipScale[i].xy).rgb;
+  if (uHasDiffuse != 0) base *= texture(uCapDiffuse, st).rgb;
   if (uCapStyle.y != 0.0) base *= mix(0.55, 1.1, marble(x * uCapStyle.z));
   SurfacePoint s;
   s.position = x;

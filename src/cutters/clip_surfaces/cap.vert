@@ -1,25 +1,38 @@
 #version 450 core
-// Trapp13 §5.1: the cap surface, a grid over the clip surface's (U, V) extent (the part of it
-// a capped object spans) refined to the offset map's resolution along each side, drawn as
-// instanced tiles (only those that can hold the cap), displaced by the offset map:
-// X = O + sU + tV − S_z·h(T)·N.
+// Trapp13 §5.1, with its §7's relief mapping: the cap surface's grid is drawn as prisms, one per
+// tile of the grid that can hold the cap (capTiles, instanced), each the box over its tile's
+// part of the clip surface's (U, V) extent between the least and greatest lift of the relief
+// over it. cap.frag finds the displaced surface X = O + sU + tV − S_z·h(T)·N along each view ray
+// within the prism: a grid refined to the offset map's texels without its triangles.
 #include "frame/frame_uniforms.glsl"
 #include "clip_surfaces.glsl"
-layout(location = 0) in vec2 aST;   // within this instance's tile of the grid
-layout(location = 1) in vec2 aTile;  // the tile's place in the grid (per instance)
+layout(location = 0) in vec3 aCorner;  // of the unit cube: s, t, lift
+layout(location = 1) in vec4 aTile;    // xy: the tile's place in the grid; zw: h_min, h_max over it
 layout(location = 40) uniform int uCapSurface;
 layout(location = 48) uniform vec4 uCapRect;  // the part of [0,1]² the grid covers: s0, t0, s1, t1
 layout(location = 50) uniform ivec2 uCapTiles;  // the grid's tiles along s and t
 out vec3 vWorldPosition;
-out vec2 vST;
+flat out vec4 vPrismT;     // the prism's eq. 2 texture coordinates: least (xy), greatest (zw)
+flat out vec2 vPrismLift;  // and its extent along N, (P − O)·N: least, greatest
 void main() {
   int i = uCapSurface;
-  vec2 st = mix(uCapRect.xy, uCapRect.zw, (aTile + aST) / vec2(uCapTiles));
-  vec3 plane = uClipOrigin[i].xyz + st.x * uClipU[i].xyz + st.y * uClipV[i].xyz;
-  // Indexed by the uniform itself (no loop, no discard here, unlike clipRelief's callers):
-  // llvmpipe runs every case of clipRelief's switch, four fetches per grid vertex.
-  float h = textureLod(uClipRelief[i], st * uClipScale[i].xy, 0.0).r;
-  vWorldPosition = plane - uClipScale[i].z * h * clipSurfaceNormal(i);
-  vST = st;
-  gl_Position = uViewProjection * vec4(vWorldPosition, 1.0);
+  vec2 st0 = mix(uCapRect.xy, uCapRect.zw, aTile.xy / vec2(uCapTiles));
+  vec2 st1 = mix(uCapRect.xy, uCapRect.zw, (aTile.xy + 1.0) / vec2(uCapTiles));
+  // X lies at (X − O)·N = −S_z·h; a flat relief's prism keeps a sliver of thickness.
+  float sz = uClipScale[i].z, pad = 1e-5 * (length(uClipU[i].xyz) + length(uClipV[i].xyz));
+  vec2 lift = vec2(-sz * aTile.w, -sz * aTile.z);
+  vPrismLift = vec2(min(lift.x, lift.y) - pad, max(lift.x, lift.y) + pad);
+  vPrismT = vec4(st0, st1) * uClipScale[i].xyxy;
+  vec2 st = mix(st0, st1, aCorner.xy);
+  vec3 n = clipSurfaceNormal(i), x = uClipOrigin[i].xyz + st.x * uClipU[i].xyz +
+                                     st.y * uClipV[i].xyz + mix(vPrismLift.x, vPrismLift.y, aCorner.z) * n;
+  // Drawn a pixel larger all round (a world pixel at the corner's view depth, along each of
+  // the box's axes), so that a pixel whose centre's view ray crosses the prism has all its
+  // samples covered by it: cap.frag shades the centre's ray, and its depth goes to every sample.
+  float atOne = max(2.0 / (uViewport.x * uProjection[0][0]), 2.0 / (uViewport.y * uProjection[1][1]));
+  float pixel = uCounts.y == 1 ? atOne : atOne * max(-(uView * vec4(x, 1.0)).z, 0.0);
+  vec3 out3 = 2.0 * aCorner - 1.0;
+  x += pixel * (out3.x * normalize(uClipU[i].xyz) + out3.y * normalize(uClipV[i].xyz) + out3.z * n);
+  vWorldPosition = x;
+  gl_Position = uViewProjection * vec4(x, 1.0);
 }

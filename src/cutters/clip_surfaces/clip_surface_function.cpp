@@ -256,6 +256,27 @@ bool insideMesh(const Mesh& mesh, const glm::vec3& p) {
   return rayHits(mesh, p, dir).size() % 2 == 1;
 }
 
+glm::vec2 reliefRangeOver(const FloatImage& map, glm::vec2 lo, glm::vec2 hi) {
+  if (map.data.empty()) return glm::vec2(0.0f);
+  // Texel centres sit at (k + 0.5)/size: sampleRepeat reads texels floor(x) and floor(x) + 1 of
+  // x = T·size − 0.5. A range wider than the map covers all of it.
+  const auto texels = [](float a, float b, int size) {
+    const float first = std::floor(a * float(size) - 0.5f),
+                last = std::floor(b * float(size) - 0.5f) + 1.0f;
+    return last - first + 1.0f >= float(size) ? glm::ivec2(0, size - 1)
+                                              : glm::ivec2(int(first), int(last));
+  };
+  const glm::ivec2 cols = texels(lo.x, hi.x, map.width), rows = texels(lo.y, hi.y, map.height);
+  const auto wrap = [](int k, int size) { return ((k % size) + size) % size; };
+  glm::vec2 range(1e30f, -1e30f);
+  for (int y = rows.x; y <= rows.y; ++y)
+    for (int x = cols.x; x <= cols.y; ++x) {
+      const float h = map.at(wrap(x, map.width), wrap(y, map.height))[0];
+      range = glm::vec2(std::min(range.x, h), std::max(range.y, h));
+    }
+  return range;
+}
+
 std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, const ClipSurface& cs,
                                    glm::vec2 relief, glm::vec4 rect, glm::ivec2 tiles) {
   const int nx = tiles.x, ny = tiles.y;

@@ -23,43 +23,51 @@ struct ClipSurfaceBlock {
   glm::vec4 plane[kMaxClipSurfaces], toS[kMaxClipSurfaces], toT[kMaxClipSurfaces];
 };
 
-// A cap's grid is drawn as instances of a tile of up to kCapTileCells² cells, each placed by
-// its tile's (x, y) (cap.vert): (nx+1)(ny+1) vertices at (s, t) ∈ [0,1]², two triangles per
-// cell; a side of fewer texels takes a tile of fewer cells (a power of two).
-constexpr int kCapTileCells = 16, kCapTileSizes = 5;  // 1, 2, 4, 8, 16 cells
+// A cap's grid is drawn as one prism per tile of up to kCapTileTexels² offset-map texels, the
+// instances of a unit cube placed by its tile's (x, y) and stretched over the relief's range
+// there (cap.vert).
+constexpr float kCapTileTexels = 16.0f;
+constexpr int kMostCapTiles = 256;  // along a side
 
-struct CapTile {
+struct CapPrism {
   gl::VertexArray vertexArray;
   gl::Buffer vertices, indices;
   GLsizei indexCount = 0;
 };
 
-CapTile makeCapTile(int nx, int ny) {
-  std::vector<glm::vec2> st;
-  st.reserve(std::size_t(nx + 1) * std::size_t(ny + 1));
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) st.emplace_back(float(i) / float(nx), float(j) / float(ny));
+// The unit cube, its faces wound counter-clockwise seen from outside. cap.vert maps (s, t,
+// lift) onto U, V, N, a right-handed frame (N = Û × V̂), so the winding holds in the world.
+CapPrism makeCapPrism() {
+  std::vector<glm::vec3> corners;
+  for (int c = 0; c < 8; ++c)
+    corners.emplace_back(float(c & 1), float((c >> 1) & 1), float(c >> 2));
+  // Per face: the axis it is normal to and its side; corners by their bits.
   std::vector<GLuint> idx;
-  idx.reserve(std::size_t(nx) * std::size_t(ny) * 6);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const GLuint a = GLuint(j * (nx + 1) + i), b = a + 1, c = a + GLuint(nx + 1), d = c + 1;
-      idx.insert(idx.end(), {a, b, d, a, d, c});
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      const int a = 1 << ((axis + 1) % 3), b = 1 << ((axis + 2) % 3), base = side << axis;
+      // (a, b, normal) is a cyclic turn of (x, y, z): a → b is counter-clockwise seen from +axis.
+      const GLuint q[4] = {GLuint(base), GLuint(base + a), GLuint(base + a + b), GLuint(base + b)};
+      if (side == 1)
+        idx.insert(idx.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+      else
+        idx.insert(idx.end(), {q[0], q[2], q[1], q[0], q[3], q[2]});
     }
-  CapTile g;
-  g.vertices = gl::Buffer::create(GLsizeiptr(st.size() * sizeof(glm::vec2)), st.data());
+  CapPrism g;
+  g.vertices = gl::Buffer::create(GLsizeiptr(corners.size() * sizeof(glm::vec3)), corners.data());
   g.indices = gl::Buffer::create(GLsizeiptr(idx.size() * sizeof(GLuint)), idx.data());
   g.indexCount = GLsizei(idx.size());
   g.vertexArray = gl::VertexArray::create();
   const GLuint vao = g.vertexArray.id();
-  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(glm::vec2));
+  glVertexArrayVertexBuffer(vao, 0, g.vertices.id(), 0, sizeof(glm::vec3));
   glVertexArrayElementBuffer(vao, g.indices.id());
   glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribBinding(vao, 0, 0);
-  // Attribute 1: the instance's tile in its grid, from the frame's tile list (binding 1).
+  // Attribute 1: the instance's tile and the relief's range over it, from the frame's tile
+  // list (binding 1).
   glEnableVertexArrayAttrib(vao, 1);
-  glVertexArrayAttribFormat(vao, 1, 2, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribFormat(vao, 1, 4, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayAttribBinding(vao, 1, 1);
   glVertexArrayBindingDivisor(vao, 1, 1);
   return g;
@@ -170,17 +178,19 @@ struct ClipSurfaceCutter::Gpu {
   std::vector<gl::Texture> relief, diffuse;  // diffuse: an empty texture id where none
   std::vector<glm::vec3> reliefScale;        // the S each relief map was derived with
   std::vector<glm::vec2> reliefRange;        // the offset map's least and greatest h
-  std::vector<CapTile> capTiles;  // [log2 cells along s · kCapTileSizes + log2 cells along t]
-  // Per capped object and surface, the tiles its cap can cover, and what they were found for.
+  CapPrism capPrism;
+  // Per capped object and surface, the tiles its cap can cover, the relief's range over each
+  // (h_min, h_max; where kept), and what they were found for.
   struct TileCache {
     glm::mat4 model;
     glm::vec4 rect;
     glm::ivec2 tiles;
     glm::vec3 origin, u, v, scale;
     std::vector<std::uint8_t> keep;
+    std::vector<glm::vec2> range;
   };
   std::vector<TileCache> tileCache;
-  gl::Buffer tileList;  // this frame's tiles of every cap, (x, y) per instance
+  gl::Buffer tileList;  // this frame's tiles of every cap, (x, y, h_min, h_max) per instance
   GLsizeiptr tileListBytes = 0;
   std::vector<DepthSpriteGpu> sprites;       // one per capped object
   std::vector<Bounds> capBounds;  // the capped objects' mesh bounds, object space
@@ -193,6 +203,7 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
       gpu_(std::make_unique<Gpu>()),
       blockBinding_(setup.bindings.uniformBlock("CLIP_SURFACES")),
       reliefUnit_(setup.bindings.textureUnit("CLIP_RELIEF", kMaxClipSurfaces)),
+      capReliefUnit_(setup.bindings.textureUnit("CAP_RELIEF")),
       layersUnit_(setup.bindings.textureUnit("CAP_LAYERS")),
       diffuseUnit_(setup.bindings.textureUnit("CAP_DIFFUSE")),
       clipMaskImage_(setup.bindings.imageUnit("CLIP_MASK")),
@@ -226,8 +237,7 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
     }
     g.diffuse.push_back(std::move(d));
   }
-  for (int x = 0; x < kCapTileSizes; ++x)
-    for (int y = 0; y < kCapTileSizes; ++y) g.capTiles.push_back(makeCapTile(1 << x, 1 << y));
+  g.capPrism = makeCapPrism();
   g.block = gl::Buffer::create(sizeof(ClipSurfaceBlock), nullptr, GL_DYNAMIC_STORAGE_BIT);
   const Scene& scene = setup.scene;
 
@@ -408,7 +418,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   // Locations of cap.vert / cap.frag.
   constexpr GLint kObjectId = 11, kCutBy = 13, kImportance = 16, kCapSurface = 40,
                   kCapToTexture = 41, kDepthComplexity = 45, kCapColor = 46, kCapRect = 48,
-                  kHasDiffuse = 49, kCapTiles = 50;
+                  kHasDiffuse = 49, kCapTiles = 50, kDepthUnits = 51;
   const Scene& scene = setup_.scene;
   const ClipSurfaceOptions& options = live();
   const float time = draw.time;
@@ -419,11 +429,10 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     std::size_t k, surface;
     glm::vec4 rect;
     glm::ivec2 tiles;
-    int tile;  // into Gpu::capTiles
     GLuint first = 0, count = 0;
   };
   std::vector<CapDraw> draws;
-  std::vector<glm::vec2> tileList;
+  std::vector<glm::vec4> tileList;
   Gpu& g = *gpu_;
   g.tileCache.resize(capped_.size() * std::size_t(kMaxClipSurfaces));
   for (std::size_t k = 0; k < capped_.size(); ++k) {
@@ -449,20 +458,14 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
       if (nearest > 0.0f || farthest < -cs.scale.z) continue;
       lo = glm::clamp(lo, 0.0f, 1.0f), hi = glm::clamp(hi, 0.0f, 1.0f);
       if (hi.x <= lo.x || hi.y <= lo.y) continue;
-      // §5.1: as many cells as offset-map texels the rectangle covers, along each side (whole
-      // tiles, at most 1024 cells; under one tile, a power of two): a long thin rectangle
-      // takes a long thin grid. Returns the tiles and log2 of a tile's cells.
-      const auto cells = [](float texels) {
-        int log2 = 0;
-        while (log2 + 1 < kCapTileSizes && float(1 << log2) < texels) ++log2;
-        return glm::ivec2(
-            std::clamp(int(std::ceil(texels / float(kCapTileCells))), 1, 1024 / kCapTileCells),
-            log2);
+      // §5.1's grid, refined to the offset map's texels: tiles of up to kCapTileTexels texels
+      // along each side (at most kMostCapTiles), a long thin rectangle in long thin tiles.
+      const auto tilesAlong = [](float texels) {
+        return std::clamp(int(std::ceil(texels / kCapTileTexels)), 1, kMostCapTiles);
       };
-      const glm::ivec2 alongS = cells((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x),
-                       alongT = cells((hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y);
-      CapDraw d{k, i, glm::vec4(lo, hi), glm::ivec2(alongS.x, alongT.x),
-                alongS.y * kCapTileSizes + alongT.y};
+      CapDraw d{k, i, glm::vec4(lo, hi),
+                glm::ivec2(tilesAlong((hi.x - lo.x) * float(cs.offsetMap.width) * cs.scale.x),
+                           tilesAlong((hi.y - lo.y) * float(cs.offsetMap.height) * cs.scale.y))};
       Gpu::TileCache& cache = g.tileCache[k * std::size_t(kMaxClipSurfaces) + i];
       if (cache.keep.empty() || cache.model != model || cache.rect != d.rect ||
           cache.tiles != d.tiles || cache.origin != cs.origin || cache.u != cs.u ||
@@ -470,24 +473,36 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
         cache = {model,    d.rect,
                  d.tiles,  cs.origin,
                  cs.u,     cs.v,
-                 cs.scale, capTiles(*o.mesh, model, cs, g.reliefRange[i], d.rect, d.tiles)};
+                 cs.scale, capTiles(*o.mesh, model, cs, g.reliefRange[i], d.rect, d.tiles),
+                 {}};
+        cache.range.resize(cache.keep.size());
+        const glm::vec2 texture(cs.scale.x, cs.scale.y), size = hi - lo;
+        for (int y = 0; y < d.tiles.y; ++y)
+          for (int x = 0; x < d.tiles.x; ++x) {
+            const std::size_t t = std::size_t(y) * std::size_t(d.tiles.x) + std::size_t(x);
+            const glm::vec2 from = lo + size * glm::vec2(x, y) / glm::vec2(d.tiles),
+                            to = lo + size * glm::vec2(x + 1, y + 1) / glm::vec2(d.tiles);
+            if (cache.keep[t])
+              cache.range[t] = reliefRangeOver(cs.offsetMap, from * texture, to * texture);
+          }
       }
       d.first = GLuint(tileList.size());
       for (int y = 0; y < d.tiles.y; ++y)
-        for (int x = 0; x < d.tiles.x; ++x)
-          if (cache.keep[std::size_t(y) * std::size_t(d.tiles.x) + std::size_t(x)])
-            tileList.emplace_back(float(x), float(y));
+        for (int x = 0; x < d.tiles.x; ++x) {
+          const std::size_t t = std::size_t(y) * std::size_t(d.tiles.x) + std::size_t(x);
+          if (cache.keep[t]) tileList.emplace_back(float(x), float(y), cache.range[t]);
+        }
       d.count = GLuint(tileList.size()) - d.first;
       if (d.count > 0) draws.push_back(d);
     }
   }
   if (draws.empty()) return;
-  const GLsizeiptr bytes = GLsizeiptr(tileList.size() * sizeof(glm::vec2));
+  const GLsizeiptr bytes = GLsizeiptr(tileList.size() * sizeof(glm::vec4));
   if (g.tileListBytes < bytes) {
     g.tileList = gl::Buffer::create(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
     g.tileListBytes = bytes;
-    for (const CapTile& tile : g.capTiles)
-      glVertexArrayVertexBuffer(tile.vertexArray.id(), 1, g.tileList.id(), 0, sizeof(glm::vec2));
+    glVertexArrayVertexBuffer(g.capPrism.vertexArray.id(), 1, g.tileList.id(), 0,
+                              sizeof(glm::vec4));
   }
   glNamedBufferSubData(g.tileList.id(), 0, bytes, tileList.data());
 
@@ -515,14 +530,18 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
         ++depth;
     return std::min(depth, kMostNestedCaps);
   };
-  glEnable(GL_POLYGON_OFFSET_FILL);
+  // Each view ray through a prism crosses one of its back faces, where the cap's fragment
+  // looks for the relief along the ray (cap.frag); the eye may be inside the prism.
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  glBindVertexArray(g.capPrism.vertexArray.id());
   std::size_t object = capped_.size();
   for (const CapDraw& d : draws) {
     const std::size_t k = d.k;
     const SceneObject& o = scene.objects[capped_[k]];
     if (k != object) {
       object = k;
-      glPolygonOffset(0.0f, -kNestedCapUnits * float(nesting(k)));
+      glProgramUniform1f(program, kDepthUnits, -kNestedCapUnits * float(nesting(k)));
       setCutUniforms(program, {kCutBy}, cutters, objectCut(cutters, capped_[k], ownSlot),
                      capped_[k], glm::vec3(0.0f));
       const DepthSpriteGpu& sprite = g.sprites[k];
@@ -537,6 +556,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     }
     const ClipSurface& cs = options.surfaces[d.surface];
     glProgramUniform1i(program, kCapSurface, GLint(d.surface));
+    glBindTextureUnit(capReliefUnit_, g.relief[d.surface].id());
     glProgramUniform2i(program, kCapTiles, d.tiles.x, d.tiles.y);
     const glm::vec3 capColor = cs.capColor.value_or(o.material.color * 0.7f);
     glProgramUniform3fv(program, kCapColor, 1, &capColor[0]);
@@ -544,12 +564,11 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
     const GLuint diffuse = g.diffuse[d.surface].id();
     glProgramUniform1i(program, kHasDiffuse, diffuse != 0);
     if (diffuse) glBindTextureUnit(diffuseUnit_, diffuse);
-    const CapTile& tile = g.capTiles[std::size_t(d.tile)];
-    glBindVertexArray(tile.vertexArray.id());
-    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, tile.indexCount, GL_UNSIGNED_INT, nullptr,
-                                        GLsizei(d.count), d.first);
+    glDrawElementsInstancedBaseInstance(GL_TRIANGLES, g.capPrism.indexCount, GL_UNSIGNED_INT,
+                                        nullptr, GLsizei(d.count), d.first);
   }
-  glDisable(GL_POLYGON_OFFSET_FILL);
+  glCullFace(GL_BACK);
+  glDisable(GL_CULL_FACE);
 }
 
 void ClipSurfaceCutter::addPassesAfterGeometry(Frame& frame) {

@@ -80,7 +80,8 @@ class ClipSurfaceCutter : public Cutter {
   std::vector<std::size_t> capped_, uncappable_;
   std::vector<bool> reaches_;  // per scene object, this frame
   std::vector<std::optional<Slab>> slabs_;
-  GLuint blockBinding_, reliefUnit_, layersUnit_, diffuseUnit_, clipMaskImage_, parityImage_;
+  GLuint blockBinding_, reliefUnit_, capReliefUnit_, layersUnit_, diffuseUnit_, clipMaskImage_,
+      parityImage_;
   Target clipMask_, capParity_, capMask_;
 };
 
