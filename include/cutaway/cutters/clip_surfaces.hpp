@@ -144,12 +144,14 @@ glm::vec2 reliefRangeOver(const FloatImage& map, glm::vec2 lo, glm::vec2 hi);
 
 // Which tiles of a cap grid can hold a cap of `mesh` (watertight, object space, placed in the
 // world by `model`) on surface `cs` (§5.1: the grid spans `rect` = (s0, t0, s1, t1) of its
-// [0,1]² extent in tiles.x × tiles.y tiles): the tiles one of its triangles crosses within the
-// slab the displaced surface lies in (S_z·[h_min, h_max] behind the plane; `relief` = (h_min,
-// h_max)), and the tiles of every other connected run whose prism lies inside the solid (one
-// ray-parity test per run: no surface crosses it, so all of it is in or all out), grown by one
-// tile. Row-major, rows of increasing t; 1: draw the tile.
+// [0,1]² extent in tiles.x × tiles.y tiles): the tiles one of its triangles, grown by `margin`
+// (world units), crosses within the slab the displaced surface lies in (S_z·[h_min, h_max]
+// behind the plane; `relief` = (h_min, h_max)), and the tiles of every other connected run whose
+// prism lies inside the solid (one ray-parity test per run: no surface crosses it, so all of it
+// is in or all out). A cap lies only inside the solid, so nowhere else. Row-major, rows of
+// increasing t; 1: draw the tile.
 std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, const ClipSurface& cs,
-                                   glm::vec2 relief, glm::vec4 rect, glm::ivec2 tiles);
+                                   glm::vec2 relief, glm::vec4 rect, glm::ivec2 tiles,
+                                   float margin);
 
 }  // namespace cutaway

@@ -278,7 +278,8 @@ glm::vec2 reliefRangeOver(const FloatImage& map, glm::vec2 lo, glm::vec2 hi) {
 }
 
 std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, const ClipSurface& cs,
-                                   glm::vec2 relief, glm::vec4 rect, glm::ivec2 tiles) {
+                                   glm::vec2 relief, glm::vec4 rect, glm::ivec2 tiles,
+                                   float margin) {
   const int nx = tiles.x, ny = tiles.y;
   std::vector<std::uint8_t> crossed(std::size_t(nx) * std::size_t(ny), 0);
   const glm::vec3 n = cs.normal(), U = cs.u, V = cs.v, O = cs.origin;
@@ -304,7 +305,9 @@ std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, con
       const glm::vec2 st(glm::dot(d, U) / glm::dot(U, U), glm::dot(d, V) / glm::dot(V, V));
       lo = glm::min(lo, st), hi = glm::max(hi, st);
     }
-    if (dHigh < slabLow || dLow > slabHigh) continue;
+    if (dHigh < slabLow - margin || dLow > slabHigh + margin) continue;
+    lo -= glm::vec2(margin / glm::length(U), margin / glm::length(V));
+    hi += glm::vec2(margin / glm::length(U), margin / glm::length(V));
     const int x0 = std::max(0, int(std::floor(tileOf(lo.x, 0)))),
               x1 = std::min(nx - 1, int(std::floor(tileOf(hi.x, 0)))),
               y0 = std::max(0, int(std::floor(tileOf(lo.y, 1)))),
@@ -337,17 +340,7 @@ std::vector<std::uint8_t> capTiles(const Mesh& mesh, const glm::mat4& model, con
     if (insideMesh(mesh, glm::vec3(toObject * glm::vec4(p, 1.0f))))
       for (int i : run) keep[std::size_t(i)] = 1;
   }
-  // Grown by a tile: the GPU's parity test reads the depth sprite, whose texels may reach a
-  // little past the triangles.
-  std::vector<std::uint8_t> grown = keep;
-  for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x)
-      if (keep[std::size_t(y) * std::size_t(nx) + std::size_t(x)])
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-            if (x + dx >= 0 && y + dy >= 0 && x + dx < nx && y + dy < ny)
-              grown[std::size_t(y + dy) * std::size_t(nx) + std::size_t(x + dx)] = 1;
-  return grown;
+  return keep;
 }
 
 }  // namespace cutaway

@@ -470,10 +470,13 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
       if (cache.keep.empty() || cache.model != model || cache.rect != d.rect ||
           cache.tiles != d.tiles || cache.origin != cs.origin || cache.u != cs.u ||
           cache.v != cs.v || cache.scale != cs.scale) {
+        // A root the GPU finds in a tile next to the one a triangle's rectangle ends in, by
+        // rounding, still has its prism.
+        const float margin = 1e-4f * (glm::length(cs.u) + glm::length(cs.v));
         cache = {model,    d.rect,
                  d.tiles,  cs.origin,
                  cs.u,     cs.v,
-                 cs.scale, capTiles(*o.mesh, model, cs, g.reliefRange[i], d.rect, d.tiles),
+                 cs.scale, capTiles(*o.mesh, model, cs, g.reliefRange[i], d.rect, d.tiles, margin),
                  {}};
         cache.range.resize(cache.keep.size());
         const glm::vec2 texture(cs.scale.x, cs.scale.y), size = hi - lo;
