@@ -939,3 +939,56 @@ TEST(AdaptiveCutaway, ContextualCutSurfaceIsTheTrimmingConeOfTheShellsImportance
     EXPECT_LE(worst, 2.0) << "I " << importance << ", θ* " << glm::degrees(t);
   }
 }
+
+// Cutter::reaches for the adaptive cutter: a box cutawayKeepsBox lets through holds no point
+// that Burns11 eq. 5.4 removes (window depth z < C at its pixel, C read bilinearly with repeat
+// as the texture is), and, for an open mesh, no point where C cuts at all. Random C images
+// (zero, the "no cut" value, over a quarter), random boxes seen by a perspective camera, 400
+// points a box; the test is no trivial "no": a good share of boxes is let through.
+TEST(AdaptiveCutawayFunction, ABoxItKeepsHoldsNoPointItRemoves) {
+  constexpr int n = 48;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const glm::mat4 viewProjection =
+      glm::perspective(glm::radians(50.0f), 1.3f, 0.5f, 50.0f) *
+      glm::lookAt(glm::vec3(0.3f, 0.4f, 8.0f), glm::vec3(0.0f), glm::vec3(0, 1, 0));
+  int kept = 0, boxes = 0;
+  for (int image = 0; image < 20; ++image) {
+    std::vector<float> c(std::size_t(n) * std::size_t(n));
+    const glm::vec2 centre(unit(rng), unit(rng));
+    const float top = 0.9f + 0.09f * unit(rng), fall = 2.0f + 6.0f * unit(rng);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const float d = glm::length(glm::vec2((x + 0.5f) / n, (y + 0.5f) / n) - centre);
+        c[std::size_t(y) * n + x] = std::max(0.0f, top - fall * d * d + 0.01f * unit(rng));
+      }
+    const GreatestDepth greatest(c, n);
+    const auto sample = [&](glm::vec2 uv) {  // bilinear, repeat
+      const float tx = uv.x * n - 0.5f, ty = uv.y * n - 0.5f;
+      const int x0 = int(std::floor(tx)), y0 = int(std::floor(ty));
+      const auto at = [&](int x, int y) {
+        return c[std::size_t(((y % n) + n) % n) * n + std::size_t(((x % n) + n) % n)];
+      };
+      const float wx = tx - float(x0), wy = ty - float(y0);
+      return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), wx),
+                      glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), wx), wy);
+    };
+    for (int b = 0; b < 100; ++b, ++boxes) {
+      const glm::vec3 lo(-4.0f + 8.0f * unit(rng), -3.0f + 6.0f * unit(rng),
+                         -8.0f + 12.0f * unit(rng));
+      const Bounds box{lo, lo + glm::vec3(0.1f + unit(rng), 0.1f + unit(rng), 0.1f + unit(rng))};
+      const bool closed = b % 2 == 0;
+      if (!cutawayKeepsBox(box, viewProjection, greatest, closed)) continue;
+      ++kept;
+      for (int k = 0; k < 400; ++k) {
+        const glm::vec3 p = glm::mix(box.min, box.max, glm::vec3(unit(rng), unit(rng), unit(rng)));
+        const glm::vec4 clip = viewProjection * glm::vec4(p, 1.0f);
+        const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+        const float z = 0.5f * ndc.z + 0.5f, at = sample(0.5f * glm::vec2(ndc) + 0.5f);
+        ASSERT_GE(z, at) << "image " << image << " box " << b;
+        if (!closed) ASSERT_LE(at, 0.0f) << "image " << image << " box " << b;
+      }
+    }
+  }
+  EXPECT_GT(kept, boxes / 5) << kept << " of " << boxes;
+}

@@ -131,6 +131,31 @@ AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOp
 // bench` measures both paths on every run).
 bool cutawayOnCpu(const AdaptiveCutawayOptions& options, bool softwareRenderer);
 
+// A cutaway depth image C (window depth, n × n over the viewport, rows bottom to top, read
+// bilinearly with repeat as its texture is) as a pyramid of maxima, for the greatest C over a
+// rectangle of the viewport.
+class GreatestDepth {
+ public:
+  GreatestDepth() = default;
+  GreatestDepth(std::vector<float> depth, int n);
+  bool empty() const { return levels_.empty(); }
+  // At least the greatest C the bilinear samples give in [lo, hi] (texture coordinates): the
+  // greatest of a block of texels that holds their footprint.
+  float over(glm::vec2 lo, glm::vec2 hi) const;
+
+ private:
+  std::vector<std::vector<float>> levels_;  // level k: the greatest of 2^k × 2^k texels
+  std::vector<int> sizes_;
+};
+
+// Burns11 eq. 5.4 removes a fragment nearer than C at its pixel, and a back face where C cuts
+// its pixel (C > 0) is a cut surface. Whether C leaves a world box (holding every point a
+// fragment may be shaded at: shadedBox) as it is: every corner in front of the near plane and
+// its nearest window depth at or behind the greatest C over the viewport rectangle it covers;
+// for an open mesh (`closed` false), whose back faces may show, also no cut there at all.
+bool cutawayKeepsBox(const struct Bounds& box, const glm::mat4& viewProjection,
+                     const GreatestDepth& c, bool closed);
+
 // The camera quantities above for a resolved camera.
 CutawayProjection cutawayProjection(const struct Camera& camera, float aspect);
 

@@ -9,6 +9,7 @@
 // clang-format off
 //   [cutawaySeed (cutawayCpu | cutawayAnchors jumpFloodingInit jumpFlooding/N... cutawayDepth) cutawayDilate]
 //   [(cutawayCpuC2 | cutawayAnchorsC2 jumpFloodingInitC2 jumpFloodingC2/N... cutawayDepthC2) cutawayDilateC2]
+//   [cutawayReaches]
 //   [cutawayAtPixel]
 //   [breakawayClip breakawayInnerClip]
 //   [clipSurfaceSprites]
@@ -34,6 +35,8 @@
 //   step size N), dilated (src/cutters/adaptive/README.md).
 // - cutawayCpuC2 … cutawayDilateC2: the contextual structure's second surface C₂ from the same
 //   seed, every seed's angle raised to θ₂ (Burns11 §4.1.3, §5.2.3).
+// - cutawayReaches: on the CPU path of the simple structure, the objects C may cut this frame
+//   (Cutter::reaches): the others draw without the cutter's code.
 // - cutawayAtPixel: the cutaway surfaces' depths at each pixel centre, which every fragment's
 //   decision reads with one unfiltered fetch, and the simple structure's cut surface
 //   (position, normal) there, for the back faces seen through the cut (Burns11 §5.2.4.1).

@@ -136,6 +136,23 @@ void AdaptiveCutaway::beginFrame(const FrameState& state) {
   surface_.setCamera(camera);
   if (transition_) transition_->setCamera(camera);
   if (ghostCulling_) ghostCulling_->beginFrame(state);
+  time_ = state.time, uniforms_ = state.uniforms;
+  reaches_.clear();
+}
+
+// On the CPU path of the simple structure, where C is in memory: an object whose box C leaves
+// as it is (cutawayKeepsBox) draws without the cutter's code.
+void AdaptiveCutaway::findReaches() {
+  const Scene& scene = setup_.scene;
+  reaches_.assign(scene.objects.size(), true);
+  if (surface_.greatest().empty()) return;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Bounds& local = setup_.meshes.mesh(i).bounds();
+    if (local.empty() || !cuts(i)) continue;
+    reaches_[i] =
+        !cutawayKeepsBox(shadedBox(scene, local, i, time_, uniforms_), uniforms_.viewProjection,
+                         surface_.greatest(), scene.objects[i].mesh->report.watertight);
+  }
 }
 
 std::vector<Target> AdaptiveCutaway::geometryInputs() const {
@@ -242,6 +259,10 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
                  }});
   surface_.addPasses();
   if (transition_) transition_->addPasses();
+  if (surface_.onCpu() && !transition_)
+    frame.addPass({.name = "cutawayReaches",
+                   .reads = {surface_.cutawayDepth()},
+                   .run = [this](const PassContext&) { findReaches(); }});
   std::vector<Target> reads{surface_.cutawayDepth(), surface_.cutawayDilated()};
   std::vector<Target> writes{atPixel_};
   if (transition_)

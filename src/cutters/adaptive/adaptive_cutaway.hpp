@@ -31,6 +31,9 @@ class AdaptiveCutaway : public Cutter {
   int translucentLayers() const override;
   // Every visible object but the objects of interest (Burns08 §4.1).
   bool cuts(std::size_t index) const override;
+  bool reaches(std::size_t index) const override {
+    return index >= reaches_.size() || reaches_[index];  // before the first frame: all
+  }
   bool cutsVolume(std::size_t index) const override;
   CutLook look(std::size_t index) const override;
   void addPassesAfterGeometry(Frame& frame) override;
@@ -57,6 +60,8 @@ class AdaptiveCutaway : public Cutter {
   void bindSurfaces() const;
   // Burns11 §7.2: whether R = Ω (the objects it cuts are not ranked by importance).
   bool reductionIsOcclusion() const;
+  // Which objects C may cut this frame (Cutter::reaches), once the CPU path has computed it.
+  void findReaches();
 
   FrameSetup& setup_;
   // Its buffer size, compute path and variant are what a change rebuilds the renderer for.
@@ -78,6 +83,9 @@ class AdaptiveCutaway : public Cutter {
   Target seedDepthTest_;
   Target ghostNormal_, ghostObjectId_, ghostDepth_;
   std::unique_ptr<OcclusionCulling> ghostCulling_;  // of the ghost geometry's draws
+  std::vector<bool> reaches_;                       // per scene object, this frame
+  float time_ = 0.0f;                               // this frame's, and its uniforms
+  FrameUniforms uniforms_{};
   struct Programs;
   std::unique_ptr<Programs> programs_;
 };

@@ -94,4 +94,65 @@ fields::SeedImage makeSeedImage(const std::vector<float>& seedDepth,
   return seeds;
 }
 
+GreatestDepth::GreatestDepth(std::vector<float> depth, int n) {
+  levels_.push_back(std::move(depth));
+  sizes_.push_back(n);
+  for (int size = n; size > 1;) {
+    const int half = (size + 1) / 2;
+    const std::vector<float>& below = levels_.back();
+    std::vector<float> level(std::size_t(half) * std::size_t(half));
+    for (int y = 0; y < half; ++y)
+      for (int x = 0; x < half; ++x) {
+        float m = below[std::size_t(2 * y) * std::size_t(size) + std::size_t(2 * x)];
+        for (int k = 1; k < 4; ++k) {
+          const int bx = std::min(2 * x + (k & 1), size - 1),
+                    by = std::min(2 * y + (k >> 1), size - 1);
+          m = std::max(m, below[std::size_t(by) * std::size_t(size) + std::size_t(bx)]);
+        }
+        level[std::size_t(y) * std::size_t(half) + std::size_t(x)] = m;
+      }
+    levels_.push_back(std::move(level));
+    sizes_.push_back(size = half);
+  }
+}
+
+float GreatestDepth::over(glm::vec2 lo, glm::vec2 hi) const {
+  if (levels_.empty()) return 1.0f;
+  const int n = sizes_[0];
+  // The texels the samples mix (centres at (k + ½)/n); the texture repeats, so a footprint
+  // past an edge takes the whole axis.
+  const auto span = [n](float a, float b) {
+    const float first = std::floor(a * float(n) - 0.5f),
+                last = std::floor(b * float(n) - 0.5f) + 1.0f;
+    return first < 0.0f || last > float(n - 1) ? glm::ivec2(0, n - 1)
+                                               : glm::ivec2(int(first), int(last));
+  };
+  glm::ivec2 xs = span(lo.x, hi.x), ys = span(lo.y, hi.y);
+  std::size_t level = 0;
+  while (level + 1 < levels_.size() && std::max(xs.y - xs.x, ys.y - ys.x) > 1)
+    xs /= 2, ys /= 2, ++level;
+  float m = 0.0f;
+  for (int y = ys.x; y <= ys.y; ++y)
+    for (int x = xs.x; x <= xs.y; ++x)
+      m = std::max(m, levels_[level][std::size_t(y) * std::size_t(sizes_[level]) + std::size_t(x)]);
+  return m;
+}
+
+bool cutawayKeepsBox(const Bounds& box, const glm::mat4& viewProjection, const GreatestDepth& c,
+                     bool closed) {
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  float nearest = 1e30f;
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec4 clip =
+        viewProjection * glm::vec4((k & 1) ? box.max.x : box.min.x, (k & 2) ? box.max.y : box.min.y,
+                                   (k & 4) ? box.max.z : box.min.z, 1.0f);
+    if (clip.w <= 0.0f || clip.z < -clip.w) return false;
+    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+    lo = glm::min(lo, glm::vec2(ndc)), hi = glm::max(hi, glm::vec2(ndc));
+    nearest = std::min(nearest, 0.5f * ndc.z + 0.5f);  // window depth grows with view depth
+  }
+  const float greatest = c.over(0.5f * lo + 0.5f, 0.5f * hi + 0.5f);
+  return nearest >= greatest && (closed || greatest <= 0.0f);
+}
+
 }  // namespace cutaway

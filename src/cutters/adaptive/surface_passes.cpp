@@ -235,6 +235,7 @@ void CutawaySurfacePasses::computeOnCpu() {
   for (float& z : field.depth) z = z * 0.5f + 0.5f;  // NDC → window depth
   glTextureSubImage2D(frame_.texture(cutawayDepth_).id(), 0, 0, 0, n, n, GL_RED, GL_FLOAT,
                       field.depth.data());
+  greatest_ = GreatestDepth(std::move(field.depth), n);
 }
 
 void CutawaySurfacePasses::describeAovs(std::vector<Aov>& aovs) const {

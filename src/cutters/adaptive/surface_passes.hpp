@@ -45,6 +45,8 @@ class CutawaySurfacePasses {
   // The passes after the seed's, into the frame: cutawayCpu, or cutawayAnchors,
   // jumpFloodingInit, jumpFlooding/k…, cutawayDepth; then cutawayDilate.
   void addPasses();
+  // On the CPU path, after this frame's cutawayCpu pass: C's maxima (empty before).
+  const GreatestDepth& greatest() const { return greatest_; }
   // After the frame: its buffers' AOVs get the size and the pixel size in view-plane units
   // (Aov::values); on the CPU path, the seeds' cones are added as the GPU path's anchorCone.
   void describeAovs(std::vector<Aov>& aovs) const;
@@ -64,6 +66,7 @@ class CutawaySurfacePasses {
   Options options_;
   CutawayProjection camera_{};
   Target seedDepth_, seedAngle_, cutawayDepth_, cutawayDilated_;
+  GreatestDepth greatest_;
   Target anchorCone_, anchorFloor_, anchorsA_, anchorsB_;
   struct Programs;
   std::unique_ptr<Programs> programs_;
