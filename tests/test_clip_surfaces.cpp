@@ -887,8 +887,13 @@ TEST(ClipSurfaceGpu, EachPixelOfARelievedCapShowsTheRayCastsFirstKeptPointInside
       {R"({"projection": "orthographic", "eye": [1.2, -2, 2], "target": [0, 0, 0], "up": [0, 0, 1], "height": 3})",
        1},
       {R"({"eye": [0.3, -1.45, 0.1], "target": [0, 0, 0], "up": [0, 0, 1], "fov": 70})", 1},
-      {usual, 4}};
-  for (const auto& [view, samples] : views) {
+      {usual, 4},
+      // The eye inside the tube, on the clipped side, looking back up at the relief: the
+      // derived near plane lies behind the eye plane, where orthographic rays start.
+      {R"({"projection": "orthographic", "fit": false, "eye": [1.0, 0.05, 0.3], "target": [0.2, 0, -0.2], "up": [0, 0, 1], "height": 2})",
+       1}};
+  for (const auto& [view, count] : views) {
+    const int samples = count;  // a structured binding, which clang 14's lambdas cannot capture
     SCOPED_TRACE(view + ", " + std::to_string(samples) + " samples");
     std::string text = base;
     text.replace(text.find(usual), usual.size(), view);

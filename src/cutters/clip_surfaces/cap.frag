@@ -13,7 +13,7 @@
 #include "styles/emphasis/emphasis.glsl"
 #include "frame/gbuffer.glsl"
 #include "cutters/composition.glsl"
-in vec3 vWorldPosition;    // on the prism's back face, on the view ray through the pixel's centre
+in vec3 vWorldPosition;    // on the prism's back face
 flat in vec4 vPrismT;      // the prism's eq. 2 texture coordinates: least (xy), greatest (zw)
 flat in vec2 vPrismLift;   // and its extent along N, (P − O)·N: least, greatest
 layout(location = 11) uniform int uObjectId;
@@ -99,17 +99,33 @@ struct RayWalk {
   vec2 t0, dt;     // eq. 2's T along the ray: t0 + λ dt
   float e0, de;    // (P − O)·N along the ray
   vec2 size, g;    // the map's texels; dT/dλ in texels
+  vec2 x0;         // the ray's origin in the texel-centre space (cell k spans [k, k + 1])
   vec2 dir, across, next;  // the walk: its step, λ per cell, λ at the next sides
   vec2 cell;
   float a, exit;   // λ where this cell is entered; where the prism is left
   float after;     // roots up to here were tried
+  float pad;       // what the prism's span is widened by
+  float slack;     // how far past its cell's sides the last root was looked for
 };
+
+// λ where the ray crosses the walk's cell's sides `side` (0: the lower, 1: the upper) along
+// each axis, from the ray itself and the cell (±1e30 along an axis it runs parallel to): the
+// same in every prism that walks the cell, so that nested caps solve alike (see nextRoot).
+vec2 cellSides(RayWalk w, vec2 side) {
+  vec2 l = (w.cell + side - w.x0) * w.dir * w.across;
+  return vec2(w.across.x < 1e30 ? l.x : side.x * 2e30 - 1e30, w.across.y < 1e30 ? l.y : side.y * 2e30 - 1e30);
+}
 
 RayWalk startWalk(int i) {
   RayWalk w;
-  w.origin = viewRayOrigin(vWorldPosition);
+  // The view ray through the pixel's centre, from the pixel alone: every prism that covers it
+  // walks the same ray, so nested caps tie bit for bit and their offset decides. (An
+  // orthographic back face may lie in front of the eye plane, λ < 0.)
+  vec4 v = uInverseProjection * vec4(gl_FragCoord.xy * uViewport.zw * 2.0 - 1.0, 0.0, 1.0);
+  vec3 onRay = (uInverseView * vec4(v.xyz / v.w, 1.0)).xyz;
+  w.origin = viewRayOrigin(onRay);
+  w.d = uCounts.y == 1 ? uForward.xyz : normalize(onRay - w.origin);
   vec3 ray = vWorldPosition - w.origin;
-  w.d = normalize(ray);
   vec3 rel = w.origin - uClipOrigin[i].xyz, n = clipSurfaceNormal(i);
   w.t0 = vec2(dot(rel, uClipToS[i].xyz), dot(rel, uClipToT[i].xyz));
   w.dt = vec2(dot(w.d, uClipToS[i].xyz), dot(w.d, uClipToT[i].xyz));
@@ -119,32 +135,40 @@ RayWalk startWalk(int i) {
   vec2 s = slabSpan(w.t0.x, w.dt.x, vPrismT.x, vPrismT.z),
        t = slabSpan(w.t0.y, w.dt.y, vPrismT.y, vPrismT.w),
        e = slabSpan(w.e0, w.de, vPrismLift.x, vPrismLift.y);
-  float pad = 1e-5 * length(ray);
-  w.a = max(max(max(s.x, t.x), e.x) - pad, 0.0);
-  w.exit = min(min(s.y, t.y), e.y) + pad;
-  w.after = w.a - pad;
+  // A few steps of float at the size of the coordinates (a scene far from the origin).
+  w.pad = 1e-5 * length(ray) + 5e-7 * (length(w.origin) + length(uClipOrigin[i].xyz));
+  // An orthographic view's near plane may lie behind its eye plane, where its rays start.
+  w.a = max(max(max(s.x, t.x), e.x) - w.pad, uCounts.y == 1 ? -1e30 : 0.0);
+  w.exit = min(min(s.y, t.y), e.y) + w.pad;
+  w.after = w.a - w.pad;
   w.size = vec2(textureSize(uCapRelief, 0));
   w.g = w.dt * w.size;
-  vec2 start = (w.t0 + w.a * w.dt) * w.size - 0.5;
-  w.cell = floor(start);
+  w.x0 = w.t0 * w.size - 0.5;
+  w.cell = floor(w.x0 + w.a * w.g);
   w.dir = vec2(w.g.x >= 0.0 ? 1.0 : -1.0, w.g.y >= 0.0 ? 1.0 : -1.0);
   w.across = vec2(abs(w.g.x) > 1e-30 ? 1.0 / abs(w.g.x) : 1e30,
                   abs(w.g.y) > 1e-30 ? 1.0 / abs(w.g.y) : 1e30);
-  w.next = w.a + w.dir * (w.cell + max(w.dir, 0.0) - start) * w.across;
+  w.next = cellSides(w, max(w.dir, 0.0));
   return w;
 }
 
-// The next λ past w.after where f = 0 of eq. 1, or −1. f is bilinear in the map's texels and
+// The next λ past w.after where f = 0 of eq. 1, or −1e30 (an orthographic ray's λ may be
+// negative: its near plane may lie behind the eye plane). f is bilinear in the map's texels and
 // linear in the ray, so within a cell it is a quadratic in λ, solved exactly.
 float nextRoot(inout RayWalk w, float sz) {
   for (int k = 0; k < 1024 && w.a < w.exit; ++k) {
-    float b = min(min(w.next.x, w.next.y), w.exit), len = b - w.a;
+    float b = min(min(w.next.x, w.next.y), w.exit);
     // textureGather's order: (0, 1), (1, 1), (1, 0), (0, 0) of the cell's corners.
     vec4 h = textureGather(uCapRelief, (w.cell + 1.0) / w.size, 0);
     float h00 = h.w, dx = h.z - h.w, dy = h.x - h.w, dxy = h.y - h.x - h.z + h.w;
-    vec2 u = (w.t0 + w.a * w.dt) * w.size - 0.5 - w.cell;  // the weights where the ray enters
-    // f(a + μ) = c0 + c1 μ + c2 μ².
-    float c0 = w.e0 + w.a * w.de + sz * (h00 + dx * u.x + dy * u.y + dxy * u.x * u.y);
+    // f(a + μ) = c0 + c1 μ + c2 μ², about where the ray enters the cell (not the prism: two
+    // prisms that walk the cell find the same roots, bit for bit).
+    vec2 sides = cellSides(w, 1.0 - max(w.dir, 0.0));
+    float a = max(sides.x, sides.y);
+    a = a > -1e29 ? a : 0.0;
+    float len = b - a;
+    vec2 u = w.x0 + a * w.g - w.cell;  // the weights where the ray enters
+    float c0 = w.e0 + a * w.de + sz * (h00 + dx * u.x + dy * u.y + dxy * u.x * u.y);
     float c1 = w.de + sz * (dx * w.g.x + dy * w.g.y + dxy * (u.x * w.g.y + u.y * w.g.x));
     float c2 = sz * dxy * w.g.x * w.g.y;
     vec2 roots = vec2(-1e30);
@@ -160,15 +184,18 @@ float nextRoot(inout RayWalk w, float sz) {
     }
     // A root on a cell's side counts in both cells, so none falls between them.
     float slack = 1e-4 * len;
-    roots += w.a;
+    roots += a;
     for (int m = 0; m < 2; ++m)
-      if (roots[m] > w.after && roots[m] >= w.a - slack && roots[m] <= b + slack) return roots[m];
+      if (roots[m] > w.after && roots[m] >= w.a - slack && roots[m] <= b + slack) {
+        w.slack = slack;
+        return roots[m];
+      }
     w.a = b;
     bvec2 step = lessThanEqual(w.next, vec2(b));
     w.cell += mix(vec2(0.0), w.dir, vec2(step));
-    w.next += mix(vec2(0.0), w.across, vec2(step));
+    w.next = cellSides(w, max(w.dir, 0.0));
   }
-  return -1.0;
+  return -1e30;
 }
 
 // The nearest point along this fragment's view ray, within its prism, where f = 0 and the cap
@@ -179,11 +206,11 @@ bool capOnRay(int i, out vec3 x, out float depth) {
   RayWalk w = startWalk(i);
   for (int k = 0; k < 64; ++k) {
     float root = nextRoot(w, uClipScale[i].z);
-    if (root < 0.0) break;
+    if (root <= -1e30) break;
     x = w.origin + root * w.d;
     depth = capDepth(i, x);
     if (depth >= 0.0) return true;
-    w.after = root + 1e-5 * w.exit;
+    w.after = root + 2.0 * w.slack;  // past the same root found again in the next cell
   }
   float middle = 0.5 * (vPrismLift.x + vPrismLift.y) - w.e0;
   x = w.origin + (abs(w.de) > 1e-30 ? middle / w.de : 0.0) * w.d;

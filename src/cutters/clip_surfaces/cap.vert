@@ -19,7 +19,9 @@ void main() {
   vec2 st0 = mix(uCapRect.xy, uCapRect.zw, aTile.xy / vec2(uCapTiles));
   vec2 st1 = mix(uCapRect.xy, uCapRect.zw, (aTile.xy + 1.0) / vec2(uCapTiles));
   // X lies at (X − O)·N = −S_z·h; a flat relief's prism keeps a sliver of thickness.
-  float sz = uClipScale[i].z, pad = 1e-5 * (length(uClipU[i].xyz) + length(uClipV[i].xyz));
+  // A few steps of float at the size of the coordinates too (a surface far from the origin).
+  float sz = uClipScale[i].z,
+        pad = 1e-5 * (length(uClipU[i].xyz) + length(uClipV[i].xyz)) + 5e-7 * length(uClipOrigin[i].xyz);
   vec2 lift = vec2(-sz * aTile.w, -sz * aTile.z);
   vPrismLift = vec2(min(lift.x, lift.y) - pad, max(lift.x, lift.y) + pad);
   vPrismT = vec4(st0, st1) * uClipScale[i].xyxy;

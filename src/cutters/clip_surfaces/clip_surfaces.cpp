@@ -537,6 +537,9 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   // looks for the relief along the ray (cap.frag); the eye may be inside the prism.
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);
+  // Nor may the far plane clip a back face whose prism holds a cap point in front of it (the
+  // fragment writes that point's depth).
+  glEnable(GL_DEPTH_CLAMP);
   glBindVertexArray(g.capPrism.vertexArray.id());
   std::size_t object = capped_.size();
   for (const CapDraw& d : draws) {
@@ -572,6 +575,7 @@ void ClipSurfaceCutter::drawGeometry(const GeometryDraw& draw) const {
   }
   glCullFace(GL_BACK);
   glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_CLAMP);
 }
 
 void ClipSurfaceCutter::addPassesAfterGeometry(Frame& frame) {
