@@ -164,11 +164,11 @@ float nextRoot(inout RayWalk w, float sz) {
     // f(a + μ) = c0 + c1 μ + c2 μ², about where the ray enters the cell (not the prism: two
     // prisms that walk the cell find the same roots, bit for bit).
     vec2 sides = cellSides(w, 1.0 - max(w.dir, 0.0));
-    float a = max(sides.x, sides.y);
-    a = a > -1e29 ? a : 0.0;
-    float len = b - a;
-    vec2 u = w.x0 + a * w.g - w.cell;  // the weights where the ray enters
-    float c0 = w.e0 + a * w.de + sz * (h00 + dx * u.x + dy * u.y + dxy * u.x * u.y);
+    float entry = max(sides.x, sides.y);
+    entry = entry > -1e29 ? entry : 0.0;  // a ray along N stays in its cell
+    float len = b - entry;
+    vec2 u = w.x0 + entry * w.g - w.cell;  // the weights where the ray enters
+    float c0 = w.e0 + entry * w.de + sz * (h00 + dx * u.x + dy * u.y + dxy * u.x * u.y);
     float c1 = w.de + sz * (dx * w.g.x + dy * w.g.y + dxy * (u.x * w.g.y + u.y * w.g.x));
     float c2 = sz * dxy * w.g.x * w.g.y;
     vec2 roots = vec2(-1e30);
@@ -184,7 +184,7 @@ float nextRoot(inout RayWalk w, float sz) {
     }
     // A root on a cell's side counts in both cells, so none falls between them.
     float slack = 1e-4 * len;
-    roots += a;
+    roots += entry;
     for (int m = 0; m < 2; ++m)
       if (roots[m] > w.after && roots[m] >= w.a - slack && roots[m] <= b + slack) {
         w.slack = slack;
