@@ -12,6 +12,7 @@ Errors are cutaway.Error (a RuntimeError) with the CLI's one-line messages. docs
 import io
 import json
 import math
+import numbers
 import os
 import statistics
 import time as _time
@@ -208,6 +209,10 @@ class Renderer:
 
     def render(self, time=0.0):
         """One frame at `time` seconds: RGBA uint8, shape (height, width, 4), rows top down."""
+        # float("2") would take a string; a bool is an int to Python but no time to a user.
+        if isinstance(time, bool) or not isinstance(time, numbers.Real):
+            raise Error("render: time: expected seconds as a number, got %s %r"
+                        % (type(time).__name__, time))
         self._aovs = None
         return self._native.render(float(time)).view(Image)
 
@@ -230,8 +235,8 @@ class Renderer:
     def bench(self, frames=10):
         """Renders one warm-up frame and `frames` timed ones; medians per pass and of the
         frame's wall time, in milliseconds, as `cutaway bench` reports them."""
-        if frames < 1:
-            raise Error("bench: frames must be at least 1")
+        if isinstance(frames, bool) or not isinstance(frames, numbers.Integral) or frames < 1:
+            raise Error("bench: frames: expected a whole number at least 1, got %r" % (frames,))
         self._aovs = None
         self._native.render(0.0)
         walls, passes = [], {}

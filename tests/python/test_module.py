@@ -253,7 +253,11 @@ def test_a_frame_comes_first_and_its_time_is_checked():
     for bad in (float("nan"), -1, 1e300):
         with pytest.raises(cutaway.Error, match=r"render: time: expected seconds in \[0, 1e6\]"):
             renderer.render(bad)
+    for bad in ("2", b"2", True, None, [1.0]):
+        with pytest.raises(cutaway.Error, match=r"render: time: expected seconds as a number"):
+            renderer.render(bad)
     renderer.render(2.5)
+    renderer.render(np.float32(1.5))
     assert "objectId" in renderer.aovs()
 
 
@@ -269,6 +273,9 @@ def test_the_frame_shows_itself_and_bench_reports_figures():
     # What arithmetic and reductions make of a frame is plain data, not a picture of raw bytes.
     assert type(frame / 255.0) is np.ndarray and type(frame[..., 3] > 0) is np.ndarray
     assert not isinstance(frame.sum(), np.ndarray) and frame.sum() == frame.view(np.ndarray).sum()
+    for bad in (0, 2.5, "3", True):
+        with pytest.raises(cutaway.Error, match=r"bench: frames: expected a whole number"):
+            renderer.bench(frames=bad)
     figures = renderer.bench(frames=2)
     assert figures["frames"] == 2 and figures["frame_ms"]["median"] > 0
     assert "geometry" in figures["passes_gpu_ms"] and figures["device"]
