@@ -270,7 +270,7 @@ Role roleNamed(const std::string& source, const std::string& place, const std::s
   if (const std::optional<Role> r = roleFromName(name)) return *r;
   throw Error(
       source, place,
-      "unknown role \"" + name + "\" (expected one of: context, interest, exterior, interior)");
+      "unknown role " + quote(name) + " (expected one of: context, interest, exterior, interior)");
 }
 
 // Applies `change` to a copy of the scene, checks the copy as a scene file is checked (the

@@ -146,6 +146,14 @@ TEST(Viewer, ScriptLineFailingAtRunTimeNamesTheLine) {
   EXPECT_EQ(r.exitCode, 1) << r.err;
   EXPECT_EQ(r.err, "cutaway-view: error: " + script.string() +
                        ": line 2: no object or group named \"no such part\"\n");
+  // A 100 KB name is quoted up to 60 characters.
+  std::ofstream(script) << "wait 1\nselect " << std::string(100000, 'n') << "\nquit\n";
+  const Result longName =
+      runUnderXvfb(kSource + "/examples/bunny.json --size 160x120 --script " + script.string());
+  EXPECT_EQ(longName.exitCode, 1) << longName.err.substr(0, 200);
+  EXPECT_EQ(longName.err, "cutaway-view: error: " + script.string() +
+                              ": line 2: no object or group named \"" + std::string(60, 'n') +
+                              "…\"\n");
   // A cutter the scene has no roles for, refused as `cutaway render --set` refuses it.
   std::ofstream(script) << "wait 1\nset cutters.breakaway true\nquit\n";
   const Result roles =

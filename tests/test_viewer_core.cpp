@@ -115,8 +115,8 @@ quit
 
 struct BadLine {
   const char* name;
-  const char* script;
-  const char* error;
+  std::string script;
+  std::string error;
 };
 
 class ViewerScriptErrors : public testing::TestWithParam<BadLine> {};
@@ -175,7 +175,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "s.txt: line 1: \"quit\" takes no arguments, got 1 argument"},
         BadLine{"NegativePixel", "pick -1 3\n", "s.txt: line 1: pixel coordinates must be ≥ 0"},
         BadLine{"Panels", "panels maybe\n", "s.txt: line 1: panels takes on or off, got \"maybe\""},
-        BadLine{"Moving", "moving 1\n", "s.txt: line 1: moving takes on or off, got \"1\""}),
+        BadLine{"Moving", "moving 1\n", "s.txt: line 1: moving takes on or off, got \"1\""},
+        // User text is quoted up to 60 characters: a 100 KB word does not fill the terminal.
+        BadLine{"LongCommand", std::string(100000, 'x') + "\n",
+                "s.txt: line 1: unknown command \"" + std::string(60, 'x') + "…\""},
+        BadLine{"LongRole", "role " + std::string(100000, 'r') + "\n",
+                "s.txt: line 1: unknown role \"" + std::string(60, 'r') +
+                    "…\" (expected one of: context, interest, exterior, interior)"}),
     [](const testing::TestParamInfo<BadLine>& info) { return std::string(info.param.name); });
 
 // A NUL byte would cut the rest of its line from the messages.

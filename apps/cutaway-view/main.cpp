@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
         char* end = nullptr;
         const float fps = std::strtof(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0' || !(fps >= 0.0f && fps <= 1000.0f))
-          return "expected a number in [0, 1000], got \"" + text + "\"";
+          return "expected a number in [0, 1000], got " + cutaway::quote(text);
         return "";
       });
   try {
@@ -50,7 +50,8 @@ int main(int argc, char** argv) {
       static const std::regex sizeRe(R"((\d{1,5})x(\d{1,5}))");
       std::smatch m;
       if (!std::regex_match(size, m, sizeRe))
-        throw cutaway::Error("--size", "", "expected WxH, e.g. 1024x768, got \"" + size + "\"");
+        throw cutaway::Error("--size", "",
+                             "expected WxH, e.g. 1024x768, got " + cutaway::quote(size));
       options.width = std::stoi(m[1]), options.height = std::stoi(m[2]);
       if (options.width < 1 || options.height < 1 || options.width > 16384 ||
           options.height > 16384)

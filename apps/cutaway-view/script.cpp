@@ -86,10 +86,10 @@ float number(const std::string& text) {
   const char* end = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(text.data(), end, v);
   if (ec != std::errc() || ptr != end || !std::isfinite(v))
-    throw std::invalid_argument("expected a number, got \"" + text + "\"");
+    throw std::invalid_argument("expected a number, got " + quote(text));
   // Moves and values are 32-bit floats: 1e300 would become infinite, 1e-300 zero.
   if (std::abs(v) > double(std::numeric_limits<float>::max()) || (v != 0.0 && float(v) == 0.0f))
-    throw std::invalid_argument("\"" + text + "\" lies beyond a 32-bit float's range");
+    throw std::invalid_argument(quote(text) + " lies beyond a 32-bit float's range");
   return float(v);
 }
 
@@ -97,7 +97,7 @@ void expectCount(const std::string& name, const std::vector<std::string>& args, 
                  const std::string& usage) {
   if (args.size() != n)
     throw std::invalid_argument(
-        "\"" + name + "\" takes " + (n == 0 ? std::string("no arguments") : usage) + ", got " +
+        quote(name) + " takes " + (n == 0 ? std::string("no arguments") : usage) + ", got " +
         std::to_string(args.size()) + " argument" + (args.size() == 1 ? "" : "s"));
 }
 
@@ -134,7 +134,7 @@ ScriptCommand parseLine(const std::string& line) {
   const std::string name = text.substr(0, space);
   const std::string rest = space == std::string::npos ? "" : trim(text.substr(space));
   const auto it = commands().find(name);
-  if (it == commands().end()) throw std::invalid_argument("unknown command \"" + name + "\"");
+  if (it == commands().end()) throw std::invalid_argument("unknown command " + quote(name));
   const CommandSpec& spec = it->second;
   ScriptCommand c{spec.kind};
   const std::vector<std::string> args = words(rest);
@@ -149,7 +149,7 @@ ScriptCommand parseLine(const std::string& line) {
       checkNumbers(c);
       break;
     case Args::Rest:
-      if (rest.empty()) throw std::invalid_argument("\"" + name + "\" needs an argument");
+      if (rest.empty()) throw std::invalid_argument(quote(name) + " needs an argument");
       c.text = rest;
       break;
     case Args::Special:
@@ -159,16 +159,16 @@ ScriptCommand parseLine(const std::string& line) {
     case Kind::Projection:
       expectCount(name, args, 1, "perspective or orthographic");
       if (args[0] != "perspective" && args[0] != "orthographic")
-        throw std::invalid_argument("projection must be perspective or orthographic, got \"" +
-                                    args[0] + "\"");
+        throw std::invalid_argument("projection must be perspective or orthographic, got " +
+                                    quote(args[0]));
       c.text = args[0];
       break;
     case Kind::Role: {
       expectCount(name, args, 1, "a role");
       Role role;
       if (!parseRole(args[0], role))
-        throw std::invalid_argument("unknown role \"" + args[0] +
-                                    "\" (expected one of: context, interest, exterior, interior)");
+        throw std::invalid_argument("unknown role " + quote(args[0]) +
+                                    " (expected one of: context, interest, exterior, interior)");
       c.text = args[0];
       break;
     }
@@ -189,7 +189,8 @@ ScriptCommand parseLine(const std::string& line) {
         std::string known;
         for (const auto& group : parameterGroups())
           for (const auto& p : group.parameters) known += (known.empty() ? "" : ", ") + p.key;
-        throw std::invalid_argument("unknown parameter \"" + args[0] + "\" (known: " + known + ")");
+        throw std::invalid_argument("unknown parameter " + quote(args[0]) + " (known: " + known +
+                                    ")");
       }
       try {
         c.value = parseOptionValue(*c.parameter, args[1]);
@@ -208,8 +209,8 @@ ScriptCommand parseLine(const std::string& line) {
         if (!parseColormap(args[1], map)) {
           std::string list;
           for (const auto& n : colormapNames()) list += (list.empty() ? "" : ", ") + n;
-          throw std::invalid_argument("unknown colormap \"" + args[1] +
-                                      "\" (expected one of: " + list + ")");
+          throw std::invalid_argument("unknown colormap " + quote(args[1]) +
+                                      " (expected one of: " + list + ")");
         }
         c.colormap = args[1];
       }
@@ -218,7 +219,7 @@ ScriptCommand parseLine(const std::string& line) {
     case Kind::Moving:
       expectCount(name, args, 1, "on or off");
       if (args[0] != "on" && args[0] != "off")
-        throw std::invalid_argument(name + " takes on or off, got \"" + args[0] + "\"");
+        throw std::invalid_argument(name + " takes on or off, got " + quote(args[0]));
       c.on = args[0] == "on";
       break;
     case Kind::Screenshot:

@@ -307,7 +307,7 @@ void Viewer::execute(const ScriptCommand& c) {
       break;
     case Kind::Select: {
       const auto found = objectsNamed(state_.scene, c.text);
-      if (found.empty()) throw Error("no object or group named \"" + c.text + "\"");
+      if (found.empty()) throw Error("no object or group named " + quote(c.text));
       state_.selection = {found.begin(), found.end()};
       break;
     }
@@ -362,7 +362,7 @@ void Viewer::execute(const ScriptCommand& c) {
             state_.aovNames.end()) {
           std::string list;
           for (const auto& name : state_.aovNames) list += (list.empty() ? "" : ", ") + name;
-          throw Error("this frame has no buffer \"" + c.text + "\" (it has: " + list + ")");
+          throw Error("this frame has no buffer " + quote(c.text) + " (it has: " + list + ")");
         }
         state_.aov = c.text;
       }

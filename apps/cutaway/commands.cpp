@@ -45,7 +45,7 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     static const std::regex sizeRe(R"((\d{1,9})x(\d{1,9}))");
     std::smatch m;
     if (!std::regex_match(o.size, m, sizeRe))
-      throw Error("--size", "", "expected WxH, e.g. 800x600, got \"" + o.size + "\"");
+      throw Error("--size", "", "expected WxH, e.g. 800x600, got " + quote(o.size));
     const int w = std::stoi(m[1]), h = std::stoi(m[2]);
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
       throw Error("--size", "", "width and height must be in [1, 16384]");

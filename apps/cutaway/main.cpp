@@ -34,7 +34,7 @@ std::string parseVec3(const std::string& text, glm::vec3& out) {
     return "expected three comma-separated numbers x,y,z";
   for (int i = 0; i < 3; ++i)
     if (!(std::abs(v[i]) <= double(std::numeric_limits<float>::max())))
-      return "\"" + text + "\": a coordinate lies beyond a 32-bit float's range";
+      return cutaway::quote(text) + ": a coordinate lies beyond a 32-bit float's range";
   out = glm::vec3(v);
   return "";
 }
@@ -56,7 +56,7 @@ CLI::Validator finiteNumber(double least = -HUGE_VAL, double most = HUGE_VAL,
             need << " in " << (aboveLeast ? "(" : "[") << least << ", " << most << "]";
           else if (least != -HUGE_VAL)
             need << (aboveLeast ? " above " : " of at least ") << least;
-          return "expected " + need.str() + ", got \"" + text + "\"";
+          return "expected " + need.str() + ", got " + cutaway::quote(text);
         }
         return "";
       },
@@ -143,7 +143,7 @@ std::string unknownCommand(CLI::App& app, const std::string& word) {
     names += (names.empty() ? "" : ", ") + name;
     if (const std::size_t d = editDistance(word, name); d < best) best = d, closest = name;
   }
-  return "unknown command \"" + word + "\"" +
+  return "unknown command " + cutaway::quote(word) +
          (closest.empty() ? "" : " (did you mean " + closest + "?)") + "; the commands are " +
          names;
 }

@@ -98,7 +98,7 @@ class ObjectReader {
   }
   const json& require(const std::string& key) {
     const json* v = take(key);
-    if (!v) ctx_.fail(pointer_, "missing required key \"" + key + "\"");
+    if (!v) ctx_.fail(pointer_, "missing required key " + quote(key));
     return *v;
   }
   bool has(const std::string& key) const { return j_.contains(key); }
@@ -111,7 +111,7 @@ class ObjectReader {
         std::string known;
         for (const auto& k : taken_) known += (known.empty() ? "" : ", ") + k;
         ctx_.fail(pointer_ + "/" + token(key),
-                  "unknown key \"" + key + "\" (expected one of: " + known + ")");
+                  "unknown key " + quote(key) + " (expected one of: " + known + ")");
       }
   }
 
@@ -173,7 +173,7 @@ inline std::string oneOf(const Context& ctx, const json& j, const std::string& p
     if (n == v) return v;
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-  ctx.fail(ptr, "unknown value \"" + v + "\" (expected one of: " + list + ")");
+  ctx.fail(ptr, "unknown value " + quote(v) + " (expected one of: " + list + ")");
 }
 
 inline glm::dvec3 dvec3(const Context& ctx, const json& j, const std::string& ptr,

@@ -120,12 +120,12 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
     case Type::Bool:
       if (text == "true" || text == "on") return true;
       if (text == "false" || text == "off") return false;
-      throw std::invalid_argument("expected true/false or on/off, got \"" + text + "\"");
+      throw std::invalid_argument("expected true/false or on/off, got " + quote(text));
     case Type::Int:
     case Type::Float: {
       double v = 0;
       if (!parseNumber(text, v))
-        throw std::invalid_argument("expected a number, got \"" + text + "\"");
+        throw std::invalid_argument("expected a number, got " + quote(text));
       if (p.type == Type::Int && v != std::floor(v))
         throw std::invalid_argument("expected an integer, got " + text);
       if (!(v >= p.min && v <= p.max))
@@ -140,7 +140,8 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
         if (c == text) return text;
         list += (list.empty() ? "" : ", ") + c;
       }
-      throw std::invalid_argument("unknown value \"" + text + "\" (expected one of: " + list + ")");
+      throw std::invalid_argument("unknown value " + quote(text) + " (expected one of: " + list +
+                                  ")");
     }
     case Type::Text:
       return text;
@@ -157,7 +158,7 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
           throw std::invalid_argument("expected three comma-separated numbers x,y,z, got \"" +
                                       text + "\"");
         if (p.type == Type::Color && !(c >= 0 && c <= 1))
-          throw std::invalid_argument("colour channels must lie in [0, 1], got \"" + text + "\"");
+          throw std::invalid_argument("colour channels must lie in [0, 1], got " + quote(text));
         if (p.type == Type::Vec3 && !(c >= p.min && c <= p.max))
           throw std::invalid_argument("component " + std::to_string(i) + " of \"" + text +
                                       "\" is outside " + rangeText(p.min, p.max));
@@ -209,7 +210,7 @@ std::vector<OptionSpec> OptionsSchema::flatten() const {
           };
           const auto missing = [n, i](const void* o) {
             const std::size_t size = n->size(o);
-            return "no entry " + std::to_string(i) + ": \"" + n->spec.key + "\" has " +
+            return "no entry " + std::to_string(i) + ": " + quote(n->spec.key) + " has " +
                    std::to_string(size) + (size == 1 ? " entry" : " entries");
           };
           for (const OptionSpec& s : n->inner->flatten())
@@ -251,7 +252,7 @@ void OptionsSchema::read(const json_reader::Context& ctx, json_reader::ObjectRea
     if (r.taken(key) || (n->kind == Node::Kind::Value && !n->spec.inFile)) continue;
     const json* v = r.take(key);
     if (!v) {
-      if (n->spec.required) ctx.fail(r.pointer(), "missing required key \"" + key + "\"");
+      if (n->spec.required) ctx.fail(r.pointer(), "missing required key " + quote(key));
       continue;
     }
     const std::string ptr = r.at(key);

@@ -144,7 +144,7 @@ class FeatureReader {
       const OGRFieldType type = definition->GetFieldDefn(i)->GetType();
       if (type != OFTInteger && type != OFTInteger64 && type != OFTReal)
         throw Error(file.string(), layerPlace(layer),
-                    "attribute field \"" + name + "\" holds " +
+                    "attribute field " + quote(name) + " holds " +
                         OGRFieldDefn::GetFieldTypeName(type) + " values, not numbers");
       fields_.push_back(i);
     }
@@ -157,7 +157,7 @@ class FeatureReader {
       if (to.SetFromUserInput(options.targetCrs.c_str()) != OGRERR_NONE)
         throw Error(
             file.string(), layerPlace(layer),
-            "unknown target CRS \"" + options.targetCrs + "\"" + gdal::QuietErrors::lastMessage());
+            "unknown target CRS " + quote(options.targetCrs) + gdal::QuietErrors::lastMessage());
       // x = easting / longitude, y = northing / latitude whatever the CRS's axis order
       // (EPSG:4326 is latitude first), as the layer's own coordinates are.
       from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);

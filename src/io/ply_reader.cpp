@@ -123,16 +123,11 @@ class DataReader {
     const char* first = word.data() + (word.size() > 1 && word[0] == '+' && word[1] != '-');
     const auto [end, ec] = std::from_chars(first, word.data() + word.size(), value);
     if (ec == std::errc::result_out_of_range)
-      fail("the number \"" + shorten(word) + "\" is out of range");
+      fail("the number " + quote(word) + " is out of range");
     if (ec != std::errc() || end != word.data() + word.size())
-      fail("\"" + shorten(word) + "\" is not a number");
-    if (t.integer && value != std::floor(value))
-      fail("\"" + shorten(word) + "\" is not an integer");
+      fail(quote(word) + " is not a number");
+    if (t.integer && value != std::floor(value)) fail(quote(word) + " is not an integer");
     return value;
-  }
-
-  static std::string shorten(std::string_view w) {
-    return std::string(w.substr(0, 40)) + (w.size() > 40 ? "…" : "");
   }
 
   const std::filesystem::path& file_;
@@ -191,7 +186,7 @@ Mesh readPly(const std::filesystem::path& file, const char* data, std::size_t si
         fail(number, "claims " + std::to_string(count) + " " + std::string(w[1].substr(0, 40)) +
                          " elements in a file of " + std::to_string(size) + " bytes");
       for (const Element& e : elements)
-        if (e.name == w[1]) fail(number, "a second \"" + e.name + "\" element");
+        if (e.name == w[1]) fail(number, "a second " + quote(e.name) + " element");
       elements.push_back({std::string(w[1]), count, {}, number});
     } else if (keyword == "property") {
       if (elements.empty()) fail(number, "a property before any element");
@@ -217,7 +212,7 @@ Mesh readPly(const std::filesystem::path& file, const char* data, std::size_t si
     } else if (keyword == "end_header" && w.size() == 1) {
       ended = true;
     } else {
-      fail(number, "unknown header keyword \"" + keyword + "\"");
+      fail(number, "unknown header keyword " + quote(keyword));
     }
   }
   if (!ended) fail(0, "the PLY header has no end_header line (truncated?)");

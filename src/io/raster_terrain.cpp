@@ -149,7 +149,7 @@ RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
     if (to.SetFromUserInput(options.targetCrs.c_str()) != OGRERR_NONE)
       throw Error(
           name, "",
-          "unknown target CRS \"" + options.targetCrs + "\"" + gdal::QuietErrors::lastMessage());
+          "unknown target CRS " + quote(options.targetCrs) + gdal::QuietErrors::lastMessage());
     from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     out.sceneCrs = gdal::describeCrs(&to);
@@ -336,7 +336,7 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   if (whole.x * whole.y > 1e8) throw Error(name, "", "more than 10⁸ cells: choose larger cells");
   OGRSpatialReference crs;
   if (crs.SetFromUserInput(o.crs.c_str()) != OGRERR_NONE)
-    throw Error(name, "", "unknown CRS \"" + o.crs + "\"" + gdal::QuietErrors::lastMessage());
+    throw Error(name, "", "unknown CRS " + quote(o.crs) + gdal::QuietErrors::lastMessage());
   const int width = int(whole.x), height = int(whole.y);
   std::vector<float> samples(std::size_t(width) * std::size_t(height));
   for (int r = 0; r < height; ++r)

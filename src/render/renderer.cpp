@@ -87,7 +87,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info) try
   // cutters (registry order), the kinds.
   const Style& style = scene.style;
   const StyleType* shading = findStyle(style.name);
-  if (!shading) throw Error("style", "", "unknown style \"" + style.name + "\"");
+  if (!shading) throw Error("style", "", "unknown style " + quote(style.name));
   g.style = shading->create(setup);
   // Every geometry program includes the shadow lookup (styles/shadows/shadow_lookup.glsl);
   // its unit's define is there only while shadows are on, and without it the lookup compiles

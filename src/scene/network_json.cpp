@@ -148,7 +148,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
     net.name = name(ctx, r.require("name"), r.at("name"), "network");
     for (const PipeNetwork& other : scene.networks)
       if (other.name == net.name)
-        ctx.fail(r.at("name"), "two networks are named \"" + net.name + "\"");
+        ctx.fail(r.at("name"), "two networks are named " + quote(net.name));
 
     // Heights come from the terrain objects: nodes without z, and the shafts' rims.
     std::vector<std::size_t> terrain;
@@ -159,7 +159,7 @@ void readNetworks(const Context& ctx, const json& j, const std::string& ptr, Sce
       for (std::size_t i = 0; i < scene.objects.size(); ++i)
         if (!scene.objects[i].proxy && scene.objects[i].named(pattern)) terrain.push_back(i);
       if (terrain.empty())
-        ctx.fail(r.at("terrain"), "no object name matches \"" + terrainPattern + "\"");
+        ctx.fail(r.at("terrain"), "no object name matches " + quote(terrainPattern));
     }
     auto found = grounds.find(terrain);
     if (found == grounds.end()) {

@@ -220,7 +220,7 @@ ObjectParams params(const Context& ctx, const json& j, const std::string& ptr) {
     if (!spec) {
       std::string known;
       for (const auto& s : objectParameterSpecs()) known += (known.empty() ? "" : ", ") + s.name;
-      ctx.fail(p, "unknown object parameter \"" + key + "\" (known: " + known + ")");
+      ctx.fail(p, "unknown object parameter " + quote(key) + " (known: " + known + ")");
     }
     if (spec->type == ObjectParamSpec::Type::Bool)
       out[key] = boolean(ctx, value, p);
@@ -353,7 +353,7 @@ std::shared_ptr<Mesh> footprintMesh(const Context& ctx, const json& j, const std
       if (o.name == name) ground = &o;
     if (!ground)
       ctx.fail(r.at("on"),
-               "no object named \"" + name + "\" before this one (list the terrain first)");
+               "no object named " + quote(name) + " before this one (list the terrain first)");
   }
   r.finish();
   source = file.string();
@@ -779,7 +779,7 @@ GeoFrame geoFrame(const Context& ctx, const json& j, const std::string& ptr) {
   ObjectReader r(ctx, j, ptr);
   if (const json* v = r.take("crs")) {
     g.crs = string(ctx, *v, r.at("crs"));
-    if (!gisCrsKnown(g.crs)) ctx.fail(r.at("crs"), "unknown CRS \"" + g.crs + "\"");
+    if (!gisCrsKnown(g.crs)) ctx.fail(r.at("crs"), "unknown CRS " + quote(g.crs));
   }
   if (const json* v = r.take("offset")) {
     if (!v->is_array() || (v->size() != 2 && v->size() != 3))
@@ -852,20 +852,20 @@ void checkNamesAndReach(const Context& ctx, const Scene& scene) {
     const glm::vec3 c = o.material.color;
     if (!(glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) &&
           glm::all(glm::lessThanEqual(c, glm::vec3(1.0f)))))
-      ctx.fail("/objects", "\"" + o.name + "\" has the colour [" + std::to_string(c.r) + ", " +
+      ctx.fail("/objects", quote(o.name) + " has the colour [" + std::to_string(c.r) + ", " +
                                std::to_string(c.g) + ", " + std::to_string(c.b) +
                                "], outside [0, 1]");
     const bool fresh = names.insert(o.name).second;
     if (o.proxy && !fresh)
       ctx.fail("/proxies/" + std::to_string(proxies) + "/name",
-               "the name \"" + o.name + "\" is taken");
-    if (!fresh) ctx.fail("/objects", "two objects are named \"" + o.name + "\"");
+               "the name " + quote(o.name) + " is taken");
+    if (!fresh) ctx.fail("/objects", "two objects are named " + quote(o.name));
     proxies += o.proxy;
   }
   for (std::size_t i = 0; i < scene.volumes.size(); ++i)
     if (!names.insert(scene.volumes[i].name).second)
       ctx.fail("/volumes/" + std::to_string(i) + "/name",
-               "the name \"" + scene.volumes[i].name + "\" is taken");
+               "the name " + quote(scene.volumes[i].name) + " is taken");
   // Within kMaxSceneReach; nearer, far coordinates render with a warning (the CLI names the
   // farthest part).
   const auto checkReach = [&](const std::string& ptr, const std::string& name, const Bounds& b) {

@@ -10,6 +10,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace cutaway {
 
@@ -40,5 +41,15 @@ class Error : public std::runtime_error {
   }
   std::string file_, place_, reason_;
 };
+
+// User text as a message shows it, in double quotes: cut after 60 characters, so that a
+// 100 KB name or value does not fill the terminal (the place around it says which one).
+inline std::string quote(std::string_view text) {
+  std::string q(1, '"');  // appended, not "\"" + …: GCC 12 warns on that (-Wrestrict)
+  q += text.substr(0, 60);
+  if (text.size() > 60) q += "…";
+  q += '"';
+  return q;
+}
 
 }  // namespace cutaway

@@ -31,7 +31,7 @@ void completeTerrainOpening(const json_reader::Context& ctx, const std::string& 
     if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& s) {
           return !s.proxy && std::regex_match(s.name, re);
         }))
-      ctx.fail(pointer + "/" + key, "no object name matches \"" + pattern + "\"");
+      ctx.fail(pointer + "/" + key, "no object name matches " + quote(pattern));
   }
 }
 
