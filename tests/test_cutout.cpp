@@ -194,6 +194,55 @@ TEST(CutoutJitter, PatternsStayInRangeAndSawtoothIsATriangleWave) {
   EXPECT_NEAR(cutoutPerturbation(w, saw, {0.25f, 0, 0}), 0.5f, 1e-6f);
 }
 
+// The half-spaces the mesh kind draws without the cutter's code (Cutter::Slab), over random
+// wedges (two planes, or four with an axial range, from random boxes' axes and viewers), every
+// jitter, and random boxes: a point of the box in any of them is kept by cutoutDistance, with
+// the jitter at its extremes; and a plane that keeps part of the box by more than the jitter
+// (and a hair) gives one.
+TEST(CutoutWedge, TheHalfSpacesKeptWholeHoldNoPointTheWedgeRemoves) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  auto random3 = [&] { return glm::vec3(u(rng), u(rng), u(rng)); };
+  int inKept = 0, missed = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const glm::mat3 r = glm::mat3(glm::rotate(glm::mat4(1.0f), 3.0f * u(rng),
+                                              glm::normalize(random3() + glm::vec3(0, 0, 1.5f))));
+    const PrincipalAxes axes = principalAxes(boxCorners({3, 1.5f, 1}, r, 5.0f * random3()));
+    CutoutOptions options;
+    options.angle = 20.0f + 80.0f * (u(rng) + 1.0f);
+    if (trial % 2) options.axialRange = glm::vec2(0.2f, 0.7f);
+    const CutoutWedge wedge = cutoutWedge(axes, options, random3() * 10.0f);
+    CutoutJitter jitter{.pattern = CutoutJitter::Pattern(trial % 3), .amplitude = 0.05f};
+    Bounds box;
+    box.extend(axes.center + 4.0f * random3());
+    box.extend(axes.center + 4.0f * random3());
+    const std::vector<glm::vec4> kept = cutoutKeptHalfSpaces(wedge, jitter, box);
+    const float amplitude =
+        jitter.pattern == CutoutJitter::Pattern::None ? 0.0f : jitter.amplitude * wedge.axisLength;
+    // Where the jitter may reach its extremes, its greatest displacement stands for it.
+    auto greatest = [&](const glm::vec3& p) {
+      float d = 1e30f;
+      for (const glm::vec4& plane : wedge.planes)
+        d = std::min(d, glm::dot(glm::vec3(plane), p) + plane.w);
+      return d + amplitude;
+    };
+    for (int k = 0; k < 200; ++k) {
+      const glm::vec3 p = box.min + (box.max - box.min) * (0.5f * random3() + 0.5f);
+      bool held = false;
+      for (const glm::vec4& h : kept) held = held || glm::dot(glm::vec3(h), p) + h.w >= 0.0f;
+      if (held) {
+        ++inKept;
+        EXPECT_LE(greatest(p), 0.0f) << trial;
+        EXPECT_LE(cutoutDistance(wedge, jitter, p), 0.0f) << trial;
+      }
+      for (const glm::vec4& plane : wedge.planes)
+        if (-(glm::dot(glm::vec3(plane), p) + plane.w) > amplitude + 1e-3f && !held) ++missed;
+    }
+  }
+  EXPECT_EQ(missed, 0);
+  EXPECT_GT(inKept, 400 * 50);
+}
+
 // The noise pattern's base (cutaway/core/noise.hpp) against what value noise is: lattice values
 // uniform in [0, 1) and independent of their neighbours (over 200² lattice points: mean ½ and
 // variance 1/12 within 4σ, neighbour correlations under 4/√N, a χ² of ten bins under its

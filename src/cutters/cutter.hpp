@@ -97,14 +97,20 @@ class Cutter {
   // everything), the object draws without its code: llvmpipe runs a cutter's code for every
   // fragment it decides, and a `discard` in a program delays its depth writes on any GPU.
   virtual bool reaches(std::size_t /*index*/) const { return true; }
-  // Where it reaches object `index`, the world slab its decisions may differ in this frame, as
-  // two planes: it keeps every point where kept·x ≥ 0 and removes every point where
-  // removed·x < 0 (a clip surface's plane lifted by its relief's least and greatest offset).
-  // The mesh kind then draws the first part without its code and leaves the second out, by
+  // Where it reaches object `index`, the world slab its decisions may differ in this frame: it
+  // keeps every point where kept[j]·x ≥ 0 for some j (a union of at most kMostKept
+  // half-spaces) and removes every point where removed·x < 0 (a clip surface's plane lifted by
+  // its relief's least and greatest offset; the outside of a cutout's wedge). The mesh kind
+  // then draws each kept half-space without its code and leaves the removed one out, by
   // hardware clip distances; nullopt: no such slab.
   struct Slab {
-    glm::vec4 kept, removed;
+    static constexpr int kMostKept = 4;
+    std::vector<glm::vec4> kept;
+    glm::vec4 removed{0.0f, 0.0f, 0.0f, 1.0f};  // by default none
     float overlap = 0.0f;  // world units the slab's draw reaches into the kept part (no cracks)
+    // Whether the back faces split too; false where a kept back face may still be the cutter's
+    // to shade (Diepstraten03's wall, seen through the cut wherever it lies).
+    bool backFaces = true;
   };
   virtual std::optional<Slab> slab(std::size_t /*index*/) const { return std::nullopt; }
   // Whether its GLSL decides the ray samples of scene volume `index` (kinds/volumes), each

@@ -22,6 +22,7 @@
 #include "cutaway/core/image.hpp"
 #include "cutaway/core/options.hpp"
 #include "cutaway/geometry/main_axis.hpp"
+#include "cutaway/geometry/mesh.hpp"
 
 namespace cutaway {
 
@@ -82,6 +83,13 @@ float cutoutPerturbation(const CutoutWedge& wedge, const CutoutJitter& jitter, c
 // Signed distance of x to the removed region, perturbed: min_i (n_i·x + w_i) plus the
 // jitter; > 0 means removed.
 float cutoutDistance(const CutoutWedge& wedge, const CutoutJitter& jitter, const glm::vec3& x);
+
+// The half-spaces k (k·x ≥ 0) outside the wedge that keep every point of theirs whatever the
+// jitter: each plane turned and moved out by the jitter's amplitude, a rounding pad and
+// `beyond`, those of them that hold some of `box`. A point of the box in none of them may be
+// removed or cut; the mesh kind draws the rest without the cutter's code (Cutter::Slab).
+std::vector<glm::vec4> cutoutKeptHalfSpaces(const CutoutWedge& wedge, const CutoutJitter& jitter,
+                                            const Bounds& box, float beyond = 0.0f);
 
 // Rule 3: the wedge lies on the main axis of the outside object. Exterior objects of one
 // group share one wedge (the axes of their joint hull); an ungrouped exterior object has its

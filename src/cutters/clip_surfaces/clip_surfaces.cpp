@@ -311,8 +311,8 @@ void ClipSurfaceCutter::beginFrame(const FrameState& state) {
     reaches_[i] = !clipSurfacesKeepBox(options, gpu_->reliefRange, box);
     if (!reaches_[i]) continue;
     if (const auto s = clipSurfacesSlab(options, gpu_->reliefRange, box))
-      slabs_[i] =
-          Slab{.kept = s->kept, .removed = s->removed, .overlap = worldPixel(box, state.uniforms)};
+      slabs_[i] = Slab{
+          .kept = {s->kept}, .removed = s->removed, .overlap = worldPixel(box, state.uniforms)};
   }
   ClipSurfaceBlock block{};
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {

@@ -152,6 +152,22 @@ void Cutout::beginFrame(const FrameState& state) {
                                         : camera.eye - axes.center;
     wedges_[u] = cutoutWedge(axes, options(), towardsViewer);
   }
+  const Scene& scene = setup_.scene;
+  slabs_.assign(scene.objects.size(), std::nullopt);
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const Bounds& local = setup_.meshes.mesh(i).bounds();
+    if (local.empty() || !cuts(i)) continue;
+    const Bounds box = shadedBox(scene, local, i, state.time, state.uniforms);
+    // Two pixels beyond the planes: the cutter decides a pixel's samples by its centre (a
+    // fragment is shaded once), so a kept part reaching the planes would draw the samples past
+    // them of rim pixels it removes; two pixels off, only where the surface grazes the view.
+    const float pixel = worldPixel(box, state.uniforms);
+    std::vector<glm::vec4> kept = cutoutKeptHalfSpaces(wedges_[std::size_t(unitOfObject_[i])],
+                                                       options().jitter, box, 2.0f * pixel);
+    if (!kept.empty())
+      slabs_[i] =
+          Slab{.kept = std::move(kept), .overlap = pixel, .backFaces = !scene.objects[i].solid()};
+  }
 }
 
 void Cutout::bindForGeometry() const {

@@ -24,6 +24,12 @@ class Cutout : public Cutter {
   int clipPasses(std::size_t index) const override;
   glm::vec4 clipPlane(std::size_t index, int pass) const override;
   CutLook look(std::size_t index) const override;
+  // Outside the wedge, where no jitter reaches, an exterior object is kept whole: its front
+  // faces there (and a hollow one's back faces) draw without the cutter's code. A solid one's
+  // back faces stay the cutter's: each may be the wall seen through the cut (rule 5).
+  std::optional<Slab> slab(std::size_t index) const override {
+    return index < slabs_.size() ? slabs_[index] : std::nullopt;
+  }
   void setObjectUniforms(GLuint program, std::size_t index) const override;
   void setVolumeUniforms(GLuint program, std::size_t index) const override;
   // CUTOUT_JITTER_PATTERN: the jitter's pattern (0 none, 1 sawtooth, 2 noise, 3 image).
@@ -45,6 +51,7 @@ class Cutout : public Cutter {
   std::vector<int> unitOfObject_;  // -1: not exterior
   std::vector<int> unitOfVolume_;
   std::vector<CutoutWedge> wedges_;
+  std::vector<std::optional<Slab>> slabs_;  // this frame's, per scene object
   gl::Texture imageTexture_;
   GLuint imageUnit_;
   GLint planesLocation_, planeCountLocation_, originLocation_, axisLocation_, jitterLocation_;

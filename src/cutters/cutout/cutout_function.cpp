@@ -95,4 +95,23 @@ float cutoutDistance(const CutoutWedge& wedge, const CutoutJitter& jitter, const
   return d + jitter.amplitude * wedge.axisLength * cutoutPerturbation(wedge, jitter, x);
 }
 
+std::vector<glm::vec4> cutoutKeptHalfSpaces(const CutoutWedge& wedge, const CutoutJitter& jitter,
+                                            const Bounds& box, float beyond) {
+  // cutoutDistance ≤ min_i (n_i·x + w_i) + amplitude: a point where one plane's distance lies
+  // below −amplitude is kept. The pad covers the GPU's float rounding of the same sums.
+  const float amplitude =
+      jitter.pattern == CutoutJitter::Pattern::None ? 0.0f : jitter.amplitude * wedge.axisLength;
+  const float reach = sceneReach(box.min) + sceneReach(box.max);
+  std::vector<glm::vec4> kept;
+  for (const glm::vec4& p : wedge.planes) {
+    const float pad = 1e-5f * (std::abs(p.w) + reach);
+    const glm::vec4 k(-glm::vec3(p), -p.w - std::abs(amplitude) - pad - beyond);
+    // The box's corner deepest in k's half-space: whether k holds any of the box.
+    const glm::vec3 deepest(k.x > 0 ? box.max.x : box.min.x, k.y > 0 ? box.max.y : box.min.y,
+                            k.z > 0 ? box.max.z : box.min.z);
+    if (glm::dot(glm::vec3(k), deepest) + k.w >= 0.0f) kept.push_back(k);
+  }
+  return kept;
+}
+
 }  // namespace cutaway

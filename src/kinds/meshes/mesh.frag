@@ -21,12 +21,21 @@ layout(location = 14) uniform int uCutSurfaces;   // bit k: its cuts of this obj
 layout(location = 15) uniform vec3 uBackColor;    // back faces that are no cut surface (an open or hollow inside)
 layout(location = 16) uniform float uEmphasisImportance;  // 1 for objects of interest
 layout(location = 24) uniform vec3 uCutColor[CUTTER_SLOTS];  // per slot: the cut surfaces' colour
+layout(location = 31) uniform int uChannelsBy;    // bit k: the cutter of slot k writes its G-buffer channels
 #ifdef UNCUT
 // MeshKind's program for the objects no active cutter cuts: the cutters' code folds away
-// (llvmpipe runs a branch's code for every fragment, uniform condition or not).
+// (llvmpipe runs a branch's code for every fragment, uniform condition or not). SLAB_KEPT:
+// the part of a cut object that a Cutter::slab keeps whole, whose cutters' channels still
+// hold their values.
 #define CUT_BY 0
+#ifdef SLAB_KEPT
+#define CHANNELS_BY uChannelsBy
+#else
+#define CHANNELS_BY 0
+#endif
 #else
 #define CUT_BY uCutBy
+#define CHANNELS_BY uChannelsBy
 #endif
 #ifdef TRANSLUCENT_LAYER
 // One layer of frame/translucent_layers.hpp: the nearest fragment of opacity > 0 behind the
@@ -107,6 +116,6 @@ void main() {
   outColor = vec4(clamp(color, 0.0, 1.0) * opacity.x, opacity.x);  // premultiplied
 #else
   writeGBuffer(s, color, uLines, uObjectId, cut, false);
-  writeCutterChannels(CUT_BY, f);
+  writeCutterChannels(CHANNELS_BY, f);
 #endif
 }

@@ -8,7 +8,8 @@ namespace {
 // Uniform locations of kinds/meshes/mesh.frag and frame/mesh.vert.
 constexpr GLint kColor = 8, kSpecular = 9, kShininess = 10, kObjectId = 11, kLines = 12,
                 kCutBy = 13, kCutSurfaces = 14, kBackColor = 15, kImportance = 16, kFirstLayer = 17,
-                kClipPlane = 18, kSlabClip = 19, kCutColor = 24;
+                kClipPlane = 18, kSlabClip = 19, kCutColor = 24, kChannelsBy = 31;
+constexpr int kSlabClipPlanes = Cutter::Slab::kMostKept + 1;  // mesh.vert's uSlabClip
 // A cut object's front faces by `front`, then its back faces by `back` (mesh.frag's
 // FRONT_FACES, BACK_FACES), `prepare` setting each program's uniforms before it draws.
 void drawSides(GLuint front, GLuint back, const SceneMeshes::DrawWith& drawWith,
@@ -30,6 +31,9 @@ void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
   if (!cutters.empty()) {
     frontProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"FRONT_FACES", "1"}}));
     backProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"BACK_FACES", "1"}}));
+    if (!setup_.gbuffer.channels().empty())
+      slabKeptProgram_ =
+          gl::buildProgram(setup_.geometryProgram(stages, {{"UNCUT", "1"}, {"SLAB_KEPT", "1"}}));
   }
   culling_ = std::make_unique<OcclusionCulling>(setup_, setup_.translucentLayers);
   if (setup_.translucentLayers)
@@ -67,6 +71,7 @@ void MeshKind::setObjectUniforms(GLuint program, const std::vector<ActiveCutter>
   glProgramUniform1f(program, kLines, objectLines ? 1.0f : 0.0f);
   setCutUniforms(program, {kCutBy, kCutSurfaces, kBackColor, kCutColor}, cutters, cut, i,
                  o.material.color);
+  glProgramUniform1i(program, kChannelsBy, cut.cutBy);
 }
 
 void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
@@ -108,35 +113,50 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
       });
       return;
     }
-    // Each side twice, split by hardware clip distances: the part the cutter keeps whole by
-    // the program of the other cutters (none: the uncut one), then the slab by the cutter's
-    // program, reaching `overlap` into the first part so that their common edge leaves no
-    // crack; the part it removes whole is drawn by neither.
-    ObjectCut rest = cuts[i];
-    rest.cutBy &= ~(1 << slabCutter->slot);
-    const glm::vec4 keepAll(0, 0, 0, 1);
-    const glm::vec4 keptPart[2] = {slab->kept, keepAll};
-    const glm::vec4 slabPart[2] = {-slab->kept + glm::vec4(0, 0, 0, slab->overlap), slab->removed};
-    glEnable(GL_CLIP_DISTANCE1);
-    glEnable(GL_CLIP_DISTANCE2);
+    // Each side split by hardware clip distances: each half-space the cutter keeps whole by
+    // the program of the other cutters (none: the slab-kept one), clipped off those before it;
+    // then the rest by the cutter's program, reaching `overlap` into each kept half-space so
+    // that their common edges leave no crack; the part it removes whole is drawn by neither.
+    // The cutters' channels keep the whole cut's values throughout.
+    const int rest = cuts[i].cutBy & ~(1 << slabCutter->slot);
+    const auto drawPart = [&](GLuint program, int cutBy, const std::vector<glm::vec4>& planes) {
+      setObjectUniforms(program, cutters, cuts[i], o, i);
+      glProgramUniform1i(program, kCutBy, cutBy);
+      glm::vec4 clip[kSlabClipPlanes];
+      for (int k = 0; k < kSlabClipPlanes; ++k)
+        clip[k] = k < int(planes.size()) ? planes[std::size_t(k)] : glm::vec4(0, 0, 0, 1);
+      glProgramUniform4fv(program, kSlabClip, kSlabClipPlanes, &clip[0][0]);
+      drawWith(program);
+    };
+    const GLuint kept = rest != 0               ? 0
+                        : slabKeptProgram_.id() ? slabKeptProgram_.id()
+                                                : uncutProgram_.id();
+    for (int k = 1; k <= kSlabClipPlanes; ++k) glEnable(GLenum(GL_CLIP_DISTANCE0 + k));
     glEnable(GL_CULL_FACE);
     for (const auto& [culled, program] :
          {std::pair{GL_BACK, frontProgram_.id()}, std::pair{GL_FRONT, backProgram_.id()}}) {
       glCullFace(culled);
-      const GLuint whole = rest.cutBy == 0 ? uncutProgram_.id() : program;
-      setObjectUniforms(whole, cutters, rest, o, i);
-      glProgramUniform4fv(whole, kSlabClip, 2, &keptPart[0][0]);
-      drawWith(whole);
-      setObjectUniforms(program, cutters, cuts[i], o, i);
-      glProgramUniform4fv(program, kSlabClip, 2, &slabPart[0][0]);
-      drawWith(program);
+      if (culled == GL_FRONT && !slab->backFaces) {
+        drawPart(program, cuts[i].cutBy, {});
+        continue;
+      }
+      std::vector<glm::vec4> outside;  // the kept half-spaces drawn so far, turned and grown
+      for (const glm::vec4& k : slab->kept) {
+        std::vector<glm::vec4> part = outside;
+        part.push_back(k);
+        drawPart(kept ? kept : program, rest, part);
+        outside.push_back(-k + glm::vec4(0, 0, 0, slab->overlap));
+      }
+      outside.push_back(slab->removed);
+      drawPart(program, cuts[i].cutBy, outside);
     }
     // Mesa 22.3's llvmpipe clips by stale distances with clipping disabled (below).
-    const glm::vec4 none[2] = {keepAll, keepAll};
-    for (const GLuint program : {uncutProgram_.id(), frontProgram_.id(), backProgram_.id()})
-      glProgramUniform4fv(program, kSlabClip, 2, &none[0][0]);
-    glDisable(GL_CLIP_DISTANCE1);
-    glDisable(GL_CLIP_DISTANCE2);
+    glm::vec4 none[kSlabClipPlanes];
+    std::fill(std::begin(none), std::end(none), glm::vec4(0, 0, 0, 1));
+    for (const GLuint program :
+         {uncutProgram_.id(), slabKeptProgram_.id(), frontProgram_.id(), backProgram_.id()})
+      if (program != 0) glProgramUniform4fv(program, kSlabClip, kSlabClipPlanes, &none[0][0]);
+    for (int k = 1; k <= kSlabClipPlanes; ++k) glDisable(GLenum(GL_CLIP_DISTANCE0 + k));
   };
   const auto noMore = [](GLuint) {};
   // The objects of `batch` (frame/occlusion_culling.hpp), in the order below.

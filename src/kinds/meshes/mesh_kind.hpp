@@ -42,6 +42,9 @@ class MeshKind : public GeometryKind {
   FrameSetup& setup_;
   gl::Program layerFrontProgram_, layerBackProgram_;  // TRANSLUCENT_LAYER, one side each
   gl::Program uncutProgram_;                   // mesh.frag with UNCUT: the objects no cutter cuts
+  // UNCUT and SLAB_KEPT: the parts of cut objects a Cutter::slab keeps whole, where the
+  // cutters' G-buffer channels still hold values (none added: the uncut program is it).
+  gl::Program slabKeptProgram_;
   gl::Program frontProgram_, backProgram_;     // FRONT_FACES, BACK_FACES: a cut object's sides
   std::unique_ptr<OcclusionCulling> culling_;  // of the geometry pass's draws
   mutable std::vector<ObjectCut> layerCuts_;  // this frame's, from its first translucent layer
