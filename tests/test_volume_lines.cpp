@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "cutaway/core/error.hpp"
 #include "cutaway/styles/volume_lines.hpp"
 
 namespace cutaway {
@@ -242,6 +243,39 @@ TEST(VolumeLines, MissingValuesEmptyFramesAndFlatGridsAreHandled) {
   EXPECT_TRUE(
       probing.extract(field, {.randomProbes = 20, .bruteForceFirstFrame = false}).lines.empty());
   EXPECT_TRUE(extractVolumeLinesBruteForce(field).lines.empty());
+}
+
+// White noise holds lines in nearly every cell: the extraction stops at the query's budget of
+// segments with an error rather than fill the memory, exactly past it, walking or not; a frame
+// that failed leaves the tracker's next frame a first one (brute force).
+TEST(VolumeLines, NoiseStopsAtTheBudgetOfSegments) {
+  const Volume noise = sampled(24, 1.0f, glm::vec3(0.0f), [](glm::vec3 p) {
+    std::uint32_t h = std::uint32_t(p.x) * 73856093u ^ std::uint32_t(p.y) * 19349663u ^
+                      std::uint32_t(p.z) * 83492791u;
+    h ^= h >> 13, h *= 0x5bd1e995u, h ^= h >> 15;
+    return float(h & 0xffffu) / 65535.0f;
+  });
+  VolumeLineQuery query{.isoValue = 0.5f};
+  const VolumeLineField unbounded(noise, noise.indexToWorld, orthographic({0, 0, 1}), query);
+  const VolumeLineSet all = extractVolumeLinesBruteForce(unbounded);
+  std::size_t held = 0;  // what the cache holds: every segment of every cell, drawn or not
+  for (int z = 0; z < 23; ++z)
+    for (int y = 0; y < 23; ++y)
+      for (int x = 0; x < 23; ++x) held += unbounded.segments({x, y, z}).size();
+  ASSERT_GT(all.segmentCount(), 2000u);
+  query.mostSegments = held;
+  const VolumeLineField enough(noise, noise.indexToWorld, orthographic({0, 0, 1}), query);
+  EXPECT_EQ(extractVolumeLinesBruteForce(enough).segmentCount(), all.segmentCount());
+  query.mostSegments = held - 1;
+  const VolumeLineField short1(noise, noise.indexToWorld, orthographic({0, 0, 1}), query);
+  EXPECT_THROW(extractVolumeLinesBruteForce(short1), Error);
+  VolumeLineTracker tracker;
+  EXPECT_THROW(tracker.extract(short1), Error);
+  EXPECT_FALSE(tracker.hasHistory());
+  EXPECT_EQ(tracker.extract(enough).segmentCount(), all.segmentCount());  // brute force
+  query.mostSegments = 100;  // the walk from the last frame's cells stops too
+  const VolumeLineField few(noise, noise.indexToWorld, orthographic({0, 0, 1}), query);
+  EXPECT_THROW(tracker.extract(few), Error);
 }
 
 // A bump on a bowl, z = A·exp(−ρ²/2σ²) − Bρ², as a signed distance (positive below), seen

@@ -1447,6 +1447,39 @@ GrazedLines graze(const Scene& s, const VolumeLineDrawing& d) {
   return g;
 }
 
+// A noise volume's lines past the style's "mostSegments": the frame fails with an error that
+// names the scene, the volume's lines and the budget; within it, the frame is drawn.
+TEST_F(VolumeTest, LinesOfNoisePastTheirBudgetFailTheFrameWithAClearError) {
+  const fs::path file = volume("noise", 32, 1.0f, [](glm::vec3 p) {
+    const glm::uvec3 q(glm::ivec3(glm::round(p * 100.0f)) + 1000);
+    std::uint32_t h = q.x * 73856093u ^ q.y * 19349663u ^ q.z * 83492791u;
+    h ^= h >> 13, h *= 0x5bd1e995u, h ^= h >> 15;
+    return float(h & 0xffffu) / 65535.0f - 0.5f;
+  });
+  const auto withBudget = [&](int most) {
+    return scene(R"({"name": "noise", "file": ")" + file.string() + R"(", )" + kRamp +
+                 R"(, "lines": {"isoValues": [{"value": -0.2}, {"value": 0}, {"value": 0.2}], )"
+                 R"("mostSegments": )" +
+                 std::to_string(most) + "}}");
+  };
+  const Scene tight = withBudget(5000), roomy = withBudget(4'000'000);  // renderers refer to them
+  Renderer bounded(tight, test::glContext().info());
+  try {
+    bounded.render();
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(
+                  "volumes.json: /volumes/0/lines: the lines hold more than 5000 segments "
+                  "(\"mostSegments\"), reached at isovalue ",
+                  0),
+              0u)
+        << e.what();
+  }
+  Renderer drawn(roomy, test::glContext().info());
+  drawn.render();
+  EXPECT_GT(drawn.volumeLineDrawing().lines.size(), 100u);
+}
+
 TEST_F(VolumeTest, LinesAreDrawnWhereTheyGrazeTheSurfaceAndHiddenBehindNearerOnes) {
   const fs::path file = volume("balls", 48, 1.0f, [](glm::vec3 p) {
     return std::max(kFront.radius - glm::distance(p, kFront.centre),

@@ -74,6 +74,9 @@ struct VolumeLineStyle {
   // Every frame walks from the previous frame's cells with eq. 2.5 probes (§2.4.1.3–2.4.1.4);
   // off, every frame is extracted by brute force.
   bool walk = true;
+  // The most segments a frame's lines of the volume may hold, all families together (a
+  // segment costs ~300 bytes from extraction to the GPU); past it the frame fails with an error.
+  int mostSegments = 4'000'000;
   friend bool operator==(const VolumeLineStyle&, const VolumeLineStyle&) = default;
 };
 const OptionsSchema& volumeLineStyleSchema();
@@ -99,6 +102,10 @@ struct VolumeLineQuery {
   // The suggestive contours' derivative threshold ε (eq. 2.7), per squared voxel: D_s is
   // compared with ε / h², h the mean voxel spacing, so that one ε suits any scan's units.
   float epsilon = 0.002f;
+  // The most segments the extraction may hold (cells read and their segments, ~50 bytes
+  // each, and as many drawn); past it, cutaway::Error. Noise-like data would otherwise fill
+  // the memory: every cell of white noise holds some.
+  std::size_t mostSegments = ~std::size_t(0);
 };
 
 // One piece of the curve in one cell: from where it enters the cell to where it leaves, each

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <sstream>
 
 #include "cutaway/kinds/volume_ray_cast.hpp"
 #include "kinds/volumes/volume_blocks.hpp"
@@ -151,6 +152,7 @@ void VolumeLinesPass::extract(const Camera& camera) {
     }
     l.style = style;
     const std::uint64_t n = std::uint64_t(std::cbrt(double(v.volume->voxelCount())));
+    std::size_t held = 0;  // this volume's segments so far, against style.mostSegments
     for (Family& f : l.families) {
       f.query.isoValue = style.isoValues[f.iso].value;
       f.query.epsilon = style.epsilon;
@@ -158,12 +160,24 @@ void VolumeLinesPass::extract(const Camera& camera) {
         const VolumeLinePlane& plane = style.planes[f.plane];
         f.query.plane = glm::vec4(glm::normalize(plane.normal), plane.distance);
       }
+      f.query.mostSegments =
+          std::size_t(style.mostSegments) - std::min(held, std::size_t(style.mostSegments));
       const VolumeLineField field(*v.volume, v.indexToWorld(), view, f.query);
       if (!style.walk) f.tracker.reset();
       // §2.4.1.3–2.4.1.4: the previous frame's cells, n/4 probes from them and n random
       // probes (n³ ≈ the voxel count); a first frame is brute force.
-      const VolumeLineSet set =
-          f.tracker.extract(field, {.probesFromPrevious = int(n / 4), .randomProbes = int(n)});
+      VolumeLineSet set;
+      try {
+        set = f.tracker.extract(field, {.probesFromPrevious = int(n / 4), .randomProbes = int(n)});
+      } catch (const Error&) {
+        std::ostringstream reason;
+        reason << "the lines hold more than " << style.mostSegments
+               << " segments (\"mostSegments\"), reached at isovalue " << f.query.isoValue
+               << ": noise-like data? Smooth the volume, draw fewer isovalues, or raise it";
+        throw Error(setup_.scene.file.string(), "/volumes/" + std::to_string(l.volume) + "/lines",
+                    reason.str());
+      }
+      held += set.segmentCount();
       const float importance = this->importance(l, f);
       for (const VolumeLine& line : set.lines) {
         if (line.points.size() < 2) continue;

@@ -2,7 +2,9 @@
 // cells (§2.4.1.3) and by gradient-descent probes (§2.4.1.4); brute force as the reference.
 #include <algorithm>
 #include <optional>
+#include <sstream>
 
+#include "cutaway/core/error.hpp"
 #include "cutaway/styles/volume_lines.hpp"
 
 namespace cutaway {
@@ -117,7 +119,7 @@ class Walker {
           const glm::ivec3 c(x, y, z);
           const CellSegments segments = field_.segments(c);
           if (segments.empty()) continue;
-          cache_.insert(field_.cellIndex(c), segments);
+          insert(field_.cellIndex(c), segments);
           holding.push_back(c);
         }
     out_.cellsExamined += std::size_t(n.x) * n.y * n.z;
@@ -138,7 +140,7 @@ class Walker {
     if (const CellCache::Span* span = cache_.find(key)) return *span;
     if (complete_) return {};
     ++out_.cellsExamined;
-    return cache_.insert(key, field_.segments(cell));
+    return insert(key, field_.segments(cell));
   }
 
   // Walks the loop through every segment of `cell` not yet drawn.
@@ -166,6 +168,18 @@ class Walker {
   }
 
  private:
+  // Caches a cell's segments, within the query's budget.
+  CellCache::Span insert(std::uint64_t cell, const CellSegments& segments) {
+    const CellCache::Span span = cache_.insert(cell, segments);
+    if (span.first + span.count > field_.query().mostSegments) {
+      std::ostringstream reason;
+      reason << "the lines at isovalue " << field_.query().isoValue << " hold more than "
+             << field_.query().mostSegments << " segments (noise-like data?)";
+      throw Error(reason.str());
+    }
+    return span;
+  }
+
   // The segment the curve continues in across l's exit face (forward) or entry face.
   std::optional<Link> neighbour(const Link& l, bool forward) {
     const CellSegment& from = cache_.segment(l.segment);
@@ -284,11 +298,12 @@ VolumeLineSet VolumeLineTracker::extract(const VolumeLineField& field,
                                          const VolumeLineSeeding& seeding) {
   VolumeLineSet set;
   if (glm::any(glm::lessThanEqual(field.cells(), glm::ivec3(0)))) return set;  // no cell
+  // Set once a frame is extracted: a frame that failed (Error) leaves the next one first.
   const bool first = !ran_;
-  ran_ = true;
   if (first && seeding.bruteForceFirstFrame) {
     set = extractVolumeLinesBruteForce(field);
     previous_ = set.cells;
+    ran_ = true;
     return set;
   }
   Walker walker(field, set, previous_.size());
@@ -309,6 +324,7 @@ VolumeLineSet VolumeLineTracker::extract(const VolumeLineField& field,
                  seeding.probeIterations);
   walker.finish();
   previous_ = set.cells;
+  ran_ = true;
   return set;
 }
 

@@ -107,6 +107,12 @@ const OptionsSchema& volumeLineStyleSchema() {
                          "(§2.4.1.3–2.4.1.4); off: brute force every frame. A first frame is brute "
                          "force.",
                   .live = true})
+          .number("mostSegments", &O::mostSegments, 1000, 100'000'000,
+                  {.label = "most segments",
+                   .doc = "The most segments a frame's lines of this volume may hold, all "
+                          "isovalues and families together (~300 bytes each); past it the frame "
+                          "fails with an error rather than fill the memory (noise-like data "
+                          "holds lines in nearly every cell)."})
           .build();
   return schema;
 }
