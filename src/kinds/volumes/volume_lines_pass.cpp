@@ -169,7 +169,7 @@ void VolumeLinesPass::extract(const Camera& camera) {
       VolumeLineSet set;
       try {
         set = f.tracker.extract(field, {.probesFromPrevious = int(n / 4), .randomProbes = int(n)});
-      } catch (const Error&) {
+      } catch (const Error&) {  // the extraction's one error: its budget of segments
         std::ostringstream reason;
         reason << "the lines hold more than " << style.mostSegments
                << " segments (\"mostSegments\"), reached at isovalue " << f.query.isoValue
