@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cutaway/core/error.hpp"
+
 namespace cutaway {
 
 constexpr std::size_t kMaxNamePatternLength = 1024;
@@ -29,15 +31,10 @@ constexpr std::regex::flag_type kNamePatternSyntax =
     "name patterns need libstdc++'s polynomial-time std::regex matcher (std::regex_constants::__polynomial)"
 #endif
 
-// The pattern as a message shows it: cut after 60 characters; quoted.
+// The pattern as a message names it unquoted (a file field): cut after 60 characters, as
+// cutaway::quote cuts it.
 inline std::string shortNamePattern(const std::string& pattern) {
   return pattern.size() > 60 ? pattern.substr(0, 60) + "…" : pattern;
-}
-inline std::string quotedNamePattern(const std::string& pattern) {
-  std::string quoted(1, '"');  // appended, not "\"" + …: GCC 12 warns on that (-Wrestrict)
-  quoted += shortNamePattern(pattern);
-  quoted += '"';
-  return quoted;
 }
 
 // The compiled pattern; throws std::invalid_argument with the reason (naming the pattern).
@@ -45,7 +42,7 @@ inline std::regex compileNamePattern(const std::string& pattern) {
   if (pattern.size() > kMaxNamePatternLength)
     throw std::invalid_argument("regular expression of " + std::to_string(pattern.size()) +
                                 " characters (at most " + std::to_string(kMaxNamePatternLength) +
-                                "): " + quotedNamePattern(pattern));
+                                "): " + quote(pattern));
   int depth = 0, deepest = 0;
   for (std::size_t i = 0; i < pattern.size(); ++i) {
     if (pattern[i] == '\\')
@@ -58,13 +55,13 @@ inline std::regex compileNamePattern(const std::string& pattern) {
   if (deepest > kMaxNamePatternNesting)
     throw std::invalid_argument("regular expression nests deeper than " +
                                 std::to_string(kMaxNamePatternNesting) +
-                                " groups: " + quotedNamePattern(pattern));
+                                " groups: " + quote(pattern));
   try {
     return std::regex(pattern, kNamePatternSyntax);
   } catch (const std::regex_error& e) {
     // libstdc++'s own words for a pattern of too many states ask to rebuild it larger.
     throw std::invalid_argument(
-        "invalid regular expression " + quotedNamePattern(pattern) + ": " +
+        "invalid regular expression " + quote(pattern) + ": " +
         (e.code() == std::regex_constants::error_space
              ? "it needs more states than a pattern may have (repeat less, e.g. a smaller {n})"
              : e.what()));
