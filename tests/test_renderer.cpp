@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -25,6 +26,12 @@
 #include "run_command.hpp"
 
 using namespace cutaway;
+
+// A renderer refers to its scene, so it takes no temporary one (it would dangle by the first
+// frame: the first frame read a freed transfer function).
+static_assert(std::is_constructible_v<Renderer, const Scene&, const gl::ContextInfo&>);
+static_assert(!std::is_constructible_v<Renderer, Scene, const gl::ContextInfo&>);
+static_assert(!std::is_constructible_v<Renderer, Scene&&, const gl::ContextInfo&>);
 
 namespace {
 

@@ -96,6 +96,8 @@ class Renderer {
  public:
   // Uploads the meshes and compiles the programs; the scene must outlive the renderer.
   Renderer(const Scene& scene, const gl::ContextInfo& info);
+  // The renderer refers to its scene: a temporary one would dangle by the first frame.
+  Renderer(const Scene&& scene, const gl::ContextInfo& info) = delete;
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
