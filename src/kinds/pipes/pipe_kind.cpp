@@ -302,10 +302,12 @@ void PipeKind::addPassesAfterGeometry(Frame& frame) {
                    setup_.bindShading();
                    drawPipes();
                  }});
+  // Only AOVs read these: a frame that shows its picture alone skips the pass.
   frame.addPass({.name = "pipeAovs",
                  .reads = {gbuffer.depth(), pipeClass_},
                  .writes = {stencilAov_, classAov_},
-                 .run = [this](const PassContext&) { drawAovs(); }});
+                 .run = [this](const PassContext&) { drawAovs(); },
+                 .onRead = true});
 }
 
 void PipeKind::setNetworkUniforms(GLuint program, const NetworkGpu& n) const {
