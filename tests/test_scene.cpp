@@ -406,6 +406,33 @@ TEST(SceneErrors, ACameraBeyondWhatFloatsCanRenderIsRefused) {
       "far.json", kMeshes));
 }
 
+// Directions of any length but zero are taken, normalised in double: a float's squared length
+// overflowed past 1e19 (up [1e20, 1e20, 0] refused as parallel to the view) and underflowed
+// below 1e-19 (refused as the zero vector).
+TEST(SceneLoad, DirectionsOfAnyNonZeroLengthAreNormalised) {
+  for (const char* up : {"[1e20, 1e20, 0]", "[1e-20, 1e-20, 0]", "[1e30, 1e30, 0]", "[1, 1, 0]"}) {
+    SCOPED_TRACE(up);
+    const Scene s = parseScene(R"({"objects": [{"name": "a", "file": "cube.obj"}],
+        "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "up": )" +
+                                   std::string(up) + R"(},
+        "lights": [{"type": "directional", "direction": )" +
+                                   up + "}]}",
+                               "up.json", kMeshes);
+    for (const glm::vec3& v : {s.camera.up, s.lights.at(0).direction}) {
+      EXPECT_NEAR(v.x, std::sqrt(0.5f), 1e-6f);
+      EXPECT_NEAR(v.y, std::sqrt(0.5f), 1e-6f);
+      EXPECT_EQ(v.z, 0.0f);
+    }
+  }
+  test::expectError(
+      [] {
+        (void)parseScene(R"({"objects": [{"name": "a", "file": "cube.obj"}],
+            "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "up": [0, 0, 0]}})",
+                         "up.json", kMeshes);
+      },
+      {"up.json", "/camera/up", "must not be the zero vector"});
+}
+
 // Issue 16: a NUL inside a file name cut it ("cube.obj\u0000.png" opened cube.obj); no string
 // of a scene may hold one.
 TEST(SceneErrors, StringsWithANulCharacterAreRefused) {

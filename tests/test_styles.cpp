@@ -246,7 +246,8 @@ ShadowCount countShadows(const Scene& scene) {
       const bool outer = hitsBox(p, toLight, lo - margin, hi + margin, tMax);
       if (inner != outer) continue;
       const float red = color.at(x, y)[0];
-      const float nDotL = std::max(glm::normalize(toLight).y, 0.0f);  // ground normal +y
+      // Ground normal +y; in double, for lights whose squared distance overflows a float.
+      const float nDotL = std::max(float(glm::normalize(glm::dvec3(toLight)).y), 0.0f);
       const float shadowRed = 0.12f * 255.0f, litRed = (0.12f + 0.8f * nDotL) * 255.0f;
       const bool renderedDark = red < 0.5f * (shadowRed + litRed);
       if (inner) {
@@ -286,17 +287,22 @@ TEST(ShadowRender, PointLightShadowMatchesTheRayBoxTest) {
 
 // A point light far beyond the scene casts as the directional light along its axis does: at
 // 3e7 units its perspective map held the scene within one float step of that distance, and
-// the ground rendered all dark.
+// the ground rendered all dark; from 1e19 on, the float square of its distance overflowed and
+// the whole frame was black. Positions reach 1e30.
 TEST(ShadowRender, AFarPointLightShadowMatchesTheRayBoxTest) {
   Scene scene = boxShadowScene();
   Light& light = scene.lights[0];
   light.type = Light::Type::Point;
+  for (const float distance : {3e7f, 1e20f, 1e30f}) {
+    SCOPED_TRACE(distance);
+    light.position = -distance * glm::normalize(light.direction);
+    const ShadowCount c = countShadows(scene);
+    EXPECT_GT(c.shadowed, 100);
+    EXPECT_GT(c.lit, 2000);
+    EXPECT_EQ(c.wrongLit, 0) << "shadowed pixels rendered lit";
+    EXPECT_EQ(c.wrongShadowed, 0) << "lit pixels rendered shadowed";
+  }
   light.position = -3e7f * glm::normalize(light.direction);
-  const ShadowCount c = countShadows(scene);
-  EXPECT_GT(c.shadowed, 100);
-  EXPECT_GT(c.lit, 2000);
-  EXPECT_EQ(c.wrongLit, 0) << "shadowed pixels rendered lit";
-  EXPECT_EQ(c.wrongShadowed, 0) << "lit pixels rendered shadowed";
   const LightFrustum far = keyLightFrustum(glm::vec4(light.position, 1.0f), scene.bounds());
   EXPECT_TRUE(far.orthographic);
   const LightFrustum near =

@@ -196,10 +196,13 @@ inline glm::vec3 color(const Context& ctx, const json& j, const std::string& ptr
   return vec3(ctx, j, ptr, 0.0, 1.0);
 }
 
+// Normalised in double: a float's squared length overflows past 1e19 and underflows below
+// 1e-19, which turned [1e20, 1e20, 0] into a zero vector.
 inline glm::vec3 direction(const Context& ctx, const json& j, const std::string& ptr) {
-  const glm::vec3 v = vec3(ctx, j, ptr);
-  if (glm::length(v) < 1e-9f) ctx.fail(ptr, "a direction must not be the zero vector");
-  return glm::normalize(v);
+  const glm::dvec3 v = dvec3(ctx, j, ptr, -1e30, 1e30);
+  const double length = glm::length(v);
+  if (!(length > 0.0)) ctx.fail(ptr, "a direction must not be the zero vector");
+  return glm::vec3(v / length);
 }
 
 // A regular expression given as text: ECMAScript, as the format uses, limited in length and

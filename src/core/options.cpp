@@ -165,9 +165,10 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
         v[i] = float(c);
         start = comma + 1;
       }
-      if (p.type == Type::Direction) {
-        if (glm::length(v) < 1e-9f) throw std::invalid_argument("a direction must not be the zero vector");
-        v = glm::normalize(v);
+      if (p.type == Type::Direction) {  // in double, as json_reader::direction
+        const double length = glm::length(glm::dvec3(v));
+        if (!(length > 0.0)) throw std::invalid_argument("a direction must not be the zero vector");
+        v = glm::vec3(glm::dvec3(v) / length);
       }
       return v;
     }

@@ -355,7 +355,7 @@ void Renderer::render(const Camera& camera, float time) {
     const bool point = light.type == Light::Type::Point;
     glm::vec4 v = point ? glm::vec4(light.position, 1.0f) : glm::vec4(light.direction, 0.0f);
     if (light.cameraSpace) v = u.inverseView * v;
-    u.lightVector[count] = v;
+    u.lightVector[count] = farLightAsDirectional(v, g.setup.sceneBounds);
     u.lightColor[count] = glm::vec4(light.color * light.intensity, 1.0f);
     ++count;
   }

@@ -18,14 +18,22 @@ glm::vec3 upFor(const glm::vec3& d) {
 
 }  // namespace
 
+glm::vec4 farLightAsDirectional(const glm::vec4& lightVector, const Bounds& bounds) {
+  if (lightVector.w == 0.0f) return lightVector;
+  const glm::dvec3 along = glm::dvec3(bounds.center()) - glm::dvec3(lightVector);
+  const double distance = glm::length(along);
+  const double radius = std::max(double(bounds.radius()), 1e-6);
+  if (!(distance > 1e4 * radius)) return lightVector;
+  return glm::vec4(glm::vec3(along / distance), 0.0f);
+}
+
 LightFrustum keyLightFrustum(const glm::vec4& lightVector, const Bounds& bounds) {
   const glm::vec3 center = bounds.center();
   const float radius = std::max(bounds.radius(), 1e-6f);
-  // A point light beyond 1e4 radii shines on the scene in parallel to within 1e-4 rad, and a
-  // perspective map from it would hold the scene within a few float steps of its distance
-  // (two units at 3e7): it casts as the directional light along its axis.
-  if (lightVector.w != 0.0f && glm::length(glm::vec3(lightVector) - center) > 1e4f * radius)
-    return keyLightFrustum(glm::vec4(center - glm::vec3(lightVector), 0.0f), bounds);
+  // A perspective map from a point light beyond 1e4 radii would hold the scene within a few
+  // float steps of its distance (two units at 3e7): it casts as the directional light.
+  if (const glm::vec4 far = farLightAsDirectional(lightVector, bounds); far != lightVector)
+    return keyLightFrustum(far, bounds);
   LightFrustum f{};
   if (lightVector.w == 0.0f) {
     // Directional: an orthographic box around the bounds' corners in light view space, so the

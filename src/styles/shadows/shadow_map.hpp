@@ -36,6 +36,11 @@ struct LightFrustum {
 // The key light's frustum around `bounds` (world space). `lightVector` is the light as the
 // renderer passes it: w = 0, the direction the light travels; w = 1, its position.
 LightFrustum keyLightFrustum(const glm::vec4& lightVector, const Bounds& bounds);
+// A point light beyond 1e4 radii of `bounds` as the directional light along its axis (it shines
+// on the scene in parallel to within 1e-4 rad), worked out in double: at 1e19 and beyond, the
+// float square of its distance overflowed, and shading and shadows went dark. Any other light
+// as it is.
+glm::vec4 farLightAsDirectional(const glm::vec4& lightVector, const Bounds& bounds);
 
 // world → [0, 1]³ shadow-map coordinates (texture s, t and window depth).
 glm::mat4 shadowMatrix(const LightFrustum& frustum);
