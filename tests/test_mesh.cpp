@@ -320,6 +320,9 @@ TEST(MeshImport, NonFiniteVerticesAndFacesPastTheEndAreRefused) {
            {"x.ply", "vertex 3", "not finite in 32-bit floats"});
   refuse("x.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e300 1 0\nf 1 2 3\nf 2 4 3\n",
          {"x.obj", "node \"", "not finite in 32-bit floats"});
+  // The corner as the file gives it, not after the node's transform mixed it into NaNs.
+  refuse("x.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 inf 0\nf 1 2 3\nf 2 4 3\n",
+         {"x.obj", "node \"", "(1, inf, 0) is not finite in 32-bit floats"});
   // triangleGltf's buffer with an index buffer naming vertex 60000 in its second triangle.
   const std::string gltf =
       R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
@@ -345,6 +348,60 @@ TEST(MeshImport, NonFiniteVerticesAndFacesPastTheEndAreRefused) {
   std::filesystem::remove(obj);
   ASSERT_EQ(nodes.size(), 1u);
   EXPECT_EQ(nodes[0].mesh.triangles.size(), 1u);
+}
+
+// A model a micrometre across comes through Assimp as the file gives it: Assimp joins vertices
+// less than 1e-5 apart (absolute), and a cube scaled by 1e-8 lost corners (10 triangles, two
+// "degenerate", a collapsed corner) while `info` still called it watertight.
+TEST(MeshImport, TinyModelsKeepEveryVertex) {
+  const std::vector<glm::vec3> corners = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                          {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const char* faces =
+      "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+      "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+  for (const float scale : {1e-8f, 3e-7f, 1e-20f, 0.5f, 1e6f}) {
+    SCOPED_TRACE(scale);
+    std::string obj;
+    char line[96];
+    for (const glm::vec3& c : corners) {
+      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", double(c.x * scale),
+                    double(c.y * scale), double(c.z * scale));
+      obj += line;
+    }
+    const std::filesystem::path file = plyFile("tiny.obj", obj + faces);
+    const std::vector<ImportedNode> nodes = importMeshNodes(file);
+    std::filesystem::remove(file);
+    ASSERT_EQ(nodes.size(), 1u);
+    const Mesh& m = nodes[0].mesh;
+    EXPECT_EQ(m.triangles.size(), 12u);
+    EXPECT_EQ(m.report.droppedDegenerate, 0u);
+    EXPECT_TRUE(m.report.watertight);
+    // The corners exactly as the file writes them (the join's scaling is by a power of two).
+    std::snprintf(line, sizeof line, "%.9g", double(scale));
+    const Bounds box = m.bounds();
+    EXPECT_EQ(box.min, glm::vec3(0.0f));
+    EXPECT_EQ(box.max, glm::vec3(std::strtof(line, nullptr)));
+  }
+}
+
+// A file's material colour beyond [0, 1] is clamped (OBJ Kd 5 rendered white as before, now
+// said in the docs); one that is not a number is refused with its material, where the scene
+// blamed the object's colour "[nan, nan, nan]".
+TEST(MeshImport, MaterialColoursAreClampedAndNaNRefused) {
+  const std::filesystem::path mtl = plyFile("colour.mtl", "");
+  const std::string obj =
+      "mtllib " + mtl.filename().string() + "\nusemtl paint\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(mtl) << "newmtl paint\nKd 5 -1 0.5\n";
+  const std::filesystem::path file = plyFile("colour.obj", obj);
+  const std::vector<ImportedNode> nodes = importMeshNodes(file);
+  ASSERT_EQ(nodes.size(), 1u);
+  ASSERT_TRUE(nodes[0].color.has_value());
+  EXPECT_EQ(*nodes[0].color, glm::vec3(1.0f, 0.0f, 0.5f));
+  std::ofstream(mtl) << "newmtl paint\nKd nan 0 0\n";
+  test::expectError([&] { importMeshNodes(file); },
+                    {file.string(), "material \"paint\"", "is not finite"});
+  std::filesystem::remove(file);
+  std::filesystem::remove(mtl);
 }
 
 // A path that is there but holds no file (a folder, a device) says so, not "not found".

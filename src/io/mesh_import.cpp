@@ -18,6 +18,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <new>
 #include <regex>
 #include <set>
 #include <string>
@@ -112,6 +113,29 @@ Mesh convert(const std::filesystem::path& file, const aiMesh& in, bool& normalsC
 
 // Assimp's name for a glTF node, mesh or material the file leaves unnamed: its place
 // ("nodes[74]"; a mesh split by primitive: "meshes[3]-1").
+// The power of two that takes the largest vertex coordinate of a model less than a unit
+// across into [1, 2); 0 for any other.
+int joinExponent(const aiScene& scene) {
+  float largest = 0.0f;
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+    const aiMesh& mesh = *scene.mMeshes[i];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+      for (int k = 0; k < 3; ++k)
+        if (std::isfinite(mesh.mVertices[v][k]))
+          largest = std::max(largest, std::abs(mesh.mVertices[v][k]));
+  }
+  return largest > 0.0f && largest < 1.0f ? -std::ilogb(largest) : 0;
+}
+
+void scaleVertices(const aiScene& scene, int exponent) {  // the meshes are the importer's to change
+  if (exponent == 0) return;
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+    aiMesh& mesh = *scene.mMeshes[i];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+      for (int k = 0; k < 3; ++k) mesh.mVertices[v][k] = std::ldexp(mesh.mVertices[v][k], exponent);
+  }
+}
+
 bool isStandIn(const std::string& name) {
   static const std::regex standIn(R"((nodes|meshes|materials)\[\d+\](-\d+)?)");
   return std::regex_match(name, standIn);
@@ -330,9 +354,16 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     }
     // Validation before the steps that index vertices the file claims without checking.
     scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
-    if (scene)
+    if (scene) {
+      // Assimp joins vertices less than 1e-5 apart, in absolute units: a model 1e-6 across
+      // lost corners. Below a unit across, the vertices are scaled by a power of two (exactly)
+      // to a unit for the join, and back.
+      const int exponent = joinExponent(*scene);
+      scaleVertices(*scene, exponent);
       scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
                                            aiProcess_JoinIdenticalVertices);
+      if (scene) scaleVertices(*scene, -exponent);
+    }
   }
   // A reader that drops what it cannot read says so only in its log.
   for (const std::string& warning : warnings.messages())
@@ -342,6 +373,9 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   if (!scene || !scene->mRootNode) {
     // A file read from memory goes by Assimp's stand-in name: give the user's back.
     std::string reason = importer.GetErrorString();
+    // Assimp turns a failed allocation into its error text: the worker reports it as such
+    // (the memory limit, CUTAWAY_IMPORT_MEMORY_MB, named).
+    if (reason.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
     const std::string standIn = std::string(AI_MEMORYIO_MAGIC_FILENAME) + "." + format;
     for (std::size_t at; (at = reason.find(standIn)) != std::string::npos;)
       reason.replace(at, standIn.size(), file.filename().string());
@@ -389,15 +423,28 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
       for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
         if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-        out.mesh.append(convert(file, *mesh, normalsComputed), transform);
+        Mesh converted = convert(file, *mesh, normalsComputed);
+        // As the file gives them: the node's transform would mix a lone infinity into NaNs.
+        checkFinite(file, "node \"" + out.name + "\"", converted);
+        out.mesh.append(converted, transform);
         if (!out.color && mesh->mMaterialIndex < scene->mNumMaterials) {
           aiColor4D c;
           const aiMaterial* material = scene->mMaterials[mesh->mMaterialIndex];
           // Assimp invents "DefaultMaterial" for files without materials: not the file's colour.
           if (material->GetName() == aiString(AI_DEFAULT_MATERIAL_NAME)) continue;
           if (material->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS ||
-              material->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS)
+              material->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
+            // Beyond [0, 1] (an OBJ's Kd 5, a glTF factor of 50) clamped, as a display would;
+            // not a number refused, with its material.
+            if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b)) {
+              char text[96];
+              std::snprintf(text, sizeof text, "(%g, %g, %g)", double(c.r), double(c.g),
+                            double(c.b));
+              throw Error(file.string(), "material " + quote(material->GetName().C_Str()),
+                          std::string("its colour ") + text + " is not finite");
+            }
             out.color = glm::clamp(glm::vec3(c.r, c.g, c.b), 0.0f, 1.0f);
+          }
         }
       }
       checkFinite(file, "node \"" + out.name + "\"", out.mesh);
