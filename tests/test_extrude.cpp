@@ -105,6 +105,27 @@ TEST(Extrude, HolesInEitherOrientation) {
                   {{{4, 4}, {4, 6}, {6, 5}}}});
 }
 
+// A "hole" with a node outside its outer ring (an invalid polygon: a GeoJSON ring beside the
+// building) is left out; the block stays the closed prism of the outer ring, where it grew a
+// lone open ring of walls.
+TEST(Extrude, AHoleOutsideTheOuterRingIsLeftOut) {
+  const std::vector<glm::vec2> outer = {{100, 100}, {150, 100}, {150, 150}, {100, 150}};
+  const std::vector<glm::vec2> away = {{500, 500}, {520, 500}, {520, 520}, {500, 520}};
+  const std::vector<glm::vec2> across = {{140, 120}, {160, 120}, {160, 130}, {140, 130}};
+  const Mesh alone = extrudeFootprint({outer, {}}, 0.0f, 10.0f);
+  for (const auto& hole : {away, across}) {
+    Mesh m = extrudeFootprint({outer, {hole}}, 0.0f, 10.0f);
+    analyzeTopology(m);
+    EXPECT_TRUE(m.report.watertight) << m.report.boundaryEdges << " boundary edges";
+    EXPECT_EQ(m.positions, alone.positions);
+    EXPECT_EQ(m.triangles, alone.triangles);
+  }
+  const std::vector<glm::vec2> inside = {{110, 120}, {120, 120}, {120, 130}};
+  checkFootprint({outer, {inside}});
+  EXPECT_GT(extrudeFootprint({outer, {inside}}, 0.0f, 10.0f).triangles.size(),
+            alone.triangles.size());
+}
+
 TEST(Extrude, RepeatedAndCollinearNodesAreRemoved) {
   const Footprint f{{{0, 0}, {0, 0}, {5, 0}, {10, 0}, {10, 0}, {10, 5}, {10, 10}, {0, 10}, {0, 0}},
                     {{{2, 2}, {3, 2}, {4, 2}, {4, 4}, {2, 4}, {2, 2}}}};

@@ -63,6 +63,20 @@ bool locallyInside(const glm::dvec2& a, const glm::dvec2& p, const glm::dvec2& b
   return cross(a, p, m) >= 0.0 || cross(p, b, m) >= 0.0;
 }
 
+// Whether q lies inside the ring or on its boundary (the crossing number, edges first).
+bool insideOrOn(const Points& p, const std::vector<std::uint32_t>& ring, const glm::dvec2& q) {
+  bool inside = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const glm::dvec2 &a = p[ring[j]], &b = p[ring[i]];
+    if (cross(a, b, q) == 0.0 && q.x >= std::min(a.x, b.x) && q.x <= std::max(a.x, b.x) &&
+        q.y >= std::min(a.y, b.y) && q.y <= std::max(a.y, b.y))
+      return true;
+    if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y))
+      inside = !inside;
+  }
+  return inside;
+}
+
 bool insideTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
                     const glm::dvec2& q) {
   return cross(a, b, q) >= 0.0 && cross(b, c, q) >= 0.0 && cross(c, a, q) >= 0.0;
@@ -233,6 +247,7 @@ Mesh extrudeFootprint(const Footprint& footprint, float base, float top) {
   const Points p = concatenate(footprint);
   Footprint clean;
   std::vector<std::vector<glm::vec2>> rings;
+  std::vector<std::uint32_t> outerRing;
   std::uint32_t first = 0;
   for (std::size_t r = 0; r <= footprint.holes.size(); ++r) {
     const std::size_t count = r == 0 ? footprint.outer.size() : footprint.holes[r - 1].size();
@@ -240,6 +255,12 @@ Mesh extrudeFootprint(const Footprint& footprint, float base, float top) {
     first += std::uint32_t(count);
     if (r == 0 && ring.empty()) return {};
     if (ring.empty()) continue;
+    // A hole with a node outside the outer ring (an invalid polygon) is left out: its walls
+    // would stand alone, open, and the cap cannot take it.
+    if (r > 0 && !std::all_of(ring.begin(), ring.end(),
+                              [&](std::uint32_t i) { return insideOrOn(p, outerRing, p[i]); }))
+      continue;
+    if (r == 0) outerRing = ring;
     // Outer counter-clockwise, holes clockwise: the solid is always left of an edge.
     if ((ringArea(p, ring) > 0.0) != (r == 0)) std::reverse(ring.begin(), ring.end());
     std::vector<glm::vec2> nodes;

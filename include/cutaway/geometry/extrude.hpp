@@ -38,8 +38,9 @@ std::vector<glm::uvec3> triangulateFootprint(const Footprint& footprint);
 
 // The prism between y = base and y = top (top > base): roof and floor from
 // `triangulateFootprint`, one quad per remaining ring edge. Repeated and collinear nodes are
-// removed first so that the roof's and the walls' edges meet exactly. Empty when nothing with
-// area is left.
+// removed first so that the roof's and the walls' edges meet exactly; a hole with a node
+// outside the outer ring (an invalid polygon) is left out. Empty when nothing with area is
+// left.
 Mesh extrudeFootprint(const Footprint& footprint, float base, float top);
 
 }  // namespace cutaway
