@@ -145,6 +145,19 @@ TEST(Cli, AnAovFolderIsWrittenWholeOrNotAtAll) {
   EXPECT_FALSE(fs::exists(scratch("limited.png")));  // nor the picture written with them
 }
 
+// A run stopped by SIGTERM before it wrote its AOVs leaves no AOV folder: the folder is made
+// with the AOVs, not when the outputs are checked (that one stayed, empty).
+TEST(Cli, ARunStoppedBeforeItsAovsLeavesNoFolder) {
+  const fs::path fresh = scratch("stopped-aovs") / "aovs", out = scratch("stopped.png");
+  const Result r =
+      test::runCommand("bash -c '" + kBinary + " render " + kSource +
+                       "/examples/engine-cutaway.json --size 1600x1200 -o " + out.string() +
+                       " --aov " + fresh.string() + " & sleep 1; kill -TERM $!; wait $!; echo $?'");
+  EXPECT_EQ(r.out, "143\n") << r.err;  // 128 + SIGTERM: stopped while rendering
+  EXPECT_FALSE(fs::exists(scratch("stopped-aovs")));
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // An animation's outputs that a folder or a file already holds are refused before the first
 // frame is written.
 TEST(Cli, AnAnimationsTakenOutputsFailBeforeTheFirstFrame) {
@@ -391,6 +404,16 @@ TEST(Cli, UsageErrors) {
     EXPECT_EQ(r.exitCode, 2) << arguments;
     EXPECT_EQ(r.err, "cutaway: error: " + message + " (see --help)\n") << arguments;
   }
+  // Values the parser takes but the command refuses are usage errors too (exit 2), before
+  // any file is read; a failing input stays 1 (/dev/zero above).
+  for (const std::string& arguments :
+       {std::string("--size 0x0"), std::string("--size 16385x1"),
+        std::string("--set cutters.adaptive.bufferSize=15"), std::string("--importance plane=2"),
+        std::string("--up 0,0,0"), std::string("--cutaway-angle 30 --no-cutaway")}) {
+    const Result r = run("render " + kData + "/render/plane-facing.json -o x.png " + arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << arguments << ": " << r.err;
+  }
   const Result size = run("render " + kData + "/render/plane-facing.json -o x.png --size 12by3");
   EXPECT_NE(size.exitCode, 0);
   EXPECT_NE(size.err.find("--size"), std::string::npos) << size.err;
@@ -412,7 +435,7 @@ TEST(Cli, UsageErrors) {
         << samples.err;
   fs::remove("x.png");
   const Result far = run("render " + kData + "/render/plane-facing.json -o x.png --eye 0,0,1e20");
-  EXPECT_EQ(far.exitCode, 1);
+  EXPECT_EQ(far.exitCode, 2);
   EXPECT_NE(far.err.find("--eye: beyond 1e15"), std::string::npos) << far.err;
   EXPECT_FALSE(fs::exists("x.png"));
 }
@@ -533,7 +556,7 @@ TEST(Cli, SetOverridesAnyOptionByItsPath) {
            {"cutters.cutout=true", "--set: /cutters/cutout: no object has role \"exterior\""}}) {
     const fs::path out = scratch("set-bad.png");
     const Result bad = run("render " + scene + " -o " + out.string() + " --set " + set);
-    EXPECT_EQ(bad.exitCode, 1) << set;
+    EXPECT_EQ(bad.exitCode, 2) << set;  // a command-line value the command refuses
     EXPECT_NE(bad.err.find(says), std::string::npos) << set << ": " << bad.err;
     EXPECT_EQ(lines(bad.err), 1) << bad.err;
     EXPECT_FALSE(fs::exists(out)) << set;
@@ -560,7 +583,7 @@ TEST(Cli, ImportanceByNameOrGroupChangesTheContextualCutaway) {
            {"'c{99999}=0.5'", "\"c{99999}\": it needs more states than a pattern may have"}}) {
     const fs::path out = scratch("importance-bad.png");
     const Result bad = run("render " + scene + " -o " + out.string() + " --importance " + set);
-    EXPECT_EQ(bad.exitCode, 1) << set;
+    EXPECT_EQ(bad.exitCode, 2) << set;
     EXPECT_NE(bad.err.find(says), std::string::npos) << set << ": " << bad.err;
     EXPECT_FALSE(fs::exists(out)) << set;
   }
@@ -770,7 +793,10 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   const std::string odd = test::scratchPath("cli", "odd.tif").string();
   const auto bad = run("dem --extent 0 0 15 20 --crs EPSG:27700 -o " + odd);
   EXPECT_EQ(bad.exitCode, 1);
-  EXPECT_NE(bad.err.find("odd.tif: the extent must hold a whole"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("odd.tif: the extent (0, 0) to (15, 20) must hold a whole, positive "
+                         "number of 10-unit cells"),
+            std::string::npos)
+      << bad.err;
   EXPECT_FALSE(std::filesystem::exists(odd));
   const auto crs = run("dem --extent 0 0 20 20 --crs EPSG:999999 -o " + odd);
   EXPECT_EQ(crs.exitCode, 1);
@@ -782,7 +808,11 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   EXPECT_FALSE(std::filesystem::exists(png));
   // Heights beyond Float32 would be written as infinities.
   const auto huge = run("dem --extent 0 0 20 20 --crs EPSG:27700 --relief 1e39 -o " + odd);
-  EXPECT_EQ(huge.exitCode, 1);
+  EXPECT_EQ(huge.exitCode, 2);  // command-line values the command refuses
+  const auto nan = run("dem --extent 0 0 nan 20 --crs EPSG:27700 -o " + odd);
+  EXPECT_EQ(nan.exitCode, 2);
+  EXPECT_NE(nan.err.find("--extent: west, south, east and north must be finite"), std::string::npos)
+      << nan.err;
   EXPECT_NE(huge.err.find("--relief: heights from --base to --base + --relief must fit in "
                           "Float32"),
             std::string::npos)

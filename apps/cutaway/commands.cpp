@@ -45,24 +45,28 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     static const std::regex sizeRe(R"((\d{1,9})x(\d{1,9}))");
     std::smatch m;
     if (!std::regex_match(o.size, m, sizeRe))
-      throw Error("--size", "", "expected WxH, e.g. 800x600, got " + quote(o.size));
+      throw CommandLineError("--size", "", "expected WxH, e.g. 800x600, got " + quote(o.size));
     const int w = std::stoi(m[1]), h = std::stoi(m[2]);
     if (w < 1 || h < 1 || w > 16384 || h > 16384)
-      throw Error("--size", "", "width and height must be in [1, 16384]");
+      throw CommandLineError("--size", "", "width and height must be in [1, 16384]");
     scene.width = w;
     scene.height = h;
   }
   Camera& c = scene.camera;
   for (const auto& [option, p] : {std::pair{"--eye", o.eye}, std::pair{"--target", o.target}})
     if (p && !(sceneReach(*p) <= kMaxSceneReach))
-      throw Error(option, "",
-                  "beyond 1e15 scene units from the origin (32-bit floats cannot render it)");
+      throw CommandLineError(
+          option, "", "beyond 1e15 scene units from the origin (32-bit floats cannot render it)");
   if (o.eye) c.eye = *o.eye;
   if (o.target) c.target = *o.target;
   if ((o.eye || o.target) && !o.fit) c.fit = false;
   if (o.eye || o.target || o.fit) c.path.clear();  // an explicit camera replaces the path
   if (o.fit) c.fit = true;
-  if (o.up) c.up = *o.up;
+  if (o.up) {  // normalised in double, as a scene's directions (json_reader::direction)
+    const double length = glm::length(glm::dvec3(*o.up));
+    if (!(length > 0.0)) throw CommandLineError("--up", "", "up must not be the zero vector");
+    c.up = glm::vec3(glm::dvec3(*o.up) / length);
+  }
   if (o.fov) c.fovY = *o.fov;
   if (!o.projection.empty()) {
     const Projection to =
@@ -78,22 +82,23 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     }
     c.projection = to;
   }
-  if (glm::length(c.up) < 1e-9f) throw Error("--up", "", "up must not be the zero vector");
-  if (glm::length(c.eye - c.target) < 1e-9f) throw Error("--eye", "", "eye and target coincide");
-  if (glm::length(glm::cross(glm::normalize(c.eye - c.target), glm::normalize(c.up))) < 1e-6f) {
-    if (o.up) throw Error("--up", "", "up is parallel to the viewing direction");
+  const glm::dvec3 along = glm::dvec3(c.eye) - glm::dvec3(c.target);
+  if (!(glm::length(along) > 0.0)) throw CommandLineError("--eye", "", "eye and target coincide");
+  if (glm::length(glm::cross(glm::normalize(along), glm::dvec3(c.up))) < 1e-6) {
+    if (o.up) throw CommandLineError("--up", "", "up is parallel to the viewing direction");
     char up[96];
     std::snprintf(up, sizeof up, "%g,%g,%g", double(c.up.x), double(c.up.y), double(c.up.z));
-    throw Error(o.eye ? "--eye" : "--target", "",
-                std::string("the viewing direction is parallel to the scene's up vector (") + up +
-                    "); give --up too");
+    throw CommandLineError(
+        o.eye ? "--eye" : "--target", "",
+        std::string("the viewing direction is parallel to the scene's up vector (") + up +
+            "); give --up too");
   }
   if (!o.style.empty()) scene.style.name = o.style;
   if (o.shadows) scene.style.shadows.enabled = true;
   if (o.samples) scene.samples = *o.samples;
   if (o.pixelError) scene.pixelError = *o.pixelError;
   if (o.noCutaway && o.cutawayAngle)
-    throw Error("--no-cutaway", "", "cannot be combined with --cutaway-angle");
+    throw CommandLineError("--no-cutaway", "", "cannot be combined with --cutaway-angle");
   if (o.noCutaway) scene.cutters.clear();  // the plain model: no cutter at all
   if (o.cutawayAngle) scene.cutters.enable<AdaptiveCutawayOptions>().angle = *o.cutawayAngle;
   // --importance PATTERN=V, in the order given (Burns11 §3.2).
@@ -103,26 +108,34 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     const std::string value = equals == std::string::npos ? "" : assignment.substr(equals + 1);
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), v);
     if (equals == std::string::npos || equals == 0 || ec != std::errc() || end != value.data() + value.size())
-      throw Error("--importance", assignment, "expected PATTERN=V with V a number, e.g. 'pistons=0.9'");
+      throw CommandLineError("--importance", assignment,
+                             "expected PATTERN=V with V a number, e.g. 'pistons=0.9'");
     try {
       scene.setImportance(assignment.substr(0, equals), float(v));
     } catch (const Error& e) {
-      throw Error("--importance", e.file(), e.reason());
+      throw CommandLineError("--importance", e.file(), e.reason());
     }
   }
   // --set PATH=VALUE, in the order given: any technique's option by its scene-file path.
   for (const std::string& assignment : o.set) {
     const auto equals = assignment.find('=');
     if (equals == std::string::npos || equals == 0)
-      throw Error("--set", assignment, "expected PATH=VALUE, e.g. cutters.adaptive.angle=30");
+      throw CommandLineError("--set", assignment,
+                             "expected PATH=VALUE, e.g. cutters.adaptive.angle=30");
     try {
       setOption(scene, assignment.substr(0, equals), assignment.substr(equals + 1));
     } catch (const Error& e) {
-      throw Error("--set", e.file(), e.reason());
+      throw CommandLineError("--set", e.file(), e.reason());
     }
   }
   // What the options set now make of the scene, checked as a scene file would be.
-  if (!o.set.empty()) checkScene(scene, "--set");
+  if (!o.set.empty()) {
+    try {
+      checkScene(scene, "--set");
+    } catch (const Error& e) {
+      throw CommandLineError(e.file(), e.place(), e.reason());
+    }
+  }
 }
 
 // The renderer says a device limit at the scene's key (/samples, /resolution); where an option
@@ -262,26 +275,11 @@ void checkFolderOf(const std::string& file) {
   if (::access(folder.c_str(), W_OK) != 0) throw Error(file, "", "the folder is not writable");
 }
 
-// The AOV folder this run made and the parents it made for it (`top` the outermost): removed
-// again at the end where still empty (the run failed before writing a frame's AOVs;
-// writeAovs() writes a frame's folder whole or not at all).
-struct MadeFolders {
-  std::filesystem::path leaf, top;  // empty: none made
-  MadeFolders() = default;
-  MadeFolders(MadeFolders&& o) noexcept
-      : leaf(std::exchange(o.leaf, {})), top(std::exchange(o.top, {})) {}
-  MadeFolders& operator=(MadeFolders&&) = delete;
-  ~MadeFolders() {
-    std::error_code ec;
-    for (std::filesystem::path p = leaf; !p.empty(); p = p.parent_path())
-      if (!std::filesystem::remove(p, ec) || p == top) break;  // removes empty folders only
-  }
-};
-
 // The outputs checked before anything is rendered, so that a bad one leaves no file behind:
 // a PNG name (no other format is written) and an SVG name in folders that take them, an AOV
-// folder that is one or can be made (and the folders made for it).
-MadeFolders checkOutputs(const RenderOptions& options) {
+// folder that is one or can be made (writeAovs makes it with a frame's AOVs, so that a run
+// stopped before leaves no empty one).
+void checkOutputs(const RenderOptions& options) {
   const std::filesystem::path out(options.output);
   if (options.output.empty()) throw Error("--output", "", "the file name is empty");
   std::error_code ec;
@@ -298,26 +296,26 @@ MadeFolders checkOutputs(const RenderOptions& options) {
       throw Error(options.svg, "", "is a directory, not a file name");
     checkFolderOf(options.svg);
   }
-  MadeFolders made;
-  if (options.aovDir.empty()) return made;
+  if (options.aovDir.empty()) return;
   std::filesystem::path dir(options.aovDir);
   if (!dir.has_filename()) dir = dir.parent_path();  // "frames/aovs/"
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
     throw Error(options.aovDir, "", "--aov needs a directory; this is a file");
-  if (!std::filesystem::exists(dir, ec)) {
-    made.leaf = made.top = dir;
-    while (made.top.has_parent_path() && !std::filesystem::exists(made.top.parent_path(), ec))
-      made.top = made.top.parent_path();
-  }
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw Error(options.aovDir, "", "cannot create the AOV directory: " + ec.message());
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw Error(options.aovDir, "", "the AOV directory is not writable");
-  return made;
+  std::filesystem::path existing = dir;  // the folder it is, or the nearest it would be made in
+  while (!std::filesystem::exists(existing, ec))
+    existing = existing.has_parent_path() ? existing.parent_path() : ".";
+  if (!std::filesystem::is_directory(existing, ec))
+    throw Error(options.aovDir, "",
+                "cannot create the AOV directory: " + existing.string() + " is a file");
+  if (::access(existing.c_str(), W_OK) != 0)
+    throw Error(options.aovDir, "",
+                existing == dir
+                    ? "the AOV directory is not writable"
+                    : "cannot create the AOV directory: " + existing.string() + " is not writable");
 }
 
 int render(const RenderOptions& options) {
-  const MadeFolders aovFolders = checkOutputs(options);
+  checkOutputs(options);
   Scene scene = sceneOrCity(options.scene, options.city, "render");
   applyOverrides(scene, options.overrides);
   warnAboutFarCoordinates(scene);
@@ -464,7 +462,11 @@ int gisInfo(const std::string& path) {
 }  // namespace
 
 int dem(const DemOptions& o) {
-  if (o.extent.size() != 4) throw Error("--extent", "", "expected west south east north");
+  if (o.extent.size() != 4)
+    throw CommandLineError("--extent", "", "expected west south east north");
+  for (const double v : o.extent)
+    if (!std::isfinite(v))
+      throw CommandLineError("--extent", "", "west, south, east and north must be finite numbers");
   std::string ext = std::filesystem::path(o.output).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".tif" && ext != ".tiff")
@@ -472,8 +474,9 @@ int dem(const DemOptions& o) {
   // Float32 heights: base … base + relief must be floats, or the file holds infinities.
   for (const double h : {o.base, o.base + o.relief})
     if (!(std::abs(h) <= double(std::numeric_limits<float>::max())))
-      throw Error("--relief", "",
-                  "heights from --base to --base + --relief must fit in Float32 (|h| ≤ 3.4e38)");
+      throw CommandLineError(
+          "--relief", "",
+          "heights from --base to --base + --relief must fit in Float32 (|h| ≤ 3.4e38)");
   writeSyntheticDem(o.output, {.min = {o.extent[0], o.extent[1]},
                                .max = {o.extent[2], o.extent[3]},
                                .crs = o.crs,

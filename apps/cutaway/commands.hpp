@@ -7,7 +7,15 @@
 
 #include <glm/glm.hpp>
 
+#include "cutaway/core/error.hpp"
+
 namespace cutaway::cli {
+
+// A value on the command line that the parser took but the command refuses (out of its
+// range, or at odds with another option): exit code 2, as a line that cannot be parsed.
+struct CommandLineError : Error {
+  using Error::Error;
+};
 
 // Scene overrides shared by render and bench.
 struct SceneOverrides {

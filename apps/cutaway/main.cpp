@@ -275,6 +275,9 @@ int main(int argc, char** argv) {
     if (*bench) return cutaway::cli::bench(benchOptions);
     if (*dem) return cutaway::cli::dem(demOptions);
     if (*options) return cutaway::cli::listOptions(optionsJson);
+  } catch (const cutaway::cli::CommandLineError& e) {
+    std::fprintf(stderr, "cutaway: error: %s\n", e.what());
+    return 2;
   } catch (const cutaway::Error& e) {
     std::fprintf(stderr, "cutaway: error: %s\n", e.what());
     return 1;

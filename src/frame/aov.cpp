@@ -38,7 +38,13 @@ std::vector<Aov> readFrameAovs(const Frame& frame) {
 void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
                float aspect, std::vector<std::pair<std::filesystem::path, FileWriter>> alongside) {
   std::error_code ec;
-  const bool created = std::filesystem::create_directories(dir, ec);
+  // The outermost folder this call makes (empty: none), removed again with the folders in it
+  // if the writing fails.
+  std::filesystem::path top;
+  for (std::filesystem::path p = dir; !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path())
+    top = p;
+  std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir.string(), "", "cannot create AOV directory: " + ec.message());
   nlohmann::json index;
   index["camera"] = {
@@ -75,7 +81,9 @@ void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, c
   try {
     writeFilesAtomically(files);
   } catch (...) {
-    if (created) std::filesystem::remove(dir, ec);
+    if (!top.empty())
+      for (std::filesystem::path p = dir; std::filesystem::remove(p, ec) && p != top;)
+        p = p.parent_path();
     throw;
   }
 }
