@@ -620,7 +620,7 @@ TEST_F(VolumeClosedForm, EarlyTerminationStopsAtTheFirstSamplePastTheThreshold) 
 }
 
 // A volume larger than the GPU's 3-D textures on one axis is refused when the renderer is
-// made, naming the file and the limit.
+// made, naming the scene's place, the volume's file and the limit.
 TEST_F(VolumeTest, AVolumeBeyondTheGpusTextureSizeIsRefused) {
   test::glContext();  // current, for the query
   GLint maxSize = 0;
@@ -633,9 +633,9 @@ TEST_F(VolumeTest, AVolumeBeyondTheGpusTextureSizeIsRefused) {
       << R"({"file": "long.raw", "dims": [)" << n << R"(, 1, 1], "type": "f32"})";
   const Scene s = scene(R"({"name": "long", "file": ")" + (dir_ / "long.json").string() +
                         R"(", "transferFunction": [{"value": 0, "opacity": 1}]})");
-  expectError(
-      [&] { Renderer renderer(s, test::glContext().info()); },
-      {"long.json", std::to_string(n) + "×1×1", "3-D texture size of " + std::to_string(maxSize)});
+  expectError([&] { Renderer renderer(s, test::glContext().info()); },
+              {"/volumes/0/file", "long.json", std::to_string(n) + "×1×1",
+               "3-D texture size of " + std::to_string(maxSize)});
 }
 
 // A label volume's table holds a texel per label of its transfer function's span and a clear

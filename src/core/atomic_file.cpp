@@ -162,6 +162,10 @@ void removeTemporariesOnSignals() {
 void replaceFileAtomically(const std::filesystem::path& named,
                            const std::function<void(const std::filesystem::path&)>& write) {
   const std::filesystem::path path = followLinks(named);
+  // Before the writer runs: a C library's own message would name the temporary.
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
+  if (std::error_code ec; !std::filesystem::is_directory(folder, ec))
+    throw Error(path.string(), "", "cannot write: no folder " + folder.string());
   const std::filesystem::path tmp = beside(path, "tmp");
   const PendingFile pendingFile(tmp);
   try {

@@ -309,8 +309,8 @@ double positiveNumber(const char* variable, double max) {
   const double v = std::strtod(text, &end);
   if (end == text || *end != '\0' || !(v > 0.0) || v > max)
     throw Error(variable, "",
-                "expected a number in (0, " + std::to_string(int(max)) + "], got \"" +
-                    std::string(text).substr(0, 40) + "\"");
+                std::string("the environment variable ") + variable + " must be a number in (0, " +
+                    std::to_string(int(max)) + "], not " + quote(text));
   return v;
 }
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <limits>
 #include <memory>
@@ -27,6 +28,13 @@
 namespace cutaway {
 
 namespace {
+
+// A number as people write it (%g: 10, not 10.000000).
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
 
 GDALDatasetUniquePtr openRaster(const std::filesystem::path& file) {
   gdal::registerDrivers();
@@ -331,8 +339,10 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   if (!(size.x >= 1.0 && size.y >= 1.0) ||
       glm::any(glm::greaterThan(glm::abs(size - whole), glm::dvec2(1e-6))))
     throw Error(name, "",
-                "the extent must hold a whole, positive number of " + std::to_string(o.cell) +
-                    " cells along each axis");
+                "the extent (" + number(o.min.x) + ", " + number(o.min.y) + ") to (" +
+                    number(o.max.x) + ", " + number(o.max.y) +
+                    ") must hold a whole, positive number of " + number(o.cell) +
+                    "-unit cells along each axis");
   if (whole.x * whole.y > 1e8) throw Error(name, "", "more than 10⁸ cells: choose larger cells");
   OGRSpatialReference crs;
   if (crs.SetFromUserInput(o.crs.c_str()) != OGRERR_NONE)

@@ -700,8 +700,12 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr,
       if (points[i].value != std::round(points[i].value))
         ctx.fail(r.at("transferFunction") + "/" + std::to_string(i) + "/value",
                  "a label volume's points are whole label values");
-    if (points.back().value - points.front().value >= 65536)
-      ctx.fail(r.at("transferFunction"), "labels span more than 65536 values");
+    if (const double span = double(points.back().value) - double(points.front().value);
+        span >= 65536)
+      ctx.fail(r.at("transferFunction"),
+               "its labels span " + std::to_string(std::llround(span)) +
+                   " values, more than a GPU's 2-D texture holds (its size less 2: 16382 on "
+                   "llvmpipe)");
     if (v.mode == VolumeMode::Isosurface)
       ctx.fail(r.at("labels"), "a label volume is drawn in the composite or maximum mode");
     if (v.lines) ctx.fail(r.at("lines"), "a label volume has no isosurfaces to draw lines of");

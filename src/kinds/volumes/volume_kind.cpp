@@ -132,12 +132,13 @@ VolumeKind::VolumeKind(FrameSetup& setup)
       previousTransmittanceUnit_(setup.bindings.textureUnit("VOLUME_PREVIOUS_TRANSMITTANCE")) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
-  for (const SceneVolume& v : setup.scene.volumes) {
+  for (std::size_t i = 0; i < setup.scene.volumes.size(); ++i) {
+    const SceneVolume& v = setup.scene.volumes[i];
     const Volume& data = *v.volume;
     if (glm::any(glm::greaterThan(data.dims, glm::ivec3(maxSize))))
-      throw Error(v.source, "",
-                  "volume of " + std::to_string(data.dims.x) + "×" + std::to_string(data.dims.y) +
-                      "×" + std::to_string(data.dims.z) +
+      throw Error(setup.scene.file.string(), "/volumes/" + std::to_string(i) + "/file",
+                  v.source + ": a volume of " + std::to_string(data.dims.x) + "×" +
+                      std::to_string(data.dims.y) + "×" + std::to_string(data.dims.z) +
                       " voxels exceeds the GPU's 3-D texture size of " + std::to_string(maxSize));
     VolumeGpu gpu;
     const bool outOfMemory = gl::outOfMemory([&] {
@@ -152,8 +153,8 @@ VolumeKind::VolumeKind(FrameSetup& setup)
       uploadTransfer(volumes_.size() - 1);
     });
     if (outOfMemory)
-      throw Error(v.source, "",
-                  "volume of " + std::to_string(data.voxelCount() * 12 / (1 << 20)) +
+      throw Error(setup.scene.file.string(), "/volumes/" + std::to_string(i) + "/file",
+                  v.source + ": a volume of " + std::to_string(data.voxelCount() * 12 / (1 << 20)) +
                       " MiB (values and gradients) does not fit in the GPU's memory");
   }
   const auto aov = [&](const char* name, const char* meaning) {
