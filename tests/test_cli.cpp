@@ -131,17 +131,19 @@ TEST(Cli, AnAovFolderIsWrittenWholeOrNotAtAll) {
   const auto before = contents(dir);
   ASSERT_TRUE(before.count("aovs.json"));
   ASSERT_TRUE(before.count("normal.pfm"));
-  for (const fs::path& target : {dir, fresh}) {
+  // Made folders named with a trailing slash are taken apart too.
+  const std::string slashed = (scratch("no-aovs-slash") / "a").string() + "/";
+  for (const std::string& target : {dir.string(), fresh.string(), slashed}) {
     // SIGXFSZ ignored: the write fails with EFBIG, as a full disk fails with ENOSPC.
-    const Result r =
-        test::runCommand("bash -c \"trap '' XFSZ; ulimit -f 200; " + kBinary + " render " + scene +
-                         " --size 200x150 -o " + scratch("limited.png").string() + " --aov " +
-                         target.string() + "\"");
+    const Result r = test::runCommand("bash -c \"trap '' XFSZ; ulimit -f 200; " + kBinary +
+                                      " render " + scene + " --size 200x150 -o " +
+                                      scratch("limited.png").string() + " --aov " + target + "\"");
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find(".pfm"), std::string::npos) << r.err;
   }
   EXPECT_EQ(contents(dir), before);
   EXPECT_FALSE(fs::exists(scratch("no-aovs")));  // nor the folders made for it
+  EXPECT_FALSE(fs::exists(scratch("no-aovs-slash")));
   EXPECT_FALSE(fs::exists(scratch("limited.png")));  // nor the picture written with them
 }
 
@@ -151,7 +153,7 @@ TEST(Cli, ARunStoppedBeforeItsAovsLeavesNoFolder) {
   const fs::path fresh = scratch("stopped-aovs") / "aovs", out = scratch("stopped.png");
   const Result r =
       test::runCommand("bash -c '" + kBinary + " render " + kSource +
-                       "/examples/engine-cutaway.json --size 1600x1200 -o " + out.string() +
+                       "/examples/engine-cutaway.json --size 2400x1800 -o " + out.string() +
                        " --aov " + fresh.string() + " & sleep 1; kill -TERM $!; wait $!; echo $?'");
   EXPECT_EQ(r.out, "143\n") << r.err;  // 128 + SIGTERM: stopped while rendering
   EXPECT_FALSE(fs::exists(scratch("stopped-aovs")));
@@ -404,8 +406,8 @@ TEST(Cli, UsageErrors) {
     EXPECT_EQ(r.exitCode, 2) << arguments;
     EXPECT_EQ(r.err, "cutaway: error: " + message + " (see --help)\n") << arguments;
   }
-  // Values the parser takes but the command refuses are usage errors too (exit 2), before
-  // any file is read; a failing input stays 1 (/dev/zero above).
+  // Values the parser takes but the command refuses are usage errors too (exit 2); a failing
+  // input stays 1 (/dev/zero above).
   for (const std::string& arguments :
        {std::string("--size 0x0"), std::string("--size 16385x1"),
         std::string("--set cutters.adaptive.bufferSize=15"), std::string("--importance plane=2"),

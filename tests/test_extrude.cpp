@@ -107,7 +107,7 @@ TEST(Extrude, HolesInEitherOrientation) {
 
 // A "hole" with a node outside its outer ring (an invalid polygon: a GeoJSON ring beside the
 // building) is left out; the block stays the closed prism of the outer ring, where it grew a
-// lone open ring of walls.
+// lone open ring of walls; one touching it is kept.
 TEST(Extrude, AHoleOutsideTheOuterRingIsLeftOut) {
   const std::vector<glm::vec2> outer = {{100, 100}, {150, 100}, {150, 150}, {100, 150}};
   const std::vector<glm::vec2> away = {{500, 500}, {520, 500}, {520, 520}, {500, 520}};
@@ -119,6 +119,15 @@ TEST(Extrude, AHoleOutsideTheOuterRingIsLeftOut) {
     EXPECT_TRUE(m.report.watertight) << m.report.boundaryEdges << " boundary edges";
     EXPECT_EQ(m.positions, alone.positions);
     EXPECT_EQ(m.triangles, alone.triangles);
+  }
+  // A hole touching the outer ring mid-edge, its node a float step to either side of the
+  // edge, is still a hole.
+  const std::vector<glm::vec2> slanted = {{0, 0}, {30.7f, 10.3f}, {10.1f, 40.9f}};
+  const std::size_t plain = extrudeFootprint({slanted, {}}, 0.0f, 1.0f).triangles.size();
+  for (const double t : {0.3, 0.45, 0.61, 0.77}) {
+    const glm::vec2 touch(t * glm::dvec2(slanted[1]));
+    const Footprint f{slanted, {{touch, touch + glm::vec2(-1, 3), touch + glm::vec2(-3, 2)}}};
+    EXPECT_GT(extrudeFootprint(f, 0.0f, 1.0f).triangles.size(), plain) << t;
   }
   const std::vector<glm::vec2> inside = {{110, 120}, {120, 120}, {120, 130}};
   checkFootprint({outer, {inside}});

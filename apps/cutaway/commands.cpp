@@ -21,16 +21,17 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/image.hpp"
+#include "cutaway/core/unit_vector.hpp"
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/cutters/breakaway.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
 #include "cutaway/cutters/cutout.hpp"
 #include "cutaway/cutters/terrain_opening.hpp"
 #include "cutaway/fields/cutaway_surface.hpp"
+#include "cutaway/frame/aov.hpp"
 #include "cutaway/gl/context.hpp"
 #include "cutaway/io/gis_import.hpp"
 #include "cutaway/io/raster_terrain.hpp"
-#include "cutaway/frame/aov.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/benchmark_city.hpp"
@@ -62,10 +63,10 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if ((o.eye || o.target) && !o.fit) c.fit = false;
   if (o.eye || o.target || o.fit) c.path.clear();  // an explicit camera replaces the path
   if (o.fit) c.fit = true;
-  if (o.up) {  // normalised in double, as a scene's directions (json_reader::direction)
-    const double length = glm::length(glm::dvec3(*o.up));
-    if (!(length > 0.0)) throw CommandLineError("--up", "", "up must not be the zero vector");
-    c.up = glm::vec3(glm::dvec3(*o.up) / length);
+  if (o.up) {  // any length, as in a scene file
+    const std::optional<glm::vec3> unit = unitVector(glm::dvec3(*o.up));
+    if (!unit) throw CommandLineError("--up", "", "up must not be the zero vector");
+    c.up = *unit;
   }
   if (o.fov) c.fovY = *o.fov;
   if (!o.projection.empty()) {
@@ -301,9 +302,16 @@ void checkOutputs(const RenderOptions& options) {
   if (!dir.has_filename()) dir = dir.parent_path();  // "frames/aovs/"
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
     throw Error(options.aovDir, "", "--aov needs a directory; this is a file");
-  std::filesystem::path existing = dir;  // the folder it is, or the nearest it would be made in
-  while (!std::filesystem::exists(existing, ec))
-    existing = existing.has_parent_path() ? existing.parent_path() : ".";
+  // The folder it is, or the nearest it would be made in.
+  std::filesystem::path existing = dir.lexically_normal();
+  while (!std::filesystem::exists(std::filesystem::status(existing, ec))) {
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      throw Error(options.aovDir, "", "cannot create the AOV directory: " + ec.message());
+    const std::filesystem::path parent =
+        existing.has_parent_path() ? existing.parent_path() : std::filesystem::path(".");
+    if (parent == existing) break;
+    existing = parent;
+  }
   if (!std::filesystem::is_directory(existing, ec))
     throw Error(options.aovDir, "",
                 "cannot create the AOV directory: " + existing.string() + " is a file");
@@ -327,9 +335,10 @@ int render(const RenderOptions& options) {
     static const std::regex patternRe(R"((?:[^%]|%%)*%0?\d{0,2}d(?:[^%]|%%)*)");
     if (options.frames > 0 && path->find('%') != std::string::npos &&
         !std::regex_match(*path, patternRe))
-      throw Error(option, "",
-                  "a frame pattern may hold one %d, of width at most 99 (e.g. frame_%04d.png), "
-                  "and %% for a percent sign");
+      throw CommandLineError(
+          option, "",
+          "a frame pattern may hold one %d, of width at most 99 (e.g. frame_%04d.png), "
+          "and %% for a percent sign");
   }
   // An animation's outputs that something else holds fail before the first frame is written.
   std::error_code ec;

@@ -165,7 +165,9 @@ void replaceFileAtomically(const std::filesystem::path& named,
   // Before the writer runs: a C library's own message would name the temporary.
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
   if (std::error_code ec; !std::filesystem::is_directory(folder, ec))
-    throw Error(path.string(), "", "cannot write: no folder " + folder.string());
+    throw Error(
+        path.string(), "",
+        "cannot write: no folder " + folder.string() + (ec ? " (" + ec.message() + ")" : ""));
   const std::filesystem::path tmp = beside(path, "tmp");
   const PendingFile pendingFile(tmp);
   try {

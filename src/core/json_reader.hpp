@@ -18,6 +18,7 @@
 #include "core/name_pattern.hpp"
 #include "cutaway/core/error.hpp"
 #include "cutaway/core/geo_frame.hpp"
+#include "cutaway/core/unit_vector.hpp"
 
 namespace cutaway::json_reader {
 
@@ -196,13 +197,11 @@ inline glm::vec3 color(const Context& ctx, const json& j, const std::string& ptr
   return vec3(ctx, j, ptr, 0.0, 1.0);
 }
 
-// Normalised in double: a float's squared length overflows past 1e19 and underflows below
-// 1e-19, which turned [1e20, 1e20, 0] into a zero vector.
+// Any length but zero ([1e20, 1e20, 0] was taken for a zero vector: core/unit_vector.hpp).
 inline glm::vec3 direction(const Context& ctx, const json& j, const std::string& ptr) {
-  const glm::dvec3 v = dvec3(ctx, j, ptr, -1e30, 1e30);
-  const double length = glm::length(v);
-  if (!(length > 0.0)) ctx.fail(ptr, "a direction must not be the zero vector");
-  return glm::vec3(v / length);
+  const std::optional<glm::vec3> unit = unitVector(dvec3(ctx, j, ptr, -1e30, 1e30));
+  if (!unit) ctx.fail(ptr, "a direction must not be the zero vector");
+  return *unit;
 }
 
 // A regular expression given as text: ECMAScript, as the format uses, limited in length and

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/json_reader.hpp"
+#include "cutaway/core/unit_vector.hpp"
 
 namespace cutaway {
 
@@ -148,7 +149,7 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
     case Type::Color:
     case Type::Direction:
     case Type::Vec3: {
-      glm::vec3 v;
+      glm::dvec3 v;
       std::size_t start = 0;
       for (int i = 0; i < 3; ++i) {
         const std::size_t comma = text.find(',', start);
@@ -162,15 +163,13 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
         if (p.type == Type::Vec3 && !(c >= p.min && c <= p.max))
           throw std::invalid_argument("component " + std::to_string(i) + " of \"" + text +
                                       "\" is outside " + rangeText(p.min, p.max));
-        v[i] = float(c);
+        v[i] = c;
         start = comma + 1;
       }
-      if (p.type == Type::Direction) {  // in double, as json_reader::direction
-        const double length = glm::length(glm::dvec3(v));
-        if (!(length > 0.0)) throw std::invalid_argument("a direction must not be the zero vector");
-        v = glm::vec3(glm::dvec3(v) / length);
-      }
-      return v;
+      if (p.type != Type::Direction) return glm::vec3(v);
+      const std::optional<glm::vec3> unit = unitVector(v);  // any length, as in a scene file
+      if (!unit) throw std::invalid_argument("a direction must not be the zero vector");
+      return *unit;
     }
   }
   throw std::invalid_argument("unsupported option type");

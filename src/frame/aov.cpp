@@ -35,8 +35,12 @@ std::vector<Aov> readFrameAovs(const Frame& frame) {
   return aovs;
 }
 
-void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
-               float aspect, std::vector<std::pair<std::filesystem::path, FileWriter>> alongside) {
+void writeAovs(const std::filesystem::path& given, const std::vector<Aov>& aovs,
+               const Camera& camera, float aspect,
+               std::vector<std::pair<std::filesystem::path, FileWriter>> alongside) {
+  // "a/./b/" as "a/b": the folders made below are taken apart again by their parents.
+  std::filesystem::path dir = given.lexically_normal();
+  if (!dir.has_filename()) dir = dir.parent_path();
   std::error_code ec;
   // The outermost folder this call makes (empty: none), removed again with the folders in it
   // if the writing fails.

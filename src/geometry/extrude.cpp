@@ -63,14 +63,16 @@ bool locallyInside(const glm::dvec2& a, const glm::dvec2& p, const glm::dvec2& b
   return cross(a, p, m) >= 0.0 || cross(p, b, m) >= 0.0;
 }
 
-// Whether q lies inside the ring or on its boundary (the crossing number, edges first).
-bool insideOrOn(const Points& p, const std::vector<std::uint32_t>& ring, const glm::dvec2& q) {
+// Whether q lies inside the ring or within `near` of its boundary (a hole touching the outer
+// ring mid-edge lies a float step to either side of it), by the crossing number.
+bool insideOrNear(const Points& p, const std::vector<std::uint32_t>& ring, const glm::dvec2& q,
+                  double near) {
   bool inside = false;
   for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
     const glm::dvec2 &a = p[ring[j]], &b = p[ring[i]];
-    if (cross(a, b, q) == 0.0 && q.x >= std::min(a.x, b.x) && q.x <= std::max(a.x, b.x) &&
-        q.y >= std::min(a.y, b.y) && q.y <= std::max(a.y, b.y))
-      return true;
+    const glm::dvec2 ab = b - a;
+    const double t = std::clamp(glm::dot(q - a, ab) / std::max(glm::dot(ab, ab), 1e-300), 0.0, 1.0);
+    if (glm::length(q - (a + t * ab)) <= near) return true;
     if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y))
       inside = !inside;
   }
@@ -248,6 +250,7 @@ Mesh extrudeFootprint(const Footprint& footprint, float base, float top) {
   Footprint clean;
   std::vector<std::vector<glm::vec2>> rings;
   std::vector<std::uint32_t> outerRing;
+  double outerSize = 0.0;  // its box's diagonal
   std::uint32_t first = 0;
   for (std::size_t r = 0; r <= footprint.holes.size(); ++r) {
     const std::size_t count = r == 0 ? footprint.outer.size() : footprint.holes[r - 1].size();
@@ -256,11 +259,18 @@ Mesh extrudeFootprint(const Footprint& footprint, float base, float top) {
     if (r == 0 && ring.empty()) return {};
     if (ring.empty()) continue;
     // A hole with a node outside the outer ring (an invalid polygon) is left out: its walls
-    // would stand alone, open, and the cap cannot take it.
-    if (r > 0 && !std::all_of(ring.begin(), ring.end(),
-                              [&](std::uint32_t i) { return insideOrOn(p, outerRing, p[i]); }))
+    // would stand alone, open, and the cap cannot take it. Within a millionth of the outer
+    // ring's size counts as on it.
+    if (r > 0 && !std::all_of(ring.begin(), ring.end(), [&](std::uint32_t i) {
+          return insideOrNear(p, outerRing, p[i], 1e-6 * outerSize);
+        }))
       continue;
-    if (r == 0) outerRing = ring;
+    if (r == 0) {
+      outerRing = ring;
+      glm::dvec2 lo(std::numeric_limits<double>::max()), hi(-lo);
+      for (std::uint32_t i : ring) lo = glm::min(lo, p[i]), hi = glm::max(hi, p[i]);
+      outerSize = glm::length(hi - lo);
+    }
     // Outer counter-clockwise, holes clockwise: the solid is always left of an edge.
     if ((ringArea(p, ring) > 0.0) != (r == 0)) std::reverse(ring.begin(), ring.end());
     std::vector<glm::vec2> nodes;

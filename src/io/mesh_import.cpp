@@ -111,10 +111,8 @@ Mesh convert(const std::filesystem::path& file, const aiMesh& in, bool& normalsC
   return m;
 }
 
-// Assimp's name for a glTF node, mesh or material the file leaves unnamed: its place
-// ("nodes[74]"; a mesh split by primitive: "meshes[3]-1").
-// The power of two that takes the largest vertex coordinate of a model less than a unit
-// across into [1, 2); 0 for any other.
+// The power of two that takes the largest |vertex coordinate| into [1, 2) where it is below 1;
+// 0 for any other model.
 int joinExponent(const aiScene& scene) {
   float largest = 0.0f;
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
@@ -136,6 +134,8 @@ void scaleVertices(const aiScene& scene, int exponent) {  // the meshes are the 
   }
 }
 
+// Assimp's name for a glTF node, mesh or material the file leaves unnamed: its place
+// ("nodes[74]"; a mesh split by primitive: "meshes[3]-1").
 bool isStandIn(const std::string& name) {
   static const std::regex standIn(R"((nodes|meshes|materials)\[\d+\](-\d+)?)");
   return std::regex_match(name, standIn);
@@ -356,8 +356,8 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
     if (scene) {
       // Assimp joins vertices less than 1e-5 apart, in absolute units: a model 1e-6 across
-      // lost corners. Below a unit across, the vertices are scaled by a power of two (exactly)
-      // to a unit for the join, and back.
+      // lost corners. Where every coordinate is below 1, the vertices are scaled by a power of
+      // two (exactly) for the join, so that it joins within 1e-5 of the largest, and back.
       const int exponent = joinExponent(*scene);
       scaleVertices(*scene, exponent);
       scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_SortByPType |
@@ -375,7 +375,7 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     std::string reason = importer.GetErrorString();
     // Assimp turns a failed allocation into its error text: the worker reports it as such
     // (the memory limit, CUTAWAY_IMPORT_MEMORY_MB, named).
-    if (reason.find("bad_alloc") != std::string::npos) throw std::bad_alloc();
+    if (reason.find("std::bad_alloc") != std::string::npos) throw std::bad_alloc();
     const std::string standIn = std::string(AI_MEMORYIO_MAGIC_FILENAME) + "." + format;
     for (std::size_t at; (at = reason.find(standIn)) != std::string::npos;)
       reason.replace(at, standIn.size(), file.filename().string());

@@ -9,6 +9,7 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <deque>
@@ -29,11 +30,11 @@ namespace cutaway {
 
 namespace {
 
-// A number as people write it (%g: 10, not 10.000000).
+// A number as short as it can be written and read back the same (10, not 10.000000;
+// 1000000.5, not %g's 1e+06).
 std::string number(double v) {
   char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
+  return std::string(text, std::to_chars(text, text + sizeof text, v).ptr);
 }
 
 GDALDatasetUniquePtr openRaster(const std::filesystem::path& file) {

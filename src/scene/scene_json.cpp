@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
@@ -701,11 +702,14 @@ void readVolume(const Context& ctx, const json& j, const std::string& ptr,
         ctx.fail(r.at("transferFunction") + "/" + std::to_string(i) + "/value",
                  "a label volume's points are whole label values");
     if (const double span = double(points.back().value) - double(points.front().value);
-        span >= 65536)
+        span >= 65536) {
+      char labels[32];  // the labels from the first to the last, as kinds/volumes counts them
+      std::snprintf(labels, sizeof labels, "%.0f", span + 1.0);
       ctx.fail(r.at("transferFunction"),
-               "its labels span " + std::to_string(std::llround(span)) +
+               std::string("its labels span ") + labels +
                    " values, more than a GPU's 2-D texture holds (its size less 2: 16382 on "
                    "llvmpipe)");
+    }
     if (v.mode == VolumeMode::Isosurface)
       ctx.fail(r.at("labels"), "a label volume is drawn in the composite or maximum mode");
     if (v.lines) ctx.fail(r.at("lines"), "a label volume has no isosurfaces to draw lines of");

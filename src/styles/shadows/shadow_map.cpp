@@ -32,7 +32,7 @@ LightFrustum keyLightFrustum(const glm::vec4& lightVector, const Bounds& bounds)
   const float radius = std::max(bounds.radius(), 1e-6f);
   // A perspective map from a point light beyond 1e4 radii would hold the scene within a few
   // float steps of its distance (two units at 3e7): it casts as the directional light.
-  if (const glm::vec4 far = farLightAsDirectional(lightVector, bounds); far != lightVector)
+  if (const glm::vec4 far = farLightAsDirectional(lightVector, bounds); far.w != lightVector.w)
     return keyLightFrustum(far, bounds);
   LightFrustum f{};
   if (lightVector.w == 0.0f) {
