@@ -298,12 +298,11 @@ void checkOutputs(const RenderOptions& options) {
     checkFolderOf(options.svg);
   }
   if (options.aovDir.empty()) return;
-  std::filesystem::path dir(options.aovDir);
+  std::filesystem::path dir = std::filesystem::path(options.aovDir).lexically_normal();
   if (!dir.has_filename()) dir = dir.parent_path();  // "frames/aovs/"
   if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
     throw Error(options.aovDir, "", "--aov needs a directory; this is a file");
-  // The folder it is, or the nearest it would be made in.
-  std::filesystem::path existing = dir.lexically_normal();
+  std::filesystem::path existing = dir;  // the folder it is, or the nearest it would be made in
   while (!std::filesystem::exists(std::filesystem::status(existing, ec))) {
     if (ec && ec != std::errc::no_such_file_or_directory)
       throw Error(options.aovDir, "", "cannot create the AOV directory: " + ec.message());
