@@ -199,16 +199,21 @@ float farthest(const Mesh& mesh) {
 // ~3.4e38 once read or placed) is an error, as in the Python module's arrays: the triangle
 // would be dropped without a word. Vertices no triangle uses may be anything (a depth
 // sensor's mesh keeps NaN for pixels without depth).
+// Three numbers as a message shows them: "(1, inf, 0)".
+std::string triple(double x, double y, double z) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", x, y, z);
+  return text;
+}
+
 void checkFinite(const std::filesystem::path& file, const std::string& place, const Mesh& mesh) {
   for (const glm::uvec3& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) {
       const glm::vec3& p = mesh.positions[t[k]];
       if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
-      char text[96];
-      std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
       throw Error(
           file.string(), place.empty() ? "vertex " + std::to_string(t[k]) : place,
-          std::string("a triangle's corner at ") + text + " is not finite in 32-bit floats");
+          "a triangle's corner at " + triple(p.x, p.y, p.z) + " is not finite in 32-bit floats");
     }
 }
 
@@ -437,11 +442,8 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
             // Beyond [0, 1] (an OBJ's Kd 5, a glTF factor of 50) clamped, as a display would;
             // not a number refused, with its material.
             if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b)) {
-              char text[96];
-              std::snprintf(text, sizeof text, "(%g, %g, %g)", double(c.r), double(c.g),
-                            double(c.b));
               throw Error(file.string(), "material " + quote(material->GetName().C_Str()),
-                          std::string("its colour ") + text + " is not finite");
+                          "its colour " + triple(c.r, c.g, c.b) + " is not finite");
             }
             out.color = glm::clamp(glm::vec3(c.r, c.g, c.b), 0.0f, 1.0f);
           }
