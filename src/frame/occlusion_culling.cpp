@@ -153,7 +153,10 @@ void OcclusionCulling::addPass(Frame& frame, const std::string& name, Target obj
              glProgramUniform1i(program, 0, setup_.scene.samples);
              glBindBufferBase(GL_SHADER_STORAGE_BUFFER,
                               setup_.bindings.storageBlock("VISIBLE_OBJECTS"), visible_.id());
-             glDispatchCompute(GLuint(pass.width + 7) / 8, GLuint(pass.height + 7) / 8, 1);
+             GLint group[3];
+             glGetProgramiv(program, GL_COMPUTE_WORK_GROUP_SIZE, group);
+             glDispatchCompute(GLuint((pass.width + group[0] - 1) / group[0]),
+                               GLuint((pass.height + group[1] - 1) / group[1]), 1);
              marked_ = true;
            },
        .compute = true});
