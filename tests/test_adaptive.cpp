@@ -756,6 +756,79 @@ TEST(AdaptiveCutaway, DirectionalConstraintClampsTheAngleAsEquationsSixPointOneA
   }
 }
 
+// Burns11 eq. 6.2 down the screen: the wall of a seed resting on the floor stays above it. In
+// perspective, eq. 5.7's slope for the floor's angle φ is the floor's own only on the view
+// axis, so m_F is bounded by the floor plane's slope along n̂_proj. Against an independent
+// result: the floor's NDC depth at a seed on it and a small step down the screen (along
+// −n̂_proj), each where the pixel's view ray meets the floor plane, in double precision; m_F
+// is at least their difference quotient times tan φ / tan(φ − 2°) (the documented margin),
+// for seeds over the screen and three cameras, the fan room's among them
+// (examples/fan-room-cutaway.json, whose wall was 2 % shallower than the floor and cut a notch
+// into it): eq. 5.7 alone fell short at some seeds of each.
+TEST(AdaptiveCutaway, TheFloorSideOfTheConeStaysAboveTheFloor) {
+  struct View {
+    glm::vec3 eye, target;
+    float fov, near, far;
+  };
+  AdaptiveCutawayOptions options;
+  options.directionalConstraint = true;
+  options.edgeCompression = false;
+  options.floorNormal = glm::vec3(0.0f, 0.0f, 1.0f);
+  const float theta = glm::radians(40.0f), margin = glm::radians(2.0f);
+  for (const View& v :
+       {View{{2.7748f, -5.1238f, 6.369f}, {-2.7124f, 2.0096f, 1.4305f}, 45.0f, 6.0f, 14.5f},
+        View{{0.0f, -6.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, 60.0f, 1.0f, 30.0f},
+        View{{4.0f, -3.0f, 2.5f}, {0.0f, 0.0f, 0.5f}, 70.0f, 0.5f, 20.0f}}) {
+    SCOPED_TRACE(testing::Message() << "fov " << v.fov);
+    Camera camera;
+    camera.eye = v.eye, camera.target = v.target, camera.up = glm::vec3(0.0f, 0.0f, 1.0f);
+    camera.fovY = v.fov, camera.near = v.near, camera.far = v.far;
+    const CutawayProjection projection = cutawayProjection(camera, 4.0f / 3.0f);
+    const glm::dmat4 P(projection.projection);
+    const glm::dmat4 inverse = glm::inverse(
+        P * glm::lookAt(glm::dvec3(v.eye), glm::dvec3(v.target), glm::dvec3(0.0, 0.0, 1.0)));
+    // The NDC depth where the view ray through NDC (x, y) meets the floor z = 0; NaN if not
+    // in front of the eye within the depth range.
+    const auto floorDepth = [&](glm::dvec2 ndc) {
+      const glm::dvec4 a = inverse * glm::dvec4(ndc, -1.0, 1.0),
+                       b = inverse * glm::dvec4(ndc, 1.0, 1.0);
+      const glm::dvec3 from = glm::dvec3(a) / a.w, to = glm::dvec3(b) / b.w;
+      const double t = -from.z / (to.z - from.z);
+      if (!(t > 0.0 && t < 1.0)) return std::nan("");
+      const glm::dvec3 point = from + t * (to - from);
+      const glm::dvec4 c =
+          P * glm::lookAt(glm::dvec3(v.eye), glm::dvec3(v.target), glm::dvec3(0, 0, 1)) *
+          glm::dvec4(point, 1.0);
+      return c.z / c.w;
+    };
+    int seeds = 0, shortOfTheFloor = 0;
+    for (double x = -0.9; x <= 0.91; x += 0.1)
+      for (double y = -0.9; y <= 0.91; y += 0.1) {
+        const double z = floorDepth({x, y});
+        if (std::isnan(z)) continue;
+        const AnchorCone cone = anchorCone(glm::vec3(x, y, z), theta, options, projection);
+        // One step of 1e-3 view-plane units down the screen, in NDC.
+        const glm::dvec2 step = -1e-3 * glm::dvec2(cone.floor) * glm::dvec2(P[0][0], P[1][1]);
+        const double next = floorDepth(glm::dvec2(x, y) + step);
+        if (std::isnan(next)) continue;
+        const double floorSlope = (z - next) / 1e-3;
+        // φ at the seed (eq. 6.1), from the floor point's direction to the eye.
+        const glm::dvec4 h = glm::inverse(P) * glm::dvec4(x, y, z, 1.0);
+        const glm::dvec3 toEye = -glm::normalize(glm::dvec3(h) / h.w);
+        const glm::dvec3 n = glm::dmat3(projection.viewRotation) * glm::dvec3(0.0, 0.0, 1.0);
+        const double phi = std::asin(glm::dot(n, toEye));
+        if (phi <= margin + 1e-3) continue;
+        ++seeds;
+        const double needed = floorSlope * std::tan(phi) / std::tan(phi - margin);
+        EXPECT_GE(cone.slopeF, needed * (1.0 - 1e-3)) << "seed at NDC " << x << "," << y;
+        // Eq. 5.7 at φ − 2°, what m_F was without the bound.
+        shortOfTheFloor += -(P[2][2] + z) / std::tan(phi - margin) < floorSlope;
+      }
+    EXPECT_GT(seeds, 100);
+    EXPECT_GT(shortOfTheFloor, 0);
+  }
+}
+
 // Burns11 eq. 6.3's n̂_proj, the screen direction in which the floor's normal points at a seed:
 // against the projections of the seed's point p and of p + ε·n̂ (view-plane units: NDC over
 // P₀₀ and P₁₁), over a grid of seeds, for a camera looking down at the floor in perspective

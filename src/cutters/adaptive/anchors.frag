@@ -43,6 +43,7 @@ void main() {
               clamp((1.0 - abs(ndc.y)) / uEdgeRegion, 0.0, 1.0);
   float thetaF = thetaE;
   vec2 floorDirection = vec2(0.0);
+  float floorBound = 0.0;  // the least m_F that keeps the wall off the floor
   if (uDirectional != 0) {
     vec4 h = uInverseProjection * vec4(ndc, 1.0);
     vec3 point = h.xyz / h.w;
@@ -58,7 +59,19 @@ void main() {
     vec2 d = (dc.xy * c.w - c.xy * dc.w) / vec2(uProjection[0][0], uProjection[1][1]);
     float len = length(d);
     if (len > 1e-9) floorDirection = d / len;  // eq. 6.3's n̂_proj
+    // m_F no shallower than the floor plane's own slope along n̂_proj (see cutaway_function.cpp).
+    if (uCompensation != 0 && uOrthographic == 0 && phi > kFloorMargin) {
+      float nDotPoint = dot(uFloorNormal, point);
+      float q = dot(uFloorNormal, uInverseProjection[2].xyz) - nDotPoint * uInverseProjection[2].w;
+      vec2 gradient = -vec2(uProjection[0][0] * (dot(uFloorNormal, uInverseProjection[0].xyz) -
+                                                 nDotPoint * uInverseProjection[0].w),
+                            uProjection[1][1] * (dot(uFloorNormal, uInverseProjection[1].xyz) -
+                                                 nDotPoint * uInverseProjection[1].w)) / q;
+      float floorSlope = dot(gradient, floorDirection);
+      if (!isinf(floorSlope) && !isnan(floorSlope) && floorSlope > 0.0)
+        floorBound = floorSlope * tan(phi) / tan(phi - kFloorMargin);
+    }
   }
-  outCone = vec4(ndc.z, slope(thetaE, ndc.z), slope(thetaF, ndc.z), 1.0);
+  outCone = vec4(ndc.z, slope(thetaE, ndc.z), max(slope(thetaF, ndc.z), floorBound), 1.0);
   outFloor = floorDirection;
 }

@@ -33,6 +33,7 @@ AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOp
               clamp01((1.0f - std::abs(ndc.y)) / o.edgeRegion);
   float thetaF = thetaE;
   glm::vec2 floor(0.0f);
+  float floorBound = 0.0f;  // the least m_F that keeps the wall off the floor
   if (o.directionalConstraint) {
     const glm::mat4 inverse = glm::inverse(P);
     const glm::vec4 h = inverse * glm::vec4(ndc, 1.0f);
@@ -54,6 +55,24 @@ AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOp
     const glm::vec2 d = (glm::vec2(dc) * c.w - glm::vec2(c) * dc.w) / glm::vec2(P[0][0], P[1][1]);
     const float len = glm::length(d);
     if (len > 1e-9f) floor = d / len;
+    // Eq. 6.2 asks for a wall no shallower than the floor down the screen; in perspective, eq.
+    // 5.7's slope for φ is the floor's only on the view axis (off it, 9 % shallower at a 45°
+    // field of view: the wall dug a notch into the floor in front of a seed). The floor plane
+    // through the seed has an NDC depth affine in NDC x, y (z = −(L₀ + x·Lx + y·Ly)/Q, from the
+    // inverse projection): its own slope along n̂_proj bounds m_F, with the margin's ratio
+    // tan φ / tan(φ − margin). (Orthographic slopes are exact.)
+    if (o.perspectiveCompensation && !camera.orthographic && phi > kFloorMargin) {
+      const float nDotPoint = glm::dot(n, point);
+      const auto plane = [&](const glm::vec4& v) {
+        return glm::dot(n, glm::vec3(v)) - nDotPoint * v.w;
+      };
+      const float q = plane(inverse[2]);
+      const glm::vec2 gradient =
+          -glm::vec2(P[0][0] * plane(inverse[0]), P[1][1] * plane(inverse[1])) / q;
+      const float floorSlope = glm::dot(gradient, floor);
+      if (std::isfinite(floorSlope) && floorSlope > 0.0f)
+        floorBound = floorSlope * std::tan(phi) / std::tan(phi - kFloorMargin);
+    }
   }
   auto slope = [&](float angle) {
     const float t = std::tan(std::clamp(angle, kMinAngle, kPi / 2.0f - kMinAngle));
@@ -62,7 +81,7 @@ AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOp
     // Burns11 eq. 5.7: m = −(PM_sz + z)/tan θ, PM_sz = (n + f)/(n − f) = P[2][2].
     return -(P[2][2] + ndc.z) / t;
   };
-  return {slope(thetaE), slope(thetaF), floor};
+  return {slope(thetaE), std::max(slope(thetaF), floorBound), floor};
 }
 
 bool cutawayOnCpu(const AdaptiveCutawayOptions& options, bool softwareRenderer) {
