@@ -18,6 +18,7 @@
 #include <optional>
 #include <string_view>
 #include <type_traits>
+#include <unordered_set>
 
 #include "cutaway/core/contained.hpp"
 #include "cutaway/core/error.hpp"
@@ -34,17 +35,20 @@ using namespace cutaway;
 namespace {
 
 // The one headless context of the process, made when the first renderer needs it and
-// destroyed when the last renderer that holds it goes away; and the process that made it.
+// destroyed when the last renderer that holds it goes away; and the process that made the
+// first (0: none yet).
 std::weak_ptr<gl::HeadlessContext> sharedContext;
 pid_t contextProcess = 0;
 
-// A context does not survive fork(): the driver's threads stay in the parent, and the
-// child's first OpenGL call waits for them forever.
+// OpenGL does not survive fork(): the driver's threads stay in the parent, and the child's
+// first OpenGL call waits for them forever. Nor does the driver's state once the last context
+// is gone (llvmpipe keeps its screen and threads): a child of any process that made one is
+// refused.
 void checkNotForked() {
-  if (!sharedContext.expired() && ::getpid() != contextProcess)
+  if (contextProcess != 0 && ::getpid() != contextProcess)
     throw Error(
-        "this process was forked from one that holds a cutaway renderer, and an OpenGL "
-        "context does not survive fork(): make renderers only after forking, or use "
+        "this process was forked from one that made a cutaway renderer, and the OpenGL "
+        "driver does not survive fork(): make renderers only after forking, or use "
         "multiprocessing's \"spawn\" or \"forkserver\" start method");
 }
 
@@ -74,6 +78,11 @@ class OnThisThread {
   const gl::HeadlessContext& context_;
 };
 
+class PyRenderer;
+// The renderers __init__ made: one from Renderer.__new__ alone has none, and its methods
+// would run on unset memory.
+std::unordered_set<const PyRenderer*> madeRenderers;
+
 // A renderer with its own copy of the scene (cutaway::Renderer keeps a reference to it) and
 // a share of the context. The context is declared first, so it outlives the renderer.
 class PyRenderer {
@@ -81,8 +90,10 @@ class PyRenderer {
   explicit PyRenderer(const Scene& scene) : context_(context()), scene_(scene) {
     const OnThisThread current(*context_);
     renderer_ = std::make_unique<Renderer>(scene_, context_->info());
+    madeRenderers.insert(this);
   }
   ~PyRenderer() {
+    madeRenderers.erase(this);
     if (::getpid() != contextProcess) {
       // A copy in a forked child: the parent's OpenGL objects, and its context, are not this
       // process's to free; both are left as they are (a leak, not a hang).
@@ -153,6 +164,32 @@ class PyRenderer {
   bool rendered_ = false;
 };
 
+// `h` as a C-contiguous NumPy array of T's dtype (void: its own), or none where NumPy cannot
+// make one (a TypeError or ValueError: the caller names the argument). Any other error (a
+// MemoryError, a KeyboardInterrupt) is raised as it is: py::array::ensure() cleared them all,
+// and a copy too large for memory was reported as a shape.
+template <class T = void>
+std::optional<py::array> contiguous(const py::handle& h) {
+  const py::object convert = py::module_::import("numpy").attr("ascontiguousarray");
+  try {
+    if constexpr (std::is_void_v<T>)
+      return py::array(convert(h));
+    else
+      return py::array(convert(h, py::dtype::of<T>()));
+  } catch (py::error_already_set& e) {
+    if (!e.matches(PyExc_TypeError) && !e.matches(PyExc_ValueError)) throw;
+    return std::nullopt;
+  }
+}
+
+// `r`, if __init__ made it.
+template <class R>
+R& made(R* r) {
+  if (!madeRenderers.contains(r))
+    throw py::type_error("this Renderer was not made by Renderer(scene)");
+  return *r;
+}
+
 // A mesh from arrays: `vertices` (N, 3) in object space, `faces` (M, 3) indices into them
 // (counter-clockwise seen from outside), checked as a mesh file's are; normals as the mesh
 // importer makes them. Errors name `source` and `place`.
@@ -160,25 +197,22 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
                                            const py::handle& vertexArray,
                                            const py::handle& faceArray) {
   const auto fail = [&](const std::string& reason) { throw Error(source, place, reason); };
-  // The kinds first: forcecast would take 0.5 as index 0, a complex number as its real part
+  // The kinds first: the conversion would take 0.5 as index 0, a complex number as its real part
   // and 2⁶³ as −2⁶³.
   const auto kind = [](const py::handle& h) {
-    const py::array a = py::array::ensure(h);
-    PyErr_Clear();  // ensure() leaves the conversion's error set when it fails
-    return a ? a.dtype().kind() : '?';
+    const std::optional<py::array> a = contiguous(h);
+    return a ? a->dtype().kind() : '?';
   };
   const char vertexKind = kind(vertexArray), faceKind = kind(faceArray);
   if (std::string_view("iuf").find(vertexKind) == std::string_view::npos)
     fail("vertices must be real numbers of shape (N, 3)");
-  const auto vertices =
-      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(vertexArray);
-  PyErr_Clear();
-  if (!vertices || vertices.ndim() != 2 || vertices.shape(1) != 3)
+  const std::optional<py::array> vertices = contiguous<double>(vertexArray);
+  if (!vertices || vertices->ndim() != 2 || vertices->shape(1) != 3)
     fail("vertices must be real numbers of shape (N, 3)");
   if (faceKind != 'i' && faceKind != 'u') fail("faces must be integers of shape (M, 3)");
   Mesh mesh;
-  const double* v = vertices.data();
-  for (py::ssize_t i = 0; i < vertices.shape(0); ++i) {
+  const auto* v = static_cast<const double*>(vertices->data());
+  for (py::ssize_t i = 0; i < vertices->shape(0); ++i) {
     const glm::dvec3 p(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
     if (!(std::abs(p.x) <= 1e15 && std::abs(p.y) <= 1e15 && std::abs(p.z) <= 1e15))
       fail("vertex " + std::to_string(i) + " is not finite or lies beyond 1e15");
@@ -193,14 +227,12 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
       else
         return v >= count;
     };
-    const auto faces =
-        py::array_t<Index, py::array::c_style | py::array::forcecast>::ensure(faceArray);
-    PyErr_Clear();
-    if (!faces || faces.ndim() != 2 || faces.shape(1) != 3)
+    const std::optional<py::array> faces = contiguous<Index>(faceArray);
+    if (!faces || faces->ndim() != 2 || faces->shape(1) != 3)
       fail("faces must be integers of shape (M, 3)");
-    const Index* f = faces.data();
+    const auto* f = static_cast<const Index*>(faces->data());
     const auto count = Index(mesh.positions.size());
-    for (py::ssize_t i = 0; i < faces.shape(0); ++i) {
+    for (py::ssize_t i = 0; i < faces->shape(0); ++i) {
       for (int k = 0; k < 3; ++k)
         if (outside(f[3 * i + k], count))
           fail("face " + std::to_string(i) + " has vertex index " + std::to_string(f[3 * i + k]) +
@@ -318,9 +350,30 @@ PYBIND11_MODULE(_cutaway, m) {
   // The file readers' helper, forked now rather than after the session has grown
   // (cutaway/core/contained.hpp).
   cutaway::startContainedHelper();
-  py::register_exception<Error>(m, "Error", PyExc_RuntimeError);
+  // cutaway::Error as cutaway.Error, its message decoded with backslash escapes where it is
+  // not UTF-8 (a file's bytes quoted), not left empty.
+  static const py::exception<Error> error(m, "Error", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const Error& e) {
+      const std::string_view what = e.what();
+      const py::object text = py::reinterpret_steal<py::object>(
+          PyUnicode_DecodeUTF8(what.data(), py::ssize_t(what.size()), "backslashreplace"));
+      PyErr_SetObject(error.ptr(), text.ptr());
+    }
+  });
 
-  py::class_<Scene>(m, "Scene")
+  // Scenes come from load() and parse() alone: an instance from Scene.__new__ would hold no
+  // scene, and pybind11 would read one from unset memory.
+  py::class_<Scene>(m, "Scene", py::custom_type_setup([](PyHeapTypeObject* type) {
+                      type->ht_type.tp_new = [](PyTypeObject*, PyObject*, PyObject*) -> PyObject* {
+                        PyErr_SetString(PyExc_TypeError,
+                                        "a cutaway.Scene is made by cutaway.load() or "
+                                        "cutaway.from_dict()");
+                        return nullptr;
+                      };
+                    }))
       .def_static("load", &loadScene, py::arg("path"), "A scene file (docs/scene-format.md)")
       .def_static(
           "parse",
@@ -391,11 +444,19 @@ PYBIND11_MODULE(_cutaway, m) {
   py::class_<PyRenderer>(m, "Renderer")
       .def(py::init<const Scene&>(), py::arg("scene"),
            "Compiles the scene's frame on the shared headless context (the scene is copied)")
-      .def("render", &PyRenderer::render, py::arg("time") = 0.0f,
-           "One frame at `time` seconds: RGBA uint8, shape (height, width, 4), rows top down")
-      .def("aovs", &PyRenderer::aovs, "The last frame's AOVs by name (float32 arrays)")
-      .def("timings", &PyRenderer::timings, "The last frame's passes: name, gpu_ms, cpu_ms")
-      .def_property_readonly("device", &PyRenderer::device, "The OpenGL renderer string");
+      .def(
+          "render", [](PyRenderer* r, float time) { return made(r).render(time); },
+          py::arg("time") = 0.0f,
+          "One frame at `time` seconds: RGBA uint8, shape (height, width, 4), rows top down")
+      .def(
+          "aovs", [](const PyRenderer* r) { return made(r).aovs(); },
+          "The last frame's AOVs by name (float32 arrays)")
+      .def(
+          "timings", [](PyRenderer* r) { return made(r).timings(); },
+          "The last frame's passes: name, gpu_ms, cpu_ms")
+      .def_property_readonly(
+          "device", [](const PyRenderer* r) { return made(r).device(); },
+          "The OpenGL renderer string");
 
   m.def(
       "live_contexts", [] { return sharedContext.expired() ? 0 : 1; },

@@ -11,6 +11,7 @@
 #include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "cutaway/core/image.hpp"
@@ -158,6 +159,39 @@ TEST(Cli, ARunStoppedBeforeItsAovsLeavesNoFolder) {
   EXPECT_EQ(r.out, "143\n") << r.err;  // 128 + SIGTERM: stopped while rendering
   EXPECT_FALSE(fs::exists(scratch("stopped-aovs")));
   EXPECT_FALSE(fs::exists(out));
+}
+
+// An AOV folder written again holds the new frame's AOVs alone: the PFMs the earlier
+// aovs.json listed and the new one does not are removed (another scene's cutaway buffers
+// stayed beside the new index); files it did not list stay.
+TEST(Cli, AnAovFolderWrittenAgainHoldsOnlyTheNewFramesAovs) {
+  const fs::path dir = scratch("aovs-again");
+  fs::remove_all(dir);
+  const auto pfms = [&] {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().extension() == ".pfm") names.insert(e.path().filename().string());
+    return names;
+  };
+  const auto listed = [&] {
+    std::set<std::string> names;
+    const nlohmann::json index = nlohmann::json::parse(std::ifstream(dir / "aovs.json"));
+    for (const auto& a : index["aovs"]) names.insert(a["file"].get<std::string>());
+    return names;
+  };
+  Result r = run("render " + kData + "/render/moving-box.json --size 32x24 -o " +
+                 scratch("again-1.png").string() + " --aov " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::set<std::string> first = pfms();
+  EXPECT_TRUE(first.count("cutawayDepth.pfm"));
+  std::ofstream(dir / "notes.txt") << "mine";
+  r = run("render " + kData + "/render/plane-facing.json --size 32x24 -o " +
+          scratch("again-2.png").string() + " --aov " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(pfms(), listed());
+  EXPECT_LT(pfms().size(), first.size());
+  EXPECT_FALSE(fs::exists(dir / "cutawayDepth.pfm"));
+  EXPECT_TRUE(fs::exists(dir / "notes.txt"));
 }
 
 // An animation's outputs that a folder or a file already holds are refused before the first
@@ -383,8 +417,11 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
 TEST(Cli, UsageErrors) {
   EXPECT_EQ(run("").exitCode, 2);
   const Result noFile = run("info ''");
-  EXPECT_EQ(noFile.exitCode, 1);
+  EXPECT_EQ(noFile.exitCode, 2);
   EXPECT_EQ(noFile.err, "cutaway: error: info: give a scene file, or a GIS file or raster\n");
+  const Result noBench = run("bench");
+  EXPECT_EQ(noBench.exitCode, 2);
+  EXPECT_EQ(noBench.err, "cutaway: error: bench: give a scene file or --city SCALE\n");
   EXPECT_EQ(run("frobnicate").exitCode, 2);
   // A mistyped command is named, with the command it is closest to.
   const Result typo = run("rendr x.json -o x.png");

@@ -254,6 +254,15 @@ TEST(Contained, BadLimitsInTheEnvironmentAreRefused) {
   ::unsetenv("CUTAWAY_IMPORT_SECONDS");
   ::unsetenv("CUTAWAY_IMPORT_MEMORY_MB");
   EXPECT_EQ(importLimits().seconds, 300.0);
+  // Containment is 0 or 1: "maybe" was taken as 1 without a word.
+  ::setenv("CUTAWAY_IMPORT_CONTAINED", "maybe", 1);
+  test::expectError([] { importsContained(); },
+                    {"the environment variable CUTAWAY_IMPORT_CONTAINED must be 0 or 1, not "
+                     "\"maybe\""});
+  ::setenv("CUTAWAY_IMPORT_CONTAINED", "0", 1);
+  EXPECT_FALSE(importsContained());
+  ::unsetenv("CUTAWAY_IMPORT_CONTAINED");
+  EXPECT_TRUE(importsContained());
 }
 
 // The contained import hands back exactly what the in-process import builds: names, places,

@@ -173,7 +173,8 @@ Stats stats(std::vector<double> v) {
 
 // The scene file, or Konev18's generated benchmark city at `city` times its size.
 Scene sceneOrCity(const std::string& file, int city, const char* command) {
-  if (city == 0 && file.empty()) throw Error(command, "", "give a scene file or --city SCALE");
+  if (city == 0 && file.empty())
+    throw CommandLineError(command, "", "give a scene file or --city SCALE");
   return city > 0 ? benchmarkCity({.scale = city}) : loadScene(file);
 }
 
@@ -336,8 +337,8 @@ int render(const RenderOptions& options) {
         !std::regex_match(*path, patternRe))
       throw CommandLineError(
           option, "",
-          "a frame pattern may hold one %d, of width at most 99 (e.g. frame_%04d.png), "
-          "and %% for a percent sign");
+          "with --frames, a name with a % is a frame pattern: it holds exactly one %d, of "
+          "width at most 99 (e.g. frame_%04d.png), and %% for each percent sign");
   }
   // An animation's outputs that something else holds fail before the first frame is written.
   std::error_code ec;
@@ -502,7 +503,8 @@ int dem(const DemOptions& o) {
 }
 
 int info(const std::string& path) {
-  if (path.empty()) throw Error("info", "", "give a scene file, or a GIS file or raster");
+  if (path.empty())
+    throw CommandLineError("info", "", "give a scene file, or a GIS file or raster");
   // Scenes are JSON; anything else is GIS data for GDAL to recognise (or reject clearly).
   if (std::filesystem::path(path).extension() != ".json") return gisInfo(path);
   const Scene scene = loadScene(path);

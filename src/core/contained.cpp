@@ -21,6 +21,8 @@
 #include <mutex>
 #include <new>
 #include <sstream>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "cutaway/core/error.hpp"
@@ -352,11 +354,20 @@ ContainmentLimits importLimits() {
 
 bool importsContained() {
   const char* text = std::getenv("CUTAWAY_IMPORT_CONTAINED");
-  return !text || std::string(text) != "0";
+  if (!text || std::string_view(text) == "1") return true;
+  if (std::string_view(text) == "0") return false;
+  throw Error(
+      "CUTAWAY_IMPORT_CONTAINED", "",
+      std::string("the environment variable CUTAWAY_IMPORT_CONTAINED must be 0 or 1, not ") +
+          quote(text));
 }
 
 void startContainedHelper() {
-  if (!importsContained()) return;
+  try {
+    if (!importsContained()) return;
+  } catch (const Error&) {
+    return;  // said by the first import
+  }
   const std::lock_guard lock(helperMutex());
   try {
     helper().start();

@@ -4,6 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <fstream>
+
 #include "cutaway/core/atomic_file.hpp"
 #include "cutaway/core/error.hpp"
 
@@ -17,6 +20,27 @@ nlohmann::json matrixRows(const glm::mat4& m) {
 }
 nlohmann::json vec(const glm::vec3& v) {
   return {v.x, v.y, v.z};
+}
+
+// The PFM files an earlier index in `dir` lists that `aovs` does not write (another scene's
+// AOVs): removed once the new ones are in, so that the folder holds one frame's. Only plain
+// names ending in .pfm count; an unreadable index lists none.
+std::vector<std::filesystem::path> staleAovFiles(const std::filesystem::path& dir,
+                                                 const std::vector<Aov>& aovs) {
+  std::vector<std::filesystem::path> stale;
+  std::ifstream in(dir / "aovs.json");
+  if (!in) return stale;
+  const nlohmann::json index = nlohmann::json::parse(in, nullptr, false);
+  if (!index.is_object() || !index.contains("aovs") || !index["aovs"].is_array()) return stale;
+  for (const nlohmann::json& entry : index["aovs"]) {
+    if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string()) continue;
+    const std::filesystem::path file = entry["file"].get<std::string>();
+    if (file != file.filename() || file.extension() != ".pfm") continue;
+    if (std::none_of(aovs.begin(), aovs.end(),
+                     [&](const Aov& a) { return a.name + ".pfm" == file.string(); }))
+      stale.push_back(dir / file);
+  }
+  return stale;
 }
 }  // namespace
 
@@ -82,6 +106,7 @@ void writeAovs(const std::filesystem::path& given, const std::vector<Aov>& aovs,
   files.emplace_back(dir / "aovs.json", [&](std::ostream& os) { os << index.dump(2) << "\n"; });
   // All or nothing (a full disk must not leave new images beside an old index), and no empty
   // folder left behind.
+  const std::vector<std::filesystem::path> stale = staleAovFiles(dir, aovs);
   try {
     writeFilesAtomically(files);
   } catch (...) {
@@ -90,6 +115,7 @@ void writeAovs(const std::filesystem::path& given, const std::vector<Aov>& aovs,
         p = p.parent_path();
     throw;
   }
+  for (const std::filesystem::path& file : stale) std::filesystem::remove(file, ec);
 }
 
 }  // namespace cutaway

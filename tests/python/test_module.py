@@ -179,8 +179,72 @@ def test_a_forked_child_is_told_its_context_did_not_come_along():
     with os.fdopen(read) as pipe:
         lines = pipe.read().splitlines()
     assert len(lines) == 2, lines
-    assert all("an OpenGL context does not survive fork()" in line for line in lines), lines
+    assert all("the OpenGL driver does not survive fork()" in line for line in lines), lines
     renderer.render()  # the parent's renderer goes on
+
+
+FORK_AFTER_THE_LAST = """
+import os, sys
+import cutaway
+
+scene = cutaway.from_dict({"resolution": [24, 18], "samples": 1,
+                           "camera": {"eye": [2, 1.5, 3], "target": [0.5, 0.5, 0.5], "fov": 40},
+                           "objects": [{"name": "m", "file": sys.argv[1]}]})
+cutaway.Renderer(scene).render()
+assert cutaway.live_contexts() == 0
+child = os.fork()
+if child == 0:
+    try:
+        cutaway.Renderer(scene).render()
+        print("rendered")
+    except cutaway.Error as e:
+        print(e)
+    sys.stdout.flush()
+    os._exit(0)
+os.waitpid(child, 0)
+"""
+
+
+def test_a_child_forked_after_the_last_renderer_is_refused_too(tmp_path):
+    # llvmpipe keeps its threads and screen after the last context is gone: a child forked
+    # then waited forever in its first frame.
+    script = tmp_path / "fork.py"
+    script.write_text(FORK_AFTER_THE_LAST)
+    run = subprocess.run(["/usr/bin/python3", str(script), CUBE], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert "the OpenGL driver does not survive fork()" in run.stdout, run.stdout
+
+
+def test_instances_made_without_init_are_refused():
+    # Scene.__new__ gave a scene of unset memory (garbage sizes, segmentation faults), and so
+    # did the native renderer's.
+    with pytest.raises(TypeError, match="cutaway.load"):
+        cutaway.Scene.__new__(cutaway.Scene)
+    bare = cutaway._cutaway.Renderer.__new__(cutaway._cutaway.Renderer)
+    for call in (lambda: bare.render(0.0), bare.aovs, bare.timings, lambda: bare.device):
+        with pytest.raises(TypeError, match="not made by Renderer"):
+            call()
+
+
+def test_an_error_message_keeps_bytes_that_are_not_utf8(tmp_path):
+    path = tmp_path / "latin1.json"
+    path.write_bytes(b'{"objects": [{"name": "caf\xe9", "file": "x.obj"}]}')
+    with pytest.raises(cutaway.Error) as raised:
+        cutaway.load(str(path))
+    assert str(raised.value), "the message was empty"
+    assert str(path) in str(raised.value)
+
+
+def test_a_memory_error_while_an_array_converts_stays_one():
+    class Exhausting:
+        def __array__(self, *args, **kwargs):
+            raise MemoryError("no room")
+
+    scene = cutaway.from_dict(cube_scene())
+    with pytest.raises(MemoryError, match="no room"):
+        scene.add_mesh("m", Exhausting(), np.array([[0, 1, 2]]))
+    assert scene.objects == ["outer", "inner"]
 
 
 FORK_POOL = """

@@ -39,7 +39,7 @@ struct ContainmentLimits {
 // The limits file imports run under: CUTAWAY_IMPORT_SECONDS and CUTAWAY_IMPORT_MEMORY_MB when
 // set (a bad value is an Error naming the variable), else 300 s and 3/4 of physical memory.
 // CUTAWAY_IMPORT_CONTAINED=0 runs importers in the calling process instead (a debugger's way
-// in; the limits then do not hold).
+// in; the limits then do not hold); 1 or unset contains them, any other value is an Error.
 ContainmentLimits importLimits();
 bool importsContained();
 

@@ -6,7 +6,7 @@
 // current context with libepoxy resolving the entry points.
 //
 //   auto context = cutaway::gl::HeadlessContext::create();   // throws cutaway::Error
-//   std::puts(context->renderer().c_str());
+//   std::puts(context->info().renderer.c_str());
 #pragma once
 
 #include <cstdint>

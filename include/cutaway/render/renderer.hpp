@@ -94,7 +94,10 @@ namespace cutaway {
 
 class Renderer {
  public:
-  // Uploads the meshes and compiles the programs; the scene must outlive the renderer.
+  // Uploads the meshes and compiles the programs; the scene must outlive the renderer. Every
+  // member runs OpenGL: the context `info` describes must be current on the calling thread
+  // (without a current context, libepoxy aborts the process), from construction to
+  // destruction.
   Renderer(const Scene& scene, const gl::ContextInfo& info);
   // The renderer refers to its scene: a temporary one would dangle by the first frame.
   Renderer(const Scene&& scene, const gl::ContextInfo& info) = delete;
