@@ -13,6 +13,8 @@ if(TARGET cutaway-view)
   install(TARGETS cutaway-view RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 install(EXPORT CutawayTargets NAMESPACE Cutaway:: DESTINATION ${CUTAWAY_CMAKE_DIR})
+# The build tree is a package too (Cutaway_DIR=build/release): its config beside these targets.
+export(EXPORT CutawayTargets NAMESPACE Cutaway:: FILE "${PROJECT_BINARY_DIR}/CutawayTargets.cmake")
 
 configure_package_config_file(cmake/CutawayConfig.cmake.in
                               "${PROJECT_BINARY_DIR}/CutawayConfig.cmake"

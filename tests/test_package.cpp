@@ -1,7 +1,8 @@
 // The library as a CMake package: this build installed into a staging prefix, the consumer
 // project (examples/consumer) configured against it with find_package(Cutaway), built, and
 // its two programs run: a scene rendered through the Renderer with an option set by its path,
-// and an application's own OpenGL scene opened by AdaptiveCutawaySurface.
+// and an application's own OpenGL scene opened by AdaptiveCutawaySurface; and the consumer
+// configured against the build folder itself.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -76,4 +77,11 @@ TEST(Package, AConsumerProjectFindsBuildsAndRendersWithIt) {
   const std::uint8_t* side = pixel(image, 0.2f, 0.5f);
   EXPECT_EQ(side[0], side[1]) << "the box (grey) is missing left of the ball";
   EXPECT_LT(side[0], 200);
+
+  // The build folder is a package too: its CutawayConfig.cmake found its targets (it
+  // included a CutawayTargets.cmake that only the install wrote).
+  ASSERT_NO_FATAL_FAILURE(run(cmake + " -S " + quoted(CUTAWAY_SOURCE_DIR "/examples/consumer") +
+                              " -B " + quoted(test::scratchPath("package", "from-build")) +
+                              " -G Ninja -DCutaway_DIR=" + quoted(CUTAWAY_BINARY_DIR) +
+                              " -DCMAKE_BUILD_TYPE=" CUTAWAY_BUILD_TYPE));
 }
