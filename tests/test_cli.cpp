@@ -192,6 +192,17 @@ TEST(Cli, AnAovFolderWrittenAgainHoldsOnlyTheNewFramesAovs) {
   EXPECT_LT(pfms().size(), first.size());
   EXPECT_FALSE(fs::exists(dir / "cutawayDepth.pfm"));
   EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+  // A link to a folder that is gone is named as such (it said "File exists").
+  const fs::path link = scratch("aovs-link");
+  fs::remove(link);
+  fs::create_directory_symlink(scratch("aovs-gone"), link);
+  r = run("render " + kData + "/render/plane-facing.json --size 32x24 -o " +
+          scratch("again-3.png").string() + " --aov " + link.string());
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("aovs-link: cannot create AOV directory: it is a symbolic link to "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("aovs-gone, which does not exist"), std::string::npos) << r.err;
 }
 
 // An animation's outputs that a folder or a file already holds are refused before the first
@@ -830,16 +841,25 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   EXPECT_GE(j["raster"]["min"].get<double>(), 40.0);
   // Bad input: one line naming the place and the reason, no file.
   const std::string odd = test::scratchPath("cli", "odd.tif").string();
+  // The extent and the CRS are command-line values: named by their options, exit 2.
   const auto bad = run("dem --extent 0 0 15 20 --crs EPSG:27700 -o " + odd);
-  EXPECT_EQ(bad.exitCode, 1);
-  EXPECT_NE(bad.err.find("odd.tif: the extent (0, 0) to (15, 20) must hold a whole, positive "
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--extent: the extent (0, 0) to (15, 20) must hold a whole, positive "
                          "number of 10-unit cells"),
             std::string::npos)
       << bad.err;
   EXPECT_FALSE(std::filesystem::exists(odd));
   const auto crs = run("dem --extent 0 0 20 20 --crs EPSG:999999 -o " + odd);
-  EXPECT_EQ(crs.exitCode, 1);
-  EXPECT_NE(crs.err.find("unknown CRS"), std::string::npos) << crs.err;
+  EXPECT_EQ(crs.exitCode, 2);
+  EXPECT_NE(crs.err.find("--crs: unknown CRS"), std::string::npos) << crs.err;
+  // Latitudes past the pole in degrees.
+  const auto pole = run("dem --extent 0 0 100 100 --crs EPSG:4326 -o " + odd);
+  EXPECT_EQ(pole.exitCode, 2);
+  EXPECT_NE(pole.err.find("--extent: the extent (0, 0) to (100, 100) lies beyond the degrees of "
+                          "\"EPSG:4326\""),
+            std::string::npos)
+      << pole.err;
+  EXPECT_FALSE(std::filesystem::exists(odd));
   const std::string png = test::scratchPath("cli", "dem.png").string();
   const auto named = run("dem --extent 0 0 20 20 --crs EPSG:27700 -o " + png);
   EXPECT_EQ(named.exitCode, 1);

@@ -486,15 +486,22 @@ int dem(const DemOptions& o) {
       throw CommandLineError(
           "--relief", "",
           "heights from --base to --base + --relief must fit in Float32 (|h| ≤ 3.4e38)");
-  writeSyntheticDem(o.output, {.min = {o.extent[0], o.extent[1]},
-                               .max = {o.extent[2], o.extent[3]},
-                               .crs = o.crs,
-                               .cell = o.cell,
-                               .base = o.base,
-                               .relief = o.relief,
-                               .wavelength = o.wavelength,
-                               .octaves = o.octaves,
-                               .seed = o.seed});
+  try {
+    writeSyntheticDem(o.output, {.min = {o.extent[0], o.extent[1]},
+                                 .max = {o.extent[2], o.extent[3]},
+                                 .crs = o.crs,
+                                 .cell = o.cell,
+                                 .base = o.base,
+                                 .relief = o.relief,
+                                 .wavelength = o.wavelength,
+                                 .octaves = o.octaves,
+                                 .seed = o.seed});
+  } catch (const Error& e) {
+    // The CRS and the extent are command-line values: named by their options, exit 2.
+    if (e.place() == "crs") throw CommandLineError("--crs", "", e.reason());
+    if (e.place() == "extent") throw CommandLineError("--extent", "", e.reason());
+    throw;
+  }
   const RasterInfo r = describeRaster(o.output);
   std::printf("wrote %s (%dx%d Float32, %s, heights %.2f to %.2f)\n", o.output.c_str(), r.width,
               r.height, r.crs.authority.empty() ? r.crs.name.c_str() : r.crs.authority.c_str(),

@@ -72,6 +72,10 @@ void writeAovs(const std::filesystem::path& given, const std::vector<Aov>& aovs,
   for (std::filesystem::path p = dir; !p.empty() && !std::filesystem::exists(p, ec);
        p = p.parent_path())
     top = p;
+  if (std::filesystem::is_symlink(dir, ec) && !std::filesystem::exists(dir, ec))
+    throw Error(dir.string(), "",
+                "cannot create AOV directory: it is a symbolic link to " +
+                    std::filesystem::read_symlink(dir, ec).string() + ", which does not exist");
   std::filesystem::create_directories(dir, ec);
   if (ec) throw Error(dir.string(), "", "cannot create AOV directory: " + ec.message());
   nlohmann::json index;

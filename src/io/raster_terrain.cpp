@@ -339,7 +339,7 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   const glm::dvec2 whole = glm::round(size);
   if (!(size.x >= 1.0 && size.y >= 1.0) ||
       glm::any(glm::greaterThan(glm::abs(size - whole), glm::dvec2(1e-6))))
-    throw Error(name, "",
+    throw Error(name, "extent",
                 "the extent (" + number(o.min.x) + ", " + number(o.min.y) + ") to (" +
                     number(o.max.x) + ", " + number(o.max.y) +
                     ") must hold a whole, positive number of " + number(o.cell) +
@@ -347,7 +347,14 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   if (whole.x * whole.y > 1e8) throw Error(name, "", "more than 10⁸ cells: choose larger cells");
   OGRSpatialReference crs;
   if (crs.SetFromUserInput(o.crs.c_str()) != OGRERR_NONE)
-    throw Error(name, "", "unknown CRS " + quote(o.crs) + gdal::QuietErrors::lastMessage());
+    throw Error(name, "crs", "unknown CRS " + quote(o.crs) + gdal::QuietErrors::lastMessage());
+  // Degrees of a geographic CRS: west and east as longitudes, south and north as latitudes.
+  if (crs.IsGeographic() &&
+      !(o.min.y >= -90.0 && o.max.y <= 90.0 && o.min.x >= -360.0 && o.max.x <= 360.0))
+    throw Error(name, "extent",
+                "the extent (" + number(o.min.x) + ", " + number(o.min.y) + ") to (" +
+                    number(o.max.x) + ", " + number(o.max.y) + ") lies beyond the degrees of " +
+                    quote(o.crs) + " (latitudes in [-90, 90], longitudes in [-360, 360])");
   const int width = int(whole.x), height = int(whole.y);
   std::vector<float> samples(std::size_t(width) * std::size_t(height));
   for (int r = 0; r < height; ++r)
