@@ -72,7 +72,10 @@ struct GisImportOptions {
 };
 // Import options for a layer in the scene's frame: reprojected to its CRS, offset removed.
 inline GisImportOptions gisImportOptions(const GeoFrame& geo) {
-  return {.targetCrs = geo.crs, .offset = geo.offset};
+  GisImportOptions options;
+  options.targetCrs = geo.crs;
+  options.offset = geo.offset;
+  return options;
 }
 
 struct GisImportReport {
