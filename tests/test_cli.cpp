@@ -841,25 +841,21 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   EXPECT_GE(j["raster"]["min"].get<double>(), 40.0);
   // Bad input: one line naming the place and the reason, no file.
   const std::string odd = test::scratchPath("cli", "odd.tif").string();
-  // The extent and the CRS are command-line values: named by their options, exit 2.
-  const auto bad = run("dem --extent 0 0 15 20 --crs EPSG:27700 -o " + odd);
-  EXPECT_EQ(bad.exitCode, 2);
-  EXPECT_NE(bad.err.find("--extent: the extent (0, 0) to (15, 20) must hold a whole, positive "
-                         "number of 10-unit cells"),
-            std::string::npos)
-      << bad.err;
-  EXPECT_FALSE(std::filesystem::exists(odd));
-  const auto crs = run("dem --extent 0 0 20 20 --crs EPSG:999999 -o " + odd);
-  EXPECT_EQ(crs.exitCode, 2);
-  EXPECT_NE(crs.err.find("--crs: unknown CRS"), std::string::npos) << crs.err;
-  // Latitudes past the pole in degrees.
-  const auto pole = run("dem --extent 0 0 100 100 --crs EPSG:4326 -o " + odd);
-  EXPECT_EQ(pole.exitCode, 2);
-  EXPECT_NE(pole.err.find("--extent: the extent (0, 0) to (100, 100) lies beyond the degrees of "
-                          "\"EPSG:4326\""),
-            std::string::npos)
-      << pole.err;
-  EXPECT_FALSE(std::filesystem::exists(odd));
+  // The extent and the CRS are command-line values: named by their options, exit 2; latitudes
+  // past the pole in degrees too.
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--extent 0 0 15 20 --crs EPSG:27700",
+            "--extent: the extent (0, 0) to (15, 20) must hold a whole, positive number of "
+            "10-unit cells"},
+           {"--extent 0 0 20 20 --crs EPSG:999999", "--crs: unknown CRS"},
+           {"--extent 0 0 100 100 --crs EPSG:4326",
+            "--extent: the extent (0, 0) to (100, 100) lies beyond the degrees of "
+            "\"EPSG:4326\""}}) {
+    const auto r = run("dem " + arguments + " -o " + odd);
+    EXPECT_EQ(r.exitCode, 2) << arguments;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(odd)) << arguments;
+  }
   const std::string png = test::scratchPath("cli", "dem.png").string();
   const auto named = run("dem --extent 0 0 20 20 --crs EPSG:27700 -o " + png);
   EXPECT_EQ(named.exitCode, 1);
