@@ -856,6 +856,11 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
     EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(odd)) << arguments;
   }
+  // GDAL's reason names the file given, not the temporary one written first.
+  const auto proc = run("dem --extent 0 0 20 20 --crs EPSG:27700 -o /proc/cutaway-dem.tif");
+  EXPECT_EQ(proc.exitCode, 1);
+  EXPECT_NE(proc.err.find("/proc/cutaway-dem.tif: cannot create"), std::string::npos) << proc.err;
+  EXPECT_EQ(proc.err.find(".tmp-"), std::string::npos) << proc.err;
   const std::string png = test::scratchPath("cli", "dem.png").string();
   const auto named = run("dem --extent 0 0 20 20 --crs EPSG:27700 -o " + png);
   EXPECT_EQ(named.exitCode, 1);

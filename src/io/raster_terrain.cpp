@@ -364,23 +364,31 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
   if (!driver) throw Error(name, "", "GDAL has no GeoTIFF driver");
   replaceFileAtomically(file, [&](const std::filesystem::path& temporary) {
+    // GDAL's reason names the temporary file: the user gave `name`.
+    const auto failed = [&](const std::string& what) {
+      std::string reason = what + gdal::QuietErrors::lastMessage();
+      const std::string temporaryName = temporary.string();
+      for (std::size_t at = 0; (at = reason.find(temporaryName, at)) != std::string::npos;
+           at += name.size())
+        reason.replace(at, temporaryName.size(), name);
+      return Error(name, "", reason);
+    };
     CPLStringList creation;
     creation.SetNameValue("COMPRESS", "DEFLATE");
     creation.SetNameValue("PREDICTOR", "3");  // floating-point differencing: smooth heights
     creation.SetNameValue("ZLEVEL", "9");
     GDALDatasetUniquePtr dataset(
         driver->Create(temporary.c_str(), width, height, 1, GDT_Float32, creation.List()));
-    if (!dataset) throw Error(name, "", "cannot create" + gdal::QuietErrors::lastMessage());
+    if (!dataset) throw failed("cannot create");
     double gt[6] = {o.min.x, o.cell, 0.0, o.max.y, 0.0, -o.cell};
     if (dataset->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, samples.data(), width,
                                             height, GDT_Float32, 0, 0, nullptr) != CE_None ||
         dataset->SetGeoTransform(gt) != CE_None || dataset->SetSpatialRef(&crs) != CE_None)
-      throw Error(name, "", "cannot write" + gdal::QuietErrors::lastMessage());
+      throw failed("cannot write");
     // Closing writes the compressed strips; a failure there shows only as GDAL's last error.
     CPLErrorReset();
     dataset.reset();
-    if (CPLGetLastErrorType() >= CE_Failure)
-      throw Error(name, "", "cannot write" + gdal::QuietErrors::lastMessage());
+    if (CPLGetLastErrorType() >= CE_Failure) throw failed("cannot write");
   });
 }
 
