@@ -968,7 +968,7 @@ TEST(Cli, RenderOfTheBenchmarkCity) {
     }
   EXPECT_GT(ground, image.width * image.height / 4);
   const Result none = run("render -o " + scratch("none.png").string());
-  EXPECT_EQ(none.exitCode, 1);
+  EXPECT_EQ(none.exitCode, 2);  // a command line without a scene
   EXPECT_EQ(none.err, "cutaway: error: render: give a scene file or --city SCALE\n");
 }
 
