@@ -56,8 +56,8 @@ AnchorCone anchorCone(const glm::vec3& ndc, float theta, const AdaptiveCutawayOp
     const float len = glm::length(d);
     if (len > 1e-9f) floor = d / len;
     // Eq. 6.2 asks for a wall no shallower than the floor down the screen; in perspective, eq.
-    // 5.7's slope for φ is the floor's only on the view axis (off it, 9 % shallower at a 45°
-    // field of view: the wall dug a notch into the floor in front of a seed). The floor plane
+    // 5.7's slope for φ is the floor's only on the view axis (off it, 2 % shallower at the
+    // fan room's desk leg, whose wall dug a notch into the floor). The floor plane
     // through the seed has an NDC depth affine in NDC x, y (z = −(L₀ + x·Lx + y·Ly)/Q, from the
     // inverse projection): its own slope along n̂_proj bounds m_F, with the margin's ratio
     // tan φ / tan(φ − margin). (Orthographic slopes are exact.)
