@@ -91,7 +91,9 @@ struct SyntheticDemOptions {
 };
 double syntheticDemHeight(const SyntheticDemOptions& options, double easting, double northing);
 // Writes it as a Float32 GeoTIFF (DEFLATE, floating-point predictor) with its CRS and
-// geotransform, one sample per cell centre; atomically (a failure leaves no file).
+// geotransform, one sample per cell centre; atomically (a failure leaves no file). An unknown
+// CRS is an Error at place "crs"; an extent of no whole number of cells, or past ±90° of
+// latitude in a geographic CRS, at place "extent".
 void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOptions& options);
 
 }  // namespace cutaway
