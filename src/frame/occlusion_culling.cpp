@@ -30,6 +30,7 @@ OcclusionCulling::OcclusionCulling(FrameSetup& setup, bool layers) : setup_(setu
   markProgram_ =
       setup_.bindings.build({.stages = {{GL_COMPUTE_SHADER, "frame/visible_objects.comp"}},
                              .defines = sampleDefines(setup_.scene.samples)});
+  glGetProgramiv(markProgram_.id(), GL_COMPUTE_WORK_GROUP_SIZE, markGroup_.data());
   noAttributes_ = gl::VertexArray::create();
   const std::size_t objects = std::max<std::size_t>(setup_.scene.objects.size(), 1);
   visible_ = gl::Buffer::create(GLsizeiptr(objects * sizeof(GLuint)), nullptr, 0);
@@ -153,10 +154,8 @@ void OcclusionCulling::addPass(Frame& frame, const std::string& name, Target obj
              glProgramUniform1i(program, 0, setup_.scene.samples);
              glBindBufferBase(GL_SHADER_STORAGE_BUFFER,
                               setup_.bindings.storageBlock("VISIBLE_OBJECTS"), visible_.id());
-             GLint group[3];
-             glGetProgramiv(program, GL_COMPUTE_WORK_GROUP_SIZE, group);
-             glDispatchCompute(GLuint((pass.width + group[0] - 1) / group[0]),
-                               GLuint((pass.height + group[1] - 1) / group[1]), 1);
+             glDispatchCompute(GLuint((pass.width + markGroup_[0] - 1) / markGroup_[0]),
+                               GLuint((pass.height + markGroup_[1] - 1) / markGroup_[1]), 1);
              marked_ = true;
            },
        .compute = true});

@@ -23,6 +23,7 @@
 // (mayReachBehind).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -69,6 +70,7 @@ class OcclusionCulling {
   FrameSetup& setup_;
   bool enabled_ = true;
   gl::Program boxProgram_, markProgram_;
+  std::array<GLint, 3> markGroup_{};  // the marking program's work group size
   gl::Program surfaceBoxProgram_;  // occlusion_box.frag with SURFACES_ONLY, for mayReachBehind
   gl::VertexArray noAttributes_;
   gl::Buffer visible_;         // one uint per object, set by the marking pass
