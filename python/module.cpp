@@ -164,18 +164,19 @@ class PyRenderer {
   bool rendered_ = false;
 };
 
-// `h` as a C-contiguous NumPy array of T's dtype (void: its own), or none where NumPy cannot
-// make one (a TypeError or ValueError: the caller names the argument). Any other error (a
-// MemoryError, a KeyboardInterrupt) is raised as it is: py::array::ensure() cleared them all,
-// and a copy too large for memory was reported as a shape.
+// `h` as a NumPy array: of T's dtype and C-contiguous (a copy where it must be), or for void
+// as it is (its own dtype and layout, no copy of an array); none where NumPy cannot make one
+// (a TypeError or ValueError: the caller names the argument). Any other error (a MemoryError,
+// a KeyboardInterrupt) is raised as it is: py::array::ensure() cleared them all, and a copy
+// too large for memory was reported as a shape.
 template <class T = void>
-std::optional<py::array> contiguous(const py::handle& h) {
-  const py::object convert = py::module_::import("numpy").attr("ascontiguousarray");
+std::optional<py::array> asArray(const py::handle& h) {
+  const py::module_ numpy = py::module_::import("numpy");
   try {
     if constexpr (std::is_void_v<T>)
-      return py::array(convert(h));
+      return py::array(numpy.attr("asarray")(h));
     else
-      return py::array(convert(h, py::dtype::of<T>()));
+      return py::array(numpy.attr("ascontiguousarray")(h, py::dtype::of<T>()));
   } catch (py::error_already_set& e) {
     if (!e.matches(PyExc_TypeError) && !e.matches(PyExc_ValueError)) throw;
     return std::nullopt;
@@ -200,13 +201,13 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
   // The kinds first: the conversion would take 0.5 as index 0, a complex number as its real part
   // and 2⁶³ as −2⁶³.
   const auto kind = [](const py::handle& h) {
-    const std::optional<py::array> a = contiguous(h);
+    const std::optional<py::array> a = asArray(h);
     return a ? a->dtype().kind() : '?';
   };
   const char vertexKind = kind(vertexArray), faceKind = kind(faceArray);
   if (std::string_view("iuf").find(vertexKind) == std::string_view::npos)
     fail("vertices must be real numbers of shape (N, 3)");
-  const std::optional<py::array> vertices = contiguous<double>(vertexArray);
+  const std::optional<py::array> vertices = asArray<double>(vertexArray);
   if (!vertices || vertices->ndim() != 2 || vertices->shape(1) != 3)
     fail("vertices must be real numbers of shape (N, 3)");
   if (faceKind != 'i' && faceKind != 'u') fail("faces must be integers of shape (M, 3)");
@@ -227,7 +228,7 @@ std::shared_ptr<const Mesh> meshFromArrays(const std::string& source, const std:
       else
         return v >= count;
     };
-    const std::optional<py::array> faces = contiguous<Index>(faceArray);
+    const std::optional<py::array> faces = asArray<Index>(faceArray);
     if (!faces || faces->ndim() != 2 || faces->shape(1) != 3)
       fail("faces must be integers of shape (M, 3)");
     const auto* f = static_cast<const Index*>(faces->data());
