@@ -26,6 +26,7 @@ TEST(Shader, IncludesResolveRelativelyAndThroughAliases) {
                                           "styles/shadows/shadow_lookup.glsl",
                                           "styles/emphasis/emphasis.glsl",
                                           "frame/gbuffer.glsl",
+                                          "frame/normal_weight.glsl",
                                           "frame/gbuffer_channels.glsl",
                                           "cutters/composition.glsl",
                                           "cutters/fate.glsl",

@@ -4,7 +4,8 @@
 // the scene); the techniques' channels are copied by channels.frag.
 #include "frame/frame_uniforms.glsl"
 #include "frame/samples.glsl"
-layout(binding = 0) uniform SAMPLER_MS uNormal;
+#include "frame/normal_weight.glsl"
+layout(binding = 0) uniform USAMPLER_MS uNormal;
 layout(binding = 1) uniform ISAMPLER_MS uObjectId;
 layout(binding = 2) uniform SAMPLER_MS uDepth;
 layout(binding = 3) uniform SAMPLER_MS uCutMask;
@@ -29,7 +30,7 @@ void main() {
   ivec2 id = texelFetch(uObjectId, p, 0).rg;
   bool background = id.x < 0;
   float viewDepth = intBitsToFloat(id.y);
-  outNormal = background ? vec4(0.0) : vec4(texelFetch(uNormal, p, 0).xyz, 0.0);
+  outNormal = background ? vec4(0.0) : vec4(unpackNormal(texelFetch(uNormal, p, 0).r), 0.0);
   outPosition = background ? vec4(0.0) : vec4(shadedPoint(viewDepth), 0.0);
   outViewDepth = background ? 0.0 : viewDepth;
   outObjectId = float(id.x);

@@ -35,7 +35,8 @@ int GBuffer::addChannel(Channel channel) {
 void GBuffer::declare(Frame& f, int samples, bool stencil) {
   samples_ = samples;
   color_ = f.declare("sceneColor", {.format = GL_RGBA8, .samples = samples});
-  normal_ = f.declare("sceneNormal", {.format = GL_RGBA16F, .samples = samples});
+  // The normal and the line weight packed in one word (frame/normal_weight.glsl).
+  normal_ = f.declare("sceneNormal", {.format = GL_R32UI, .samples = samples});
   objectId_ = f.declare("sceneObjectId", {.format = GL_RG32I, .samples = samples});
   cutMask_ = f.declare("sceneCutMask", {.format = GL_R8, .samples = samples});
   for (const Channel& c : channels_) {
@@ -64,9 +65,10 @@ std::vector<Target> GBuffer::targets() const {
 
 void GBuffer::clearWithBackground(GLuint framebuffer) const {
   const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+  const GLuint noWeight[4] = {0, 0, 0, 0};
   const GLint noObject[4] = {-1, 0, 0, 0};
   const float nan[4] = {std::nanf(""), 0, 0, 0};  // a channel's "no value here"
-  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 1, zero);
+  glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, noWeight);
   glClearNamedFramebufferiv(framebuffer, GL_COLOR, 2, noObject);
   glClearNamedFramebufferfv(framebuffer, GL_COLOR, 3, zero);
   const GLuint attachments = GLuint(colorAttachmentCount());

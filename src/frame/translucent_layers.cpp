@@ -24,8 +24,7 @@ TranslucentLayers::TranslucentLayers(Frame& frame, Bindings& bindings, const GBu
   accumulation_ =
       frame.declare("translucentAccumulation", {.format = GL_RGBA16F, .samples = samples});
   layer_.color = frame.declare("translucentLayer", {.format = GL_RGBA16F, .samples = samples});
-  layer_.normal =
-      frame.declare("translucentLayerNormal", {.format = GL_RGBA16F, .samples = samples});
+  layer_.normal = frame.declare("translucentLayerNormal", {.format = GL_R32UI, .samples = samples});
   layer_.objectId =
       frame.declare("translucentLayerObjectId", {.format = GL_RG32I, .samples = samples});
   lineCoverage_ = frame.declare("translucentLayerLines", {.format = GL_R16F});
@@ -75,6 +74,7 @@ void TranslucentLayers::peel(const LayerDraw& drawLayer, const Lines& lines) {
     glCopyImageSubData(id(from), target, 0, 0, 0, 0, id(to), target, 0, 0, 0, 0, w, h, 1);
   };
   const float zero[4] = {0, 0, 0, 0};
+  const GLuint noWeight[4] = {0, 0, 0, 0};
   const GLint noObject[4] = {-1, 0, 0, 0};
   glClearNamedFramebufferfv(accumulationFramebuffer_.id(), GL_COLOR, 0, zero);
   glClearNamedFramebufferfv(linesFramebuffer_.id(), GL_COLOR, 0, zero);
@@ -92,7 +92,8 @@ void TranslucentLayers::peel(const LayerDraw& drawLayer, const Lines& lines) {
       drawLayer.skipPeeled(layer_.objectId);
     }
     copyDepth(gbuffer_.depth(), layerDepth_);
-    for (GLint i : {0, 1}) glClearNamedFramebufferfv(layer, GL_COLOR, i, zero);
+    glClearNamedFramebufferfv(layer, GL_COLOR, 0, zero);
+    glClearNamedFramebufferuiv(layer, GL_COLOR, 1, noWeight);
     glClearNamedFramebufferiv(layer, GL_COLOR, 2, noObject);
     glBindFramebuffer(GL_FRAMEBUFFER, layer);
     glEnable(GL_DEPTH_TEST);

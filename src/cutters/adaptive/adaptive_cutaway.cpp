@@ -65,7 +65,7 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
       frame.declare("seedDepthTest", {.format = GL_DEPTH_COMPONENT32F, .width = n, .height = n});
   if (options().ghostLines) {
     const int samples = setup.scene.samples;
-    ghostNormal_ = frame.declare("ghostNormal", {.format = GL_RGBA16F, .samples = samples});
+    ghostNormal_ = frame.declare("ghostNormal", {.format = GL_R32UI, .samples = samples});
     ghostObjectId_ = frame.declare("ghostObjectId", {.format = GL_RG32I, .samples = samples});
     ghostDepth_ = frame.declare("ghostDepth", {.format = GL_DEPTH_COMPONENT32F, .samples = samples});
     ghostCulling_ = std::make_unique<OcclusionCulling>(setup);
@@ -291,9 +291,10 @@ void AdaptiveCutaway::addPassesAfterGeometry(Frame& frame) {
 }
 
 void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
-  const float zero[4] = {0, 0, 0, 0}, one = 1.0f;
+  const float one = 1.0f;
+  const GLuint noWeight[4] = {0, 0, 0, 0};
   const GLint noObject[4] = {-1, 0, 0, 0};
-  glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, zero);
+  glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 0, noWeight);
   glClearNamedFramebufferiv(framebuffer, GL_COLOR, 1, noObject);
   glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &one);
   glEnable(GL_DEPTH_TEST);

@@ -5,11 +5,12 @@
 // ends at the cut, so that boundary (already drawn as the cut outline) is no silhouette.
 #include "frame/frame_uniforms.glsl"
 #include "clip.glsl"
+#include "frame/normal_weight.glsl"
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 layout(location = 11) uniform int uObjectId;
 layout(location = 17) uniform float uGhostDistance;
-layout(location = 0) out vec4 outNormal;     // w: fade
+layout(location = 0) out uint outNormal;     // the normal and, as the line weight, the fade
 layout(location = 1) out ivec2 outObjectId;  // the object id, the linear view depth's bits
 void main() {
   if (!gl_FrontFacing) discard;
@@ -18,6 +19,6 @@ void main() {
   if (removed && fade <= 0.0) discard;  // beyond the ghost distance
   vec3 n = vWorldNormal;
   if (dot(n, n) < 1e-12) n = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
-  outNormal = vec4(normalize(n), fade);
+  outNormal = packNormalWeight(normalize(n), fade);
   outObjectId = ivec2(uObjectId, floatBitsToInt(-(uView * vec4(vWorldPosition, 1.0)).z));
 }

@@ -7,10 +7,12 @@
 // - creases: normals of one object meeting at more than the crease angle;
 // - with CUT_OUTLINES, the outline of the cut surfaces (Burns08 §4.2): cut-mask pixels next
 //   to a pixel outside the mask.
-// A line's weight is the normal's w: 0 for objects without lines, a fade for ghost lines.
+// A line's weight is stored with the normal: 0 for objects without lines, a fade for ghost
+// lines.
 #include "frame/samples.glsl"
 #include "frame/frame_uniforms.glsl"
-layout(binding = 0) uniform SAMPLER_MS uNormal;     // world normal, w: lines flag
+#include "frame/normal_weight.glsl"
+layout(binding = 0) uniform USAMPLER_MS uNormal;    // world normal and line weight
 layout(binding = 1) uniform ISAMPLER_MS uObjectId;  // the id (-1: background), view depth bits
 layout(location = 0) uniform int uSamples;
 layout(location = 1) uniform int uRadius;            // line width in pixels
@@ -46,8 +48,10 @@ float edge(ivec2 p, int s) {
   int id;
   float d = viewDepth(p, s, id);
   if (id < 0) return 0.0;
-  vec4 n = texelFetch(uNormal, p, s);
-  if (n.w <= 0.0) return 0.0;
+  uint word = texelFetch(uNormal, p, s).r;
+  float weight = unpackWeight(word);
+  if (weight <= 0.0) return 0.0;
+  vec3 n = unpackNormal(word);
   ivec2 last = sizeMS(uObjectId) - 1;
   const ivec2 offsets[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
   for (int r = 1; r <= uRadius; ++r) {
@@ -58,19 +62,22 @@ float edge(ivec2 p, int s) {
       if (uSilhouettes != 0 && dq > d) {
         // A different object only counts if it is really behind: coplanar objects (a door in
         // its wall) z-fight, and their ids alternate pixel by pixel.
-        if (idq != id && dq > d * (1.0 + 1e-4)) return n.w;
+        if (idq != id && dq > d * (1.0 + 1e-4)) return weight;
         int idOpposite;
         float dOpposite = viewDepth(clamp(p - r * offsets[k], ivec2(0), last), s, idOpposite);
         // On a plane, inverse depth (perspective) or depth (orthographic) is affine in screen
         // space, so its second difference is zero however grazing the plane, and large across
         // a depth discontinuity.
         float jump = uCounts.y == 1 ? (dq + dOpposite) / d - 2.0 : d / dq + d / dOpposite - 2.0;
-        if (idOpposite == id && abs(jump) > uDepthThreshold) return n.w;
+        if (idOpposite == id && abs(jump) > uDepthThreshold) return weight;
       }
       // Creases: compare with the +x and +y neighbours only, so a crease is one line thick.
-      if (uCreases != 0 && k < 2 && idq == id &&
-          dot(n.xyz, texelFetch(uNormal, q, s).xyz) < uCreaseCos)
-        return n.w;
+      // Equal normals meet at 0°, which no crease angle is less than: not decoded.
+      if (uCreases != 0 && k < 2 && idq == id) {
+        uint wordQ = texelFetch(uNormal, q, s).r;
+        if (((wordQ ^ word) & 0xffffffu) != 0u && dot(n, unpackNormal(wordQ)) < uCreaseCos)
+          return weight;
+      }
     }
   }
   return 0.0;
