@@ -654,3 +654,78 @@ TEST(Frame, AMeshWithCoarserVersionsIsDrawnAsTheCoarsestWithinThePixelError) {
   mesh.selectDetail(view);
   EXPECT_EQ(mesh.triangles(), 8u) << "turned away";
 }
+
+// The line passes' normal targets (frame/normal_weight.glsl): a unit normal and a line weight in
+// one word, through the shader's own pack and unpack. Normals on the axes come back exact, every
+// other (a Fibonacci sphere, the octahedron's seams, near-axis tilts) within 0.06°; weights k/255
+// exactly, others clamped to [0, 1]; a cleared word (0) is weight 0.
+TEST(GBuffer, PackedNormalsAndLineWeightsRoundTrip) {
+  test::glContext();
+  std::vector<glm::vec4> in;  // xyz: the normal, w: the weight
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float sign : {1.0f, -1.0f}) {
+      glm::vec4 v(0.0f);
+      v[axis] = sign;
+      in.push_back(v);
+    }
+  const int sphere = 20000;
+  for (int i = 0; i < sphere; ++i) {  // spherical Fibonacci points
+    const float z = 1.0f - 2.0f * (float(i) + 0.5f) / float(sphere);
+    const float phi = float(i) * glm::pi<float>() * (3.0f - std::sqrt(5.0f));
+    const float r = std::sqrt(1.0f - z * z);
+    in.emplace_back(r * std::cos(phi), r * std::sin(phi), z, 0.0f);
+  }
+  for (const float t : {1e-4f, 1e-3f, 0.3f, 0.5f, 0.7f, 0.999f})  // seams and near the axes
+    for (const float sx : {1.0f, -1.0f})
+      for (const float sz : {1.0f, -1.0f}) {
+        in.emplace_back(glm::normalize(glm::vec3(sx * t, 1.0f - t, sz * 1e-3f)), 0.0f);
+        in.emplace_back(glm::normalize(glm::vec3(sx * t, 1e-5f, sz)), 0.0f);
+      }
+  for (std::size_t i = 0; i < in.size(); ++i)
+    in[i].w = i < 256 ? float(i) / 255.0f : i % 3 == 0 ? -0.5f : i % 3 == 1 ? 7.0f : 0.31f;
+  const GLsizeiptr bytes = GLsizeiptr(in.size() * sizeof(glm::vec4));
+  const gl::Buffer input = gl::Buffer::create(bytes, in.data());
+  const gl::Buffer output = gl::Buffer::create(bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const gl::Buffer words =
+      gl::Buffer::create(GLsizeiptr(in.size() * sizeof(GLuint)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const gl::Program roundTrip =
+      gl::buildProgram({.stages = {{GL_COMPUTE_SHADER, "round_trip.comp"}},
+                        .sources = {{"round_trip.comp", R"(#version 450 core
+#include "frame/normal_weight.glsl"
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer In { vec4 uIn[]; };
+layout(std430, binding = 1) writeonly buffer Out { vec4 uOut[]; };
+layout(std430, binding = 2) writeonly buffer Words { uint uWords[]; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uint(uIn.length())) return;
+  uint word = packNormalWeight(uIn[i].xyz, uIn[i].w);
+  uWords[i] = word;
+  uOut[i] = vec4(unpackNormal(word), unpackWeight(word));
+})"}}});
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, input.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, output.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, words.id());
+  glUseProgram(roundTrip.id());
+  glDispatchCompute(GLuint((in.size() + 63) / 64), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<glm::vec4> out(in.size());
+  glGetNamedBufferSubData(output.id(), 0, bytes, out.data());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    SCOPED_TRACE(i);
+    const glm::dvec3 a = glm::dvec3(in[i]), b = glm::dvec3(out[i]);
+    if (i < 6) EXPECT_EQ(glm::vec3(out[i]), glm::vec3(in[i]));  // the axes
+    const double degrees = glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+    worst = std::max(worst, degrees);
+    EXPECT_NEAR(glm::length(b), 1.0, 1e-6);
+    EXPECT_EQ(out[i].w, std::clamp(std::round(in[i].w * 255.0f), 0.0f, 255.0f) / 255.0f);
+  }
+  EXPECT_LE(worst, 0.06) << "degrees";
+  EXPECT_GT(worst, 0.001) << "degrees: the 12-bit grid shows";  // the test sees the rounding
+  // A cleared target (word 0) holds no line.
+  std::vector<GLuint> packed(in.size());
+  glGetNamedBufferSubData(words.id(), 0, GLsizeiptr(packed.size() * sizeof(GLuint)), packed.data());
+  for (std::size_t i = 0; i < in.size(); ++i)
+    if (out[i].w == 0.0f) EXPECT_EQ(packed[i] >> 24, 0u) << i;
+}

@@ -121,8 +121,8 @@ void GBuffer::addCompositePass(Frame& f, std::vector<Overlay> overlays, GLuint f
   const Target normal = f.declare(
       "normal", {.format = GL_RGBA16F,
                  .meaning = "world-space unit normal of the visible surface, turned towards "
-                            "the viewer (the cutaway surface's on cut surfaces); (0,0,0) on "
-                            "background; sample 0",
+                            "the viewer (the cutaway surface's on cut surfaces), to within "
+                            "0.06°; (0,0,0) on background; sample 0",
                  .aovChannels = 3});
   const Target position =
       f.declare("position", {.format = GL_RGBA32F,
