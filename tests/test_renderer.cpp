@@ -659,7 +659,7 @@ TEST(Frame, AMeshWithCoarserVersionsIsDrawnAsTheCoarsestWithinThePixelError) {
 // one word, through the shader's own pack and unpack. Normals on the axes come back exact, every
 // other (a Fibonacci sphere, the octahedron's seams, near-axis tilts) within 0.06°; weights k/255
 // exactly, others clamped to [0, 1]; a cleared word (0) is weight 0.
-TEST(GBuffer, PackedNormalsAndLineWeightsRoundTrip) {
+TEST(Frame, PackedNormalsAndLineWeightsRoundTrip) {
   test::glContext();
   std::vector<glm::vec4> in;  // xyz: the normal, w: the weight
   for (int axis = 0; axis < 3; ++axis)
