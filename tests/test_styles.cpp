@@ -596,12 +596,34 @@ glm::vec2 projectToPixel(const Scene& scene, const glm::vec3& p) {
                    (1.0f - c.y / c.w) * 0.5f * float(scene.height));
 }
 
-// The lines AOV against the lines expected: every line pixel within 1.5 px of one (each
-// other is reported), and the points every half pixel along them, `inset` px in from their
-// ends, within a pixel of a line pixel. Returns the line pixels, the points and those drawn.
 struct LinesFound {
   int linePixels = 0, points = 0, drawn = 0;
 };
+
+// The points every half pixel along `expected`, `inset` px in from their ends, and those
+// within a pixel of a line pixel.
+LinesFound pointsDrawn(const FloatImage& lines, const std::vector<Segment>& expected, float inset) {
+  LinesFound found;
+  for (const Segment& e : expected) {
+    const float length = glm::length(e.second - e.first);
+    for (float s = inset; s <= length - inset; s += 0.5f) {
+      const glm::vec2 p = e.first + (s / length) * (e.second - e.first);
+      bool near = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = int(p.x) + dx, y = int(p.y) + dy;
+          near = near || (x >= 0 && y >= 0 && x < lines.width && y < lines.height &&
+                          lines.at(x, y)[0] >= 0.5f);
+        }
+      ++found.points, found.drawn += near;
+    }
+  }
+  return found;
+}
+
+// The lines AOV against the lines expected: every line pixel within 1.5 px of one (each
+// other is reported), and the points every half pixel along them, `inset` px in from their
+// ends, within a pixel of a line pixel. Returns the line pixels, the points and those drawn.
 LinesFound expectLinesAlong(const FloatImage& lines, const std::vector<Segment>& expected,
                             float inset) {
   const auto distance = [](glm::vec2 p, const Segment& e) {
@@ -621,20 +643,8 @@ LinesFound expectLinesAlong(const FloatImage& lines, const std::vector<Segment>&
         ADD_FAILURE() << "line pixel " << x << "," << y << " is " << nearest
                       << " px from the nearest expected line";
     }
-  for (const Segment& e : expected) {
-    const float length = glm::length(e.second - e.first);
-    for (float s = inset; s <= length - inset; s += 0.5f) {
-      const glm::vec2 p = e.first + (s / length) * (e.second - e.first);
-      bool near = false;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int x = int(p.x) + dx, y = int(p.y) + dy;
-          near = near || (x >= 0 && y >= 0 && x < lines.width && y < lines.height &&
-                          lines.at(x, y)[0] >= 0.5f);
-        }
-      ++found.points, found.drawn += near;
-    }
-  }
+  const LinesFound along = pointsDrawn(lines, expected, inset);
+  found.points = along.points, found.drawn = along.drawn;
   return found;
 }
 
@@ -681,6 +691,77 @@ TEST(LineRender, ACubesLinesAreItsVisibleEdges) {
   EXPECT_GT(found.linePixels, 300);
   EXPECT_GE(found.drawn, found.points * 98 / 100)
       << found.drawn << " of " << found.points << " edge points drawn";
+}
+
+// A cube standing on the ground, seen from 170 units away: at the cube's base the ground and
+// its walls lie within a hundredth of a unit of each other, less than a depth margin would be,
+// but they meet at 90°, so the base is drawn as the cube's other edges are, along its length.
+// Its lines against the CPU's visible edges, as ACubesLinesAreItsVisibleEdges.
+TEST(LineRender, AnObjectStandingOnAnotherMeetsItInAContinuousLine) {
+  const Scene scene = parseScene(
+      R"({"resolution": [128, 128], "samples": 1, "background": [1, 1, 1],
+      "style": {"name": "gooch", "lines": {"silhouettes": true, "creases": true,
+                                           "creaseAngle": 45, "width": 1}},
+      "camera": {"eye": [112, 75, 105], "target": [0, 0, 0.4], "up": [0, 0, 1], "fov": 1},
+      "objects": [{"name": "ground", "file": "render/plane.obj"},
+                  {"name": "cube", "file": "meshes/cube.obj",
+                   "transform": {"translate": [-0.5, -0.5, 0]}}]})",
+      "standing.json", kData);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const FloatImage& lines = findAov(aovs, "lines").image;  // rows top down
+  const Camera camera = scene.resolvedCamera();
+  std::vector<Segment> visible, base;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float s : {-0.5f, 0.5f})
+      for (const float t : {-0.5f, 0.5f}) {
+        glm::vec3 a(0.0f), n1(0.0f), n2(0.0f);
+        const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+        a[i] = s, a[j] = t, n1[i] = s > 0 ? 1.0f : -1.0f, n2[j] = t > 0 ? 1.0f : -1.0f;
+        glm::vec3 b = a;
+        a[axis] = -0.5f, b[axis] = 0.5f;
+        a.z += 0.5f, b.z += 0.5f;  // the cube [−½, ½]² × [0, 1]
+        const glm::vec3 mid = 0.5f * (a + b);
+        const bool front1 = glm::dot(n1, camera.eye - mid) > 0.0f,
+                   front2 = glm::dot(n2, camera.eye - mid) > 0.0f;
+        if (!front1 && !front2) continue;
+        const Segment e{projectToPixel(scene, a), projectToPixel(scene, b)};
+        visible.push_back(e);
+        if (a.z == 0.0f && b.z == 0.0f) base.push_back(e);
+      }
+  ASSERT_EQ(visible.size(), 9u);
+  ASSERT_EQ(base.size(), 2u);  // the two bottom edges in sight
+  const LinesFound all = expectLinesAlong(lines, visible, 3.0f);
+  EXPECT_GT(all.linePixels, 300);
+  const LinesFound contact = pointsDrawn(lines, base, 3.0f);
+  EXPECT_GT(contact.points, 100);
+  EXPECT_GE(contact.drawn, contact.points * 98 / 100)
+      << contact.drawn << " of " << contact.points << " points of the base drawn";
+}
+
+// Coplanar objects facing the same way draw no line between them, however their depth test
+// ties: a door a hair (1e-4 units, 1e-5 of the depth) in front of its wall, seen head-on, is
+// drawn without a line round it.
+TEST(LineRender, CoplanarObjectsFacingTheSameWayDrawNoLineBetweenThem) {
+  const Scene scene = parseScene(
+      R"({"resolution": [96, 96], "samples": 4, "background": [1, 1, 1],
+      "style": {"name": "gooch", "lines": {"silhouettes": true, "creases": true, "width": 1}},
+      "camera": {"eye": [0, 0, 12], "target": [0, 0, 0], "fov": 40},
+      "objects": [{"name": "wall", "file": "render/plane.obj"},
+                  {"name": "door", "file": "render/plane.obj",
+                   "transform": {"translate": [0, 0, 1e-4], "scale": 0.2}}]})",
+      "flush.json", kData);
+  Renderer renderer(scene, test::glContext().info());
+  renderer.render();
+  const auto aovs = renderer.readAovs();
+  const FloatImage &lines = findAov(aovs, "lines").image, &id = findAov(aovs, "objectId").image;
+  int door = 0, drawn = 0;
+  for (int y = 0; y < lines.height; ++y)
+    for (int x = 0; x < lines.width; ++x)
+      door += id.at(x, y)[0] == 1.0f, drawn += lines.at(x, y)[0] > 0.0f;
+  EXPECT_GT(door, 100);  // the door shows
+  EXPECT_EQ(drawn, 0);
 }
 
 // The same against a smooth surface: a capped cylinder (radius ½, y ∈ [−0.6, 0.6], 96 sides

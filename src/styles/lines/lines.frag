@@ -1,8 +1,8 @@
 #version 450 core
 // Image-space feature lines, evaluated per MSAA sample and averaged into a coverage value so
 // the lines come out anti-aliased:
-// - silhouettes: the nearer side of an object-id change, or of a view-depth discontinuity
-//   within one object (relative second difference of inverse view depth, or of depth for
+// - silhouettes: the nearer side of an object-id change (unless the two objects are coplanar
+//   and face the same way), or of a view-depth discontinuity within one object (relative second difference of inverse view depth, or of depth for
 //   orthographic views, across the pixel above a threshold: zero on planes at any slant);
 // - creases: normals of one object meeting at more than the crease angle;
 // - with CUT_OUTLINES, the outline of the cut surfaces (Burns08 §4.2): cut-mask pixels next
@@ -37,6 +37,7 @@ float outline(ivec2 p, int s) {
 #endif
 
 const float kFar = 1e30;
+const float kSameFacingCos = 0.99985;  // cos 1°
 
 float viewDepth(ivec2 q, int s, out int id) {
   ivec2 v = texelFetch(uObjectId, q, s).rg;
@@ -60,9 +61,13 @@ float edge(ivec2 p, int s) {
       int idq;
       float dq = viewDepth(q, s, idq);
       if (uSilhouettes != 0 && dq > d) {
-        // A different object only counts if it is really behind: coplanar objects (a door in
-        // its wall) z-fight, and their ids alternate pixel by pixel.
-        if (idq != id && dq > d * (1.0 + 1e-4)) return weight;
+        // A different object counts if it is really behind, or if it meets this one at an
+        // angle (an object standing on another: their depths at the contact differ by less
+        // than any margin). Coplanar objects facing the same way (a door in its wall) z-fight,
+        // their ids alternating pixel by pixel: no line between them.
+        if (idq != id && (dq > d * (1.0 + 1e-4) ||
+                          dot(n, unpackNormal(texelFetch(uNormal, q, s).r)) < kSameFacingCos))
+          return weight;
         int idOpposite;
         float dOpposite = viewDepth(clamp(p - r * offsets[k], ivec2(0), last), s, idOpposite);
         // On a plane, inverse depth (perspective) or depth (orthographic) is affine in screen
