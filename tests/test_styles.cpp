@@ -695,7 +695,8 @@ TEST(LineRender, ACubesLinesAreItsVisibleEdges) {
 
 // A cube standing on the ground, seen from 170 units away: at the cube's base the ground and
 // its walls lie within a hundredth of a unit of each other, less than a depth margin would be,
-// but they meet at 90°, so the base is drawn as the cube's other edges are, along its length.
+// but they meet at 90° (more than the crease angle), so the base is drawn as the cube's other
+// edges are, along its length.
 // Its lines against the CPU's visible edges, as ACubesLinesAreItsVisibleEdges.
 TEST(LineRender, AnObjectStandingOnAnotherMeetsItInAContinuousLine) {
   const Scene scene = parseScene(
@@ -740,16 +741,16 @@ TEST(LineRender, AnObjectStandingOnAnotherMeetsItInAContinuousLine) {
       << contact.drawn << " of " << contact.points << " points of the base drawn";
 }
 
-// Coplanar objects facing the same way draw no line between them, however their depth test
-// ties: a door a hair (1e-4 units, 1e-5 of the depth) in front of its wall, seen head-on, is
-// drawn without a line round it.
-TEST(LineRender, CoplanarObjectsFacingTheSameWayDrawNoLineBetweenThem) {
+// Coplanar objects draw no line between them, however their depth test ties and though their
+// shading normals differ a little: a door a hair (1e-4 units, 1e-5 of the depth) in front of
+// its wall, seen head-on, its normal tilted by 3°, is drawn without a line round it.
+TEST(LineRender, CoplanarObjectsDrawNoLineBetweenThem) {
   const Scene scene = parseScene(
       R"({"resolution": [96, 96], "samples": 4, "background": [1, 1, 1],
       "style": {"name": "gooch", "lines": {"silhouettes": true, "creases": true, "width": 1}},
       "camera": {"eye": [0, 0, 12], "target": [0, 0, 0], "fov": 40},
       "objects": [{"name": "wall", "file": "render/plane.obj"},
-                  {"name": "door", "file": "render/plane.obj",
+                  {"name": "door", "file": "render/plane_tilted_normals.obj",
                    "transform": {"translate": [0, 0, 1e-4], "scale": 0.2}}]})",
       "flush.json", kData);
   Renderer renderer(scene, test::glContext().info());

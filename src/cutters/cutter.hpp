@@ -48,7 +48,7 @@ struct CutLook {
 };
 
 // A G-buffer of removed material whose feature lines the composer draws faded over the image
-// (Burns08 §4.3's ghost lines): the normal's w is each sample's line weight.
+// (Burns08 §4.3's ghost lines): each sample's line weight is stored with its normal.
 struct GhostBuffers {
   Target normal, objectId;            // multisampled, as the scene G-buffer's
   std::function<float()> opacity;     // read every frame

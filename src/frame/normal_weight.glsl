@@ -14,7 +14,8 @@ vec2 signNotZero(vec2 v) {
 uint packNormalWeight(vec3 n, float weight) {
   vec2 e = n.xy / max(abs(n.x) + abs(n.y) + abs(n.z), 1e-30);
   if (n.z < 0.0) e = (1.0 - abs(e.yx)) * signNotZero(e);
-  uvec2 q = uvec2(round(clamp(e, -1.0, 1.0) * kOctahedralSteps + kOctahedralSteps));
+  // Masked: a NaN normal may convert to any bits, and must leave the weight's alone.
+  uvec2 q = uvec2(round(clamp(e, -1.0, 1.0) * kOctahedralSteps + kOctahedralSteps)) & 0xfffu;
   return q.x | (q.y << 12) | (uint(round(clamp(weight, 0.0, 1.0) * 255.0)) << 24);
 }
 

@@ -10,7 +10,7 @@
 // nested layers are an approximation.
 //
 // Each layer is a small G-buffer (premultiplied colour; normal with the line opacity as its
-// w; object id with view depth), so the feature lines of a layer's surfaces are
+// line weight; object id with view depth), so the feature lines of a layer's surfaces are
 // found by the same line pass as the opaque frame's and drawn over the layer, faded by their
 // opacity (§2.3: surfaces suppressed, lines kept).
 //

@@ -174,7 +174,7 @@ void Renderer::Impl::buildFrame() {
   for (const auto& k : kinds) k->addPassesAfterGeometry(frame);
   for (ActiveCutter& c : cutters) c.cutter->addPassesAfterGeometry(frame);
   // Burns11 ch. 2: the partly reduced material, peeled front to back, each layer with its
-  // feature lines (faded by their opacity, the normal's w).
+  // feature lines (faded by their opacity, the line weight stored with the normal).
   if (layers) {
     layerLines = std::make_unique<LinePass>(false, scene.samples);
     TranslucentLayers::Lines layersLines{

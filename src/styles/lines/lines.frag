@@ -2,7 +2,7 @@
 // Image-space feature lines, evaluated per MSAA sample and averaged into a coverage value so
 // the lines come out anti-aliased:
 // - silhouettes: the nearer side of an object-id change (unless the two objects are coplanar
-//   and face the same way), or of a view-depth discontinuity within one object (relative second difference of inverse view depth, or of depth for
+//   and meet at no crease), or of a view-depth discontinuity within one object (relative second difference of inverse view depth, or of depth for
 //   orthographic views, across the pixel above a threshold: zero on planes at any slant);
 // - creases: normals of one object meeting at more than the crease angle;
 // - with CUT_OUTLINES, the outline of the cut surfaces (Burns08 §4.2): cut-mask pixels next
@@ -37,7 +37,6 @@ float outline(ivec2 p, int s) {
 #endif
 
 const float kFar = 1e30;
-const float kSameFacingCos = 0.99985;  // cos 1°
 
 float viewDepth(ivec2 q, int s, out int id) {
   ivec2 v = texelFetch(uObjectId, q, s).rg;
@@ -61,12 +60,13 @@ float edge(ivec2 p, int s) {
       int idq;
       float dq = viewDepth(q, s, idq);
       if (uSilhouettes != 0 && dq > d) {
-        // A different object counts if it is really behind, or if it meets this one at an
-        // angle (an object standing on another: their depths at the contact differ by less
-        // than any margin). Coplanar objects facing the same way (a door in its wall) z-fight,
-        // their ids alternating pixel by pixel: no line between them.
+        // A different object counts if it is really behind, or if it meets this one at a
+        // crease (an object standing on another: their depths at the contact differ by less
+        // than any margin). Coplanar objects (a door in its wall) z-fight, their ids
+        // alternating pixel by pixel: no line between them, also where their shading normals
+        // differ a little.
         if (idq != id && (dq > d * (1.0 + 1e-4) ||
-                          dot(n, unpackNormal(texelFetch(uNormal, q, s).r)) < kSameFacingCos))
+                          dot(n, unpackNormal(texelFetch(uNormal, q, s).r)) < uCreaseCos))
           return weight;
         int idOpposite;
         float dOpposite = viewDepth(clamp(p - r * offsets[k], ivec2(0), last), s, idOpposite);
