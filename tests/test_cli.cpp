@@ -161,6 +161,24 @@ TEST(Cli, ARunStoppedBeforeItsAovsLeavesNoFolder) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// Stopped while the AOVs are written (the folder made, the files still temporaries): the signal
+// handler removes the temporaries and then the folders the run made, here two deep.
+TEST(Cli, ARunStoppedWhileWritingItsAovsLeavesNoFolder) {
+  const fs::path top = scratch("stopped-writing"), fresh = top / "made" / "aovs";
+  fs::remove_all(top);
+  fs::create_directories(top);
+  const Result r = test::runCommand(
+      "bash -c '" + kBinary + " render " + kSource +
+      "/examples/engine-cutaway.json --size 2400x1800 -o " + (top / "out.png").string() +
+      " --aov " + fresh.string() + " & while [ ! -e " + fresh.string() +
+      " ] && kill -0 $! 2>/dev/null; do sleep 0.005; done; sleep 0.1; kill -TERM $!; wait $!; "
+      "echo $?'");
+  EXPECT_EQ(r.out, "143\n") << r.err;  // stopped, not finished
+  EXPECT_FALSE(fs::exists(top / "made"));
+  EXPECT_FALSE(fs::exists(top / "out.png"));
+  EXPECT_TRUE(fs::is_empty(top));  // no temporaries either
+}
+
 // An AOV folder written again holds the new frame's AOVs alone: the PFMs the earlier
 // aovs.json listed and the new one does not are removed (another scene's cutaway buffers
 // stayed beside the new index); files it did not list stay.

@@ -308,7 +308,7 @@ const BadScene kBadScenes[] = {
      "missing required key \"time\""},
     {"animation_empty.json", "/objects/0/animation", "expected a non-empty array of keyframes"},
     {"animation_negative_time.json", "/objects/0/animation/0/time",
-     "value -1 is outside [0, 1e+06]"},
+     "value -1 is outside [0, 1000000]"},
     {"animation_keyframe_matrix.json", "/objects/0/animation/0/matrix", "unknown key \"matrix\""},
     {"animation_proxy_zero_scale.json", "/proxies/0/animation/1/scale", "scale must not be zero"},
     // Volumes.

@@ -1117,9 +1117,8 @@ std::string rangeText(const OptionSpec& s) {
     return list;
   }
   if (s.type != T::Int && s.type != T::Float && s.type != T::Vec3) return "";
-  char text[64];
-  std::snprintf(text, sizeof text, "[%g, %g]%s", s.min, s.max, s.powerOfTwo ? " 2^n" : "");
-  return text;
+  return "[" + formatOptionValue(s.min) + ", " + formatOptionValue(s.max) + "]" +
+         (s.powerOfTwo ? " 2^n" : "");
 }
 
 }  // namespace

@@ -40,21 +40,23 @@ std::filesystem::path followLinks(std::filesystem::path path) {
   throw Error(path.string(), "", "too many levels of symbolic links");
 }
 
-// The temporaries being written, removed by the signal handler a program may install
-// (removeTemporariesOnSignals); fixed slots, as a handler may not allocate or lock.
+// The temporaries being written, and the folders made for them, removed by the signal handler a
+// program may install (removeTemporariesOnSignals); fixed slots, as a handler may not allocate
+// or lock.
 constexpr std::size_t kPathBytes = 4096;  // PATH_MAX
 struct Pending {
   std::atomic<bool> used{false};
   std::atomic<bool> ready{false};
+  std::atomic<bool> folder{false};
   std::atomic<unsigned> version{0};  // odd while `path` is written: the handler's seqlock
   std::array<char, kPathBytes> path{};
 };
 std::array<Pending, 64> pending;
 
-// Holds one temporary's name in a slot while it lives.
+// Holds one temporary's (or made folder's) name in a slot while it lives.
 class PendingFile {
  public:
-  explicit PendingFile(const std::filesystem::path& tmp) {
+  explicit PendingFile(const std::filesystem::path& tmp, bool folder = false) {
     const std::string& name = tmp.native();
     if (name.size() >= kPathBytes) return;
     for (Pending& p : pending) {
@@ -62,6 +64,7 @@ class PendingFile {
       if (!p.used.compare_exchange_strong(expected, true)) continue;
       ++p.version;
       std::memcpy(p.path.data(), name.c_str(), name.size() + 1);
+      p.folder = folder;
       ++p.version;
       p.ready = true;
       slot_ = &p;
@@ -111,14 +114,17 @@ extern "C" void removeTemporariesAndDie(int signal) {
     const timespec pause{0, 1000000};
     nanosleep(&pause, nullptr);
   }
-  for (Pending& p : pending) {
-    // A name copied whole while no thread rewrote its slot (another may free and reuse it).
-    const unsigned before = p.version.load();
-    if (!p.ready || before % 2 == 1) continue;
-    char name[kPathBytes];
-    std::memcpy(name, p.path.data(), kPathBytes);
-    if (p.version.load() == before && p.ready) ::unlink(name);
-  }
+  // The temporaries first, then the made folders, each left empty by those inside it first
+  // (a pass for each level a slot may wait on).
+  for (std::size_t pass = 0; pass <= pending.size(); ++pass)
+    for (Pending& p : pending) {
+      // A name copied whole while no thread rewrote its slot (another may free and reuse it).
+      const unsigned before = p.version.load();
+      if (!p.ready || before % 2 == 1 || p.folder != (pass > 0)) continue;
+      char name[kPathBytes];
+      std::memcpy(name, p.path.data(), kPathBytes);
+      if (p.version.load() == before && p.ready) pass > 0 ? ::rmdir(name) : ::unlink(name);
+    }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
 }
@@ -180,6 +186,33 @@ void replaceFileAtomically(const std::filesystem::path& named,
     std::filesystem::remove(tmp, ignored);
     throw;
   }
+}
+
+struct MadeFolders::Slots {
+  std::vector<std::unique_ptr<PendingFile>> folders;
+};
+
+MadeFolders::MadeFolders(const std::filesystem::path& dir) : slots_(std::make_unique<Slots>()) {
+  std::error_code ec;
+  for (std::filesystem::path p = dir; !p.empty() && !std::filesystem::exists(p, ec);
+       p = p.parent_path()) {
+    made_.push_back(p);
+    slots_->folders.push_back(std::make_unique<PendingFile>(p, true));
+  }
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    removeEmpty();
+    throw Error(dir.string(), "", "cannot create the folder: " + ec.message());
+  }
+}
+
+MadeFolders::~MadeFolders() {
+  if (!kept_) removeEmpty();
+}
+
+void MadeFolders::removeEmpty() const {
+  std::error_code ignored;
+  for (const std::filesystem::path& p : made_) std::filesystem::remove(p, ignored);  // if empty
 }
 
 void writeFileAtomically(const std::filesystem::path& path, const FileWriter& write) {

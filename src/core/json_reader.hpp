@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -123,13 +125,24 @@ class ObjectReader {
   std::set<std::string> taken_;
 };
 
+// The shortest decimal that reads back as d, or as the float d is when it is one, and whole
+// numbers in full: messages name the value given (180.0001, not 180; 1073741825, not
+// 1.07374e+09) and a float field's value as it was written.
+inline std::string decimal(double d) {
+  char buffer[32];
+  const float f = float(d);
+  const auto end = d == std::trunc(d) && std::abs(d) < 1e15
+                       ? std::to_chars(buffer, buffer + sizeof buffer, std::int64_t(d)).ptr
+                   : double(f) == d ? std::to_chars(buffer, buffer + sizeof buffer, f).ptr
+                                    : std::to_chars(buffer, buffer + sizeof buffer, d).ptr;
+  return std::string(buffer, end);
+}
+
 inline double number(const Context& ctx, const json& j, const std::string& ptr, double lo, double hi) {
   if (!j.is_number()) ctx.fail(ptr, "expected a number, got " + typeName(j));
   const double v = j.get<double>();
   if (!(v >= lo && v <= hi)) {
-    std::ostringstream s;
-    s << "value " << v << " is outside [" << lo << ", " << hi << "]";
-    ctx.fail(ptr, s.str());
+    ctx.fail(ptr, "value " + decimal(v) + " is outside [" + decimal(lo) + ", " + decimal(hi) + "]");
   }
   return v;
 }

@@ -29,9 +29,7 @@ bool isPowerOfTwo(double v) {
 }
 
 std::string rangeText(double lo, double hi) {
-  std::ostringstream s;
-  s << "[" << lo << ", " << hi << "]";
-  return s.str();
+  return "[" + json_reader::decimal(lo) + ", " + json_reader::decimal(hi) + "]";
 }
 
 // The shortest decimal that reads back as the same float, for values that are floats: 35 stays
@@ -178,9 +176,11 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
 std::string formatOptionValue(const OptionValue& value) {
   std::ostringstream s;
   if (const bool* b = std::get_if<bool>(&value)) s << (*b ? "true" : "false");
-  if (const double* d = std::get_if<double>(&value)) s << *d;
+  if (const double* d = std::get_if<double>(&value)) s << json_reader::decimal(*d);
   if (const std::string* t = std::get_if<std::string>(&value)) s << *t;
-  if (const glm::vec3* v = std::get_if<glm::vec3>(&value)) s << v->x << "," << v->y << "," << v->z;
+  if (const glm::vec3* v = std::get_if<glm::vec3>(&value))
+    s << json_reader::decimal(v->x) << "," << json_reader::decimal(v->y) << ","
+      << json_reader::decimal(v->z);
   return s.str();
 }
 

@@ -66,18 +66,19 @@ void writeAovs(const std::filesystem::path& given, const std::vector<Aov>& aovs,
   std::filesystem::path dir = given.lexically_normal();
   if (!dir.has_filename()) dir = dir.parent_path();
   std::error_code ec;
-  // The outermost folder this call makes (empty: none), removed again with the folders in it
-  // if the writing fails.
-  std::filesystem::path top;
-  for (std::filesystem::path p = dir; !p.empty() && !std::filesystem::exists(p, ec);
-       p = p.parent_path())
-    top = p;
   if (std::filesystem::is_symlink(dir, ec) && !std::filesystem::exists(dir, ec))
     throw Error(dir.string(), "",
                 "cannot create AOV directory: it is a symbolic link to " +
                     std::filesystem::read_symlink(dir, ec).string() + ", which does not exist");
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw Error(dir.string(), "", "cannot create AOV directory: " + ec.message());
+  // Removed again (with any folder above it made here) if the writing fails or a signal stops
+  // it: no empty folder left behind.
+  MadeFolders folders = [&] {
+    try {
+      return MadeFolders(dir);
+    } catch (const Error& e) {
+      throw Error(dir.string(), "", "cannot create AOV directory: " + e.reason());
+    }
+  }();
   nlohmann::json index;
   index["camera"] = {
       {"projection", camera.projection == Projection::Perspective ? "perspective" : "orthographic"},
@@ -111,14 +112,8 @@ void writeAovs(const std::filesystem::path& given, const std::vector<Aov>& aovs,
   // All or nothing (a full disk must not leave new images beside an old index), and no empty
   // folder left behind.
   const std::vector<std::filesystem::path> stale = staleAovFiles(dir, aovs);
-  try {
-    writeFilesAtomically(files);
-  } catch (...) {
-    if (!top.empty())
-      for (std::filesystem::path p = dir; std::filesystem::remove(p, ec) && p != top;)
-        p = p.parent_path();
-    throw;
-  }
+  writeFilesAtomically(files);
+  folders.keep();
   for (const std::filesystem::path& file : stale) std::filesystem::remove(file, ec);
 }
 

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <utility>
 #include <vector>
@@ -28,6 +29,26 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
 // For writers that need a path (C libraries): `write` receives the temporary path.
 void replaceFileAtomically(const std::filesystem::path& path,
                            const std::function<void(const std::filesystem::path&)>& write);
+
+// The folders a writer makes for the files it is about to write: `dir` and those above it that
+// are missing (Error if one cannot be made). Until `keep()`, they are removed again, where
+// empty, by the destructor and by the handlers of removeTemporariesOnSignals (after the
+// temporaries), so that a failed or stopped run leaves no empty folder behind.
+class MadeFolders {
+ public:
+  explicit MadeFolders(const std::filesystem::path& dir);
+  ~MadeFolders();
+  MadeFolders(const MadeFolders&) = delete;
+  MadeFolders& operator=(const MadeFolders&) = delete;
+  void keep() { kept_ = true; }
+
+ private:
+  void removeEmpty() const;
+  struct Slots;
+  std::unique_ptr<Slots> slots_;
+  std::vector<std::filesystem::path> made_;  // innermost first
+  bool kept_ = false;
+};
 
 // A program's handlers for SIGTERM, SIGINT and SIGHUP (where it has none of its own) that remove
 // the temporaries being written, then end the program as the signal would have.
