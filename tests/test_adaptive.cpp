@@ -905,7 +905,7 @@ TEST(AdaptiveCutaway, DilatedDepthIsTheThreeByThreeMinimumOfTheCutawayDepth) {
 // Burns08 §4.3: ghost lines show the silhouettes of removed material near the cut, fading
 // with distance in front of the cutaway surface; nothing is drawn for kept material.
 TEST(AdaptiveCutaway, GhostLinesShowRemovedMaterialOnly) {
-  auto ghostCoverage = [](float distance) {
+  auto ghostCoverage = [](float distance, bool plateLines = true) {
     char json[1200];
     std::snprintf(
         json, sizeof json,
@@ -913,10 +913,11 @@ TEST(AdaptiveCutaway, GhostLinesShowRemovedMaterialOnly) {
         "camera": {"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 40},
         "cutters": {"adaptive": {"angle": 30, "bufferSize": 128, "ghostLines": {"distance": %g}}},
         "objects": [
-          {"name": "plate", "file": "meshes/cube.obj", "transform": {"translate": [-0.3, -0.3, 3], "scale": 0.6}},
+          {"name": "plate", "file": "meshes/cube.obj", "transform": {"translate": [-0.3, -0.3, 3], "scale": 0.6},
+           "params": {"lines": %s}},
           {"name": "cube", "file": "meshes/cube.obj", "role": "interest",
            "transform": {"translate": [-0.5, -0.5, -0.5]}}]})",
-        distance);
+        distance, plateLines ? "true" : "false");
     const auto aovs = renderAovs(parseScene(json, "ghost.json", kData));
     double sum = 0;
     for (float g : aov(aovs, "ghostLines").data) sum += g;
@@ -928,6 +929,7 @@ TEST(AdaptiveCutaway, GhostLinesShowRemovedMaterialOnly) {
   const double near = ghostCoverage(5.0f), far = ghostCoverage(50.0f);
   EXPECT_GT(near, 1.0);
   EXPECT_GT(far, near);  // a longer distance fades less
+  EXPECT_EQ(ghostCoverage(50.0f, false), 0.0);  // an object without lines has no ghost lines
 }
 
 // `cutSurfaces` (Burns08 §4.1): two shells around two objects of interest, a closed cube and

@@ -133,6 +133,11 @@ bool SceneObject::doubleSided() const {
   return it == params.end() || std::get<bool>(it->second);
 }
 
+bool SceneObject::takesLines() const {
+  const auto it = params.find("lines");
+  return it == params.end() || std::get<bool>(it->second);
+}
+
 bool SceneObject::named(const std::regex& pattern) const {
   return std::regex_match(name, pattern) || (!alias.empty() && std::regex_match(alias, pattern));
 }

@@ -122,6 +122,8 @@ struct SceneObject {
   bool solid() const;
   // Whether its back faces are drawn where no cutter cuts it: param "doubleSided", else true.
   bool doubleSided() const;
+  // Whether it takes feature lines, its ghost lines too: param "lines", else true.
+  bool takesLines() const;
   // Whether `pattern` matches its name or its alias (the whole of either).
   bool named(const std::regex& pattern) const;
   // Bounds in world space over the whole animation (at every keyframe).

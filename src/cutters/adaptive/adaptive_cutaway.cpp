@@ -318,8 +318,9 @@ void AdaptiveCutaway::drawGhostGeometry(GLuint framebuffer) const {
   const auto drawBatch = [&](const OcclusionCulling::Batch& batch) {
     setup_.meshes.draw(
         program, [&](const SceneObject& o, std::size_t i) { return ghost(o) && batch(i); },
-        [&](const SceneObject&, std::size_t i) {
+        [&](const SceneObject& o, std::size_t i) {
           glProgramUniform1i(program, 11, int(i));
+          glProgramUniform1f(program, 12, o.takesLines() ? 1.0f : 0.0f);
           setObjectUniforms(program, i);
         });
   };

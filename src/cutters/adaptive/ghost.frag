@@ -9,6 +9,7 @@
 in vec3 vWorldPosition;
 in vec3 vWorldNormal;
 layout(location = 11) uniform int uObjectId;
+layout(location = 12) uniform float uLines;  // 0: an object without lines (param "lines")
 layout(location = 17) uniform float uGhostDistance;
 layout(location = 0) out uint outNormal;     // the normal and, as the line weight, the fade
 layout(location = 1) out ivec2 outObjectId;  // the object id, the linear view depth's bits
@@ -19,6 +20,6 @@ void main() {
   if (removed && fade <= 0.0) discard;  // beyond the ghost distance
   vec3 n = vWorldNormal;
   if (dot(n, n) < 1e-12) n = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));
-  outNormal = packNormalWeight(normalize(n), fade);
+  outNormal = packNormalWeight(normalize(n), fade * uLines);
   outObjectId = ivec2(uObjectId, floatBitsToInt(-(uView * vec4(vWorldPosition, 1.0)).z));
 }

@@ -66,9 +66,7 @@ void MeshKind::setObjectUniforms(GLuint program, const std::vector<ActiveCutter>
   glProgramUniform1i(program, kObjectId, int(i));
   glProgramUniform1f(program, kImportance,
                      emphasisImportance(o.role == Role::Interest, o.importance));
-  const auto lines = o.params.find("lines");
-  const bool objectLines = lines == o.params.end() || std::get<bool>(lines->second);
-  glProgramUniform1f(program, kLines, objectLines ? 1.0f : 0.0f);
+  glProgramUniform1f(program, kLines, o.takesLines() ? 1.0f : 0.0f);
   setCutUniforms(program, {kCutBy, kCutSurfaces, kBackColor, kCutColor}, cutters, cut, i,
                  o.material.color);
   glProgramUniform1i(program, kChannelsBy, cut.cutBy);
