@@ -482,6 +482,26 @@ TEST(Cli, UsageErrors) {
     EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.err;
     EXPECT_EQ(lines(r.err), 1) << arguments << ": " << r.err;
   }
+  // Options at odds: a --set path given twice to different values, or set by an option of its
+  // own too. The same value twice, or an option beside the one it sets, is not.
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--style toon --set style.name=hatching", "--set: style.name: at odds with --style"},
+           {"--shadows --set style.shadows=false", "--set: style.shadows: at odds with --shadows"},
+           {"--cutaway-angle 30 --set cutters.adaptive.angle=20",
+            "--set: cutters.adaptive.angle: at odds with --cutaway-angle"},
+           {"--no-cutaway --set cutters.adaptive.angle=20",
+            "--set: cutters.adaptive.angle: at odds with --no-cutaway"},
+           {"--set style.lines.width=2 --set style.lines.width=3",
+            "--set: style.lines.width: given twice, as \"2\" and \"3\""}}) {
+    const Result r = run("render " + kData + "/render/plane-facing.json -o x.png " + arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments;
+    EXPECT_EQ(r.err, "cutaway: error: " + message + "\n") << arguments;
+  }
+  const Result agree = run("render " + kData +
+                           "/render/plane-facing.json -o x.png --size 16x12 "
+                           "--set style.lines.width=2 --set style.lines.width=2 --shadows "
+                           "--set style.shadows.size=1024");
+  EXPECT_EQ(agree.exitCode, 0) << agree.err;
   const Result size = run("render " + kData + "/render/plane-facing.json -o x.png --size 12by3");
   EXPECT_NE(size.exitCode, 0);
   EXPECT_NE(size.err.find("--size"), std::string::npos) << size.err;

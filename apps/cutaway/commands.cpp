@@ -117,12 +117,27 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
       throw CommandLineError("--importance", e.file(), e.reason());
     }
   }
-  // --set PATH=VALUE, in the order given: any technique's option by its scene-file path.
+  // --set PATH=VALUE, in the order given: any technique's option by its scene-file path. A
+  // path set twice to different values, or one an option of its own also sets, is at odds.
+  std::map<std::string, std::string> given;
   for (const std::string& assignment : o.set) {
     const auto equals = assignment.find('=');
     if (equals == std::string::npos || equals == 0)
       throw CommandLineError("--set", assignment,
                              "expected PATH=VALUE, e.g. cutters.adaptive.angle=30");
+    const std::string path = assignment.substr(0, equals), value = assignment.substr(equals + 1);
+    if (const auto [at, fresh] = given.emplace(path, value); !fresh && at->second != value)
+      throw CommandLineError("--set", path,
+                             "given twice, as " + quote(at->second) + " and " + quote(value));
+    const auto atOdds = [&](bool flag, const char* option, bool clash) {
+      if (flag && clash)
+        throw CommandLineError("--set", path, std::string("at odds with ") + option);
+    };
+    atOdds(!o.style.empty(), "--style", path == "style.name");
+    atOdds(o.shadows, "--shadows", path == "style.shadows");
+    atOdds(o.cutawayAngle.has_value(), "--cutaway-angle",
+           path == "cutters.adaptive" || path == "cutters.adaptive.angle");
+    atOdds(o.noCutaway, "--no-cutaway", path.rfind("cutters.", 0) == 0);
     try {
       setOption(scene, assignment.substr(0, equals), assignment.substr(equals + 1));
     } catch (const Error& e) {

@@ -105,10 +105,13 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
       ->check(finiteNumber(0.0, 90.0));
   command->add_flag("--no-cutaway", o.noCutaway,
                     "Render without any of the scene's cutters (the plain model)");
-  command->add_option("--set", o.set,
-                      "PATH=VALUE: set any technique's option by its scene-file path, e.g. "
-                      "cutters.adaptive.angle=30, style.lines.width=2, style.gooch.alpha=0.3, "
-                      "cutters.cutout=true (repeatable; `cutaway options` lists them)")
+  command
+      ->add_option("--set", o.set,
+                   "PATH=VALUE: set any technique's option by its scene-file path, e.g. "
+                   "cutters.adaptive.angle=30, style.lines.width=2, style.gooch.alpha=0.3, "
+                   "cutters.cutout=true (repeatable; `cutaway options` lists them; a path "
+                   "given twice to different values, or also set by --style, --shadows, "
+                   "--cutaway-angle or --no-cutaway, is refused)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   command->add_option("--importance", o.importance,
