@@ -151,10 +151,15 @@ const SceneOption* findSceneOption(const std::string& path) {
 void setOption(Scene& scene, const std::string& path, const std::string& text) {
   const SceneOption* option = findSceneOption(path);
   if (!option) {
-    // Name the options of the technique the path starts with, or the techniques.
+    // Name the options of the technique the path starts with (the longest: style.gooch, not
+    // style), or the techniques.
+    std::string technique;
+    for (const TechniqueInfo& t : techniques())
+      if ((path.rfind(t.path + ".", 0) == 0 || path == t.path) && t.path.size() > technique.size())
+        technique = t.path;
     std::string known;
     for (const SceneOption& o : sceneOptions())
-      if (path.rfind(o.technique + ".", 0) == 0 || path == o.technique)
+      if (!technique.empty() && o.technique == technique)
         known += (known.empty() ? "" : ", ") + o.path;
     if (known.empty())
       for (const TechniqueInfo& t : techniques()) known += (known.empty() ? "" : ", ") + t.path;
