@@ -190,11 +190,17 @@ inline std::string oneOf(const Context& ctx, const json& j, const std::string& p
   ctx.fail(ptr, "unknown value " + quote(v) + " (expected one of: " + list + ")");
 }
 
+// What an array of the wrong length, or a value that is no array, is: "1 element", "5 elements",
+// "a string".
+inline std::string sizeOrType(const json& j) {
+  if (!j.is_array()) return typeName(j);
+  return std::to_string(j.size()) + (j.size() == 1 ? " element" : " elements");
+}
+
 inline glm::dvec3 dvec3(const Context& ctx, const json& j, const std::string& ptr,
                         double lo = -1e30, double hi = 1e30) {
   if (!j.is_array() || j.size() != 3)
-    ctx.fail(ptr, "expected an array of 3 numbers, got " +
-                      (j.is_array() ? std::to_string(j.size()) + " elements" : typeName(j)));
+    ctx.fail(ptr, "expected an array of 3 numbers, got " + sizeOrType(j));
   glm::dvec3 v;
   for (int i = 0; i < 3; ++i)
     v[i] = number(ctx, j[std::size_t(i)], ptr + "/" + std::to_string(i), lo, hi);

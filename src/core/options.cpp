@@ -265,6 +265,8 @@ void OptionsSchema::read(const json_reader::Context& ctx, json_reader::ObjectRea
           n->enabled.set(options, v->get<bool>());
           break;
         }
+        if (n->switchable && !v->is_object())
+          ctx.fail(ptr, "expected true, false or an object, got " + json_reader::typeName(*v));
         json_reader::ObjectReader g(ctx, *v, ptr);
         if (n->switchable) n->enabled.set(options, true);
         if (n->switchInside)

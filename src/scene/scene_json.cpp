@@ -836,6 +836,7 @@ Style style(const Context& ctx, const json& j, const std::string& ptr) {
     s.name = oneOf(ctx, j, ptr, styleNames());
     return s;
   }
+  if (!j.is_object()) ctx.fail(ptr, "expected a style's name or an object, got " + typeName(j));
   ObjectReader r(ctx, j, ptr);
   for (const StyleType& type : styleTypes())
     if (const json* v = r.take(type.key))

@@ -21,9 +21,9 @@ const OptionsSchema& toonSchema() {
             const json* v = r.take("ramp");
             if (!v) return;
             if (!v->is_array() || v->size() < 2 || v->size() > 16)
-              ctx.fail(r.at("ramp"),
-                       "expected an array of 2 to 16 tones (numbers or colours), got " +
-                           (v->is_array() ? std::to_string(v->size()) + " elements" : typeName(*v)));
+              ctx.fail(
+                  r.at("ramp"),
+                  "expected an array of 2 to 16 tones (numbers or colours), got " + sizeOrType(*v));
             t.ramp.clear();
             for (std::size_t i = 0; i < v->size(); ++i) {
               const std::string p = r.at("ramp") + "/" + std::to_string(i);
