@@ -18,6 +18,7 @@
 #include "cutaway/styles/hatching.hpp"
 #include "cutaway/styles/toon.hpp"
 #include "gl_test_context.hpp"
+#include "render_aovs.hpp"
 #include "styles/hatching/tonal_art_map.hpp"
 #include "styles/shadows/shadow_map.hpp"
 #include "styles/toon/toon_ramp.hpp"
@@ -596,6 +597,26 @@ glm::vec2 projectToPixel(const Scene& scene, const glm::vec3& p) {
                    (1.0f - c.y / c.w) * 0.5f * float(scene.height));
 }
 
+// The edges of the unit cube centred at `center` that the eye sees (a face beside each faces
+// it): its twelve edges, each with the outward normals of its two faces.
+std::vector<std::pair<glm::vec3, glm::vec3>> visibleCubeEdges(glm::vec3 eye, glm::vec3 center) {
+  std::vector<std::pair<glm::vec3, glm::vec3>> visible;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float s : {-0.5f, 0.5f})
+      for (const float t : {-0.5f, 0.5f}) {
+        glm::vec3 a(0.0f), n1(0.0f), n2(0.0f);
+        const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+        a[i] = s, a[j] = t, n1[i] = s > 0 ? 1.0f : -1.0f, n2[j] = t > 0 ? 1.0f : -1.0f;
+        glm::vec3 b = a;
+        a[axis] = -0.5f, b[axis] = 0.5f;
+        a += center, b += center;
+        const glm::vec3 mid = 0.5f * (a + b);
+        if (glm::dot(n1, eye - mid) > 0.0f || glm::dot(n2, eye - mid) > 0.0f)
+          visible.push_back({a, b});
+      }
+  return visible;
+}
+
 struct LinesFound {
   int linePixels = 0, points = 0, drawn = 0;
 };
@@ -668,23 +689,9 @@ TEST(LineRender, ACubesLinesAreItsVisibleEdges) {
   renderer.render();
   const auto aovs = renderer.readAovs();
   const FloatImage& lines = findAov(aovs, "lines").image;  // rows top down
-  const Camera camera = scene.resolvedCamera();
-  const auto pixel = [&](glm::vec3 p) { return projectToPixel(scene, p); };
-  // The cube [−½, ½]³: its twelve edges, each with the outward normals of its two faces.
   std::vector<Segment> visible;
-  for (int axis = 0; axis < 3; ++axis)
-    for (const float s : {-0.5f, 0.5f})
-      for (const float t : {-0.5f, 0.5f}) {
-        glm::vec3 a(0.0f), n1(0.0f), n2(0.0f);
-        const int i = (axis + 1) % 3, j = (axis + 2) % 3;
-        a[i] = s, a[j] = t, n1[i] = s > 0 ? 1.0f : -1.0f, n2[j] = t > 0 ? 1.0f : -1.0f;
-        glm::vec3 b = a;
-        a[axis] = -0.5f, b[axis] = 0.5f;
-        const glm::vec3 mid = 0.5f * (a + b);
-        const bool front1 = glm::dot(n1, camera.eye - mid) > 0.0f,
-                   front2 = glm::dot(n2, camera.eye - mid) > 0.0f;
-        if (front1 || front2) visible.push_back({pixel(a), pixel(b)});
-      }
+  for (const auto& [a, b] : visibleCubeEdges(scene.resolvedCamera().eye, glm::vec3(0.0f)))
+    visible.push_back({projectToPixel(scene, a), projectToPixel(scene, b)});
   ASSERT_EQ(visible.size(), 9u);  // three faces seen: six silhouette and three crease edges
   // Away from the corners, where the lines of two edges meet.
   const LinesFound found = expectLinesAlong(lines, visible, 3.0f);
@@ -708,29 +715,15 @@ TEST(LineRender, AnObjectStandingOnAnotherMeetsItInAContinuousLine) {
                   {"name": "cube", "file": "meshes/cube.obj",
                    "transform": {"translate": [-0.5, -0.5, 0]}}]})",
       "standing.json", kData);
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  const auto aovs = renderer.readAovs();
-  const FloatImage& lines = findAov(aovs, "lines").image;  // rows top down
-  const Camera camera = scene.resolvedCamera();
+  const auto aovs = test::renderAovs(scene);
+  const FloatImage& lines = test::aov(aovs, "lines");  // rows top down
   std::vector<Segment> visible, base;
-  for (int axis = 0; axis < 3; ++axis)
-    for (const float s : {-0.5f, 0.5f})
-      for (const float t : {-0.5f, 0.5f}) {
-        glm::vec3 a(0.0f), n1(0.0f), n2(0.0f);
-        const int i = (axis + 1) % 3, j = (axis + 2) % 3;
-        a[i] = s, a[j] = t, n1[i] = s > 0 ? 1.0f : -1.0f, n2[j] = t > 0 ? 1.0f : -1.0f;
-        glm::vec3 b = a;
-        a[axis] = -0.5f, b[axis] = 0.5f;
-        a.z += 0.5f, b.z += 0.5f;  // the cube [−½, ½]² × [0, 1]
-        const glm::vec3 mid = 0.5f * (a + b);
-        const bool front1 = glm::dot(n1, camera.eye - mid) > 0.0f,
-                   front2 = glm::dot(n2, camera.eye - mid) > 0.0f;
-        if (!front1 && !front2) continue;
-        const Segment e{projectToPixel(scene, a), projectToPixel(scene, b)};
-        visible.push_back(e);
-        if (a.z == 0.0f && b.z == 0.0f) base.push_back(e);
-      }
+  for (const auto& [a, b] :
+       visibleCubeEdges(scene.resolvedCamera().eye, glm::vec3(0.0f, 0.0f, 0.5f))) {
+    const Segment e{projectToPixel(scene, a), projectToPixel(scene, b)};
+    visible.push_back(e);
+    if (a.z == 0.0f && b.z == 0.0f) base.push_back(e);
+  }
   ASSERT_EQ(visible.size(), 9u);
   ASSERT_EQ(base.size(), 2u);  // the two bottom edges in sight
   const LinesFound all = expectLinesAlong(lines, visible, 3.0f);
@@ -753,10 +746,8 @@ TEST(LineRender, CoplanarObjectsDrawNoLineBetweenThem) {
                   {"name": "door", "file": "render/plane_tilted_normals.obj",
                    "transform": {"translate": [0, 0, 1e-4], "scale": 0.2}}]})",
       "flush.json", kData);
-  Renderer renderer(scene, test::glContext().info());
-  renderer.render();
-  const auto aovs = renderer.readAovs();
-  const FloatImage &lines = findAov(aovs, "lines").image, &id = findAov(aovs, "objectId").image;
+  const auto aovs = test::renderAovs(scene);
+  const FloatImage &lines = test::aov(aovs, "lines"), &id = test::aov(aovs, "objectId");
   int door = 0, drawn = 0;
   for (int y = 0; y < lines.height; ++y)
     for (int x = 0; x < lines.width; ++x)
