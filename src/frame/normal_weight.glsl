@@ -3,8 +3,9 @@
 // as octahedral coordinates (Cigolle et al. 2014, "A Survey of Efficient Representations for
 // Independent Unit Vectors", §3.3), 12 bits each with 0 exact, so the axes are exact and any
 // other normal is at most ~0.06° off (half floats: ~0.02°); the weight, in [0, 1], in the top
-// 8 bits. Half the bytes of an RGBA16F normal: llvmpipe's geometry pass pays for each byte a sample it stores
-// (bench/RESULTS.md, "What the G-buffer's targets cost"). A cleared word (0) has weight 0.
+// 8 bits. Half the bytes of an RGBA16F normal: llvmpipe's geometry pass pays for each byte a
+// sample it stores (bench/RESULTS.md, "What the G-buffer's targets cost"). A cleared word (0)
+// has weight 0.
 const float kOctahedralSteps = 2047.0;  // per side of 0: codes 0 … 4094
 
 vec2 signNotZero(vec2 v) {

@@ -2,8 +2,9 @@
 // Image-space feature lines, evaluated per MSAA sample and averaged into a coverage value so
 // the lines come out anti-aliased:
 // - silhouettes: the nearer side of an object-id change (unless the two objects are coplanar
-//   and meet at no crease), or of a view-depth discontinuity within one object (relative second difference of inverse view depth, or of depth for
-//   orthographic views, across the pixel above a threshold: zero on planes at any slant);
+//   and meet at no crease), or of a view-depth discontinuity within one object (relative
+//   second difference of inverse view depth, or of depth for orthographic views, across the
+//   pixel above a threshold: zero on planes at any slant);
 // - creases: normals of one object meeting at more than the crease angle;
 // - with CUT_OUTLINES, the outline of the cut surfaces (Burns08 §4.2): cut-mask pixels next
 //   to a pixel outside the mask.
