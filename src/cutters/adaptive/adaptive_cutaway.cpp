@@ -50,15 +50,9 @@ AdaptiveCutaway::AdaptiveCutaway(FrameSetup& setup)
                                          "eqs. 7.1–7.3 from its importance, or R = Ω), in [0, 1]; "
                                          "visible surfaces have R < 0.5 (R ≥ 0.5 is removed); "
                                          "NaN as for occlusion; sample 0"});
-  } else {
-    cutPositionUnit_ = setup.bindings.textureUnit("CUTAWAY_CUT_POSITION");
-    cutNormalUnit_ = setup.bindings.textureUnit("CUTAWAY_CUT_NORMAL");
-    cutPosition_ = frame.declare("cutawayCutPosition", {.format = GL_RGBA32F});
-    cutNormal_ = frame.declare("cutawayCutNormal", {.format = GL_RGBA32F});
   }
-  // Both structures' depths (x, y: C; z, w: C₂) or the simple one's alone.
-  atPixel_ =
-      frame.declare("cutawayAtPixel", {.format = GLenum(transition_ ? GL_RGBA32F : GL_RG32F)});
+  // C and its dilation (x, y), then C₂'s (z, w) or the simple structure's cut-surface normal.
+  atPixel_ = frame.declare("cutawayAtPixel", {.format = GL_RGBA32F});
   atPixelUnit_ = setup.bindings.textureUnit("CUTAWAY_AT_PIXEL");
   const int n = surface_.bufferSize();
   seedDepthTest_ =
@@ -157,8 +151,8 @@ void AdaptiveCutaway::findReaches() {
 
 std::vector<Target> AdaptiveCutaway::geometryInputs() const {
   std::vector<Target> inputs{surface_.cutawayDepth(), surface_.cutawayDilated(), atPixel_};
-  if (transition_) inputs.insert(inputs.end(), {transition_->cutawayDepth(), transition_->cutawayDilated()});
-  if (cutPosition_.valid()) inputs.insert(inputs.end(), {cutPosition_, cutNormal_});
+  if (transition_)
+    inputs.insert(inputs.end(), {transition_->cutawayDepth(), transition_->cutawayDilated()});
   return inputs;
 }
 
@@ -174,10 +168,6 @@ void AdaptiveCutaway::bindSurfaces() const {
 void AdaptiveCutaway::bindForGeometry() const {
   bindSurfaces();
   glBindTextureUnit(atPixelUnit_, setup_.frame.texture(atPixel_).id());
-  if (cutPosition_.valid()) {
-    glBindTextureUnit(cutPositionUnit_, setup_.frame.texture(cutPosition_).id());
-    glBindTextureUnit(cutNormalUnit_, setup_.frame.texture(cutNormal_).id());
-  }
 }
 
 int AdaptiveCutaway::translucentLayers() const {
@@ -264,13 +254,11 @@ void AdaptiveCutaway::addPreparationPasses(Frame& frame) {
                    .reads = {surface_.cutawayDepth()},
                    .run = [this](const PassContext&) { findReaches(); }});
   std::vector<Target> reads{surface_.cutawayDepth(), surface_.cutawayDilated()};
-  std::vector<Target> writes{atPixel_};
   if (transition_)
     reads.insert(reads.end(), {transition_->cutawayDepth(), transition_->cutawayDilated()});
-  if (cutPosition_.valid()) writes.insert(writes.end(), {cutPosition_, cutNormal_});
   frame.addPass({.name = "cutawayAtPixel",
                  .reads = reads,
-                 .writes = writes,
+                 .writes = {atPixel_},
                  .run = [this](const PassContext&) { drawAtPixel(); }});
 }
 

@@ -70,12 +70,8 @@ class AdaptiveCutaway : public Cutter {
   std::unique_ptr<CutawaySurfacePasses> transition_;
   GLuint depthUnit_, dilatedUnit_;
   GLuint transitionDepthUnit_ = 0, transitionDilatedUnit_ = 0;
-  // The simple structure's cut surface per pixel (clip.glsl's cutawaySurfaceAt at each pixel
-  // centre), read by back faces seen through the cut instead of working it out per fragment.
-  Target cutPosition_, cutNormal_;
-  GLuint cutPositionUnit_ = 0, cutNormalUnit_ = 0;
-  // C and its dilation (and C₂'s) at each pixel's centre (at_pixel.frag), for the geometry
-  // passes.
+  // C and its dilation (and C₂'s, or the simple structure's cut-surface normal: clip.glsl's
+  // cutawaySurfaceAt) at each pixel's centre (at_pixel.frag), for the geometry passes.
   Target atPixel_;
   GLuint atPixelUnit_ = 0;
   GLint contextualLocation_ = -1, importanceLocation_ = -1, applyLocation_ = -1;

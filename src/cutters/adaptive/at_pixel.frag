@@ -5,25 +5,21 @@
 // - C and its dilation (Burns08 §4.2), and C₂ and its dilation for the contextual structure
 //   (Burns11 §4.1.3);
 // - the simple structure's cut surface (Burns11 §5.2.4.1): where it cuts a solid, the back
-//   faces seen through the cut stand for the cut surface, with the cutaway surface's position
-//   and normal at the pixel's centre (five depth fetches here instead of per back face).
+//   faces seen through the cut stand for the cut surface, with the cutaway surface's normal at
+//   the pixel's centre (five depth fetches here instead of per back face; its position is C's
+//   point on the pixel's ray).
 #include "frame/frame_uniforms.glsl"
 #include "clip.glsl"
-layout(location = 0) out vec4 outDepths;  // C, dilated C, C₂, dilated C₂ (window depths)
-#ifndef UNIT_CUTAWAY_DEPTH_C2
-layout(location = 1) out vec4 outPosition;
-layout(location = 2) out vec4 outNormal;
-#endif
+// C, dilated C, and C₂, dilated C₂ (window depths) or the cut surface's normal (octahedral).
+layout(location = 0) out vec4 outAtPixel;
 void main() {
   vec2 uv = gl_FragCoord.xy * uViewport.zw;
-  outDepths.xy = vec2(textureLod(uCutawayDepth, uv, 0.0).r, textureLod(uCutawayDilated, uv, 0.0).r);
+  outAtPixel.xy = vec2(textureLod(uCutawayDepth, uv, 0.0).r, textureLod(uCutawayDilated, uv, 0.0).r);
 #ifdef UNIT_CUTAWAY_DEPTH_C2
-  outDepths.zw = vec2(textureLod(uCutawayDepthC2, uv, 0.0).r, textureLod(uCutawayDilatedC2, uv, 0.0).r);
+  outAtPixel.zw = vec2(textureLod(uCutawayDepthC2, uv, 0.0).r, textureLod(uCutawayDilatedC2, uv, 0.0).r);
 #else
-  outDepths.zw = vec2(0.0);
   vec3 position, normal;
   cutawaySurfaceAt(uv, position, normal);
-  outPosition = vec4(position, 1.0);
-  outNormal = vec4(normal, 0.0);
+  outAtPixel.zw = octahedralEncode(normal);
 #endif
 }

@@ -37,16 +37,12 @@ void cutawaySurfaceAt(vec2 uv, out vec3 cutPosition, out vec3 cutNormal) {
   vec3 dy = cutawayViewPoint(uv + vec2(0.0, texel.y)) - cutawayViewPoint(uv - vec2(0.0, texel.y));
   cutSurfaceAt(center, dx, dy, cutPosition, cutNormal);
 }
-#ifdef UNIT_CUTAWAY_CUT_POSITION
-layout(binding = UNIT_CUTAWAY_CUT_POSITION) uniform sampler2D uCutPosition;  // per pixel, world
-layout(binding = UNIT_CUTAWAY_CUT_NORMAL) uniform sampler2D uCutNormal;
-#endif
-
 #if !defined(CUT_VOLUME_SAMPLE) && !defined(TRANSLUCENT_LAYER)
 // Every fragment decided here lies at its pixel's centre (one per pixel, no per-sample
 // shading): the depths there, sampled once per pixel (at_pixel.frag), replace the bilinear
 // fetches. Ray samples and the per-sample translucent layers sample the surfaces themselves.
 #define CUTAWAY_AT_PIXEL
+#include "frame/normal_weight.glsl"
 layout(binding = UNIT_CUTAWAY_AT_PIXEL) uniform sampler2D uCutawayAtPixel;
 #endif
 
@@ -199,11 +195,12 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   // A back face is a cut surface only where the cutaway surface lies in front of it; elsewhere
   // (no cut at this pixel) it is an ordinary inside view of an open mesh.
   if (frontFacing || c <= 0.0) return kKeep;
-#ifdef UNIT_CUTAWAY_CUT_POSITION
+#ifdef CUTAWAY_AT_PIXEL
   // Worked out once per pixel (at_pixel.frag): every fragment here lies at a pixel centre.
-  ivec2 pixel = clamp(ivec2(CUT_FRAG_COORD.xy), ivec2(0), textureSize(uCutPosition, 0) - 1);
-  cutPosition = texelFetch(uCutPosition, pixel, 0).xyz;
-  cutNormal = texelFetch(uCutNormal, pixel, 0).xyz;
+  vec4 atPixel = texelFetch(uCutawayAtPixel, ivec2(CUT_FRAG_COORD.xy), 0);
+  vec3 center = viewPointAtDepth(CUT_FRAG_COORD.xy * uViewport.zw, atPixel.x);
+  cutPosition = (uInverseView * vec4(center, 1.0)).xyz;
+  cutNormal = octahedralDecode(atPixel.zw);
 #else
   cutawaySurfaceAt(CUT_FRAG_COORD.xy * uViewport.zw, cutPosition, cutNormal);
 #endif
