@@ -284,6 +284,34 @@ TEST(Cli, InfoPrintsObjectsAndWatertightness) {
   }());
 }
 
+// `info` prints the style and every cutter option as the scene format writes them (what a scene
+// file may hold, floats in their shortest exact form), which a scene file reads back unchanged.
+TEST(Cli, InfoPrintsTheStyleAndCuttersAsTheSceneFormatWritesThem) {
+  const std::string source = kSource + "/examples/fan-room-cutaway.json";
+  const Result r = run("info " + source);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("\"edgeRegion\": 0.1,"), std::string::npos) << r.out;  // the default
+  EXPECT_EQ(r.out.find("0.1000000"), std::string::npos) << r.out;  // no float widened to double
+  const auto info = nlohmann::json::parse(r.out);
+  EXPECT_EQ(info["style"]["name"], "gooch");
+  EXPECT_EQ(info["style"]["lines"]["width"], 1.0);
+  EXPECT_EQ(info["cutters"]["adaptive"]["angle"], 40.0);
+  EXPECT_EQ(info["cutters"]["adaptive"]["cutSurfaces"], "watertight");
+  EXPECT_EQ(info["cutters"]["adaptive"]["floorNormal"], nlohmann::json({0.0, 0.0, 1.0}));
+  // The printed style and cutters, as a scene's, give the same again.
+  std::ifstream in(source);
+  nlohmann::json scene = nlohmann::json::parse(in);
+  scene["style"] = info["style"];
+  scene["cutters"] = info["cutters"];
+  const fs::path copy = scratch("info-round-trip.json");
+  std::ofstream(copy) << scene.dump(2);
+  const Result again = run("info " + copy.string());
+  ASSERT_EQ(again.exitCode, 0) << again.err;
+  const auto second = nlohmann::json::parse(again.out);
+  EXPECT_EQ(second["style"], info["style"]);
+  EXPECT_EQ(second["cutters"], info["cutters"]);
+}
+
 // A volume scene end to end: `info` describes the volume as the file has it, `render` writes
 // the picture and the volume AOVs, whose opacity covers the head.
 TEST(Cli, VolumeSceneInfoAndRenderWithAovs) {

@@ -36,6 +36,7 @@
 #include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/benchmark_city.hpp"
 #include "cutaway/scene/scene.hpp"
+#include "cutaway/scene/scene_writer.hpp"
 
 namespace cutaway::cli {
 
@@ -169,8 +170,12 @@ auto blamingOverrides(const SceneOverrides& o, const Scene& scene, Run&& run) {
   }
 }
 
+// Floats as the shortest decimals that read back as them.
+nlohmann::json real(float f) {
+  return shortestDecimal(f);
+}
 nlohmann::json vec(const glm::vec3& v) {
-  return {v.x, v.y, v.z};
+  return {real(v.x), real(v.y), real(v.z)};
 }
 nlohmann::json boundsJson(const Bounds& b) {
   return {{"min", vec(b.min)}, {"max", vec(b.max)}};
@@ -545,7 +550,7 @@ int info(const std::string& path) {
                        {"source", o.source},
                        {"group", o.group},
                        {"role", roleName(o.role)},
-                       {"importance", o.importance},
+                       {"importance", real(o.importance)},
                        {"proxy", o.proxy},
                        {"params", params},
                        {"triangles", o.mesh->triangleCount()},
@@ -560,24 +565,21 @@ int info(const std::string& path) {
                        {"normalsComputed", r.normalsComputed}});
   }
   const Camera c = scene.resolvedCamera();
-  nlohmann::json out = {
-      {"scene", path},
-      {"resolution", {scene.width, scene.height}},
-      {"style", scene.style.name},
-      {"triangles", triangles},
-      {"bounds", boundsJson(scene.bounds())},
-      {"camera",
-       {{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"near", c.near}, {"far", c.far}}},
-      {"duration", scene.duration()},
-      {"objects", objects}};
-  if (const auto* a = scene.cutters.find<AdaptiveCutawayOptions>())
-    out["cutters"]["adaptive"] = {{"angle", a->angle},
-                                  {"bufferSize", a->bufferSize},
-                                  {"perspectiveCompensation", a->perspectiveCompensation},
-                                  {"edgeCompression", a->edgeCompression ? a->edgeRegion : 0.0f},
-                                  {"directionalConstraint", a->directionalConstraint},
-                                  {"jumpFlooding", fields::variantName(a->variant)},
-                                  {"ghostLines", a->ghostLines.has_value()}};
+  // The style and the cutters with every option as the scene format writes it (their schemas),
+  // the cutters' with what they resolve from the scene added below.
+  nlohmann::json out = {{"scene", path},
+                        {"resolution", {scene.width, scene.height}},
+                        {"style", nlohmann::json(styleJson(scene.style))},
+                        {"triangles", triangles},
+                        {"bounds", boundsJson(scene.bounds())},
+                        {"camera",
+                         {{"eye", vec(c.eye)},
+                          {"target", vec(c.target)},
+                          {"near", real(c.near)},
+                          {"far", real(c.far)}}},
+                        {"duration", real(scene.duration())},
+                        {"objects", objects}};
+  if (!scene.cutters.empty()) out["cutters"] = nlohmann::json(cuttersJson(scene));
   // Diepstraten03 §4.2: each exterior unit's main axis (hull-surface covariance).
   for (const auto& unit : exteriorUnits(scene)) {
     const PrincipalAxes& a = unit.axes;
@@ -585,57 +587,37 @@ int info(const std::string& path) {
     for (const std::size_t i : unit.objects) members.push_back(scene.objects[i].name);
     nlohmann::json volumes = nlohmann::json::array();
     for (const std::size_t i : unit.volumes) volumes.push_back(scene.volumes[i].name);
-    out["exteriors"].push_back({{"name", unit.name},
-                                {"objects", members},
-                                {"volumes", volumes},
-                                {"centre", vec(a.center)},
-                                {"mainAxis", vec(a.axes[0])},
-                                {"axes", {vec(a.axes[0]), vec(a.axes[1]), vec(a.axes[2])}},
-                                {"eigenvalues", a.eigenvalues},
-                                {"extentAlongMainAxis", {a.extentMin, a.extentMax}}});
+    out["exteriors"].push_back(
+        {{"name", unit.name},
+         {"objects", members},
+         {"volumes", volumes},
+         {"centre", vec(a.center)},
+         {"mainAxis", vec(a.axes[0])},
+         {"axes", {vec(a.axes[0]), vec(a.axes[1]), vec(a.axes[2])}},
+         {"eigenvalues", {real(a.eigenvalues[0]), real(a.eigenvalues[1]), real(a.eigenvalues[2])}},
+         {"extentAlongMainAxis", {real(a.extentMin), real(a.extentMax)}}});
   }
   if (const auto* c = scene.cutters.find<CutoutOptions>())
-    out["cutters"]["cutout"] = {
-        {"method", c->method == CutoutOptions::Method::Texture ? "texture" : "clipPlanes"},
-        {"angle", c->angle},
-        {"rotation",
-         c->rotation ? nlohmann::json(*c->rotation) : nlohmann::json("facing the camera")},
-        {"planes", c->axialRange ? 4 : 2}};
+    out["cutters"]["cutout"]["planes"] = c->axialRange ? 4 : 2;
   if (const auto* c = scene.cutters.find<ClipSurfaceOptions>()) {
-    nlohmann::json surfaces = nlohmann::json::array();
-    for (const auto& cs : c->surfaces)
-      surfaces.push_back({{"origin", vec(cs.origin)},
-                          {"u", vec(cs.u)},
-                          {"v", vec(cs.v)},
-                          {"normal", vec(cs.normal())},
-                          {"scale", vec(cs.scale)},
-                          {"offsetMap", {cs.offsetMap.width, cs.offsetMap.height}},
-                          {"enabled", cs.enabled}});
+    nlohmann::json& written = out["cutters"]["clipSurfaces"];
+    for (std::size_t i = 0; i < c->surfaces.size(); ++i) {
+      const ClipSurface& cs = c->surfaces[i];
+      written["surfaces"][i]["normal"] = vec(cs.normal());
+      written["surfaces"][i]["offsetMapSize"] = {cs.offsetMap.width, cs.offsetMap.height};
+    }
     nlohmann::json capped = nlohmann::json::array(), uncapped = nlohmann::json::array();
     for (const auto& o : scene.objects)
       if (!o.proxy && o.role != Role::Interest)
         (o.mesh->report.watertight ? capped : uncapped).push_back(o.name);
-    out["cutters"]["clipSurfaces"] = {
-        {"surfaces", surfaces},
-        {"combine", c->combine == ClipSurfaceOptions::Combine::Union ? "union" : "intersection"},
-        {"caps", c->caps},
-        {"parity", c->parity == ClipSurfaceOptions::Parity::Static ? "static" : "perFrame"},
-        {"capped", c->caps ? capped : nlohmann::json::array()},
-        {"notCappedOpenMeshes", c->caps ? uncapped : nlohmann::json::array()}};
+    written["capped"] = c->caps ? capped : nlohmann::json::array();
+    written["notCappedOpenMeshes"] = c->caps ? uncapped : nlohmann::json::array();
   }
   if (const auto* t = scene.cutters.find<TerrainOpeningOptions>()) {
     std::size_t nodes = 0;
     for (const auto& line : t->lines) nodes += line.size();
-    out["cutters"]["terrainOpening"] = {
-        {"terrain", t->terrain},
-        {"polylines", t->lines.size()},
-        {"nodes", nodes},
-        {"resolution", t->resolution},
-        {"metric", t->metric == TerrainOpeningOptions::Metric::L1 ? "l1" : "euclidean"},
-        {"rough", t->rough},
-        {"w", t->w},
-        {"s", t->s},
-        {"cameraDistance", t->cameraDistance}};
+    out["cutters"]["terrainOpening"]["polylines"] = t->lines.size();
+    out["cutters"]["terrainOpening"]["nodes"] = nodes;
   }
   // Konev18 §§5–7: what each network holds after splitting at sharp bends and trimming
   // crossing cuts (§9).
@@ -654,11 +636,11 @@ int info(const std::string& path) {
          {"mode", net.mode == PipeNetwork::Mode::Billboards ? "billboards" : "mesh"},
          {"pipes", net.pipes.size()},
          {"nodes", nodes},
-         {"length", length},
-         {"radius", {rMin, rMax}},
-         {"radiusScale", net.radiusScale},
+         {"length", real(length)},
+         {"radius", {real(rMin), real(rMax)}},
+         {"radiusScale", real(net.radiusScale)},
          {"cutPipes", cut},
-         {"cutLength", cutLength},
+         {"cutLength", real(cutLength)},
          {"shafts", net.shafts.size()},
          {"bounds", boundsJson(net.bounds())}});
   }
@@ -671,7 +653,7 @@ int info(const std::string& path) {
                               {"dims", {data.dims.x, data.dims.y, data.dims.z}},
                               {"voxelType", data.voxelType},
                               {"spacing", vec(data.spacing())},
-                              {"range", {data.minValue, data.maxValue}},
+                              {"range", {real(data.minValue), real(data.maxValue)}},
                               {"role", roleName(v.role)},
                               {"mode", volumeModeName(v.mode)},
                               {"transferPoints", transferPoints},
@@ -685,8 +667,10 @@ int info(const std::string& path) {
       clusters.push_back({{"group", c.group},
                           {"objects", c.objects.size()},
                           {"hullTriangles", c.outerHull.triangles.size()}});
-    out["cutters"]["breakaway"] = {
-        {"offset", extent.offset}, {"wallThickness", extent.wallThickness}, {"clusters", clusters}};
+    // The offset and wall thickness resolved (the scene's, or from the scene's size).
+    out["cutters"]["breakaway"].update({{"offset", real(extent.offset)},
+                                        {"wallThickness", real(extent.wallThickness)},
+                                        {"clusters", clusters}});
   }
   std::printf("%s\n", out.dump(2).c_str());
   return 0;

@@ -127,6 +127,10 @@ std::string escapeRegex(const std::string& name) {
   return out;
 }
 
+double shortestDecimal(float f) {
+  return exact(f);
+}
+
 json cameraJson(const Camera& c) {
   json j = {
       {"projection", c.projection == Projection::Orthographic ? "orthographic" : "perspective"},

@@ -46,6 +46,9 @@ class SceneDocument {
   std::filesystem::path path_;
 };
 
+// A float as the shortest decimal that reads back as it (0.1f writes 0.1, not
+// 0.10000000149011612; 35 stays 35).
+double shortestDecimal(float f);
 // The scene-format JSON of a camera, with floats written in their shortest exact form.
 nlohmann::ordered_json cameraJson(const Camera& camera);
 // Every cutter's and style's keys as their schemas write them (what `patched` compares).
