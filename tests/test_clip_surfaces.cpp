@@ -287,6 +287,48 @@ TEST(OffsetMap, DerivedGradientsAndOcclusion) {
   for (int i = 0; i < 64; ++i) EXPECT_EQ(deriveReliefMaps(cs).data[std::size_t(i) * 4 + 3], 1.0f);
 }
 
+// deriveReliefMaps against the per-texel definition, written out plainly (every tap wrapped):
+// bit for bit at the edges, inside and in the rows other threads take.
+TEST(OffsetMap, DerivedMapsAreThePerTexelDefinitionEverywhere) {
+  ClipSurface cs{.u = {3, 0, 0}, .v = {0, 2, 0}, .scale = {2, 1, 0.3f}};
+  cs.offsetMap = FloatImage(150, 131, 1);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> level(0.0f, 1.0f);
+  for (float& h : cs.offsetMap.data) h = level(random);
+  const FloatImage& h = cs.offsetMap;
+  const auto at = [&](int x, int y) {
+    return h.at(((x % h.width) + h.width) % h.width, ((y % h.height) + h.height) % h.height)[0];
+  };
+  const float texelU = glm::length(cs.u) / (cs.scale.x * float(h.width));
+  const float texelV = glm::length(cs.v) / (cs.scale.y * float(h.height));
+  const FloatImage relief = deriveReliefMaps(cs);
+  int checked = 0;
+  for (int y = 0; y < h.height; ++y)
+    for (int x = 0; x < h.width; ++x) {
+      const float centre = at(x, y);
+      float occlusion = 0.0f;
+      for (int d = 0; d < 8; ++d) {
+        const float angle = 2.0f * 3.14159265f * float(d) / 8.0f;
+        float steepest = 0.0f;
+        for (int s = 1; s <= 12; ++s) {
+          const int qx = x + int(std::lround(std::cos(angle) * float(s))),
+                    qy = y + int(std::lround(std::sin(angle) * float(s)));
+          const float dx = float(qx - x) * texelU, dy = float(qy - y) * texelV;
+          const float run = std::sqrt(dx * dx + dy * dy);
+          steepest = std::max(steepest, (at(qx, qy) - centre) * cs.scale.z / run);
+        }
+        occlusion += steepest / std::sqrt(1.0f + steepest * steepest);
+      }
+      const float* r = relief.at(x, y);
+      ASSERT_EQ(r[0], centre) << x << ", " << y;
+      ASSERT_EQ(r[1], (at(x + 1, y) - at(x - 1, y)) * float(h.width) * 0.5f) << x << ", " << y;
+      ASSERT_EQ(r[2], (at(x, y + 1) - at(x, y - 1)) * float(h.height) * 0.5f) << x << ", " << y;
+      ASSERT_EQ(r[3], 1.0f - occlusion / 8.0f) << x << ", " << y;
+      ++checked;
+    }
+  EXPECT_EQ(checked, 150 * 131);
+}
+
 TEST(OffsetMap, SixteenBitPngKeepsItsLevels) {
   const std::filesystem::path file = test::scratchPath("clip", "offset16.png");
   std::vector<std::uint16_t> levels{0, 1, 257, 65535, 40000, 12345};
@@ -986,6 +1028,26 @@ TEST(ClipSurfaceGpu, PerFrameParityMatchesStaticParity) {
 }
 
 // §6.1: a diffuse map multiplies the cap colour where the cap shows, and nowhere else.
+// A map wider than the device's largest texture would upload as nothing (a flat cut, no
+// tint): refused, naming the map's place in the scene file, before its relief is derived.
+TEST(ClipSurfaceGpu, MapsLargerThanTheDeviceTakesAreRefused) {
+  const int wide = test::glContext().info().maxTextureSize + 1;
+  writeTorus();
+  Scene scene = parseScene(torusScene(kFlatSurface, true), "torus.json", kData);
+  ClipSurface& cs = scene.cutters.find<ClipSurfaceOptions>()->surfaces[0];
+  const FloatImage offsets = cs.offsetMap;
+  cs.offsetMap = FloatImage(wide, 1, 1);
+  expectError(
+      [&] { Renderer(scene, test::glContext().info()); },
+      {"torus.json", "/cutters/clipSurfaces/surfaces/0/offsetMap",
+       "an offset map of " + std::to_string(wide) + "×1 texels exceeds the GPU's largest texture"});
+  cs.offsetMap = offsets;
+  cs.diffuseMap = Rgba8Image(1, wide);
+  expectError([&] { Renderer(scene, test::glContext().info()); },
+              {"/cutters/clipSurfaces/surfaces/0/diffuseMap",
+               "a diffuse map of 1×" + std::to_string(wide)});
+}
+
 TEST(ClipSurfaceGpu, DiffuseMapTintsOnlyTheCaps) {
   writeTorus();
   const std::filesystem::path red = test::scratchPath("clip", "red.png");

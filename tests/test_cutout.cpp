@@ -16,6 +16,7 @@
 #include "cutaway/geometry/main_axis.hpp"
 #include "cutaway/render/renderer.hpp"
 #include "cutaway/render/techniques.hpp"
+#include "expect_error.hpp"
 #include "gl_test_context.hpp"
 #include "mismatches.hpp"
 #include "render_aovs.hpp"
@@ -510,6 +511,19 @@ TEST(Cutout, AnImageJitterDisplacesTheWedgeByItsGreyLevelAlongTheAxis) {
 
 // Rule 5: through the wedge the cube's inside shows as its cut wall, in the wall colour, and
 // the interior object is never cut.
+// A jitter image wider than the device's largest texture would upload as nothing (no jitter):
+// refused, naming its place in the scene file.
+TEST(Cutout, AJitterImageLargerThanTheDeviceTakesIsRefused) {
+  Scene scene = parseScene(cubeScene(R"("cutout": {"angle": 100})"), "cube.json", kData);
+  CutoutJitter& jitter = scene.cutters.find<CutoutOptions>()->jitter;
+  const int wide = test::glContext().info().maxTextureSize + 1;
+  jitter.pattern = CutoutJitter::Pattern::Image;
+  jitter.imageData = FloatImage(wide, 2, 1);
+  test::expectError([&] { Renderer(scene, test::glContext().info()); },
+                    {"cube.json", "/cutters/cutout/jitter/image",
+                     "a jitter image of " + std::to_string(wide) + "×2 texels exceeds"});
+}
+
 TEST(Cutout, WallsAreShownAndInteriorIsWhole) {
   const Scene cut = parseScene(cubeScene(R"("cutout": {"angle": 100})"), "cube.json", kData);
   const auto aovs = renderAovs(cut);

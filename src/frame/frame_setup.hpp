@@ -5,12 +5,14 @@
 // shading before any pass runs; techniques keep a reference to it.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "cutaway/core/error.hpp"
 #include "cutaway/frame/frame.hpp"
 #include "cutaway/geometry/mesh.hpp"
 #include "cutaway/gl/context.hpp"
@@ -53,6 +55,18 @@ struct FrameSetup {
                              .defines = sampleDefines(scene.samples, std::move(defines)),
                              .aliases = shadingAliases,
                              .sources = shadingSources});
+  }
+
+  // Refuses an image a technique uploads as a 2-D texture that the device cannot hold (GL would
+  // leave the texture empty and the picture silently wrong): `place` is its pointer in the
+  // scene file, `what` names it ("an offset map").
+  void requireTextureFits(const std::string& place, const std::string& what, int width,
+                          int height) const {
+    if (context.maxTextureSize > 0 && std::max(width, height) > context.maxTextureSize)
+      throw Error(scene.file.string(), place,
+                  what + " of " + std::to_string(width) + "×" + std::to_string(height) +
+                      " texels exceeds the GPU's largest texture, " +
+                      std::to_string(context.maxTextureSize) + " on a side");
   }
 
   // Connected by the composer to every geometry kind.

@@ -3,9 +3,12 @@
 // reference. src/cutters/clip_surfaces/*.glsl evaluate the same per fragment.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <thread>
+#include <vector>
 
 #include "cutaway/core/noise.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
@@ -188,33 +191,62 @@ FloatImage deriveReliefMaps(const ClipSurface& cs) {
   const float texelU = glm::length(cs.u) / (cs.scale.x * float(h.width));
   const float texelV = glm::length(cs.v) / (cs.scale.y * float(h.height));
   const float height = cs.scale.z;
+  // Horizon-based occlusion: in each of 8 directions, the steepest rise of the relief within 12
+  // texels (seen from the cut's side, higher h is nearer) bounds the open sky; AO = 1 − mean
+  // sin(horizon). The taps are the same at every texel: worked out once.
   constexpr int kDirections = 8, kSteps = 12;
-  for (int y = 0; y < h.height; ++y)
-    for (int x = 0; x < h.width; ++x) {
-      float* o = out.at(x, y);
-      const float centre = at(x, y);
-      o[0] = centre;
-      o[1] = (at(x + 1, y) - at(x - 1, y)) * float(h.width) * 0.5f;  // ∂h/∂s, central difference
-      o[2] = (at(x, y + 1) - at(x, y - 1)) * float(h.height) * 0.5f;
-      // Horizon-based occlusion: in each direction, the steepest rise of the relief (seen from
-      // the cut's side, higher h is nearer) bounds the open sky; AO = 1 − mean sin(horizon).
-      float occlusion = 0.0f;
-      for (int d = 0; d < kDirections; ++d) {
-        const float angle = 2.0f * 3.14159265f * float(d) / float(kDirections);
-        const float cx = std::cos(angle), cy = std::sin(angle);
-        float steepest = 0.0f;
-        for (int s = 1; s <= kSteps; ++s) {
-          const int qx = x + int(std::lround(cx * float(s))),
-                    qy = y + int(std::lround(cy * float(s)));
-          const float dx = float(qx - x) * texelU, dy = float(qy - y) * texelV;
-          const float run = std::sqrt(dx * dx + dy * dy);
-          if (run <= 0.0f) continue;
-          steepest = std::max(steepest, (at(qx, qy) - centre) * height / run);
-        }
-        occlusion += steepest / std::sqrt(1.0f + steepest * steepest);  // sin(atan(slope))
-      }
-      o[3] = 1.0f - occlusion / float(kDirections);
+  struct Tap {
+    int dx, dy;
+    float run;  // scene units
+  };
+  std::array<std::array<Tap, kSteps>, kDirections> taps{};
+  for (int d = 0; d < kDirections; ++d) {
+    const float angle = 2.0f * 3.14159265f * float(d) / float(kDirections);
+    const float cx = std::cos(angle), cy = std::sin(angle);
+    for (int s = 1; s <= kSteps; ++s) {
+      Tap& t = taps[std::size_t(d)][std::size_t(s - 1)];
+      t.dx = int(std::lround(cx * float(s))), t.dy = int(std::lround(cy * float(s)));
+      const float dx = float(t.dx) * texelU, dy = float(t.dy) * texelV;
+      t.run = std::sqrt(dx * dx + dy * dy);
     }
+  }
+  const auto texel = [&](int x, int y, bool inside) {
+    // Away from the edges the taps need no wrapping.
+    const auto tap = [&](int dx, int dy) {
+      return inside ? h.data[std::size_t(y + dy) * std::size_t(h.width) + std::size_t(x + dx)]
+                    : at(x + dx, y + dy);
+    };
+    float* o = out.at(x, y);
+    const float centre = at(x, y);
+    o[0] = centre;
+    o[1] = (tap(1, 0) - tap(-1, 0)) * float(h.width) * 0.5f;  // ∂h/∂s, central difference
+    o[2] = (tap(0, 1) - tap(0, -1)) * float(h.height) * 0.5f;
+    float occlusion = 0.0f;
+    for (const auto& direction : taps) {
+      float steepest = 0.0f;
+      for (const Tap& t : direction) {
+        if (t.run <= 0.0f) continue;
+        steepest = std::max(steepest, (tap(t.dx, t.dy) - centre) * height / t.run);
+      }
+      occlusion += steepest / std::sqrt(1.0f + steepest * steepest);  // sin(atan(slope))
+    }
+    o[3] = 1.0f - occlusion / float(kDirections);
+  };
+  // Rows shared out to threads: a large map takes seconds on one.
+  std::atomic<int> nextRow{0};
+  const auto work = [&] {
+    for (int y; (y = nextRow++) < h.height;) {
+      const bool rowInside = y >= kSteps && y + kSteps < h.height;
+      for (int x = 0; x < h.width; ++x)
+        texel(x, y, rowInside && x >= kSteps && x + kSteps < h.width);
+    }
+  };
+  const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads && std::size_t(t) * 64 < std::size_t(h.height); ++t)
+    pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
   return out;
 }
 

@@ -212,6 +212,11 @@ ClipSurfaceCutter::ClipSurfaceCutter(FrameSetup& setup)
   Gpu& g = *gpu_;
   for (std::size_t i = 0; i < options.surfaces.size(); ++i) {
     const ClipSurface& cs = options.surfaces[i];
+    const std::string place = "/cutters/clipSurfaces/surfaces/" + std::to_string(i);
+    setup.requireTextureFits(place + "/offsetMap", "an offset map", cs.offsetMap.width,
+                             cs.offsetMap.height);
+    setup.requireTextureFits(place + "/diffuseMap", "a diffuse map", cs.diffuseMap.width,
+                             cs.diffuseMap.height);
     // §4.2: normal and occlusion maps derived from the offset map (again when S changes).
     gl::Texture t = gl::Texture::create(GL_TEXTURE_2D);
     glTextureStorage2D(t.id(), 1, GL_RGBA32F, cs.offsetMap.width, cs.offsetMap.height);

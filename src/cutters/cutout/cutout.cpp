@@ -120,6 +120,8 @@ Cutout::Cutout(FrameSetup& setup)
   const CutoutJitter& jitter = options().jitter;
   if (jitter.pattern == CutoutJitter::Pattern::Image) {
     const FloatImage& image = jitter.imageData;
+    setup.requireTextureFits("/cutters/cutout/jitter/image", "a jitter image", image.width,
+                             image.height);
     imageTexture_ = gl::Texture::create(GL_TEXTURE_2D);
     const GLuint id = imageTexture_.id();
     glTextureStorage2D(id, 1, GL_R32F, image.width, image.height);
