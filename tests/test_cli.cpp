@@ -243,6 +243,61 @@ TEST(Cli, AnAnimationsTakenOutputsFailBeforeTheFirstFrame) {
   EXPECT_FALSE(fs::exists(dir / "aovs" / "0001"));
 }
 
+// A frame that fails while rendering (the volume's lines outgrow "mostSegments" as the camera
+// turns) takes back the frames written before it, puts back the files they replaced, and
+// names the frame; a run that succeeds leaves nothing of the files it replaced.
+TEST(Cli, AnAnimationThatFailsPartWayLeavesTheEarlierOutputsAsTheyWere) {
+  const fs::path dir = scratch("animation-undone");
+  fs::remove_all(dir);
+  fs::create_directories(dir / "out");
+  // An ellipsoid's distance field, 200 × 48 × 48: its iso-lines seen side-on fit the budget,
+  // seen from above they do not.
+  std::vector<float> voxels;
+  for (int k = 0; k < 48; ++k)
+    for (int j = 0; j < 48; ++j)
+      for (int i = 0; i < 200; ++i)
+        voxels.push_back(
+            float(std::sqrt(std::pow((i - 99.5) / 95, 2) + std::pow((j - 23.5) / 22, 2) +
+                            std::pow((k - 23.5) / 22, 2))));
+  std::ofstream(dir / "e.raw", std::ios::binary)
+      .write(reinterpret_cast<const char*>(voxels.data()), std::streamsize(voxels.size() * 4));
+  std::ofstream(dir / "e.json") << R"({"file": "e.raw", "dims": [200, 48, 48], "type": "f32"})";
+  const auto sceneWith = [&](const std::string& lastEye) {
+    std::ofstream(dir / "s.json") << R"({"volumes": [{"name": "v", "file": "e.json",
+      "transferFunction": [{"value": 0, "opacity": 0}], "lines": {"isoValues": [{"value": 0.3},
+      {"value": 0.4}, {"value": 0.5}, {"value": 0.6}, {"value": 0.7}, {"value": 0.8},
+      {"value": 0.9}, {"value": 1}], "only": true, "mostSegments": 2000}}],
+      "camera": {"path": [{"time": 0, "eye": [500, 23.5, 23.5], "target": [99.5, 23.5, 23.5]},
+                          {"time": 1, "eye": )" +
+                                         lastEye + R"(, "target": [99.5, 23.5, 23.5]}]}})";
+  };
+  const fs::path out = dir / "out";
+  std::ofstream(out / "f_0002.png") << "an earlier frame";
+  const std::string args = " --frames 2 --size 100x75 -o " + (out / "f_%04d.png").string() +
+                           " --aov " + (out / "aovs").string();
+  sceneWith("[99.5, 23.5, 500]");
+  Result r = run("render " + (dir / "s.json").string() + args);
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find("s.json: /volumes/0/lines: frame 2 of 2 (no frame written): the lines "
+                       "hold more than 2000 segments"),
+            std::string::npos)
+      << r.err;
+  std::vector<std::string> left;
+  for (const auto& e : fs::recursive_directory_iterator(out)) left.push_back(e.path().filename());
+  EXPECT_EQ(left, std::vector<std::string>{"f_0002.png"});
+  std::ifstream earlier(out / "f_0002.png");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(earlier), {}), "an earlier frame");
+  // Side-on throughout, both frames are drawn, the earlier file replaced.
+  sceneWith("[500, 23.5, 30]");
+  r = run("render " + (dir / "s.json").string() + args);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  left.clear();
+  for (const auto& e : fs::directory_iterator(out)) left.push_back(e.path().filename());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"aovs", "f_0001.png", "f_0002.png"}));
+  EXPECT_EQ(readPng(out / "f_0002.png").width, 100);
+}
+
 // A camera path whose eye passes through its target half-way: no frame is written, and the
 // error names the file, the frame and its time.
 TEST(Cli, AnAnimationsUnresolvableCameraFailsBeforeTheFirstFrame) {

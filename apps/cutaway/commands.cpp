@@ -417,12 +417,50 @@ int render(const RenderOptions& options) {
       std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
     return 0;
   }
+  // An animation is written whole or not at all: each frame's outputs that exist already are
+  // moved aside (NAME.replaced-PID) before it is written, and a frame that fails takes back
+  // every frame this run wrote and puts the moved ones back; they are removed at the end.
+  const std::string aside = ".replaced-" + std::to_string(::getpid());
+  std::vector<std::string> written, movedAside;
+  // The AOV folder and those above it that the frames' writers will make, innermost first.
+  std::vector<std::filesystem::path> madeFolders;
+  if (!options.aovDir.empty())
+    for (std::filesystem::path dir = std::filesystem::path(options.aovDir).lexically_normal();
+         !dir.empty() && !std::filesystem::exists(std::filesystem::symlink_status(dir, ec));
+         dir = dir.parent_path())
+      if (dir.has_filename()) madeFolders.push_back(dir);
+  const auto undo = [&] {
+    std::error_code ignored;
+    for (const std::string& path : written) std::filesystem::remove_all(path, ignored);
+    for (const std::string& path : movedAside) std::filesystem::rename(path + aside, path, ignored);
+    for (const auto& dir : madeFolders) std::filesystem::remove(dir, ignored);  // where empty
+  };
   const bool progress = ::isatty(STDERR_FILENO);
   for (int i = 0; i < options.frames; ++i) {
     const float time = frameTime(i);
     const std::string aovDir = options.aovDir.empty() ? "" : aovFrameFolder(options.aovDir, i + 1);
-    renderOne(time, framePath(options.output, i + 1), aovDir,
-              options.svg.empty() ? "" : framePath(options.svg, i + 1));
+    const std::string out = framePath(options.output, i + 1),
+                      svg = options.svg.empty() ? "" : framePath(options.svg, i + 1);
+    try {
+      for (const std::string& path : {out, svg, aovDir}) {
+        if (path.empty() || !std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
+          continue;
+        std::filesystem::rename(path, path + aside, ec);
+        if (ec) throw Error(path, "", "cannot move the earlier file aside: " + ec.message());
+        movedAside.push_back(path);
+      }
+      for (const std::string& path : {out, svg, aovDir})
+        if (!path.empty()) written.push_back(path);
+      renderOne(time, out, aovDir, svg);
+    } catch (const Error& e) {
+      undo();
+      throw Error(e.file(), e.place(),
+                  "frame " + std::to_string(i + 1) + " of " + std::to_string(options.frames) +
+                      " (no frame written): " + e.reason());
+    } catch (...) {
+      undo();
+      throw;
+    }
     if (progress) {
       const int width = 30, done = (i + 1) * width / options.frames;
       std::fprintf(
@@ -431,6 +469,7 @@ int render(const RenderOptions& options) {
       std::fflush(stderr);
     }
   }
+  for (const std::string& path : movedAside) std::filesystem::remove_all(path + aside, ec);
   if (progress) std::fprintf(stderr, "\n");
   if (options.frames == 1)
     std::printf("wrote 1 frame %s (%dx%d)\n", framePath(options.output, 1).c_str(), scene.width,
