@@ -450,6 +450,37 @@ TEST(MeshImport, RepeatedNodeNamesStayUnique) {
   EXPECT_EQ(names, (std::vector<std::string>{"a", "a#2", "a#3", "a#4"}));
 }
 
+// A UTF-8 byte-order mark before a text model's first line (some editors write one): the model
+// reads as it does without it. Assimp's OBJ reader took the mark into the first line, dropped
+// that vertex and drew the face from the others, saying nothing.
+TEST(MeshImport, ATextModelAfterAByteOrderMarkReadsAsWithoutIt) {
+  const std::string bom = "\xEF\xBB\xBF";
+  const std::string obj = "v 5 5 5\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 3 4\n";
+  const std::string stl =
+      "solid t\nfacet normal 0 0 1\nouter loop\nvertex 5 5 5\nvertex 0 0 0\nvertex 1 0 0\n"
+      "endloop\nendfacet\nendsolid t\n";
+  for (const auto& [name, text] : {std::pair{"bom.obj", obj}, std::pair{"bom.stl", stl}}) {
+    const std::filesystem::path plain = plyFile(std::string("plain-") + name, text),
+                                marked = plyFile(name, bom + text);
+    const Mesh a = importMeshNodes(plain).at(0).mesh, b = importMeshNodes(marked).at(0).mesh;
+    std::filesystem::remove(plain);
+    std::filesystem::remove(marked);
+    EXPECT_EQ(b.positions, a.positions) << name;
+    EXPECT_EQ(b.triangles, a.triangles) << name;
+    EXPECT_EQ(b.bounds().max, glm::vec3(5.0f)) << name;
+  }
+  // The same gzipped.
+  const std::filesystem::path gz = std::filesystem::temp_directory_path() /
+                                   ("cutaway-bom-" + std::to_string(::getpid()) + ".obj.gz");
+  gzFile out = gzopen(gz.c_str(), "wb");
+  const std::string marked = bom + obj;
+  ASSERT_EQ(gzwrite(out, marked.data(), unsigned(marked.size())), int(marked.size()));
+  gzclose(out);
+  const Mesh m = importMeshNodes(gz).at(0).mesh;
+  std::filesystem::remove(gz);
+  EXPECT_EQ(m.bounds().max, glm::vec3(5.0f));
+}
+
 // Gzip and binary glTF files that lie about their sizes.
 TEST(MeshImport, BadGzipAndBinaryGltfFilesAreRefused) {
   // .gz files that are not gzip, or hold nothing (Assimp said "Invalid parameters passed to

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -238,10 +239,26 @@ void checkFinite(const std::filesystem::path& file, const std::string& place, co
   throw Error(file.string(), "", "the file contains no triangles");
 }
 
+// A UTF-8 byte-order mark, which some editors put before a text file's first line.
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+
+// Text formats whose Assimp readers take a byte-order mark as part of the first line (an OBJ's
+// first vertex then goes missing and the faces name the wrong ones): read without it. Binary
+// formats keep every byte.
+bool textFormat(const std::string& format) {
+  return format == "obj" || format == "off" || format == "gltf" || format == "stl";
+}
+
+bool startsWithByteOrderMark(const std::vector<char>& data) {
+  return std::string_view(data.data(), data.size()).starts_with(kByteOrderMark);
+}
+
 // The files a model names (an OBJ's mtllib, a glTF's buffers) are read only where they are
-// regular files: a FIFO would block the reader, a device feed it without end.
+// regular files: a FIFO would block the reader, a device feed it without end. The model's own
+// file, in a text format, is read without a byte-order mark.
 class RegularFilesOnly : public Assimp::DefaultIOSystem {
  public:
+  explicit RegularFilesOnly(std::filesystem::path model) : model_(std::move(model)) {}
   bool Exists(const char* file) const override {  // Assimp's own opens the file to see
     std::error_code ec;
     return std::filesystem::is_regular_file(file, ec);
@@ -249,8 +266,20 @@ class RegularFilesOnly : public Assimp::DefaultIOSystem {
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) return nullptr;
+    if (!model_.empty() && std::filesystem::equivalent(file, model_, ec)) {
+      const std::vector<char> data = readFile(model_);
+      if (startsWithByteOrderMark(data)) {
+        const std::size_t size = data.size() - kByteOrderMark.size();
+        auto* text = new std::uint8_t[size];
+        std::memcpy(text, data.data() + kByteOrderMark.size(), size);
+        return new Assimp::MemoryIOStream(text, size, true);  // the stream owns the copy
+      }
+    }
     return DefaultIOSystem::Open(file, mode);
   }
+
+ private:
+  std::filesystem::path model_;  // empty: none read without its mark
 };
 
 // Assimp's warnings on this thread while it lives: some readers drop what they cannot read (a
@@ -318,14 +347,16 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     return {std::move(node)};
   }
   Assimp::Importer importer;
-  importer.SetIOHandler(new RegularFilesOnly);  // the importer owns it
+  importer.SetIOHandler(new RegularFilesOnly(textFormat(format) ? file : ""));  // owned by it
   // Points and lines carry no surface: drop them rather than fail.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                               aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const AssimpWarnings warnings;
   const aiScene* scene = nullptr;
   if (gzip) {
-    const std::vector<char> data = readGzip(file);
+    std::vector<char> data = readGzip(file);
+    if (textFormat(format) && startsWithByteOrderMark(data))
+      data.erase(data.begin(), data.begin() + std::ptrdiff_t(kByteOrderMark.size()));
     scene = importer.ReadFileFromMemory(data.data(), data.size(), 0, format.c_str());
   } else {
     if (format == "glb") checkGlbHeader(file);
