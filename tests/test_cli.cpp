@@ -502,7 +502,8 @@ TEST(Cli, BadOutputsAndCameraValuesAreRefusedBeforeRendering) {
        "--eye: the viewing direction is parallel to the scene's up vector (0,1,0); give --up too"},
       {"-o " + png + " --up 0,0,1", "--up: up is parallel to the viewing direction"},
       {"-o " + png + " --eye 1e14,0,0 --target 99999990000000,0,0",
-       "/camera: at 0 s: eye and target are 8.39e+06 apart at 1e+14 from the origin, too close"},
+       "--eye and --target: at 0 s: eye and target are 8.39e+06 apart at 1e+14 from the origin, "
+       "too close"},
       {"-o " + png + " --svg " + (dir / "lines.txt").string(), "give it a .svg name"},
       {"-o " + (dir / "a-file" / "out.png").string(), "a-file/out.png: not a folder: "},
       {"-o " + png + " --svg " + (dir / "lines.svg").string(), "no volume of"},
@@ -565,6 +566,26 @@ TEST(Cli, UsageErrors) {
     EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.err;
     EXPECT_EQ(lines(r.err), 1) << arguments << ": " << r.err;
   }
+  // So are outputs the command cannot write by their names, one path for two outputs, a camera
+  // the options place where none can be, and a DEM of too many cells (an outside trial found
+  // each exiting 1); each names the option or the path.
+  const fs::path taken = scratch("taken.png");
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {"-o ''", "--output: the file name is empty"},
+           {"-o x.jpg", "x.jpg: only PNG is written"},
+           {"-o x.png --svg x.svg.png", "x.svg.png: --svg writes SVG"},
+           {"-o " + taken.string() + " --aov " + taken.string(),
+            taken.string() + ": --aov names the folder of a file written too"},
+           {"-o x.png --eye 0,0,1e-30 --target 0,0,0", "--eye and --target: at 0 s: "}}) {
+    const Result r = run("render " + kData + "/render/plane-facing.json " + arguments);
+    EXPECT_EQ(r.exitCode, 2) << arguments << ": " << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << arguments << ": " << r.err;
+    EXPECT_FALSE(fs::exists(taken)) << arguments;
+  }
+  const Result cells = run("dem --crs EPSG:27700 --extent 0 0 100 100 --cell 1e-3 -o " +
+                           scratch("cells.tif").string());
+  EXPECT_EQ(cells.exitCode, 2) << cells.err;
+  EXPECT_NE(cells.err.find("--cell: more than 10⁸ cells"), std::string::npos) << cells.err;
   // Options at odds: a --set path given twice to different values, or set by an option of its
   // own too. The same value twice, or an option beside the one it sets, is not.
   for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
@@ -601,9 +622,11 @@ TEST(Cli, UsageErrors) {
   }
   // A device limit that an option broke names the option, not the scene's key.
   const Result samples = run("render " + kData + "/render/plane-facing.json -o x.png --samples 16");
-  if (samples.exitCode != 0)
+  if (samples.exitCode != 0) {
+    EXPECT_EQ(samples.exitCode, 2);
     EXPECT_EQ(samples.err.rfind("cutaway: error: --samples: 16 samples exceed the device's", 0), 0u)
         << samples.err;
+  }
   fs::remove("x.png");
   const Result far = run("render " + kData + "/render/plane-facing.json -o x.png --eye 0,0,1e20");
   EXPECT_EQ(far.exitCode, 2);

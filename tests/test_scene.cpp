@@ -695,6 +695,22 @@ TEST(SceneLoad, FitFramesAScaleFreeView) {
   }
 }
 
+// A fitted camera whose eye and target coincide looks along the documented default direction
+// (1, 0.8, 1.4); without fit they are refused.
+TEST(SceneLoad, AFittedCameraWhoseEyeIsItsTargetTakesTheDefaultDirection) {
+  const auto scene = [](const std::string& camera) {
+    return parseScene(
+        R"({"objects": [{"name": "a", "file": "cube.obj"}], "camera": )" + camera + "}", "fit.json",
+        kMeshes);
+  };
+  const Camera c =
+      scene(R"({"fit": true, "eye": [1, 1, 1], "target": [1, 1, 1]})").resolvedCamera();
+  const glm::vec3 along = glm::normalize(c.eye - c.target);
+  EXPECT_NEAR(glm::distance(along, glm::normalize(glm::vec3(1.0f, 0.8f, 1.4f))), 0.0f, 1e-6f);
+  test::expectError([&] { scene(R"({"eye": [1, 1, 1], "target": [1, 1, 1]})"); },
+                    {"fit.json", "/camera/eye", "eye and target coincide"});
+}
+
 TEST(SceneLoad, EveryKeyIsRead) {
   const Scene s = parse(R"({
     "version": 1,

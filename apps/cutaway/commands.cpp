@@ -85,8 +85,12 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     c.projection = to;
   }
   const glm::dvec3 along = glm::dvec3(c.eye) - glm::dvec3(c.target);
-  if (!(glm::length(along) > 0.0)) throw CommandLineError("--eye", "", "eye and target coincide");
-  if (glm::length(glm::cross(glm::normalize(along), glm::dvec3(c.up))) < 1e-6) {
+  // A fitted camera whose eye and target coincide takes a default direction
+  // (Scene::resolvedCamera).
+  const bool fitsDefault = c.fit && !(glm::length(along) > 0.0);
+  if (!(glm::length(along) > 0.0) && !fitsDefault)
+    throw CommandLineError("--eye", "", "eye and target coincide");
+  if (!fitsDefault && glm::length(glm::cross(glm::normalize(along), glm::dvec3(c.up))) < 1e-6) {
     if (o.up) throw CommandLineError("--up", "", "up is parallel to the viewing direction");
     char up[96];
     std::snprintf(up, sizeof up, "%g,%g,%g", double(c.up.x), double(c.up.y), double(c.up.z));
@@ -156,16 +160,16 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
 }
 
 // The renderer says a device limit at the scene's key (/samples, /resolution); where an option
-// set that key, the error names the option.
+// set that key, the error names the option (a value the command refuses: exit 2).
 template <class Run>
 auto blamingOverrides(const SceneOverrides& o, const Scene& scene, Run&& run) {
   try {
     return run();
   } catch (const Error& e) {
     const std::string size = std::to_string(scene.width) + "×" + std::to_string(scene.height);
-    if (e.place() == "/samples" && o.samples) throw Error("--samples", "", e.reason());
+    if (e.place() == "/samples" && o.samples) throw CommandLineError("--samples", "", e.reason());
     if (e.place() == "/resolution" && !o.size.empty() && e.reason().rfind(size, 0) == 0)
-      throw Error("--size", "", e.reason());
+      throw CommandLineError("--size", "", e.reason());
     throw;
   }
 }
@@ -303,17 +307,28 @@ void checkFolderOf(const std::string& file) {
 // stopped before leaves no empty one).
 void checkOutputs(const RenderOptions& options) {
   const std::filesystem::path out(options.output);
-  if (options.output.empty()) throw Error("--output", "", "the file name is empty");
+  if (options.output.empty()) throw CommandLineError("--output", "", "the file name is empty");
   std::error_code ec;
   if (std::filesystem::is_directory(out, ec))
     throw Error(options.output, "", "is a directory, not a file name");
   if (!isPngName(out))
-    throw Error(options.output, "", "only PNG is written: give the output a .png name");
+    throw CommandLineError(options.output, "", "only PNG is written: give the output a .png name");
   checkFolderOf(options.output);
+  // One path for two outputs: the later would take the earlier's place.
+  const auto same = [](const std::string& a, const std::string& b) {
+    return !a.empty() && !b.empty() &&
+           std::filesystem::path(a).lexically_normal() ==
+               std::filesystem::path(b).lexically_normal();
+  };
+  if (same(options.output, options.aovDir) || same(options.svg, options.aovDir))
+    throw CommandLineError(options.aovDir, "", "--aov names the folder of a file written too");
+  if (same(options.output, options.svg))
+    throw CommandLineError(options.svg, "", "--svg and --output name the same file");
   if (!options.svg.empty()) {
     std::string svgExt = std::filesystem::path(options.svg).extension().string();
     for (char& c : svgExt) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (svgExt != ".svg") throw Error(options.svg, "", "--svg writes SVG: give it a .svg name");
+    if (svgExt != ".svg")
+      throw CommandLineError(options.svg, "", "--svg writes SVG: give it a .svg name");
     if (std::filesystem::is_directory(options.svg, ec))
       throw Error(options.svg, "", "is a directory, not a file name");
     checkFolderOf(options.svg);
@@ -382,9 +397,17 @@ int render(const RenderOptions& options) {
     if (const std::string why = scene.resolvedCamera(time).unresolvable(aspect); !why.empty()) {
       char at[32];
       std::snprintf(at, sizeof at, "%.4g s", double(time));
-      throw Error(scene.file.string(), "/camera",
-                  "at " + (options.frames > 0 ? "frame " + std::to_string(i + 1) + ", " : "") + at +
-                      ": " + why);
+      const std::string reason =
+          "at " + (options.frames > 0 ? "frame " + std::to_string(i + 1) + ", " : "") + at + ": " +
+          why;
+      // A camera the options placed: they are blamed (exit 2), not the scene file.
+      const SceneOverrides& o = options.overrides;
+      if (o.eye || o.target)
+        throw CommandLineError(o.eye && o.target ? "--eye and --target"
+                               : o.eye           ? "--eye"
+                                                 : "--target",
+                               "", reason);
+      throw Error(scene.file.string(), "/camera", reason);
     }
   }
   if (!options.svg.empty() &&
@@ -559,6 +582,7 @@ int dem(const DemOptions& o) {
     // The CRS and the extent are command-line values: named by their options, exit 2.
     if (e.place() == "crs") throw CommandLineError("--crs", "", e.reason());
     if (e.place() == "extent") throw CommandLineError("--extent", "", e.reason());
+    if (e.place() == "cell") throw CommandLineError("--cell", "", e.reason());
     throw;
   }
   const RasterInfo r = describeRaster(o.output);

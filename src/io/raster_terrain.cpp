@@ -344,7 +344,8 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
                     number(o.max.x) + ", " + number(o.max.y) +
                     ") must hold a whole, positive number of " + number(o.cell) +
                     "-unit cells along each axis");
-  if (whole.x * whole.y > 1e8) throw Error(name, "", "more than 10⁸ cells: choose larger cells");
+  if (whole.x * whole.y > 1e8)
+    throw Error(name, "cell", "more than 10⁸ cells: choose larger cells");
   OGRSpatialReference crs;
   if (crs.SetFromUserInput(o.crs.c_str()) != OGRERR_NONE)
     throw Error(name, "crs", "unknown CRS " + quote(o.crs) + gdal::QuietErrors::lastMessage());

@@ -742,7 +742,9 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
     c.eye = c.path.front().eye, c.target = c.path.front().target;
   if (eye) c.eye = cameraPoint(ctx, *eye, r.at("eye"));
   if (target) c.target = cameraPoint(ctx, *target, r.at("target"));
-  if (eye && target && glm::length(c.eye - c.target) < 1e-9f)
+  // A fitted camera whose eye and target coincide takes a default direction
+  // (Scene::resolvedCamera).
+  if (eye && target && !c.fit && glm::length(c.eye - c.target) < 1e-9f)
     ctx.fail(r.at("eye"), "eye and target coincide");
   if (const json* v = r.take("up")) c.up = direction(ctx, *v, r.at("up"));
   for (std::size_t i = 0; i < c.path.size(); ++i)
