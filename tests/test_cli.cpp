@@ -582,6 +582,16 @@ TEST(Cli, UsageErrors) {
     EXPECT_NE(r.err.find(message), std::string::npos) << arguments << ": " << r.err;
     EXPECT_FALSE(fs::exists(taken)) << arguments;
   }
+  // Render targets the device cannot allocate (llvmpipe: one texture past its size limit,
+  // though memory is free) blame the size that asked for them, with the target's own size.
+  const Result huge = run("render " + kData + "/render/plane-facing.json -o " + taken.string() +
+                          " --size 12000x12000 --samples 4");
+  if (huge.exitCode != 0) {
+    EXPECT_EQ(huge.exitCode, 2) << huge.err;
+    EXPECT_EQ(huge.err.rfind("cutaway: error: --size: 12000×12000", 0), 0u) << huge.err;
+    EXPECT_NE(huge.err.find(": render target "), std::string::npos) << huge.err;
+  }
+  fs::remove(taken);
   const Result cells = run("dem --crs EPSG:27700 --extent 0 0 100 100 --cell 1e-3 -o " +
                            scratch("cells.tif").string());
   EXPECT_EQ(cells.exitCode, 2) << cells.err;

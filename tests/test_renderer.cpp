@@ -474,7 +474,8 @@ TEST(Frame, HoldsTargetsToTheDevicesLimits) {
     const int side = real.maxTextureSize;
     Frame huge(side, side, real, std::numeric_limits<std::uint64_t>::max());
     test::expectError([&] { (void)huge.declare("p", {.format = GL_RGBA32F, .samples = 4}); },
-                      {"frame: p: the device is out of memory for the render targets"});
+                      {"frame: p: the device could not allocate it (", " MiB, of ",
+                       "a software rasteriser also limits each texture's size"});
   }
 }
 

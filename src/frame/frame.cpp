@@ -97,10 +97,15 @@ Target Frame::declare(const std::string& name, TargetDesc desc) {
         texture = gl::Texture::create2D(desc.format, desc.width, desc.height,
                                         desc.samples > 1 ? desc.samples : 0);
       }))
-    throw Error("frame", name,
-                "the device is out of memory for the render targets (" + mebibytes(bytes_) +
-                    " at " + std::to_string(width_) + "×" + std::to_string(height_) +
-                    "); lower the resolution or the samples");
+    throw Error(
+        "frame", name,
+        "the device could not allocate it (" +
+            mebibytes(std::uint64_t(desc.width) * std::uint64_t(desc.height) *
+                      std::uint64_t(std::max(desc.samples, 1)) * texelBytes(desc.format)) +
+            ", of " + mebibytes(bytes_) + " for the render targets at " + std::to_string(width_) +
+            "×" + std::to_string(height_) +
+            (device_.software ? "; a software rasteriser also limits each texture's size" : "") +
+            "); lower the resolution or the samples");
   targets_.push_back(TargetData{name, std::move(desc), std::move(texture)});
   return Target(serial_, int(targets_.size() - 1));
 }

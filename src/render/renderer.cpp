@@ -146,9 +146,12 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info) try
   g.buildFrame();
 } catch (const Error& e) {
   // The frame's targets outgrow the device (its memory): a matter of the scene's resolution and
-  // samples, named with its file.
+  // samples, named at its resolution (so that a --size that set it is blamed).
   if (e.file() != "frame") throw;
-  throw Error(sceneName(scene), "render target " + e.place(), e.reason());
+  throw Error(sceneName(scene), "/resolution",
+              std::to_string(scene.width) + "×" + std::to_string(scene.height) +
+                  (scene.samples > 1 ? " at " + std::to_string(scene.samples) + " samples" : "") +
+                  ": render target " + e.place() + ": " + e.reason());
 }
 
 // One frame's passes, in order. The pass graph of renderer.hpp's header comment.
