@@ -230,7 +230,8 @@ TEST(PlyReader, AsciiAndBinaryFilesOfEitherByteOrderLoad) {
     EXPECT_EQ(node.mesh.normals[0], glm::vec3(0, 0, 1)) << big;
   }
   refuse("long-binary.ply", binary(false, 0xFFFFFFF0u),
-         {"long-binary.ply", "face 1", "a list of 4294967280 values in the 44 bytes left"});
+         {"long-binary.ply", "face 1",
+          "the file ends early: a list of 4294967280 values in the 44 bytes left"});
   refuse("long-big.ply", binary(true, 1000u), {"long-big.ply", "face 1", "a list of 1000 values"});
   // A pentagon as a fan of three, a line (two vertices) dropped; a strip of 0 1 2 3, a restart,
   // 4 5 6: triangles (0 1 2), (2 1 3) with alternate winding, (4 5 6).

@@ -759,6 +759,10 @@ TEST_F(VolumeImportTest, RawBadInput) {
                                                       "type": "u8"})"));
       },
       {"v.json", "/file", "raw file not found", "nowhere.raw"});
+  // A path that exists but is no regular file (a folder, a device) is named as such.
+  expectError(
+      [&] { importVolume(write("dot.json", R"({"file": ".", "dims": [1, 1, 1], "type": "u8"})")); },
+      {"dot.json", "/file", "raw file is not a regular file"});
 }
 
 TEST_F(VolumeImportTest, LimitsAreCheckedBeforeReadingOrAllocating) {
@@ -1171,7 +1175,7 @@ TEST_F(VolumeImportTest, MetaImageBadInput) {
               {"Offset: expected 3 finite numbers"});
   expectError(bad("allnan.mha",
                   header("", "2 3 4", "MET_FLOAT") + encode(std::vector<float>(24, std::nanf("")))),
-              {"allnan.mha: no voxel holds a finite value (all are NaN or infinite)"});
+              {"allnan.mha: no voxel holds a finite value as a 32-bit float"});
   expectError(bad("b.mha", header("BinaryData = maybe\n") + voxels),
               {"BinaryData: expected True or False, got \"maybe\""});
   expectError(bad("short.mha", header("") + voxels.substr(0, 47)),
@@ -1829,5 +1833,5 @@ TEST(VolumeFromMemory, RefusesBadTypesDimsAndPlacements) {
   m.indexToWorld = glm::dmat4(1.0);
   one = std::numeric_limits<float>::quiet_NaN();  // nothing but missing data: nothing to show
   expectError([&] { volumeFromMemory(m, "array", "/volumes/1"); },
-              {"array: /volumes/1: no voxel holds a finite value (all are NaN or infinite)"});
+              {"array: /volumes/1: no voxel holds a finite value as a 32-bit float"});
 }

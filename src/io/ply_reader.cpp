@@ -279,8 +279,8 @@ Mesh readPly(const std::filesystem::path& file, const char* data, std::size_t si
         const double count = in.read(*p.countType);
         const double least = *format == Format::Ascii ? 1.0 : double(p.type.bytes);
         if (count < 0 || count * least > double(in.left()))
-          in.fail("a list of " + number(count) + " values in the " + std::to_string(in.left()) +
-                  " bytes left");
+          in.fail("the file ends early: a list of " + number(count) + " values in the " +
+                  std::to_string(in.left()) + " bytes left");
         if (int(i) != indices) {
           for (double k = 0; k < count; ++k) in.read(p.type);
           continue;

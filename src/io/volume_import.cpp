@@ -785,7 +785,10 @@ Volume loadRawJson(const fs::path& file, const VolumeLimits& limits) {
   const Where where{file.string(), "/file"};
   const Where data{file.string(), "/file: " + rawPath.string()};
   std::error_code ec;
-  if (!fs::is_regular_file(rawPath, ec)) where.fail("raw file not found: " + rawPath.string());
+  if (!fs::is_regular_file(rawPath, ec))
+    where.fail(
+        (fs::exists(rawPath, ec) ? "raw file is not a regular file: " : "raw file not found: ") +
+        rawPath.string());
   const std::uint64_t size = fileSize(rawPath, data);
   if (std::uint64_t(headerBytes) > size)
     ctx.fail("/headerBytes", "headerBytes " + std::to_string(headerBytes) +
@@ -2203,7 +2206,10 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 // `v` with its range; refused when no voxel holds a number (NaN marks missing data, and ±inf
 // no colour), as there would be nothing to show.
 Volume withValues(Volume v, const Where& where) {
-  if (!v.updateRange()) where.fail("no voxel holds a finite value (all are NaN or infinite)");
+  if (!v.updateRange())
+    where.fail(
+        "no voxel holds a finite value as a 32-bit float (all are NaN, infinite, or beyond "
+        "±3.4e38)");
   return v;
 }
 
