@@ -135,6 +135,28 @@ TEST(Extrude, AHoleOutsideTheOuterRingIsLeftOut) {
             alone.triangles.size());
 }
 
+// Valid polygons whose holes touch the outer ring or each other at a point (a vertex, a node
+// mid-edge, a shared stretch of edge): the block is still watertight (it was pinched along a
+// vertical edge, or open at a T-junction), with the footprint's area to within its sliver.
+TEST(Extrude, HolesTouchingTheOuterRingOrEachOtherGiveWatertightBlocks) {
+  const std::vector<glm::vec2> outer = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  const std::vector<Footprint> footprints = {
+      {outer, {{{0, 0}, {5, 2}, {2, 5}}}},                            // at the outer ring's corner
+      {outer, {{{5, 0}, {7, 3}, {3, 3}}}},                            // mid-edge
+      {outer, {{{3, 0}, {6, 0}, {5, 3}}}},                            // along an edge
+      {outer, {{{2, 2}, {5, 5}, {2, 6}}, {{5, 5}, {8, 2}, {8, 6}}}},  // at each other
+      {reversed(outer), {reversed({{0, 0}, {5, 2}, {2, 5}})}},
+  };
+  for (std::size_t i = 0; i < footprints.size(); ++i) {
+    Mesh m = extrudeFootprint(footprints[i], 0.0f, 5.0f);
+    analyzeTopology(m);
+    EXPECT_TRUE(m.report.watertight) << i << ": " << m.report.boundaryEdges << " boundary, "
+                                     << m.report.nonManifoldEdges << " non-manifold edges";
+    const double area = shoelaceArea(footprints[i]);
+    EXPECT_NEAR(volume(m), area * 5.0, 1e-4 * area * 5.0) << i;
+  }
+}
+
 TEST(Extrude, RepeatedAndCollinearNodesAreRemoved) {
   const Footprint f{{{0, 0}, {0, 0}, {5, 0}, {10, 0}, {10, 0}, {10, 5}, {10, 10}, {0, 10}, {0, 0}},
                     {{{2, 2}, {3, 2}, {4, 2}, {4, 4}, {2, 4}, {2, 2}}}};

@@ -6,6 +6,7 @@
 #include "cutaway/geometry/extrude.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numeric>
@@ -209,6 +210,47 @@ Points concatenate(const Footprint& footprint) {
   return p;
 }
 
+// A valid polygon's hole may touch the outer ring or another hole at a point (OGC simple
+// features): the block would be pinched there, its walls meeting along one vertical edge (not
+// a manifold), or, where the hole's node lies mid-edge, leave a T-junction (open). Each hole
+// node on another ring moves into its own hole, along the bisector of its corner, by a few
+// float steps past the nearness tolerance: the rings part by a sliver no picture shows, and
+// the block is watertight. (An outer ring's node on a hole's edge is left as it is.)
+void separateTouchingHoles(Footprint& f, double outerSize) {
+  double reach = 0.0;  // the largest coordinate: float steps grow with it
+  for (const glm::vec2& v : f.outer)
+    reach = std::max({reach, double(std::abs(v.x)), double(std::abs(v.y))});
+  const double step = double(std::nextafter(float(reach), 2.0f * float(reach) + 1.0f)) - reach;
+  const double near = std::max(1e-6 * outerSize, 4.0 * step), apart = 4.0 * near;
+  const auto onRing = [&](const std::vector<glm::vec2>& ring, const glm::dvec2& q) {
+    for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+      const glm::dvec2 a(ring[j]), ab = glm::dvec2(ring[i]) - a;
+      const double t =
+          std::clamp(glm::dot(q - a, ab) / std::max(glm::dot(ab, ab), 1e-300), 0.0, 1.0);
+      if (glm::length(q - (a + t * ab)) <= near) return true;
+    }
+    return false;
+  };
+  const std::vector<std::vector<glm::vec2>> before = f.holes;
+  for (std::size_t h = 0; h < f.holes.size(); ++h) {
+    std::vector<glm::vec2>& hole = f.holes[h];
+    const std::size_t n = hole.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::dvec2 v(before[h][i]);
+      bool touches = onRing(f.outer, v);
+      for (std::size_t k = 0; k < before.size() && !touches; ++k)
+        touches = k != h && onRing(before[k], v);
+      if (!touches) continue;
+      // A hole runs clockwise: its inside is right of each edge.
+      const glm::dvec2 u(before[h][(i + n - 1) % n]), w(before[h][(i + 1) % n]);
+      const auto right = [](const glm::dvec2& d) { return glm::normalize(glm::dvec2(d.y, -d.x)); };
+      const glm::dvec2 bisector = right(v - u) + right(w - v);
+      if (!(glm::length(bisector) > 1e-12)) continue;
+      hole[i] = glm::vec2(v + apart * glm::normalize(bisector));
+    }
+  }
+}
+
 }  // namespace
 
 double twiceSignedArea(const std::vector<glm::vec2>& ring) {
@@ -277,6 +319,7 @@ Mesh extrudeFootprint(const Footprint& footprint, float base, float top) {
     for (std::uint32_t i : ring) nodes.push_back(glm::vec2(p[i]));
     (r == 0 ? clean.outer : clean.holes.emplace_back()) = std::move(nodes);
   }
+  separateTouchingHoles(clean, outerSize);
   rings.push_back(clean.outer);
   rings.insert(rings.end(), clean.holes.begin(), clean.holes.end());
 
