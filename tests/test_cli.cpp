@@ -273,6 +273,9 @@ TEST(Cli, AnAnimationThatFailsPartWayLeavesTheEarlierOutputsAsTheyWere) {
   };
   const fs::path out = dir / "out";
   std::ofstream(out / "f_0002.png") << "an earlier frame";
+  // Frame 1 written through a symbolic link: the file it points to is what is put back.
+  std::ofstream(dir / "linked.png") << "linked";
+  fs::create_symlink(dir / "linked.png", out / "f_0001.png");
   const std::string args = " --frames 2 --size 100x75 -o " + (out / "f_%04d.png").string() +
                            " --aov " + (out / "aovs").string();
   sceneWith("[99.5, 23.5, 500]");
@@ -284,9 +287,15 @@ TEST(Cli, AnAnimationThatFailsPartWayLeavesTheEarlierOutputsAsTheyWere) {
       << r.err;
   std::vector<std::string> left;
   for (const auto& e : fs::recursive_directory_iterator(out)) left.push_back(e.path().filename());
-  EXPECT_EQ(left, std::vector<std::string>{"f_0002.png"});
-  std::ifstream earlier(out / "f_0002.png");
-  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(earlier), {}), "an earlier frame");
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"f_0001.png", "f_0002.png"}));
+  const auto text = [](const fs::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(out / "f_0002.png"), "an earlier frame");
+  EXPECT_TRUE(fs::is_symlink(out / "f_0001.png"));
+  EXPECT_EQ(text(dir / "linked.png"), "linked");
   // Side-on throughout, both frames are drawn, the earlier file replaced.
   sceneWith("[500, 23.5, 30]");
   r = run("render " + (dir / "s.json").string() + args);
@@ -296,6 +305,10 @@ TEST(Cli, AnAnimationThatFailsPartWayLeavesTheEarlierOutputsAsTheyWere) {
   std::sort(left.begin(), left.end());
   EXPECT_EQ(left, (std::vector<std::string>{"aovs", "f_0001.png", "f_0002.png"}));
   EXPECT_EQ(readPng(out / "f_0002.png").width, 100);
+  EXPECT_TRUE(fs::is_symlink(out / "f_0001.png"));
+  EXPECT_EQ(readPng(dir / "linked.png").width, 100);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().string().find(".replaced-"), std::string::npos) << e.path();
 }
 
 // A camera path whose eye passes through its target half-way: no frame is written, and the

@@ -465,15 +465,21 @@ int render(const RenderOptions& options) {
     const std::string out = framePath(options.output, i + 1),
                       svg = options.svg.empty() ? "" : framePath(options.svg, i + 1);
     try {
-      for (const std::string& path : {out, svg, aovDir}) {
-        if (path.empty() || !std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
-          continue;
-        std::filesystem::rename(path, path + aside, ec);
-        if (ec) throw Error(path, "", "cannot move the earlier file aside: " + ec.message());
-        movedAside.push_back(path);
+      for (const std::string& given : {out, svg, aovDir}) {
+        if (given.empty()) continue;
+        // Through a symbolic link, the file or folder it points to is what gets written.
+        const bool link = std::filesystem::is_symlink(given, ec);
+        const std::string path =
+            link ? std::filesystem::weakly_canonical(given, ec).string() : given;
+        if (std::filesystem::exists(std::filesystem::symlink_status(path, ec))) {
+          const bool folder = std::filesystem::is_directory(path, ec);
+          std::filesystem::rename(path, path + aside, ec);
+          if (ec) throw Error(path, "", "cannot move the earlier file aside: " + ec.message());
+          movedAside.push_back(path);
+          if (link && folder) std::filesystem::create_directory(path, ec);  // the link leads on
+        }
+        written.push_back(path);
       }
-      for (const std::string& path : {out, svg, aovDir})
-        if (!path.empty()) written.push_back(path);
       renderOne(time, out, aovDir, svg);
     } catch (const Error& e) {
       undo();
