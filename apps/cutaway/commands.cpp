@@ -168,8 +168,10 @@ auto blamingOverrides(const SceneOverrides& o, const Scene& scene, Run&& run) {
   } catch (const Error& e) {
     const std::string size = std::to_string(scene.width) + "×" + std::to_string(scene.height);
     if (e.place() == "/samples" && o.samples) throw CommandLineError("--samples", "", e.reason());
-    if (e.place() == "/resolution" && !o.size.empty() && e.reason().rfind(size, 0) == 0)
-      throw CommandLineError("--size", "", e.reason());
+    // The render targets' size: a matter of both; the option given is blamed.
+    if (e.place() == "/resolution" && (!o.size.empty() || o.samples) &&
+        e.reason().rfind(size, 0) == 0)
+      throw CommandLineError(!o.size.empty() ? "--size" : "--samples", "", e.reason());
     throw;
   }
 }
@@ -316,9 +318,12 @@ void checkOutputs(const RenderOptions& options) {
   checkFolderOf(options.output);
   // One path for two outputs: the later would take the earlier's place.
   const auto same = [](const std::string& a, const std::string& b) {
-    return !a.empty() && !b.empty() &&
-           std::filesystem::path(a).lexically_normal() ==
-               std::filesystem::path(b).lexically_normal();
+    const auto resolved = [](const std::string& p) {
+      std::error_code ec;
+      std::filesystem::path r = std::filesystem::weakly_canonical(std::filesystem::absolute(p), ec);
+      return r.has_filename() ? r : r.parent_path();  // "out.png/" as "out.png"
+    };
+    return !a.empty() && !b.empty() && resolved(a) == resolved(b);
   };
   if (same(options.output, options.aovDir) || same(options.svg, options.aovDir))
     throw CommandLineError(options.aovDir, "", "--aov names the folder of a file written too");
@@ -356,6 +361,75 @@ void checkOutputs(const RenderOptions& options) {
                     ? "the AOV directory is not writable"
                     : "cannot create the AOV directory: " + existing.string() + " is not writable");
 }
+
+namespace {
+
+// An animation written whole or not at all (render --frames): each frame's outputs that exist
+// already are moved aside (NAME.old-PID) before the frame is written; if a frame fails, undo()
+// takes back every output of the run and puts the moved ones back; commit() removes them,
+// keeping in each AOV folder the files its index did not list (as writeAovs keeps them). An
+// output reached through a symbolic link is the file or folder the link points to.
+class SequenceOutputs {
+ public:
+  // The AOV folder and those above it that the frames' writers will make, innermost first.
+  explicit SequenceOutputs(const std::string& aovDir) {
+    std::error_code ec;
+    if (!aovDir.empty())
+      for (std::filesystem::path dir = std::filesystem::path(aovDir).lexically_normal();
+           !dir.empty() && !std::filesystem::exists(std::filesystem::symlink_status(dir, ec));
+           dir = dir.parent_path())
+        if (dir.has_filename()) madeFolders_.push_back(dir);
+  }
+
+  void prepare(const std::string& given) {
+    if (given.empty()) return;
+    std::error_code ec;
+    const bool link = std::filesystem::is_symlink(given, ec);
+    const std::filesystem::path path =
+        link ? std::filesystem::weakly_canonical(given, ec) : std::filesystem::path(given);
+    if (std::filesystem::exists(std::filesystem::symlink_status(path, ec))) {
+      const bool folder = std::filesystem::is_directory(path, ec);
+      std::filesystem::rename(path, aside(path), ec);
+      if (ec) throw Error(path.string(), "", "cannot move the earlier file aside: " + ec.message());
+      moved_.push_back(path);
+      if (link && folder) std::filesystem::create_directory(path, ec);  // the link leads on
+    }
+    written_.push_back(path);
+  }
+
+  void undo() const {
+    std::error_code ignored;
+    for (const auto& path : written_) std::filesystem::remove_all(path, ignored);
+    for (const auto& path : moved_) std::filesystem::rename(aside(path), path, ignored);
+    for (const auto& dir : madeFolders_) std::filesystem::remove(dir, ignored);  // where empty
+  }
+
+  void commit() const {
+    std::error_code ec;
+    for (const auto& path : moved_) {
+      const std::filesystem::path old = aside(path);
+      if (std::filesystem::is_directory(old, ec) && std::filesystem::is_directory(path, ec)) {
+        const std::vector<std::filesystem::path> listed = indexedAovFiles(old);
+        for (const auto& entry : std::filesystem::directory_iterator(old, ec)) {
+          const std::filesystem::path name = entry.path().filename();
+          if (name == "aovs.json" || std::filesystem::exists(path / name, ec) ||
+              std::find(listed.begin(), listed.end(), old / name) != listed.end())
+            continue;
+          std::filesystem::rename(entry.path(), path / name, ec);
+        }
+      }
+      std::filesystem::remove_all(old, ec);
+    }
+  }
+
+ private:
+  static std::filesystem::path aside(const std::filesystem::path& path) {
+    return path.string() + ".old-" + std::to_string(::getpid());
+  }
+  std::vector<std::filesystem::path> written_, moved_, madeFolders_;
+};
+
+}  // namespace
 
 int render(const RenderOptions& options) {
   checkOutputs(options);
@@ -440,24 +514,7 @@ int render(const RenderOptions& options) {
       std::printf("wrote AOVs to %s (see aovs.json)\n", options.aovDir.c_str());
     return 0;
   }
-  // An animation is written whole or not at all: each frame's outputs that exist already are
-  // moved aside (NAME.replaced-PID) before it is written, and a frame that fails takes back
-  // every frame this run wrote and puts the moved ones back; they are removed at the end.
-  const std::string aside = ".replaced-" + std::to_string(::getpid());
-  std::vector<std::string> written, movedAside;
-  // The AOV folder and those above it that the frames' writers will make, innermost first.
-  std::vector<std::filesystem::path> madeFolders;
-  if (!options.aovDir.empty())
-    for (std::filesystem::path dir = std::filesystem::path(options.aovDir).lexically_normal();
-         !dir.empty() && !std::filesystem::exists(std::filesystem::symlink_status(dir, ec));
-         dir = dir.parent_path())
-      if (dir.has_filename()) madeFolders.push_back(dir);
-  const auto undo = [&] {
-    std::error_code ignored;
-    for (const std::string& path : written) std::filesystem::remove_all(path, ignored);
-    for (const std::string& path : movedAside) std::filesystem::rename(path + aside, path, ignored);
-    for (const auto& dir : madeFolders) std::filesystem::remove(dir, ignored);  // where empty
-  };
+  SequenceOutputs outputs(options.aovDir);
   const bool progress = ::isatty(STDERR_FILENO);
   for (int i = 0; i < options.frames; ++i) {
     const float time = frameTime(i);
@@ -465,29 +522,18 @@ int render(const RenderOptions& options) {
     const std::string out = framePath(options.output, i + 1),
                       svg = options.svg.empty() ? "" : framePath(options.svg, i + 1);
     try {
-      for (const std::string& given : {out, svg, aovDir}) {
-        if (given.empty()) continue;
-        // Through a symbolic link, the file or folder it points to is what gets written.
-        const bool link = std::filesystem::is_symlink(given, ec);
-        const std::string path =
-            link ? std::filesystem::weakly_canonical(given, ec).string() : given;
-        if (std::filesystem::exists(std::filesystem::symlink_status(path, ec))) {
-          const bool folder = std::filesystem::is_directory(path, ec);
-          std::filesystem::rename(path, path + aside, ec);
-          if (ec) throw Error(path, "", "cannot move the earlier file aside: " + ec.message());
-          movedAside.push_back(path);
-          if (link && folder) std::filesystem::create_directory(path, ec);  // the link leads on
-        }
-        written.push_back(path);
-      }
+      for (const std::string& path : {out, svg, aovDir}) outputs.prepare(path);
       renderOne(time, out, aovDir, svg);
     } catch (const Error& e) {
-      undo();
-      throw Error(e.file(), e.place(),
-                  "frame " + std::to_string(i + 1) + " of " + std::to_string(options.frames) +
-                      " (no frame written): " + e.reason());
+      outputs.undo();
+      const std::string reason = "frame " + std::to_string(i + 1) + " of " +
+                                 std::to_string(options.frames) +
+                                 " (no frame written): " + e.reason();
+      if (dynamic_cast<const CommandLineError*>(&e))
+        throw CommandLineError(e.file(), e.place(), reason);
+      throw Error(e.file(), e.place(), reason);
     } catch (...) {
-      undo();
+      outputs.undo();
       throw;
     }
     if (progress) {
@@ -498,7 +544,7 @@ int render(const RenderOptions& options) {
       std::fflush(stderr);
     }
   }
-  for (const std::string& path : movedAside) std::filesystem::remove_all(path + aside, ec);
+  outputs.commit();
   if (progress) std::fprintf(stderr, "\n");
   if (options.frames == 1)
     std::printf("wrote 1 frame %s (%dx%d)\n", framePath(options.output, 1).c_str(), scene.width,
@@ -634,8 +680,8 @@ int info(const std::string& path) {
                        {"normalsComputed", r.normalsComputed}});
   }
   const Camera c = scene.resolvedCamera();
-  // The style and the cutters with every option as the scene format writes it (their schemas),
-  // the cutters' with what they resolve from the scene added below.
+  // The style and the cutters with every option as the scene format writes them (their schemas:
+  // a scene file reads them back), and under "resolved" what the cutters make of the scene.
   nlohmann::json out = {{"scene", path},
                         {"resolution", {scene.width, scene.height}},
                         {"style", nlohmann::json(styleJson(scene.style))},
@@ -667,26 +713,24 @@ int info(const std::string& path) {
          {"extentAlongMainAxis", {real(a.extentMin), real(a.extentMax)}}});
   }
   if (const auto* c = scene.cutters.find<CutoutOptions>())
-    out["cutters"]["cutout"]["planes"] = c->axialRange ? 4 : 2;
+    out["resolved"]["cutout"]["planes"] = c->axialRange ? 4 : 2;
   if (const auto* c = scene.cutters.find<ClipSurfaceOptions>()) {
-    nlohmann::json& written = out["cutters"]["clipSurfaces"];
-    for (std::size_t i = 0; i < c->surfaces.size(); ++i) {
-      const ClipSurface& cs = c->surfaces[i];
-      written["surfaces"][i]["normal"] = vec(cs.normal());
-      written["surfaces"][i]["offsetMapSize"] = {cs.offsetMap.width, cs.offsetMap.height};
-    }
+    nlohmann::json& resolved = out["resolved"]["clipSurfaces"];
+    for (const ClipSurface& cs : c->surfaces)
+      resolved["surfaces"].push_back(
+          {{"normal", vec(cs.normal())},
+           {"offsetMapSize", {cs.offsetMap.width, cs.offsetMap.height}}});
     nlohmann::json capped = nlohmann::json::array(), uncapped = nlohmann::json::array();
     for (const auto& o : scene.objects)
       if (!o.proxy && o.role != Role::Interest)
         (o.mesh->report.watertight ? capped : uncapped).push_back(o.name);
-    written["capped"] = c->caps ? capped : nlohmann::json::array();
-    written["notCappedOpenMeshes"] = c->caps ? uncapped : nlohmann::json::array();
+    resolved["capped"] = c->caps ? capped : nlohmann::json::array();
+    resolved["notCappedOpenMeshes"] = c->caps ? uncapped : nlohmann::json::array();
   }
   if (const auto* t = scene.cutters.find<TerrainOpeningOptions>()) {
     std::size_t nodes = 0;
     for (const auto& line : t->lines) nodes += line.size();
-    out["cutters"]["terrainOpening"]["polylines"] = t->lines.size();
-    out["cutters"]["terrainOpening"]["nodes"] = nodes;
+    out["resolved"]["terrainOpening"] = {{"polylines", t->lines.size()}, {"nodes", nodes}};
   }
   // Konev18 §§5–7: what each network holds after splitting at sharp bends and trimming
   // crossing cuts (§9).
@@ -737,9 +781,9 @@ int info(const std::string& path) {
                           {"objects", c.objects.size()},
                           {"hullTriangles", c.outerHull.triangles.size()}});
     // The offset and wall thickness resolved (the scene's, or from the scene's size).
-    out["cutters"]["breakaway"].update({{"offset", real(extent.offset)},
-                                        {"wallThickness", real(extent.wallThickness)},
-                                        {"clusters", clusters}});
+    out["resolved"]["breakaway"] = {{"offset", real(extent.offset)},
+                                    {"wallThickness", real(extent.wallThickness)},
+                                    {"clusters", clusters}};
   }
   std::printf("%s\n", out.dump(2).c_str());
   return 0;

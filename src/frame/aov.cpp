@@ -28,21 +28,27 @@ nlohmann::json vec(const glm::vec3& v) {
 std::vector<std::filesystem::path> staleAovFiles(const std::filesystem::path& dir,
                                                  const std::vector<Aov>& aovs) {
   std::vector<std::filesystem::path> stale;
-  std::ifstream in(dir / "aovs.json");
-  if (!in) return stale;
-  const nlohmann::json index = nlohmann::json::parse(in, nullptr, false);
-  if (!index.is_object() || !index.contains("aovs") || !index["aovs"].is_array()) return stale;
-  for (const nlohmann::json& entry : index["aovs"]) {
-    if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string()) continue;
-    const std::filesystem::path file = entry["file"].get<std::string>();
-    if (file != file.filename() || file.extension() != ".pfm") continue;
+  for (const std::filesystem::path& file : indexedAovFiles(dir))
     if (std::none_of(aovs.begin(), aovs.end(),
-                     [&](const Aov& a) { return a.name + ".pfm" == file.string(); }))
-      stale.push_back(dir / file);
-  }
+                     [&](const Aov& a) { return a.name + ".pfm" == file.filename().string(); }))
+      stale.push_back(file);
   return stale;
 }
 }  // namespace
+
+std::vector<std::filesystem::path> indexedAovFiles(const std::filesystem::path& dir) {
+  std::vector<std::filesystem::path> files;
+  std::ifstream in(dir / "aovs.json");
+  if (!in) return files;
+  const nlohmann::json index = nlohmann::json::parse(in, nullptr, false);
+  if (!index.is_object() || !index.contains("aovs") || !index["aovs"].is_array()) return files;
+  for (const nlohmann::json& entry : index["aovs"]) {
+    if (!entry.is_object() || !entry.contains("file") || !entry["file"].is_string()) continue;
+    const std::filesystem::path file = entry["file"].get<std::string>();
+    if (file == file.filename() && file.extension() == ".pfm") files.push_back(dir / file);
+  }
+  return files;
+}
 
 std::vector<Aov> readFrameAovs(const Frame& frame) {
   std::vector<Aov> aovs;

@@ -33,8 +33,13 @@ struct Aov {
 // The frame's targets that have a meaning, in declaration order, rows top-down.
 std::vector<Aov> readFrameAovs(const Frame& frame);
 
+// The image files an AOV folder's index (DIR/aovs.json) lists: those a later writeAovs into it
+// replaces or removes; any other file there stays. Empty without a readable index.
+std::vector<std::filesystem::path> indexedAovFiles(const std::filesystem::path& dir);
+
 // Written all or none (core/atomic_file.hpp), together with `alongside` (the frame's picture:
-// a failure leaves no new picture beside old AOVs either).
+// a failure leaves no new picture beside old AOVs either); the files the folder's index listed
+// that these AOVs do not hold are removed, other files stay.
 void writeAovs(const std::filesystem::path& dir, const std::vector<Aov>& aovs, const Camera& camera,
                float aspect,
                std::vector<std::pair<std::filesystem::path, FileWriter>> alongside = {});
