@@ -509,8 +509,6 @@ TEST(Cutout, AnImageJitterDisplacesTheWedgeByItsGreyLevelAlongTheAxis) {
   EXPECT_EQ(wrong.count(), 0) << "of " << removed + kept << ": " << wrong;
 }
 
-// Rule 5: through the wedge the cube's inside shows as its cut wall, in the wall colour, and
-// the interior object is never cut.
 // A jitter image wider than the device's largest texture would upload as nothing (no jitter):
 // refused, naming its place in the scene file.
 TEST(Cutout, AJitterImageLargerThanTheDeviceTakesIsRefused) {
@@ -524,6 +522,8 @@ TEST(Cutout, AJitterImageLargerThanTheDeviceTakesIsRefused) {
                      "a jitter image of " + std::to_string(wide) + "×2 texels exceeds"});
 }
 
+// Rule 5: through the wedge the cube's inside shows as its cut wall, in the wall colour, and
+// the interior object is never cut.
 TEST(Cutout, WallsAreShownAndInteriorIsWhole) {
   const Scene cut = parseScene(cubeScene(R"("cutout": {"angle": 100})"), "cube.json", kData);
   const auto aovs = renderAovs(cut);

@@ -145,6 +145,9 @@ TEST(Extrude, HolesTouchingTheOuterRingOrEachOtherGiveWatertightBlocks) {
       {outer, {{{5, 0}, {7, 3}, {3, 3}}}},                            // mid-edge
       {outer, {{{3, 0}, {6, 0}, {5, 3}}}},                            // along an edge
       {outer, {{{2, 2}, {5, 5}, {2, 6}}, {{5, 5}, {8, 2}, {8, 6}}}},  // at each other
+      // the outer ring's notch tip on the hole's edge
+      {{{0, 0}, {10, 0}, {10, 10}, {5.5f, 10}, {5, 6}, {4.5f, 10}, {0, 10}},
+       {{{3, 3}, {7, 3}, {7, 6}, {3, 6}}}},
       {reversed(outer), {reversed({{0, 0}, {5, 2}, {2, 5}})}},
   };
   for (std::size_t i = 0; i < footprints.size(); ++i) {

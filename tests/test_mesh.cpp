@@ -453,7 +453,7 @@ TEST(MeshImport, RepeatedNodeNamesStayUnique) {
 
 // A UTF-8 byte-order mark before a text model's first line (some editors write one): the model
 // reads as it does without it. Assimp's OBJ reader took the mark into the first line, dropped
-// that vertex and drew the face from the others, saying nothing.
+// that vertex and drew the face from the others, saying nothing (its STL reader drops it).
 TEST(MeshImport, ATextModelAfterAByteOrderMarkReadsAsWithoutIt) {
   const std::string bom = "\xEF\xBB\xBF";
   const std::string obj = "v 5 5 5\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 3 4\n";

@@ -215,7 +215,8 @@ Points concatenate(const Footprint& footprint) {
 // a manifold), or, where the hole's node lies mid-edge, leave a T-junction (open). Each hole
 // node on another ring moves into its own hole, along the bisector of its corner, by a few
 // float steps past the nearness tolerance: the rings part by a sliver no picture shows, and
-// the block is watertight. (An outer ring's node on a hole's edge is left as it is.)
+// the block is watertight. An outer ring's node on a hole's edge first becomes a node of the
+// hole too, so that it parts the same way.
 void separateTouchingHoles(Footprint& f, double outerSize) {
   double reach = 0.0;  // the largest coordinate: float steps grow with it
   for (const glm::vec2& v : f.outer)
@@ -231,6 +232,19 @@ void separateTouchingHoles(Footprint& f, double outerSize) {
     }
     return false;
   };
+  for (auto& hole : f.holes)
+    for (std::size_t i = 0; i < hole.size(); ++i) {
+      const glm::dvec2 a(hole[i]), ab = glm::dvec2(hole[(i + 1) % hole.size()]) - a;
+      for (const glm::vec2& node : f.outer) {
+        const double t = glm::dot(glm::dvec2(node) - a, ab) / std::max(glm::dot(ab, ab), 1e-300);
+        if (t > 0.0 && t < 1.0 && glm::length(glm::dvec2(node) - (a + t * ab)) <= near &&
+            glm::length(glm::dvec2(node) - a) > near &&
+            glm::length(glm::dvec2(node) - (a + ab)) > near) {
+          hole.insert(hole.begin() + std::ptrdiff_t(i + 1), node);
+          break;  // the edge is split: its halves are looked at next
+        }
+      }
+    }
   const std::vector<std::vector<glm::vec2>> before = f.holes;
   for (std::size_t h = 0; h < f.holes.size(); ++h) {
     std::vector<glm::vec2>& hole = f.holes[h];

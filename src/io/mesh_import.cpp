@@ -243,14 +243,10 @@ void checkFinite(const std::filesystem::path& file, const std::string& place, co
 constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
 // Text formats whose Assimp readers take a byte-order mark as part of the first line (an OBJ's
-// first vertex then goes missing and the faces name the wrong ones): read without it. Binary
-// formats keep every byte.
+// first vertex then goes missing and the faces name the wrong ones): read without it. (Assimp's
+// STL reader drops the mark itself.) Binary formats keep every byte.
 bool textFormat(const std::string& format) {
-  return format == "obj" || format == "off" || format == "gltf" || format == "stl";
-}
-
-bool startsWithByteOrderMark(const std::vector<char>& data) {
-  return std::string_view(data.data(), data.size()).starts_with(kByteOrderMark);
+  return format == "obj" || format == "off" || format == "gltf";
 }
 
 // The files a model names (an OBJ's mtllib, a glTF's buffers) are read only where they are
@@ -267,11 +263,15 @@ class RegularFilesOnly : public Assimp::DefaultIOSystem {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(file, ec)) return nullptr;
     if (!model_.empty() && std::filesystem::equivalent(file, model_, ec)) {
-      const std::vector<char> data = readFile(model_);
-      if (startsWithByteOrderMark(data)) {
-        const std::size_t size = data.size() - kByteOrderMark.size();
+      // Read whole only when it starts with the mark.
+      char head[kByteOrderMark.size()];
+      std::ifstream in(model_, std::ios::binary);
+      in.read(head, sizeof head);
+      if (std::string_view(head, std::size_t(in.gcount())) == kByteOrderMark) {
+        const std::vector<char> data = readFile(model_);
+        const std::size_t size = data.size() - std::min(data.size(), kByteOrderMark.size());
         auto* text = new std::uint8_t[size];
-        std::memcpy(text, data.data() + kByteOrderMark.size(), size);
+        std::memcpy(text, data.data() + (data.size() - size), size);
         return new Assimp::MemoryIOStream(text, size, true);  // the stream owns the copy
       }
     }
@@ -355,7 +355,8 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   const aiScene* scene = nullptr;
   if (gzip) {
     std::vector<char> data = readGzip(file);
-    if (textFormat(format) && startsWithByteOrderMark(data))
+    if (textFormat(format) &&
+        std::string_view(data.data(), data.size()).starts_with(kByteOrderMark))
       data.erase(data.begin(), data.begin() + std::ptrdiff_t(kByteOrderMark.size()));
     scene = importer.ReadFileFromMemory(data.data(), data.size(), 0, format.c_str());
   } else {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -243,8 +244,13 @@ FloatImage deriveReliefMaps(const ClipSurface& cs) {
   };
   const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads && std::size_t(t) * 64 < std::size_t(h.height); ++t)
-    pool.emplace_back(work);
+  for (int t = 1; t < threads && std::size_t(t) * 64 < std::size_t(h.height); ++t) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // no thread to be had: the ones started, and this one, do every row
+    }
+  }
   work();
   for (auto& t : pool) t.join();
   return out;
