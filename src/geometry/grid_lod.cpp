@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <system_error>
 #include <thread>
 
 namespace cutaway {
@@ -124,7 +125,13 @@ std::optional<GridLod> GridLod::build(const Mesh& mesh) {
   };
   const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
   std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  for (int t = 1; t < threads; ++t) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // no thread to be had: the ones started, and this one, do every chunk
+    }
+  }
   work();
   for (auto& t : pool) t.join();
   return lod;
