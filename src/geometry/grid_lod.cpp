@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <system_error>
-#include <thread>
+
+#include "core/worker_threads.hpp"
 
 namespace cutaway {
 
@@ -123,17 +123,7 @@ std::optional<GridLod> GridLod::build(const Mesh& mesh) {
       }
     }
   };
-  const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) {
-    try {
-      pool.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // no thread to be had: the ones started, and this one, do every chunk
-    }
-  }
-  work();
-  for (auto& t : pool) t.join();
+  runOnThreads(hardwareThreads(8), work);
   return lod;
 }
 

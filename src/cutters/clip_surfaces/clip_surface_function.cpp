@@ -7,10 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <system_error>
-#include <thread>
 #include <vector>
 
+#include "core/worker_threads.hpp"
 #include "cutaway/core/noise.hpp"
 #include "cutaway/cutters/clip_surfaces.hpp"
 
@@ -242,17 +241,8 @@ FloatImage deriveReliefMaps(const ClipSurface& cs) {
         texel(x, y, rowInside && x >= kSteps && x + kSteps < h.width);
     }
   };
-  const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads && std::size_t(t) * 64 < std::size_t(h.height); ++t) {
-    try {
-      pool.emplace_back(work);
-    } catch (const std::system_error&) {
-      break;  // no thread to be had: the ones started, and this one, do every row
-    }
-  }
-  work();
-  for (auto& t : pool) t.join();
+  // At most a thread for each 64 rows: a small map is not worth starting threads for.
+  runOnThreads(std::min(hardwareThreads(8), 1 + h.height / 64), work);
   return out;
 }
 
