@@ -152,6 +152,15 @@ TEST_F(RasterTerrainTest, NodataTakesTheNearestValidHeight) {
   EXPECT_FALSE(describeRaster(empty).minimum.has_value());
   expectError([&] { describeRaster(fs::path(CUTAWAY_TEST_DATA) / "fuzz/raster/truncated.tif"); },
               {"truncated.tif", "cannot read band 1", "IReadBlock"});
+  // A GeoTIFF cut before its georeferencing tags: GDAL's own message says why there is none.
+  const fs::path whole = fs::path(empty).replace_filename("whole.tif");
+  writeSyntheticDem(whole, {.min = {0.0, 0.0}, .max = {1000.0, 1000.0}, .crs = "EPSG:27700"});
+  std::ifstream in(whole, std::ios::binary);
+  std::string bytes(std::istreambuf_iterator<char>(in), {});
+  const fs::path cut = fs::path(whole).replace_filename("cut.tif");
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, 300);
+  expectError([&] { importRasterTerrain(cut); },
+              {"cut.tif", "the raster has no geotransform", "IO error"});
 }
 
 TEST_F(RasterTerrainTest, ReprojectsEachNode) {

@@ -139,7 +139,9 @@ RasterTerrain importRasterTerrainHere(const std::filesystem::path& file,
   GDALDatasetUniquePtr dataset = openRaster(file);
   RasterTerrain out;
   if (dataset->GetGeoTransform(out.geoTransform.data()) != CE_None)
-    throw Error(name, "", "the raster has no geotransform (it is not georeferenced)");
+    throw Error(name, "",  // GDAL's last message tells a file cut short from a plain image
+                "the raster has no geotransform (it is not georeferenced)" +
+                    gdal::QuietErrors::lastMessage());
   const std::array<double, 6>& gt = out.geoTransform;
   if (!std::all_of(gt.begin(), gt.end(), [](double v) { return std::isfinite(v); }))
     throw Error(name, "", "the geotransform is not finite");
