@@ -38,6 +38,12 @@ std::uint64_t texelBytes(GLenum format) {
   }
 }
 
+// A target's bytes: every texel of every sample.
+std::uint64_t targetBytes(const TargetDesc& d) {
+  return std::uint64_t(d.width) * std::uint64_t(d.height) * std::uint64_t(std::max(d.samples, 1)) *
+         texelBytes(d.format);
+}
+
 bool isIntegerFormat(GLenum format) {
   return format == GL_R32I || format == GL_RG32I || format == GL_R32UI;
 }
@@ -76,8 +82,7 @@ void Frame::checkLimits(const std::string& name, const TargetDesc& d) {
     throw Error("frame", name,
                 std::to_string(d.samples) + " samples exceed the device's " +
                     std::to_string(maxSamples) + " for this render target");
-  bytes_ += std::uint64_t(d.width) * std::uint64_t(d.height) *
-            std::uint64_t(std::max(d.samples, 1)) * texelBytes(d.format);
+  bytes_ += targetBytes(d);
   if (budget_ > 0 && bytes_ > budget_)
     throw Error("frame", name,
                 "the render targets need " + mebibytes(bytes_) + " at " + std::to_string(width_) +
@@ -99,11 +104,9 @@ Target Frame::declare(const std::string& name, TargetDesc desc) {
       }))
     throw Error(
         "frame", name,
-        "the device could not allocate it (" +
-            mebibytes(std::uint64_t(desc.width) * std::uint64_t(desc.height) *
-                      std::uint64_t(std::max(desc.samples, 1)) * texelBytes(desc.format)) +
-            ", of " + mebibytes(bytes_) + " for the render targets at " + std::to_string(width_) +
-            "×" + std::to_string(height_) +
+        "the device could not allocate it (" + mebibytes(targetBytes(desc)) + ", of " +
+            mebibytes(bytes_) + " for the render targets at " + std::to_string(width_) + "×" +
+            std::to_string(height_) +
             (device_.software ? "; a software rasteriser also limits each texture's size" : "") +
             "); lower the resolution or the samples");
   targets_.push_back(TargetData{name, std::move(desc), std::move(texture)});

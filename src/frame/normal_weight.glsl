@@ -28,12 +28,14 @@ vec3 octahedralDecode(vec2 e) {
 
 uint packNormalWeight(vec3 n, float weight) {
   // Masked: a NaN normal may convert to any bits, and must leave the weight's alone.
-  uvec2 q = uvec2(round(clamp(octahedralEncode(n), -1.0, 1.0) * kOctahedralSteps + kOctahedralSteps)) & 0xfffu;
+  vec2 e = clamp(octahedralEncode(n), -1.0, 1.0);
+  uvec2 q = uvec2(round(e * kOctahedralSteps + kOctahedralSteps)) & 0xfffu;
   return q.x | (q.y << 12) | (uint(round(clamp(weight, 0.0, 1.0) * 255.0)) << 24);
 }
 
 vec3 unpackNormal(uint word) {
-  return octahedralDecode((vec2(word & 0xfffu, (word >> 12) & 0xfffu) - kOctahedralSteps) / kOctahedralSteps);
+  vec2 q = vec2(word & 0xfffu, (word >> 12) & 0xfffu);
+  return octahedralDecode((q - kOctahedralSteps) / kOctahedralSteps);
 }
 
 float unpackWeight(uint word) {
