@@ -45,6 +45,11 @@ struct CutLook {
   glm::vec3 cutColor{0.0f};
   // Back faces that are no cut surface (an open or hollow inside); unset: the object's colour.
   std::optional<glm::vec3> backColor;
+  // Its GLSL's kCutSurface on a back face says only that its cut lies in front (Burns08's C
+  // spreads over the whole view). On a mesh that is not watertight that also holds for a back
+  // face seen through the mesh's own opening, so there the mesh kind shows its cut surfaces
+  // only where a front fragment of the mesh was removed (kinds/meshes: removal marks).
+  bool marksOpenMeshes = false;
 };
 
 // A G-buffer of removed material whose feature lines the composer draws faded over the image
@@ -207,6 +212,7 @@ inline void requireExterior(const json_reader::Context& ctx, const std::string& 
 struct ObjectCut {
   int cutBy = 0;        // bit per slot: its GLSL decides the object's fragments
   int cutSurfaces = 0;  // bit per slot: its cuts show cut surfaces
+  int marksBy = 0;      // bit per slot: its look's marksOpenMeshes
   int clipPasses = 0;   // Diepstraten03 §4.3: hardware clip passes (the most any cutter asks)
   std::vector<std::pair<int, glm::vec3>> cutColors;  // per slot that cuts or clips it
   std::optional<glm::vec3> backColor;                // the first cutter's that gives one

@@ -40,6 +40,7 @@ ObjectCut objectCut(const std::vector<ActiveCutter>& cutters, std::size_t object
     const CutLook look = c.cutter->look(object);
     if (cuts) cut.cutBy |= 1 << c.slot;
     if (look.cutSurface) cut.cutSurfaces |= 1 << c.slot;
+    if (cuts && look.marksOpenMeshes) cut.marksBy |= 1 << c.slot;
     cut.clipPasses = std::max(cut.clipPasses, passes);
     cut.cutColors.emplace_back(c.slot, look.cutColor);
     if (!cut.backColor) cut.backColor = look.backColor;
@@ -88,8 +89,8 @@ std::string cutterComposition(const std::vector<ActiveCutter>& active) {
     glsl += "#include \"" + c.type->glsl + "\"\n";
   }
   glsl +=
-      "int cutFragment(int cutBy, CutFragment f, out vec3 cutPosition, out vec3 cutNormal,\n"
-      "                out int cutter) {\n"
+      "int cutFragment(int cutBy, int surfacesBy, CutFragment f, out vec3 cutPosition,\n"
+      "                out vec3 cutNormal, out int cutter) {\n"
       "  cutPosition = vec3(0.0);\n"
       "  cutNormal = vec3(0.0);\n"
       "  cutter = -1;\n"
@@ -100,9 +101,9 @@ std::string cutterComposition(const std::vector<ActiveCutter>& active) {
     const std::string slot = std::to_string(c.slot);
     glsl += "  if ((cutBy & (1 << " + slot + ")) != 0) {\n    k = " + c.type->name +
             "Fragment(f, p, n);\n    if (k == kDiscard) return kDiscard;\n"
-            "    if (k == kCutSurface && fate == kKeep) fate = k, cutPosition = p, cutNormal = n, "
-            "cutter = " +
-            slot + (c.cutter->cutSurfaceBehind() ? ", gCutFragDepth = cutWindowDepth(p)" : "") +
+            "    if (k == kCutSurface && fate == kKeep && (surfacesBy & (1 << " +
+            slot + ")) != 0)\n      fate = k, cutPosition = p, cutNormal = n, cutter = " + slot +
+            (c.cutter->cutSurfaceBehind() ? ", gCutFragDepth = cutWindowDepth(p)" : "") +
             ";\n  }\n";
   }
   // Ch. 2's occlusion reduction by opacity: the least the grading cutters leave the surface

@@ -23,8 +23,9 @@ class GeometryKind {
  public:
   virtual ~GeometryKind() = default;
 
-  // Whether the G-buffer's depth needs a stencil (Konev18 §6's proxy passes).
-  virtual bool needsStencil() const { return false; }
+  // Whether the G-buffer's depth needs a stencil (Konev18 §6's proxy passes), with these
+  // cutters.
+  virtual bool needsStencil(const std::vector<ActiveCutter>& /*cutters*/) const { return false; }
   // Once the geometry programs' shading is known: builds its programs, declares its targets.
   virtual void prepare(const std::vector<ActiveCutter>& /*cutters*/) {}
   // Draws into the geometry pass's G-buffer, the cutters bound.

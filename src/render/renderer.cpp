@@ -115,7 +115,7 @@ Renderer::Renderer(const Scene& scene, const gl::ContextInfo& info) try
 
   // The G-buffer with the channels the cutters added, then every geometry program's shading.
   const bool stencil = std::any_of(g.kinds.begin(), g.kinds.end(),
-                                   [](const auto& k) { return k->needsStencil(); });
+                                   [&g](const auto& k) { return k->needsStencil(g.cutters); });
   g.gbuffer.declare(g.frame, scene.samples, stencil);
   // Burns11 ch. 2: material a cutter reduces only partly is peeled into translucent layers.
   setup.translucentLayers =

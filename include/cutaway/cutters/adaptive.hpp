@@ -148,13 +148,13 @@ class GreatestDepth {
   std::vector<int> sizes_;
 };
 
-// Burns11 eq. 5.4 removes a fragment nearer than C at its pixel, and a back face where C cuts
-// its pixel (C > 0) is a cut surface. Whether C leaves a world box (holding every point a
-// fragment may be shaded at: shadedBox) as it is: every corner in front of the near plane and
-// its nearest window depth at or behind the greatest C over the viewport rectangle it covers;
-// for an open mesh (`closed` false), whose back faces may show, also no cut there at all.
+// Burns11 eq. 5.4 removes a fragment nearer than C at its pixel, and a back face behind C is a
+// cut surface only where a front face was removed (an open mesh's marks, kinds/meshes). Whether
+// C leaves a world box (holding every point a fragment may be shaded at: shadedBox) as it is:
+// every corner in front of the near plane and its nearest window depth at or behind the
+// greatest C over the viewport rectangle it covers.
 bool cutawayKeepsBox(const struct Bounds& box, const glm::mat4& viewProjection,
-                     const GreatestDepth& c, bool closed);
+                     const GreatestDepth& c);
 
 // The camera quantities above for a resolved camera.
 CutawayProjection cutawayProjection(const struct Camera& camera, float aspect);

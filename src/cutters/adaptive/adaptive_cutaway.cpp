@@ -101,7 +101,8 @@ CutLook AdaptiveCutaway::look(std::size_t index) const {
   const AdaptiveCutawayOptions& a = options();
   return {.cutSurface = a.cutSurfaces == CutSurfaces::All ||
                         (a.cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight),
-          .cutColor = a.cutSurfaceColor.value_or(o.material.color * 0.8f)};
+          .cutColor = a.cutSurfaceColor.value_or(o.material.color * 0.8f),
+          .marksOpenMeshes = !graded_};  // graded: no cut surfaces (clip.glsl)
 }
 
 std::optional<glm::vec3> AdaptiveCutaway::cutOutlineColor() const {
@@ -143,9 +144,8 @@ void AdaptiveCutaway::findReaches() {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const Bounds& local = setup_.meshes.mesh(i).bounds();
     if (local.empty() || !cuts(i)) continue;
-    reaches_[i] =
-        !cutawayKeepsBox(shadedBox(scene, local, i, time_, uniforms_), uniforms_.viewProjection,
-                         surface_.greatest(), scene.objects[i].mesh->report.watertight);
+    reaches_[i] = !cutawayKeepsBox(shadedBox(scene, local, i, time_, uniforms_),
+                                   uniforms_.viewProjection, surface_.greatest());
   }
 }
 

@@ -193,7 +193,8 @@ int adaptiveFragment(CutFragment f, out vec3 cutPosition, out vec3 cutNormal) {
   float c = cutawayDepthAt(CUT_FRAG_COORD.xy, frontFacing);
   if (CUT_FRAG_COORD.z < c) return kDiscard;
   // A back face is a cut surface only where the cutaway surface lies in front of it; elsewhere
-  // (no cut at this pixel) it is an ordinary inside view of an open mesh.
+  // (no cut at this pixel) it is an ordinary inside view of an open mesh. On an open mesh the
+  // mesh kind also asks that its own front was removed there (CutLook::marksOpenMeshes).
   if (frontFacing || c <= 0.0) return kKeep;
 #ifdef CUTAWAY_AT_PIXEL
   // Worked out once per pixel (at_pixel.frag): every fragment here lies at a pixel centre.

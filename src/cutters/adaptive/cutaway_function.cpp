@@ -157,8 +157,7 @@ float GreatestDepth::over(glm::vec2 lo, glm::vec2 hi) const {
   return m;
 }
 
-bool cutawayKeepsBox(const Bounds& box, const glm::mat4& viewProjection, const GreatestDepth& c,
-                     bool closed) {
+bool cutawayKeepsBox(const Bounds& box, const glm::mat4& viewProjection, const GreatestDepth& c) {
   glm::vec2 lo(1e30f), hi(-1e30f);
   float nearest = 1e30f;
   for (int k = 0; k < 8; ++k) {
@@ -171,7 +170,7 @@ bool cutawayKeepsBox(const Bounds& box, const glm::mat4& viewProjection, const G
     nearest = std::min(nearest, 0.5f * ndc.z + 0.5f);  // window depth grows with view depth
   }
   const float greatest = c.over(0.5f * lo + 0.5f, 0.5f * hi + 0.5f);
-  return nearest >= greatest && (closed || greatest <= 0.0f);
+  return nearest >= greatest;
 }
 
 }  // namespace cutaway

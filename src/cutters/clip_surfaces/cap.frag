@@ -79,7 +79,7 @@ float capDepth(int i, vec3 x) {
   vec3 cutPosition, cutNormal;
   int cutter;
   CutFragment f = CutFragment(x, -clipSurfaceNormal(i), true);
-  if (cutFragment(uCutBy, f, cutPosition, cutNormal, cutter) == kDiscard) return -1.0;
+  if (cutFragment(uCutBy, -1, f, cutPosition, cutNormal, cutter) == kDiscard) return -1.0;
   vec4 t = uCapToTexture * vec4(x, 1.0);
   bool inside = volumetricParityTest(t.xyz / t.w, uDepthComplexity);
   imageAtomicMax(uCapParity, ivec2(gl_FragCoord.xy), inside ? 2u : 1u);

@@ -75,12 +75,21 @@ void main() {
 #ifdef CUT_WRITES_DEPTH
   gCutFragDepth = gl_FragCoord.z;
 #endif
-  int fate = cutFragment(CUT_BY, f, cutPosition, cutNormal, cutter);
+  int fate = cutFragment(CUT_BY, uCutSurfaces, f, cutPosition, cutNormal, cutter);
+#ifdef MARK_REMOVED
+  // MeshKind's removal marks of an open mesh: its front fragments the marking cutters (its
+  // uCutBy here) remove, for the stencil alone (colour and depth writes off).
+  if (fate != kDiscard) discard;
+#ifdef CUT_WRITES_DEPTH
+  gl_FragDepth = gl_FragCoord.z;
+#endif
+  return;
+#endif
   if (fate == kDiscard) discard;
 #ifdef CUT_WRITES_DEPTH
   gl_FragDepth = gCutFragDepth;
 #endif
-  bool cut = fate == kCutSurface && (uCutSurfaces & (1 << cutter)) != 0;
+  bool cut = fate == kCutSurface;
   vec3 n = vWorldNormal;
   // Interpolated normals can vanish (opposite vertex normals); fall back to the face normal.
   if (dot(n, n) < 1e-12) n = cross(dFdx(vWorldPosition), dFdy(vWorldPosition));

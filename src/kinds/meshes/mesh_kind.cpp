@@ -24,6 +24,15 @@ void drawSides(GLuint front, GLuint back, const SceneMeshes::DrawWith& drawWith,
 
 }  // namespace
 
+bool MeshKind::needsStencil(const std::vector<ActiveCutter>& cutters) const {
+  const Scene& scene = setup_.scene;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    if (!scene.objects[i].proxy && !scene.objects[i].mesh->report.watertight)
+      for (const ActiveCutter& c : cutters)
+        if (c.cutter->cuts(i) && c.cutter->look(i).marksOpenMeshes) return true;
+  return false;
+}
+
 void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
   const std::vector<std::pair<GLenum, std::string>> stages{
       {GL_VERTEX_SHADER, "frame/mesh.vert"}, {GL_FRAGMENT_SHADER, "kinds/meshes/mesh.frag"}};
@@ -31,6 +40,9 @@ void MeshKind::prepare(const std::vector<ActiveCutter>& cutters) {
   if (!cutters.empty()) {
     frontProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"FRONT_FACES", "1"}}));
     backProgram_ = gl::buildProgram(setup_.geometryProgram(stages, {{"BACK_FACES", "1"}}));
+    if (needsStencil(cutters))
+      markProgram_ = gl::buildProgram(
+          setup_.geometryProgram(stages, {{"FRONT_FACES", "1"}, {"MARK_REMOVED", "1"}}));
     if (!setup_.gbuffer.channels().empty())
       slabKeptProgram_ =
           gl::buildProgram(setup_.geometryProgram(stages, {{"UNCUT", "1"}, {"SLAB_KEPT", "1"}}));
@@ -72,9 +84,53 @@ void MeshKind::setObjectUniforms(GLuint program, const std::vector<ActiveCutter>
   glProgramUniform1i(program, kChannelsBy, cut.cutBy);
 }
 
+bool MeshKind::marksRemoval(const ObjectCut& cut, std::size_t i) const {
+  return markProgram_.id() != 0 && (cut.cutBy & cut.cutSurfaces & cut.marksBy) != 0 &&
+         cut.clipPasses == 0 && !setup_.scene.objects[i].mesh->report.watertight;
+}
+
+void MeshKind::drawBackFaces(GLuint back, bool marks, bool unmarked,
+                             const std::function<void(GLuint, bool)>& draw) const {
+  if (!marks) {
+    glCullFace(GL_FRONT);
+    draw(back, true);
+    return;
+  }
+  // A value per object, 255 to a clear of the stencil (the geometry pass's first mark clears
+  // it too: the pipes' proxy passes leave theirs).
+  if (marked_ % 255 == 0) {
+    GLint framebuffer = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+    const GLint zero = 0;
+    glStencilMask(0xff);
+    glClearNamedFramebufferiv(GLuint(framebuffer), GL_STENCIL, 0, &zero);
+  }
+  const int value = int(marked_++ % 255) + 1;
+  glEnable(GL_STENCIL_TEST);
+  glStencilMask(0xff);
+  glStencilFunc(GL_ALWAYS, value, 0xff);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDepthMask(GL_FALSE);
+  glCullFace(GL_BACK);
+  draw(markProgram_.id(), true);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glCullFace(GL_FRONT);
+  glStencilFunc(GL_EQUAL, value, 0xff);
+  draw(back, true);
+  if (unmarked) {
+    glStencilFunc(GL_NOTEQUAL, value, 0xff);
+    draw(back, false);
+  }
+  glDisable(GL_STENCIL_TEST);
+}
+
 void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
                             const GeometryDraw& draw) const {
-  for (const GLuint program : {frontProgram_.id(), backProgram_.id()})
+  marked_ = 0;
+  for (const GLuint program : {frontProgram_.id(), backProgram_.id(), markProgram_.id()})
     if (program != 0)
       for (const ActiveCutter& c : cutters) c.cutter->setProgramUniforms(program);
   const std::vector<ObjectCut> cuts = objectCuts(cutters);
@@ -104,11 +160,24 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
     for (const ActiveCutter& c : cutters)
       if (!slab && cuts[i].clipPasses == 0 && (cuts[i].cutBy & (1 << c.slot)) != 0)
         if ((slab = c.cutter->slab(i))) slabCutter = &c;
+    const bool marks = marksRemoval(cuts[i], i);
+    // Off its marks an open mesh shows the cut surfaces of the cutters that need none, and its
+    // back faces only as those or where it is double-sided.
+    const int unmarkedCutSurfaces = cuts[i].cutSurfaces & ~cuts[i].marksBy;
+    const bool unmarked = o.doubleSided() || (cuts[i].cutBy & unmarkedCutSurfaces) != 0;
     if (!slab) {
-      drawSides(frontProgram_.id(), backProgram_.id(), drawWith, [&](GLuint program) {
+      const auto drawBy = [&](GLuint program, bool cutSurfaces) {
         setObjectUniforms(program, cutters, cuts[i], o, i);
+        if (program == markProgram_.id())
+          glProgramUniform1i(program, kCutBy, cuts[i].cutBy & cuts[i].marksBy);
+        if (!cutSurfaces) glProgramUniform1i(program, kCutSurfaces, unmarkedCutSurfaces);
         perProgram(program);
-      });
+        drawWith(program);
+      };
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      drawBy(frontProgram_.id(), true);
+      drawBackFaces(backProgram_.id(), marks, unmarked, drawBy);
       return;
     }
     // Each side split by hardware clip distances: each half-space the cutter keeps whole by
@@ -117,9 +186,11 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
     // that their common edges leave no crack; the part it removes whole is drawn by neither.
     // The cutters' channels keep the whole cut's values throughout.
     const int rest = cuts[i].cutBy & ~(1 << slabCutter->slot);
-    const auto drawPart = [&](GLuint program, int cutBy, const std::vector<glm::vec4>& planes) {
+    const auto drawPart = [&](GLuint program, int cutBy, const std::vector<glm::vec4>& planes,
+                              bool cutSurfaces = true) {
       setObjectUniforms(program, cutters, cuts[i], o, i);
       glProgramUniform1i(program, kCutBy, cutBy);
+      if (!cutSurfaces) glProgramUniform1i(program, kCutSurfaces, unmarkedCutSurfaces);
       glm::vec4 clip[kSlabClipPlanes];
       for (int k = 0; k < kSlabClipPlanes; ++k)
         clip[k] = k < int(planes.size()) ? planes[std::size_t(k)] : glm::vec4(0, 0, 0, 1);
@@ -134,8 +205,11 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
     for (const auto& [culled, program] :
          {std::pair{GL_BACK, frontProgram_.id()}, std::pair{GL_FRONT, backProgram_.id()}}) {
       glCullFace(culled);
-      if (culled == GL_FRONT && !slab->backFaces) {
-        drawPart(program, cuts[i].cutBy, {});
+      if (culled == GL_FRONT && (marks || !slab->backFaces)) {
+        drawBackFaces(program, marks, unmarked, [&](GLuint p, bool cutSurfaces) {
+          const int marking = cuts[i].cutBy & cuts[i].marksBy;
+          drawPart(p, p == markProgram_.id() ? marking : cuts[i].cutBy, {}, cutSurfaces);
+        });
         continue;
       }
       std::vector<glm::vec4> outside;  // the kept half-spaces drawn so far, turned and grown
@@ -151,8 +225,8 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
     // Mesa 22.3's llvmpipe clips by stale distances with clipping disabled (below).
     glm::vec4 none[kSlabClipPlanes];
     std::fill(std::begin(none), std::end(none), glm::vec4(0, 0, 0, 1));
-    for (const GLuint program :
-         {uncutProgram_.id(), slabKeptProgram_.id(), frontProgram_.id(), backProgram_.id()})
+    for (const GLuint program : {uncutProgram_.id(), slabKeptProgram_.id(), frontProgram_.id(),
+                                 backProgram_.id(), markProgram_.id()})
       if (program != 0) glProgramUniform4fv(program, kSlabClip, kSlabClipPlanes, &none[0][0]);
     for (int k = 1; k <= kSlabClipPlanes; ++k) glDisable(GLenum(GL_CLIP_DISTANCE0 + k));
   };
@@ -188,8 +262,8 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
       // A plane that keeps everything: Mesa 22.3's llvmpipe went on clipping the next frame's
       // objects of interest with the last object's plane, clipping disabled or not.
       const glm::vec4 keepAll(0, 0, 0, 1);
-      for (const GLuint program : {frontProgram_.id(), backProgram_.id()})
-        glProgramUniform4fv(program, kClipPlane, 1, &keepAll[0]);
+      for (const GLuint program : {frontProgram_.id(), backProgram_.id(), markProgram_.id()})
+        if (program != 0) glProgramUniform4fv(program, kClipPlane, 1, &keepAll[0]);
     }
     setup_.meshes.forEach(
         [&](const SceneObject& o, std::size_t i) {

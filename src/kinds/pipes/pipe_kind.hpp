@@ -25,7 +25,7 @@ class PipeKind : public GeometryKind {
   explicit PipeKind(FrameSetup& setup);
   // Whether any network is drawn as billboards (else the composer leaves the kind out).
   static bool present(const Scene& scene);
-  bool needsStencil() const override { return true; }
+  bool needsStencil(const std::vector<ActiveCutter>&) const override { return true; }
   // Builds the programs and declares the owner, class and stencil targets.
   void prepare(const std::vector<ActiveCutter>& cutters) override;
   void addPassesAfterGeometry(Frame& frame) override;

@@ -21,6 +21,6 @@ int fateAt(vec3 p, vec2 window, bool frontFacing, out vec3 cutNormal) {
   gSampleCoord = vec4(window, clip.z / clip.w * 0.5 + 0.5, 1.0);
   vec3 cutPosition;
   int cutter;
-  return cutFragment(uCutBy, CutFragment(p, vec3(0.0), frontFacing), cutPosition, cutNormal,
-                     cutter);
+  return cutFragment(uCutBy, -1, CutFragment(p, vec3(0.0), frontFacing), cutPosition,
+                     cutNormal, cutter);
 }
