@@ -161,8 +161,8 @@ void MeshKind::drawGeometry(const std::vector<ActiveCutter>& cutters,
       if (!slab && cuts[i].clipPasses == 0 && (cuts[i].cutBy & (1 << c.slot)) != 0)
         if ((slab = c.cutter->slab(i))) slabCutter = &c;
     const bool marks = marksRemoval(cuts[i], i);
-    // Off its marks an open mesh shows the cut surfaces of the cutters that need none, and its
-    // back faces only as those or where it is double-sided.
+    // Off its marks an open mesh's back faces show without the marking cutters' cut surfaces:
+    // where it is double-sided, or where another cutter may make them its cut surface.
     const int unmarkedCutSurfaces = cuts[i].cutSurfaces & ~cuts[i].marksBy;
     const bool unmarked = o.doubleSided() || (cuts[i].cutBy & unmarkedCutSurfaces) != 0;
     if (!slab) {
