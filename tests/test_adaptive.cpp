@@ -15,6 +15,7 @@
 
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/render/renderer.hpp"
+#include "cutaway/render/techniques.hpp"
 #include "gl_test_context.hpp"
 #include "mismatches.hpp"
 #include "render_aovs.hpp"
@@ -830,6 +831,19 @@ TEST(AdaptiveCutaway, TheFloorSideOfTheConeStaysAboveTheFloor) {
     EXPECT_GT(seeds, 100);
     EXPECT_GT(shortOfTheFloor, 0);
   }
+}
+
+// A floor normal given by its path (--set, the viewer, the bindings) turns the directional
+// constraint on, as the scene file's key does; the constraint set off after it stays off.
+TEST(AdaptiveCutaway, AFloorNormalSetByItsPathTurnsTheConstraintOn) {
+  Scene scene;
+  setOption(scene, "cutters.adaptive.floorNormal", "2,0,0");
+  const AdaptiveCutawayOptions* o = scene.cutters.find<AdaptiveCutawayOptions>();
+  ASSERT_NE(o, nullptr);
+  EXPECT_TRUE(o->directionalConstraint);
+  EXPECT_EQ(o->floorNormal, glm::vec3(1, 0, 0));
+  setOption(scene, "cutters.adaptive.directionalConstraint", "false");
+  EXPECT_FALSE(scene.cutters.find<AdaptiveCutawayOptions>()->directionalConstraint);
 }
 
 // Burns11 eq. 6.3's n̂_proj, the screen direction in which the floor's normal points at a seed:

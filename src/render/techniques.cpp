@@ -26,8 +26,10 @@ OptionSpec onScene(OptionSpec spec, const OptionsSchema& schema, const Holder& h
     std::any defaults = schema.makeDefault();
     return get(schema.data(defaults));
   };
-  spec.set = [set, &schema, holder](void* s, const OptionValue& v) {
-    set(schema.data(holder.enable(*static_cast<Scene*>(s))), v);
+  spec.set = [set, alsoSets = spec.alsoSets, &schema, holder](void* s, const OptionValue& v) {
+    void* options = schema.data(holder.enable(*static_cast<Scene*>(s)));
+    set(options, v);
+    if (alsoSets) alsoSets(options);
   };
   spec.applies = [applies, &schema, holder](const void* s) {
     const std::any* a = holder.find(*static_cast<const Scene*>(s));

@@ -78,6 +78,10 @@ struct OptionSpec {
   std::function<OptionValue(const void*)> get;
   std::function<void(void*, const OptionValue&)> set;
   std::function<bool(const void*)> applies;  // null: always
+  // What setting it by its path (CLI --set, the viewer, the bindings) sets beside it, as the
+  // scene file's own check does where the key comes alone (a floor normal turns the
+  // directional constraint on). Null: nothing.
+  std::function<void(void*)> alsoSets;
   // Why a write would be lost (its struct does not exist: an array entry past the end), or
   // empty. Null: never.
   std::function<std::string(const void*)> absent;
@@ -318,6 +322,12 @@ class OptionsBuilder {
   OptionsBuilder& applies(std::function<bool(const O&)> when) {
     auto& n = const_cast<Node&>(*schema_.nodes_.back());
     n.spec.applies = [when](const void* o) { return when(*static_cast<const O*>(o)); };
+    return *this;
+  }
+  // What setting the last value by its path sets beside it (OptionSpec::alsoSets).
+  OptionsBuilder& alsoSets(std::function<void(O&)> what) {
+    auto& n = const_cast<Node&>(*schema_.nodes_.back());
+    n.spec.alsoSets = [what](void* o) { what(*static_cast<O*>(o)); };
     return *this;
   }
   // The scene file's JSON form of the last value, when not the type's own (e.g. a number that

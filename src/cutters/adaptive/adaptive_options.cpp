@@ -113,6 +113,7 @@ const OptionsSchema& adaptiveCutawaySchema() {
                       .doc = "World-space normal of the floor the constraint protects.",
                       .live = true})
           .applies([](const O& o) { return o.directionalConstraint; })
+          .alsoSets([](O& o) { o.directionalConstraint = true; })
           .choice("jumpFlooding", &O::variant,
                   {{"jfa", fields::JumpFloodingVariant::jfa},
                    {"jfa+1", fields::JumpFloodingVariant::jfaPlus1},
