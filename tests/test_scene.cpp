@@ -268,6 +268,7 @@ const BadScene kBadScenes[] = {
     {"terrain_line_one_node.json", "/cutters/terrainOpening/lines/1",
      "a polyline needs at least two distinct [x, z] nodes"},
     {"terrain_matches_nothing.json", "/cutters/terrainOpening/terrain", "no object name matches"},
+    {"terrain_empty_pattern.json", "/cutters/terrainOpening/terrain", "required: a pattern"},
     {"terrain_network_missing.json", "/cutters/terrainOpening/network/0", "no-such.shp"},
     {"object_param_solid_number.json", "/objects/0/params/solid",
      "expected true or false, got number"},

@@ -26,7 +26,11 @@ void completeTerrainOpening(const json_reader::Context& ctx, const std::string& 
              "no network: give \"network\" layers, \"lines\" or scene \"networks\" (Konev18 §4 "
              "opens the terrain above pipes)");
   for (const auto& [key, pattern] : {std::pair{"terrain", o.terrain}, std::pair{"buildings", o.buildings}}) {
-    if (pattern.empty()) continue;
+    if (pattern.empty()) {
+      if (key == std::string("terrain"))
+        ctx.fail(pointer + "/terrain", "required: a pattern naming the terrain objects to open");
+      continue;
+    }
     const std::regex re = regex(ctx, pattern, pointer + "/" + key);
     if (std::none_of(scene.objects.begin(), scene.objects.end(), [&](const SceneObject& s) {
           return !s.proxy && std::regex_match(s.name, re);
