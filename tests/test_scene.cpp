@@ -1352,6 +1352,25 @@ TEST(SceneCamera, AGivenFarNearerThanTheSceneIsKept) {
   EXPECT_GT(c.far, c.near);
 }
 
+// The derived depth range holds the proxies, which the cutters draw; fitting frames only the
+// visible objects.
+TEST(SceneCamera, TheDerivedDepthRangeHoldsTheProxies) {
+  const char* objects = R"({"objects": [{"name": "cube", "file": "cube.obj"}], )";
+  const char* camera = R"("camera": {"eye": [0.5, 0.5, 30], "target": [0.5, 0.5, 0.5]})";
+  const Camera alone = parse(std::string(objects) + camera + "}").resolvedCamera();
+  const Scene s = parse(std::string(objects) +
+                        R"("proxies": [{"name": "room", "box": {"min": [0, 0, -40], "max": [1, 1, 1]}}], )" +
+                        camera + "}");
+  const Camera c = s.resolvedCamera();
+  EXPECT_GE(c.far, 30.0f + 40.0f) << "the proxy's far end";
+  EXPECT_LE(c.near, 29.0f);
+  EXPECT_GT(c.near, 0.0f);
+  EXPECT_GT(c.far, alone.far);
+  Scene fitted = s;
+  fitted.camera.fit = true;
+  EXPECT_EQ(fitted.resolvedCamera().target, glm::vec3(0.5f)) << "fit frames the cube alone";
+}
+
 // ---------------------------------------------------------------------------------------------
 // Camera paths and the scene's duration.
 

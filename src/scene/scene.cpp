@@ -281,10 +281,10 @@ Camera Scene::resolvedCamera(float time) const {
     }
   }
   const Bounds b = bounds();
-  const glm::vec3 center = b.empty() ? glm::vec3(0.0f) : b.center();
+  glm::vec3 center = b.empty() ? glm::vec3(0.0f) : b.center();
   // A point (or nothing) still gets a view; a scene its own size, down to what floats resolve
   // at its distance from the origin (a 1e-3 floor framed a 1e-8 scene as a few pixels).
-  const float radius =
+  float radius =
       !(b.radius() > 0.0f) ? 1e-3f : std::max(b.radius(), 1e-6f * glm::length(center));
   const float aspect = float(width) / float(height);
   if (c.fit) {
@@ -318,7 +318,15 @@ Camera Scene::resolvedCamera(float time) const {
       c.eye = center + direction * (radius * 3.0f);
     }
   }
-  // Depth range hugging the scene: better depth precision than a fixed range.
+  // Depth range hugging the scene: better depth precision than a fixed range. It holds the
+  // proxies too: the cutters draw them (an interest proxy past the far plane lost its seed).
+  Bounds drawn = b;
+  for (const SceneObject& o : objects)
+    if (o.proxy) drawn.extend(o.worldBounds());
+  if (drawn.min != b.min || drawn.max != b.max) {
+    center = drawn.center();
+    radius = std::max(drawn.radius(), 1e-6f * glm::length(center));
+  }
   const float distance = glm::length(center - c.eye);
   const bool perspective = c.projection == Projection::Perspective;
   const bool nearGiven = c.near > 0.0f, farGiven = c.far > 0.0f;
