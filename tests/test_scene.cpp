@@ -20,6 +20,7 @@
 #include "cutaway/core/error.hpp"
 #include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/fields/cutaway_surface.hpp"
+#include "cutaway/render/renderer.hpp"
 #include "cutaway/render/techniques.hpp"
 #include "cutaway/scene/scene.hpp"
 #include "cutaway/styles/blinn_phong.hpp"
@@ -1333,6 +1334,28 @@ TEST(SceneCamera, ViewsThatFloatsCannotDrawAreNamed) {
   EXPECT_NE(why(R"({"fit": true})", R"({"scale": 1e-30})").find("not finite"), std::string::npos);
 }
 
+// The adaptive cutaway keeps its cut in window depths: a perspective range deeper than they
+// resolve (far / near > 1e4) is named where the cutter is on, and drawn where it is not (an
+// orthographic view's window depth is linear: any range).
+TEST(SceneCamera, ARangeDeeperThanTheAdaptiveCutResolvesIsNamed) {
+  Scene s = parse(R"({"objects": [{"name": "cube", "file": "cube.obj"}],
+    "camera": {"eye": [0.5, 0.5, 30], "target": [0.5, 0.5, 0.5], "near": 1e-4, "far": 40}})");
+  EXPECT_EQ(deepestDepthRange(s), 0.0f);
+  s.cutters.enable<AdaptiveCutawayOptions>();
+  EXPECT_EQ(deepestDepthRange(s), 1e4f);
+  Camera c = s.resolvedCamera();
+  EXPECT_EQ(c.unresolvable(1.0f), "");
+  EXPECT_NE(c.unresolvable(1.0f, deepestDepthRange(s))
+                .find("far / near 4e+05) is deeper than the adaptive cutaway resolves"),
+            std::string::npos)
+      << c.unresolvable(1.0f, deepestDepthRange(s));
+  c.near = 4e-3f;  // far / near 1e4
+  EXPECT_EQ(c.unresolvable(1.0f, deepestDepthRange(s)), "");
+  c.near = 1e-4f;
+  c.projection = Projection::Orthographic;
+  EXPECT_EQ(c.unresolvable(1.0f, deepestDepthRange(s)), "");
+}
+
 // A given far plane nearer than the derived near is kept; the near plane yields to it.
 TEST(SceneCamera, AGivenFarNearerThanTheSceneIsKept) {
   for (const char* projection : {"perspective", "orthographic"}) {
@@ -1358,9 +1381,10 @@ TEST(SceneCamera, TheDerivedDepthRangeHoldsTheProxies) {
   const char* objects = R"({"objects": [{"name": "cube", "file": "cube.obj"}], )";
   const char* camera = R"("camera": {"eye": [0.5, 0.5, 30], "target": [0.5, 0.5, 0.5]})";
   const Camera alone = parse(std::string(objects) + camera + "}").resolvedCamera();
-  const Scene s = parse(std::string(objects) +
-                        R"("proxies": [{"name": "room", "box": {"min": [0, 0, -40], "max": [1, 1, 1]}}], )" +
-                        camera + "}");
+  const Scene s =
+      parse(std::string(objects) +
+            R"("proxies": [{"name": "room", "box": {"min": [0, 0, -40], "max": [1, 1, 1]}}], )" +
+            camera + "}");
   const Camera c = s.resolvedCamera();
   EXPECT_GE(c.far, 30.0f + 40.0f) << "the proxy's far end";
   EXPECT_LE(c.near, 29.0f);

@@ -465,7 +465,9 @@ void Viewer::update(bool full) {
   if (state_.viewChanged && drawnCamera_) {
     // A move that 32-bit floats cannot draw (a zoom of 1e30, a pan of 1e300) is undone; a
     // file just opened with such a camera goes back whole, as when its frame fails.
-    if (const std::string why = viewCamera(state_).unresolvable(aspect()); !why.empty()) {
+    if (const std::string why =
+            viewCamera(state_).unresolvable(aspect(), deepestDepthRange(state_.scene));
+        !why.empty()) {
       if (replaced_) {
         restoreRendered("camera: " + why);
       } else {

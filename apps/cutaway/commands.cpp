@@ -468,7 +468,9 @@ int render(const RenderOptions& options) {
   };
   for (int i = 0; i < std::max(options.frames, 1); ++i) {
     const float time = options.frames == 0 ? options.time : frameTime(i);
-    if (const std::string why = scene.resolvedCamera(time).unresolvable(aspect); !why.empty()) {
+    if (const std::string why =
+            scene.resolvedCamera(time).unresolvable(aspect, deepestDepthRange(scene));
+        !why.empty()) {
       char at[32];
       std::snprintf(at, sizeof at, "%.4g s", double(time));
       const std::string reason =

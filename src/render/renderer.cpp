@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "cutaway/core/error.hpp"
+#include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/gl/shader.hpp"
 #include "cutters/registry.hpp"
 #include "frame/bindings.hpp"
@@ -338,10 +339,15 @@ std::size_t Renderer::meshTriangles() const {
   return impl_->meshes.triangles();
 }
 
+float deepestDepthRange(const Scene& scene) {
+  return scene.cutters.find<AdaptiveCutawayOptions>() ? AdaptiveCutawayOptions::kDeepestDepthRange
+                                                      : 0.0f;
+}
+
 void Renderer::render(const Camera& camera, float time) {
   Impl& g = *impl_;
   const float aspect = float(scene_.width) / float(scene_.height);
-  if (const std::string why = camera.unresolvable(aspect); !why.empty())
+  if (const std::string why = camera.unresolvable(aspect, deepestDepthRange(scene_)); !why.empty())
     throw Error("", "camera", why);
   g.meshes.setTime(time);
   FrameUniforms u{};

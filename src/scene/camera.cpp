@@ -19,7 +19,7 @@ glm::mat4 Camera::projectionMatrix(float aspect) const {
   return glm::perspective(glm::radians(fovY), aspect, near, far);
 }
 
-std::string Camera::unresolvable(float aspect) const {
+std::string Camera::unresolvable(float aspect, float deepestRange) const {
   const auto text = [](double v) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.3g", v);
@@ -40,6 +40,11 @@ std::string Camera::unresolvable(float aspect) const {
   if (!(double(far) - double(near) > kSteps * std::max(std::abs(near), std::abs(far))))
     return "the depth range from near " + text(near) + " to far " + text(far) +
            " is too thin for 32-bit floats (the eye is " + text(distance) + " from the target)";
+  if (deepestRange > 0.0f && projection == Projection::Perspective &&
+      double(far) > double(deepestRange) * double(near))
+    return "the depth range from near " + text(near) + " to far " + text(far) + " (far / near " +
+           text(double(far) / double(near)) + ") is deeper than the adaptive cutaway resolves (" +
+           text(deepestRange) + "): give a larger near";
   const glm::mat4 m = projectionMatrix(aspect) * view();
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)

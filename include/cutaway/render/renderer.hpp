@@ -92,6 +92,11 @@
 
 namespace cutaway {
 
+// The deepest perspective depth range (far / near) the scene's cutters resolve, for
+// Camera::unresolvable: the adaptive cutaway's (AdaptiveCutawayOptions::kDeepestDepthRange),
+// else 0 (any).
+float deepestDepthRange(const Scene& scene);
+
 class Renderer {
  public:
   // Uploads the meshes and compiles the programs; the scene must outlive the renderer. Every

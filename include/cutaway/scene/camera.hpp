@@ -33,7 +33,8 @@ struct Camera {
   // Why 32-bit floats cannot draw this resolved camera's view (near and far set), or "":
   // eye and target closer than a few of the floats' steps at their magnitude, a depth range
   // [near, far] as thin, or matrices that are not finite (a scene 1e-30 across).
-  std::string unresolvable(float aspect) const;
+  // A perspective range deeper than `deepestRange` (far / near; 0: any) is one too.
+  std::string unresolvable(float aspect, float deepestRange = 0.0f) const;
   // World units of the view's height at the target (orthographic: `height`).
   float viewHeightAtTarget() const;
   // Where the view ray through world point `x` starts: the eye, or for orthographic views
