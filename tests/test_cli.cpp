@@ -474,6 +474,52 @@ TEST(Cli, BenchCullsHiddenObjectsUnlessAskedNotTo) {
   }
 }
 
+// --simplify draws the engine's meshes as their simplified versions within --pixel-error:
+// fewer triangles the coarser the error, every triangle at 0, and a picture that strays from
+// the whole meshes' by little (a few pixels along silhouettes).
+TEST(Cli, SimplifyDrawsFewerTrianglesWithinThePixelError) {
+  const std::string engine = kSource + "/examples/engine.json --size 160x120 --samples 1";
+  const auto triangles = [&](const std::string& options) {
+    const Result r =
+        run("bench " + engine + " --frames 1 --json --no-occlusion-culling " + options);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return nlohmann::json::parse(r.out)["runs"][0]["meshTriangles"].get<std::size_t>();
+  };
+  const std::size_t whole = triangles(""), fine = triangles("--simplify --pixel-error 0.5"),
+                    coarse = triangles("--simplify --pixel-error 2");
+  EXPECT_EQ(whole, 110336u);
+  EXPECT_EQ(triangles("--simplify --pixel-error 0"), whole);
+  EXPECT_LT(fine, whole * 3 / 4);
+  EXPECT_LT(coarse, fine);
+  const fs::path simplified = scratch("simplified.png"), full = scratch("whole.png");
+  ASSERT_EQ(run("render " + engine + " --simplify -o " + simplified.string()).exitCode, 0);
+  ASSERT_EQ(run("render " + engine + " -o " + full.string()).exitCode, 0);
+  const Rgba8Image a = readPng(simplified), b = readPng(full);
+  int differ = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c])) > 64) {
+          ++differ;
+          break;
+        }
+  std::printf("simplified: %zu and %zu of %zu triangles; %d pixels differ by more than 64\n", fine,
+              coarse, whole, differ);
+  EXPECT_LT(differ, a.width * a.height / 50);
+}
+
+// --svg on a scene whose volumes draw no lines is a command line the scene refuses: exit 2,
+// the option named, nothing written.
+TEST(Cli, SvgWithoutVolumeLinesIsAUsageError) {
+  const fs::path png = scratch("no-lines.png"), svg = scratch("no-lines.svg");
+  const Result r = run("render " + kSource + "/examples/engine.json --size 32x24 -o " +
+                       png.string() + " --svg " + svg.string());
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("--svg: writes the volumes' lines"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(png));
+  EXPECT_FALSE(fs::exists(svg));
+}
+
 TEST(Cli, BenchPrintsJsonAndTable) {
   const std::string scene = kData + "/render/plane-facing.json";
   const Result json = run("bench " + scene + " --frames 3 --json");

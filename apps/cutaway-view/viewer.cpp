@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 
 #include "camera_controller.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/frame/aov.hpp"
 #include "panels/panels.hpp"
 
@@ -532,6 +534,11 @@ void Viewer::renderMoving() {
   // The live scene at the reduced size: live options reach moving_ as they reach renderer_.
   const bool built = !moving_ || movingScene_.width != width || movingScene_.height != height;
   movingScene_ = state_.scene;
+  addSimplifiedVersions(movingScene_, simplified_);
+  // The adaptive cut's buffer no finer than the smaller image (its size is free, Burns08 §6).
+  if (auto* adaptive = movingScene_.cutters.find<AdaptiveCutawayOptions>())
+    adaptive->bufferSize =
+        std::min(adaptive->bufferSize, int(std::bit_ceil(unsigned(std::max(width, height)))));
   movingScene_.width = width, movingScene_.height = height;
   movingScene_.samples = 1;  // stretched and soon redrawn: no multisampling
   if (built) {

@@ -129,6 +129,9 @@ class Viewer {
   // rests, renderer_ draws it again. `shown_` drew what the window shows.
   std::unique_ptr<Renderer> moving_;
   Scene movingScene_;
+  // The meshes' simplified versions that movingScene_ draws (addSimplifiedVersions), made on
+  // the first frame drawn while moving and kept until another scene opens.
+  SimplifiedCache simplified_;
   static constexpr int kMaxMovingDivisor = 8;
   int movingDivisor_ = 0;  // 0: not chosen since the last rebuild
   // Wall time of the last frame at each divisor since it was chosen ([1]: the full frame).

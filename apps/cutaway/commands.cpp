@@ -103,6 +103,10 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.shadows) scene.style.shadows.enabled = true;
   if (o.samples) scene.samples = *o.samples;
   if (o.pixelError) scene.pixelError = *o.pixelError;
+  if (o.simplify) {
+    SimplifiedCache versions;
+    addSimplifiedVersions(scene, versions);
+  }
   if (o.noCutaway && o.cutawayAngle)
     throw CommandLineError("--no-cutaway", "", "cannot be combined with --cutaway-angle");
   if (o.noCutaway) scene.cutters.clear();  // the plain model: no cutter at all
@@ -489,9 +493,9 @@ int render(const RenderOptions& options) {
   if (!options.svg.empty() &&
       std::none_of(scene.volumes.begin(), scene.volumes.end(),
                    [](const SceneVolume& v) { return v.lines.has_value(); }))
-    throw Error(options.svg, "",
-                "--svg writes the volumes' lines, and no volume of " + scene.file.string() +
-                    " has \"lines\"");
+    throw CommandLineError(
+        "--svg", "",
+        "writes the volumes' lines, and no volume of " + scene.file.string() + " has \"lines\"");
   const auto context = gl::HeadlessContext::create();
   Renderer renderer =
       blamingOverrides(options.overrides, scene, [&] { return Renderer(scene, context->info()); });

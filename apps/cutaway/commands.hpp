@@ -27,6 +27,7 @@ struct SceneOverrides {
   std::string style;
   std::optional<int> samples;
   std::optional<float> pixelError;
+  bool simplify = false;              // addSimplifiedVersions
   std::optional<float> cutawayAngle;  // adaptive cutter θ, degrees
   bool noCutaway = false;
   bool shadows = false;  // turn on style.shadows

@@ -98,6 +98,9 @@ void addSceneOverrides(CLI::App* command, cutaway::cli::SceneOverrides& o) {
           "Screen-space error in pixels that terrain grids and shafts may show where drawn "
           "coarser (0: every triangle)")
       ->check(finiteNumber(0.0, 100.0));
+  command->add_flag("--simplify", o.simplify,
+                    "Draw every other mesh simplified too, within --pixel-error (as the viewer "
+                    "does while its view moves)");
   command
       ->add_option_function<float>(
           "--cutaway-angle", [&o](float a) { o.cutawayAngle = a; },

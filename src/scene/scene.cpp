@@ -1,13 +1,17 @@
 #include "cutaway/scene/scene.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <numbers>
 #include <regex>
+#include <set>
 
 #include "core/name_pattern.hpp"
+#include "core/worker_threads.hpp"
 #include "cutaway/core/error.hpp"
+#include "cutaway/geometry/simplify.hpp"
 
 namespace cutaway {
 
@@ -207,6 +211,27 @@ SceneObject shaftObject(const PipeNetwork& net, int network, bool inner) {
                          std::make_shared<Mesh>(std::move(coarser))});
   }
   return o;
+}
+
+void addSimplifiedVersions(Scene& scene, SimplifiedCache& cache) {
+  // Versions of meshes the scene no longer has (another scene opened) go.
+  std::set<std::shared_ptr<const Mesh>> meshes;
+  for (const SceneObject& o : scene.objects) meshes.insert(o.mesh);
+  std::erase_if(cache, [&](const auto& entry) { return !meshes.count(entry.first); });
+  std::vector<std::shared_ptr<const Mesh>> todo;
+  for (const SceneObject& o : scene.objects)
+    if (o.mesh && !o.mesh->grid && o.coarser.empty() && cache.try_emplace(o.mesh).second)
+      todo.push_back(o.mesh);
+  std::vector<std::vector<SimplifiedMesh>> versions(todo.size());
+  std::atomic<std::size_t> next = 0;
+  runOnThreads(hardwareThreads(int(todo.size())), [&] {
+    for (std::size_t i; (i = next++) < todo.size();) versions[i] = simplifiedVersions(*todo[i]);
+  });
+  for (std::size_t i = 0; i < todo.size(); ++i)
+    for (SimplifiedMesh& v : versions[i])
+      cache[todo[i]].push_back({v.error, std::make_shared<Mesh>(std::move(v.mesh))});
+  for (SceneObject& o : scene.objects)
+    if (o.mesh && !o.mesh->grid && o.coarser.empty()) o.coarser = cache[o.mesh];
 }
 
 Bounds Scene::bounds() const {

@@ -290,6 +290,15 @@ SceneObject networkObject(const PipeNetwork& net, int network, NetworkPart part,
 // circle through its corners.
 SceneObject shaftObject(const PipeNetwork& net, int network, bool inner);
 
+// Simplified versions (cutaway/geometry/simplify.hpp) as the coarser versions of every object
+// otherwise drawn whole (its mesh no grid, no coarser versions of its own), so that renderers
+// draw each at the coarsest whose measured error spans at most Scene::pixelError pixels: the
+// viewer's frames while its view moves, `cutaway render --simplify`. `cache` keeps the
+// versions by mesh between calls (of the scene's meshes only); meshes are simplified on the
+// hardware's threads.
+using SimplifiedCache = std::map<std::shared_ptr<const Mesh>, std::vector<SceneObject::Coarser>>;
+void addSimplifiedVersions(Scene& scene, SimplifiedCache& cache);
+
 // Loads and validates a scene file and imports its meshes; throws cutaway::Error naming the
 // file, the JSON pointer and the reason.
 Scene loadScene(const std::filesystem::path& path);
