@@ -837,10 +837,10 @@ TEST(Cli, SetOverridesAnyOptionByItsPath) {
            {"cutters.boxCut.size", "expected PATH=VALUE"},
            // Checked as the scene file would be: the schema's checks, then the scene's.
            {"'cutters.terrainOpening.terrain=('",
-            "--set: /cutters/terrainOpening/terrain: invalid regular expression \"(\""},
+            "--set: cutters.terrainOpening.terrain: invalid regular expression \"(\""},
            {"cutters.cutout.jitter.pattern=image",
-            "--set: /cutters/cutout/jitter: pattern \"image\" needs an \"image\" file"},
-           {"cutters.cutout=true", "--set: /cutters/cutout: no object has role \"exterior\""}}) {
+            "--set: cutters.cutout.jitter: pattern \"image\" needs an \"image\" file"},
+           {"cutters.cutout=true", "--set: cutters.cutout: no object has role \"exterior\""}}) {
     const fs::path out = scratch("set-bad.png");
     const Result bad = run("render " + scene + " -o " + out.string() + " --set " + set);
     EXPECT_EQ(bad.exitCode, 2) << set;  // a command-line value the command refuses
@@ -848,6 +848,13 @@ TEST(Cli, SetOverridesAnyOptionByItsPath) {
     EXPECT_EQ(lines(bad.err), 1) << bad.err;
     EXPECT_FALSE(fs::exists(out)) << set;
   }
+  // --cutaway-angle is checked as --set is, and named: θ₁ above the contextual θ₂.
+  const Result angle = run("render " + kSource + "/examples/engine-contextual.json --size 64x48 " +
+                           "--cutaway-angle 80 -o " + scratch("angle.png").string());
+  EXPECT_EQ(angle.exitCode, 2) << angle.err;
+  EXPECT_NE(angle.err.find("--cutaway-angle: cutters.adaptive.contextual: the transition angle"),
+            std::string::npos)
+      << angle.err;
 }
 
 // --importance PATTERN=V grades objects by name or group (Burns11 §3.2) and changes the

@@ -153,12 +153,19 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
       throw CommandLineError("--set", e.file(), e.reason());
     }
   }
-  // What the options set now make of the scene, checked as a scene file would be.
-  if (!o.set.empty()) {
+  // What the options set now make of the scene, checked as a scene file would be; the place
+  // named as --set names options (cutters.adaptive.contextual, not its JSON pointer).
+  if (!o.set.empty() || o.cutawayAngle) {
+    const char* given = o.set.empty()    ? "--cutaway-angle"
+                        : o.cutawayAngle ? "--set and --cutaway-angle"
+                                         : "--set";
     try {
-      checkScene(scene, "--set");
+      checkScene(scene, given);
     } catch (const Error& e) {
-      throw CommandLineError(e.file(), e.place(), e.reason());
+      std::string path = e.place();
+      if (path.rfind('/', 0) == 0)
+        path.erase(0, 1), std::replace(path.begin(), path.end(), '/', '.');
+      throw CommandLineError(e.file(), path, e.reason());
     }
   }
 }
