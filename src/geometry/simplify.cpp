@@ -53,14 +53,22 @@ class TriangleGrid {
                                  longest / 256.0f);
     for (int k = 0; k < 3; ++k) cells_[k] = std::max(1, int(std::ceil(size[k] / cell_)));
     start_.assign(std::size_t(cells_.x) * cells_.y * cells_.z + 1, 0);
-    // Counted, then filled: each triangle in every cell its box overlaps.
+    // Counted, then filled: each triangle in every cell of its box that its plane passes
+    // through (a large slanted triangle fills a slab of cells, not its whole box).
+    const float halfDiagonal = 0.5f * std::sqrt(3.0f) * cell_ * 1.01f;  // and rounding
     for (int pass = 0; pass < 2; ++pass) {
       for (std::size_t t = 0; t < triangles; ++t) {
         glm::ivec3 lo, hi;
         cellRange(t, lo, hi);
+        const glm::vec3& a = positions_[indices_[3 * t]];
+        const glm::vec3 n =
+            glm::cross(positions_[indices_[3 * t + 1]] - a, positions_[indices_[3 * t + 2]] - a);
+        const float reach = halfDiagonal * glm::length(n);
         for (int z = lo.z; z <= hi.z; ++z)
           for (int y = lo.y; y <= hi.y; ++y)
             for (int x = lo.x; x <= hi.x; ++x) {
+              const glm::vec3 centre = origin_ + (glm::vec3(x, y, z) + 0.5f) * cell_;
+              if (std::abs(glm::dot(n, centre - a)) > reach) continue;
               const std::size_t c = index({x, y, z});
               if (pass == 0)
                 ++start_[c + 1];
