@@ -185,6 +185,9 @@ struct CutterType {
   // After the scene file's objects and networks are read: the checks and completions across
   // the scene (roles it needs, the network it opens above); errors name `pointer`.
   void (*complete)(const json_reader::Context&, const std::string& pointer, Scene&) = nullptr;
+  // The deepest perspective depth range (far / near) its cut resolves, where it keeps its cut
+  // in window depths (Camera::unresolvable, deepestDepthRange); 0: any.
+  float deepestDepthRange = 0.0f;
   std::unique_ptr<Cutter> (*create)(FrameSetup&);
 };
 

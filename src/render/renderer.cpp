@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "cutaway/core/error.hpp"
-#include "cutaway/cutters/adaptive.hpp"
 #include "cutaway/gl/shader.hpp"
 #include "cutters/registry.hpp"
 #include "frame/bindings.hpp"
@@ -340,8 +339,11 @@ std::size_t Renderer::meshTriangles() const {
 }
 
 float deepestDepthRange(const Scene& scene) {
-  return scene.cutters.find<AdaptiveCutawayOptions>() ? AdaptiveCutawayOptions::kDeepestDepthRange
-                                                      : 0.0f;
+  float deepest = 0.0f;
+  for (const CutterType& type : cutterTypes())
+    if (type.deepestDepthRange > 0.0f && cutterActive(type, scene))
+      deepest = deepest > 0.0f ? std::min(deepest, type.deepestDepthRange) : type.deepestDepthRange;
+  return deepest;
 }
 
 void Renderer::render(const Camera& camera, float time) {

@@ -52,11 +52,6 @@ struct ContextualCutawayOptions {
 
 struct AdaptiveCutawayOptions {
   static constexpr const char* kKey = "adaptive";  // under "cutters" in the scene file
-  // The deepest perspective depth range (far / near) the cut resolves: C(p) is a window depth
-  // (clip.glsl), whose float steps near 1 (2⁻²⁴) span about 6e-8 · far / near of the far
-  // distance. Deeper, the cut surface turns to rings (measured: faint at 1e4, broken at 4e4);
-  // derived planes stay below ~2100 (docs/scene-format.md, near and far).
-  static constexpr float kDeepestDepthRange = 1e4f;
 
   float angle = 45.0f;   // θ in degrees, [0, 90] (per object: param "cutawayAngle")
   int bufferSize = 512;  // cutaway buffer is bufferSize² (Burns08 §6), independent of the screen

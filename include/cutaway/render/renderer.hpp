@@ -92,9 +92,8 @@
 
 namespace cutaway {
 
-// The deepest perspective depth range (far / near) the scene's cutters resolve, for
-// Camera::unresolvable: the adaptive cutaway's (AdaptiveCutawayOptions::kDeepestDepthRange),
-// else 0 (any).
+// The deepest perspective depth range (far / near) the scene's active cutters resolve, for
+// Camera::unresolvable (the adaptive cutaway keeps its cut in window depths: 1e4); 0: any.
 float deepestDepthRange(const Scene& scene);
 
 class Renderer {

@@ -10,6 +10,10 @@ CutterType adaptiveCutterType() {
           .glsl = "cutters/adaptive/clip.glsl",
           .name = "adaptive",
           .schema = &adaptiveCutawaySchema(),
+          // C(p) is a window depth (clip.glsl), whose float steps near 1 (2⁻²⁴) span about
+          // 6e-8 · far / near of the far distance: deeper, the cut surface turns to rings
+          // (measured: faint at 1e4, broken at 4e4). Derived planes stay below ~2100.
+          .deepestDepthRange = 1e4f,
           .create = [](FrameSetup& setup) -> std::unique_ptr<Cutter> {
             return std::make_unique<AdaptiveCutaway>(setup);
           }};
