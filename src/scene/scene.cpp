@@ -218,18 +218,18 @@ void addSimplifiedVersions(Scene& scene, SimplifiedCache& cache) {
   std::set<std::shared_ptr<const Mesh>> meshes;
   for (const SceneObject& o : scene.objects) meshes.insert(o.mesh);
   std::erase_if(cache, [&](const auto& entry) { return !meshes.count(entry.first); });
-  std::vector<std::shared_ptr<const Mesh>> todo;
+  std::vector<std::shared_ptr<const Mesh>> pending;
   for (const SceneObject& o : scene.objects)
     if (o.mesh && !o.mesh->grid && o.coarser.empty() && cache.try_emplace(o.mesh).second)
-      todo.push_back(o.mesh);
-  std::vector<std::vector<SimplifiedMesh>> versions(todo.size());
+      pending.push_back(o.mesh);
+  std::vector<std::vector<SimplifiedMesh>> versions(pending.size());
   std::atomic<std::size_t> next = 0;
-  runOnThreads(hardwareThreads(int(todo.size())), [&] {
-    for (std::size_t i; (i = next++) < todo.size();) versions[i] = simplifiedVersions(*todo[i]);
+  runOnThreads(hardwareThreads(int(pending.size())), [&] {
+    for (std::size_t i; (i = next++) < pending.size();) versions[i] = simplifiedVersions(*pending[i]);
   });
-  for (std::size_t i = 0; i < todo.size(); ++i)
+  for (std::size_t i = 0; i < pending.size(); ++i)
     for (SimplifiedMesh& v : versions[i])
-      cache[todo[i]].push_back({v.error, std::make_shared<Mesh>(std::move(v.mesh))});
+      cache[pending[i]].push_back({v.error, std::make_shared<Mesh>(std::move(v.mesh))});
   for (SceneObject& o : scene.objects)
     if (o.mesh && !o.mesh->grid && o.coarser.empty()) o.coarser = cache[o.mesh];
 }
