@@ -116,7 +116,10 @@ void MeshKind::drawBackFaces(GLuint back, bool marks, bool unmarked,
   draw(markProgram_.id(), true);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_TRUE);
+  // No stencil writes: llvmpipe then tests depth and stencil before the shader (with a
+  // writable stencil and a `discard` it shades every fragment, failing or not).
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  glStencilMask(0);
   glCullFace(GL_FRONT);
   glStencilFunc(GL_EQUAL, value, 0xff);
   draw(back, true);
@@ -124,6 +127,7 @@ void MeshKind::drawBackFaces(GLuint back, bool marks, bool unmarked,
     glStencilFunc(GL_NOTEQUAL, value, 0xff);
     draw(back, false);
   }
+  glStencilMask(0xff);
   glDisable(GL_STENCIL_TEST);
 }
 
