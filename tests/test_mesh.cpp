@@ -308,7 +308,7 @@ TEST(PlyReader, BadFilesAreRefusedWithTheirPlaceAndReason) {
 
 // A triangle's corner 32-bit floats cannot hold (NaN or infinite in the file, or finite there
 // and beyond float's range) is refused with its place, in PLY (its vertex) and through Assimp
-// (its node), rather than the triangle dropped without a word; as are glTF faces naming
+// (its mesh and face), rather than the triangle dropped without a word; as are glTF faces naming
 // vertices past the end, which Assimp drops and reports only in its log. OBJ faces of one or
 // two vertices are points and lines: dropped, the triangle kept.
 TEST(MeshImport, NonFiniteVerticesAndFacesPastTheEndAreRefused) {
@@ -320,10 +320,14 @@ TEST(MeshImport, NonFiniteVerticesAndFacesPastTheEndAreRefused) {
     refuse("x.ply", ply + x + " 0 0\n3 0 1 2\n3 1 3 2\n",
            {"x.ply", "vertex 3", "not finite in 32-bit floats"});
   refuse("x.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1e300 1 0\nf 1 2 3\nf 2 4 3\n",
-         {"x.obj", "node \"", "not finite in 32-bit floats"});
+         {"x.obj", "mesh 0, face 1", "not finite in 32-bit floats"});
   // The corner as the file gives it, not after the node's transform mixed it into NaNs.
   refuse("x.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 inf 0\nf 1 2 3\nf 2 4 3\n",
-         {"x.obj", "node \"", "(1, inf, 0) is not finite in 32-bit floats"});
+         {"x.obj", "mesh 0, face 1", "(1, inf, 0) is not finite in 32-bit floats"});
+  // A lone triangle's NaN corner, which Assimp's join merged into another corner: the
+  // triangle was refused as having no area.
+  refuse("x.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n",
+         {"x.obj", "mesh 0, face 0", "(nan, 1, 0) is not finite in 32-bit floats"});
   // triangleGltf's buffer with an index buffer naming vertex 60000 in its second triangle.
   const std::string gltf =
       R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],

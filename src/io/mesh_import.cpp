@@ -392,6 +392,20 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
     // Validation before the steps that index vertices the file claims without checking.
     scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure);
     if (scene) {
+      // Faces' corners checked before the join, which may merge a NaN corner into another (a
+      // lone triangle then said "no area"); points and lines are dropped whatever they hold.
+      for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+        const aiMesh& mesh = *scene->mMeshes[i];
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f)
+          for (unsigned k = 0; mesh.mFaces[f].mNumIndices >= 3 && k < mesh.mFaces[f].mNumIndices;
+               ++k) {
+            const aiVector3D& p = mesh.mVertices[mesh.mFaces[f].mIndices[k]];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+              throw Error(
+                  file.string(), "mesh " + std::to_string(i) + ", face " + std::to_string(f),
+                  "a corner at " + triple(p.x, p.y, p.z) + " is not finite in 32-bit floats");
+          }
+      }
       // Assimp joins vertices less than 1e-5 apart, in absolute units: a model 1e-6 across
       // lost corners. Where every coordinate is below 1, the vertices are scaled by a power of
       // two (exactly) for the join, so that it joins within 1e-5 of the largest, and back.
