@@ -393,6 +393,21 @@ TEST(SceneErrors, ObjectsBeyondWhatFloatsCanRenderAreRefused) {
       "far.json", kMeshes));
 }
 
+// …and below: a part under 1e-15 across lost its shading (squared normals underflow near
+// 1e-20) with exit 0.
+TEST(SceneErrors, ObjectsTooSmallForFloatsToShadeAreRefused) {
+  test::expectError(
+      [&] {
+        (void)parseScene(
+            R"({"objects": [{"name": "speck", "file": "cube.obj", "transform": {"scale": 1e-16}}]})",
+            "small.json", kMeshes);
+      },
+      {"small.json", "/objects", "\"speck\" measures", "smaller than 1e-15 (scale it up)"});
+  EXPECT_NO_THROW((void)parseScene(
+      R"({"objects": [{"name": "speck", "file": "cube.obj", "transform": {"scale": 1e-14}}]})",
+      "small.json", kMeshes));
+}
+
 // The camera too: an eye 1e20 away was refused as "up is parallel to the viewing direction"
 // (the direction's squared length overflowed to a zero vector).
 TEST(SceneErrors, ACameraBeyondWhatFloatsCanRenderIsRefused) {
@@ -1330,8 +1345,13 @@ TEST(SceneCamera, ViewsThatFloatsCannotDrawAreNamed) {
                 R"({"translate": [1e14, 0, 0]})")
                 .find("eye and target are 8.39e+06 apart at 1e+14"),
             std::string::npos);
-  // A scene 1e-30 across, fitted: lookAt's squares underflow.
-  EXPECT_NE(why(R"({"fit": true})", R"({"scale": 1e-30})").find("not finite"), std::string::npos);
+  // A view 1e-30 across (a scene file's parts are refused below 1e-15): lookAt's squares
+  // underflow.
+  Camera tiny;
+  tiny.eye = {0.0f, 0.0f, 3e-30f};
+  tiny.near = 1e-30f, tiny.far = 5e-30f;
+  EXPECT_NE(tiny.unresolvable(1.0f).find("not finite"), std::string::npos)
+      << tiny.unresolvable(1.0f);
 }
 
 // The adaptive cutaway keeps its cut in window depths: a perspective range deeper than they

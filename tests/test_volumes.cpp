@@ -222,6 +222,48 @@ TEST_F(VolumeTest, TheIsosurfaceOfASampledSphereIsTheSphere) {
   EXPECT_GT(hits, 500);
 }
 
+// A volume 1e-13 across rendered blank with exit 0: the float inverse of its voxel-to-world
+// transform divided by a determinant that underflowed (1e-39). Scaled down with its camera, a
+// shaded sphere is the same picture; below 1e-15 across, where normals' squared lengths
+// underflow too, a volume (and its voxels) is refused, naming it.
+TEST_F(VolumeTest, AVolumeScaledDownWithItsCameraIsTheSamePicture) {
+  const fs::path file =
+      volume("sphere", 24, 1.0f, [](glm::vec3 p) { return 0.7f - glm::length(p); });
+  const auto at = [&](const std::string& scale) {
+    const std::string eye = "[" + scale + ", " + scale + ", " + "4" + scale.substr(1) + "]";
+    return R"({"resolution": [64, 48], "samples": 1, "background": [0, 0, 0],
+      "style": {"name": "gooch", "lines": false},
+      "camera": {"eye": )" +
+           eye + R"(, "target": [0, 0, 0], "fov": 40},
+      "volumes": [{"name": "sphere", "file": ")" +
+           file.string() + R"(", "transform": {"scale": )" + scale +
+           R"(}, "mode": "isosurface", "isoValue": 0,
+        "transferFunction": [{"value": 0, "color": [0.9, 0.8, 0.7], "opacity": 1}]}]})";
+  };
+  const auto colour = [&](const std::string& scale) {
+    const Scene s = parseScene(at(scale), "small.json", dir_);
+    Renderer renderer(s, test::glContext().info());
+    renderer.render();
+    return renderer.readColor();
+  };
+  const Rgba8Image whole = colour("1e0");
+  int lit = 0;
+  for (int y = 0; y < whole.height; ++y)
+    for (int x = 0; x < whole.width; ++x) lit += whole.at(x, y)[0] > 0;
+  EXPECT_GT(lit, 300);
+  for (const std::string scale : {"1e-12", "1e-13"}) {  // voxels 8.7e-14 and 8.7e-15 apart
+    const Rgba8Image small = colour(scale);
+    int worst = 0;
+    for (int y = 0; y < whole.height; ++y)
+      for (int x = 0; x < whole.width; ++x)
+        for (int k = 0; k < 3; ++k)
+          worst = std::max(worst, std::abs(int(small.at(x, y)[k]) - int(whole.at(x, y)[k])));
+    EXPECT_LE(worst, 2) << scale;
+  }
+  expectError([&] { (void)parseScene(at("1e-16"), "small.json", dir_); },
+              {"small.json", "/volumes/0", "\"sphere\" measures", "smaller than 1e-15"});
+}
+
 namespace {
 
 float blinnSpecular(glm::vec3 n, glm::vec3 l, glm::vec3 v, float shininess) {

@@ -135,6 +135,13 @@ glm::vec3 cameraPoint(const Context& ctx, const json& j, const std::string& ptr)
   return p;
 }
 
+// An eye and target nearer than a scene's least detail (kMinSceneDetail), in doubles: a float
+// length underflows below 1e-19.
+bool coincide(glm::vec3 eye, glm::vec3 target) {
+  return glm::distance(glm::dvec3(eye), glm::dvec3(target)) < double(kMinSceneDetail);
+}
+constexpr const char* kCoincide = "eye and target coincide (nearer than 1e-15)";
+
 std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::string& ptr) {
   if (!j.is_array() || j.empty()) ctx.fail(ptr, "expected a non-empty array of camera keys");
   std::vector<CameraKey> keys;
@@ -145,7 +152,7 @@ std::vector<CameraKey> cameraPath(const Context& ctx, const json& j, const std::
     k.time = keyTime(ctx, r, previous, "camera key");
     k.eye = cameraPoint(ctx, r.require("eye"), r.at("eye"));
     k.target = cameraPoint(ctx, r.require("target"), r.at("target"));
-    if (glm::length(k.eye - k.target) < 1e-9f) ctx.fail(r.at("eye"), "eye and target coincide");
+    if (coincide(k.eye, k.target)) ctx.fail(r.at("eye"), kCoincide);
     r.finish();
     keys.push_back(k);
   }
@@ -744,21 +751,22 @@ Camera camera(const Context& ctx, const json& j, const std::string& ptr) {
   if (target) c.target = cameraPoint(ctx, *target, r.at("target"));
   // A fitted camera whose eye and target coincide takes a default direction
   // (Scene::resolvedCamera).
-  if (eye && target && !c.fit && glm::length(c.eye - c.target) < 1e-9f)
-    ctx.fail(r.at("eye"), "eye and target coincide");
+  if (eye && target && !c.fit && coincide(c.eye, c.target)) ctx.fail(r.at("eye"), kCoincide);
   if (const json* v = r.take("up")) c.up = direction(ctx, *v, r.at("up"));
   for (std::size_t i = 0; i < c.path.size(); ++i)
     if (glm::length(glm::cross(glm::normalize(c.path[i].eye - c.path[i].target), c.up)) < 1e-6f)
       ctx.fail(r.at("path") + "/" + std::to_string(i), "up is parallel to the viewing direction");
   // Checked on the defaults too: "fit" keeps the direction eye − target, whichever gave it.
-  if (glm::length(c.eye - c.target) >= 1e-9f &&
+  if (!coincide(c.eye, c.target) &&
       glm::length(glm::cross(glm::normalize(c.eye - c.target), c.up)) < 1e-6f)
     ctx.fail(r.at("up"), "up is parallel to the viewing direction");
   if (const json* v = r.take("fov")) c.fovY = float(number(ctx, *v, r.at("fov"), 1, 170));
   if (const json* v = r.take("height"))
-    c.height = float(number(ctx, *v, r.at("height"), 1e-9, 1e30));
-  if (const json* v = r.take("near")) c.near = float(number(ctx, *v, r.at("near"), 1e-9, 1e30));
-  if (const json* v = r.take("far")) c.far = float(number(ctx, *v, r.at("far"), 1e-9, 1e30));
+    c.height = float(number(ctx, *v, r.at("height"), kMinSceneDetail, 1e30));
+  if (const json* v = r.take("near"))
+    c.near = float(number(ctx, *v, r.at("near"), kMinSceneDetail, 1e30));
+  if (const json* v = r.take("far"))
+    c.far = float(number(ctx, *v, r.at("far"), kMinSceneDetail, 1e30));
   if (c.near > 0 && c.far > 0 && c.far <= c.near)
     ctx.fail(r.at("far"), "far must be greater than near");
   r.finish();
@@ -878,22 +886,40 @@ void checkNamesAndReach(const Context& ctx, const Scene& scene) {
       ctx.fail("/volumes/" + std::to_string(i) + "/name",
                "the name " + quote(scene.volumes[i].name) + " is taken");
   // Within kMaxSceneReach; nearer, far coordinates render with a warning (the CLI names the
-  // farthest part).
+  // farthest part). At least kMinSceneDetail across.
   const auto checkReach = [&](const std::string& ptr, const std::string& name, const Bounds& b) {
     if (b.empty()) return;
     const float reach = sceneReach(glm::max(glm::abs(b.min), glm::abs(b.max)));
-    if (reach <= kMaxSceneReach) return;  // NaN and infinity fail too
+    const float across = sceneReach(b.max - b.min);
     std::ostringstream message;
-    message << "\"" << name << "\" reaches " << reach
-            << " scene units from the origin; 32-bit floats cannot render beyond 1e15 (scale it "
-               "down or move it nearer)";
+    if (!(reach <= kMaxSceneReach))  // NaN and infinity fail too
+      message << "\"" << name << "\" reaches " << reach
+              << " scene units from the origin; 32-bit floats cannot render beyond 1e15 (scale "
+                 "it down or move it nearer)";
+    else if (across < kMinSceneDetail)
+      message << "\"" << name << "\" measures " << across
+              << " scene units across; 32-bit floats cannot shade a part smaller than 1e-15 "
+                 "(scale it up)";
+    else
+      return;
     ctx.fail(ptr, message.str());
   };
   for (const auto& o : scene.objects)
     if (!o.proxy) checkReach("/objects", o.name, o.worldBounds());
-  for (std::size_t i = 0; i < scene.volumes.size(); ++i)
-    checkReach("/volumes/" + std::to_string(i), scene.volumes[i].name,
-               scene.volumes[i].worldBounds());
+  for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
+    const SceneVolume& v = scene.volumes[i];
+    const std::string ptr = "/volumes/" + std::to_string(i);
+    checkReach(ptr, v.name, v.worldBounds());
+    const glm::dmat3 m(glm::dmat4(v.indexToWorld()));
+    const double voxel = std::min({glm::length(m[0]), glm::length(m[1]), glm::length(m[2])});
+    if (voxel < kMinSceneDetail) {
+      std::ostringstream message;
+      message << "\"" << v.name << "\" has voxels " << voxel
+              << " scene units apart; 32-bit floats cannot shade voxels nearer than 1e-15 (scale "
+                 "it up)";
+      ctx.fail(ptr, message.str());
+    }
+  }
   for (const auto& n : scene.networks) checkReach("/networks", n.name, n.bounds());
 }
 

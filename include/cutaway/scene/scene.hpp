@@ -206,6 +206,9 @@ struct SceneVolume {
   bool mayBeVisible(float lo, float hi) const;
 
   glm::mat4 indexToWorld() const { return transform * volume->indexToWorld; }
+  // Its inverse, worked out in doubles: in floats the determinant of voxels 1e-13 across
+  // (1e-39) underflows.
+  glm::mat4 worldToIndex() const { return glm::mat4(glm::inverse(glm::dmat4(indexToWorld()))); }
   Bounds worldBounds() const { return volume->indexBounds().transformed(indexToWorld()); }
   bool mayBeCutBy(const std::string& cutter) const {
     return !cutBy || std::find(cutBy->begin(), cutBy->end(), cutter) != cutBy->end();

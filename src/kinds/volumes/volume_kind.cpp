@@ -371,7 +371,7 @@ void VolumeKind::draw(const std::vector<ActiveCutter>& cutters) const {
 void VolumeKind::bindVolume(GLuint program, std::size_t i) const {
   const SceneVolume& v = setup_.scene.volumes[i];
   const VolumeGpu& gpu = volumes_[i];
-  const glm::mat4 worldToIndex = glm::inverse(v.indexToWorld());
+  const glm::mat4 worldToIndex = v.worldToIndex();
   const glm::vec3 dims(v.volume->dims);
   const glm::mat3 gradientToWorld = glm::transpose(glm::mat3(worldToIndex));
   glProgramUniformMatrix4fv(program, kWorldToIndex, 1, GL_FALSE, &worldToIndex[0][0]);

@@ -71,7 +71,7 @@ VolumeRay castVolumeRay(const SceneVolume& sv, const glm::mat4& view, const glm:
   const glm::vec3 direction = glm::normalize(worldAtWindow(inverse, uv, 1.0f) - origin);
   const float tOpaque =
       opaqueDepth < 1.0f ? glm::distance(origin, worldAtWindow(inverse, uv, opaqueDepth)) : 1e30f;
-  const glm::mat4 worldToIndex = glm::inverse(sv.indexToWorld());
+  const glm::mat4 worldToIndex = sv.worldToIndex();
   const glm::vec3 o = glm::vec3(worldToIndex * glm::vec4(origin, 1.0f));
   const glm::vec3 d = glm::mat3(worldToIndex) * direction;
   const glm::vec3 a = (glm::vec3(-0.5f) - o) / d, b = (glm::vec3(volume.dims) - 0.5f - o) / d;

@@ -133,7 +133,8 @@ VolumeLineField::VolumeLineField(const Volume& volume, const glm::mat4& indexToW
                                  VolumeLineView view, VolumeLineQuery query)
     : volume_(volume),
       indexToWorld_(indexToWorld),
-      gradientToWorld_(glm::inverseTranspose(glm::mat3(indexToWorld))),
+      gradientToWorld_(glm::inverseTranspose(
+          glm::dmat3(indexToWorld))),  // doubles, as SceneVolume::worldToIndex
       view_(view),
       query_(query) {
   const float h = (glm::length(glm::vec3(indexToWorld[0])) + glm::length(glm::vec3(indexToWorld[1])) +
