@@ -133,8 +133,8 @@ VolumeLineField::VolumeLineField(const Volume& volume, const glm::mat4& indexToW
                                  VolumeLineView view, VolumeLineQuery query)
     : volume_(volume),
       indexToWorld_(indexToWorld),
-      gradientToWorld_(glm::inverseTranspose(
-          glm::dmat3(indexToWorld))),  // doubles, as SceneVolume::worldToIndex
+      // In doubles, as SceneVolume::worldToIndex.
+      gradientToWorld_(glm::inverseTranspose(glm::dmat3(indexToWorld))),
       view_(view),
       query_(query) {
   const float h = (glm::length(glm::vec3(indexToWorld[0])) + glm::length(glm::vec3(indexToWorld[1])) +
