@@ -396,15 +396,17 @@ std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
       // lone triangle then said "no area"); points and lines are dropped whatever they hold.
       for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
         const aiMesh& mesh = *scene->mMeshes[i];
-        for (unsigned f = 0; f < mesh.mNumFaces; ++f)
-          for (unsigned k = 0; mesh.mFaces[f].mNumIndices >= 3 && k < mesh.mFaces[f].mNumIndices;
-               ++k) {
-            const aiVector3D& p = mesh.mVertices[mesh.mFaces[f].mIndices[k]];
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+          const aiFace& face = mesh.mFaces[f];
+          if (face.mNumIndices < 3) continue;
+          for (unsigned k = 0; k < face.mNumIndices; ++k) {
+            const aiVector3D& p = mesh.mVertices[face.mIndices[k]];
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
               throw Error(
                   file.string(), "mesh " + std::to_string(i) + ", face " + std::to_string(f),
                   "a corner at " + triple(p.x, p.y, p.z) + " is not finite in 32-bit floats");
           }
+        }
       }
       // Assimp joins vertices less than 1e-5 apart, in absolute units: a model 1e-6 across
       // lost corners. Where every coordinate is below 1, the vertices are scaled by a power of
