@@ -996,9 +996,9 @@ namespace {
 // interest, `dummies` tiny open cubes inside the cut in front of it, then an open cup (the same
 // mesh, its open side towards the eye) at `cup` (lower corner, 2 units wide), with or without
 // the adaptive cutter computing C on `compute` ("gpu": every object drawn with the cutter's
-// code; "cpu": those C leaves alone without it); 4 samples a pixel.
+// code; "cpu": those C leaves alone without it) and its `cutSurfaces`; 4 samples a pixel.
 Scene openShellAndCup(const std::string& cup, int dummies, const std::string& compute,
-                      bool cupDoubleSided) {
+                      bool cupDoubleSided, const std::string& cutSurfaces = "all") {
   std::string objects =
       R"({"name": "shell", "file": "meshes/open_cube.obj",
           "transform": {"translate": [1.5, -1.5, 1.5], "rotate": [0, 180, 0], "scale": 3}})";
@@ -1017,7 +1017,7 @@ Scene openShellAndCup(const std::string& cup, int dummies, const std::string& co
           (compute.empty() ? ""
                            : R"("cutters": {"adaptive": {"angle": 35, "bufferSize": 128,
                                 "compute": ")" +
-                                 compute + R"("}},)") +
+                                 compute + R"(", "cutSurfaces": ")" + cutSurfaces + R"("}},)") +
           R"("objects": [)" + objects + "]}",
       "open.json", kData);
 }
@@ -1066,6 +1066,21 @@ TEST(AdaptiveCutaway, AnOpenMeshShowsCutSurfacesOnlyWhereItsOwnFrontWasRemoved) 
   };
   EXPECT_GT(count(renderAovs(openShellAndCup("[4, -1, -1]", 0, "gpu", true))),
             count(renderAovs(openShellAndCup("[4, -1, -1]", 0, "gpu", false))) + 50);
+}
+
+// `cutSurfaces: "unmarked"` leaves the marks out: the cup's inside, seen through its own
+// opening behind C, is painted as a cut, and the shell's cut surfaces are those of "all".
+TEST(AdaptiveCutaway, UnmarkedCutSurfacesPaintAnOpenMeshsInsideAsACut) {
+  for (const char* compute : {"gpu", "cpu"}) {
+    SCOPED_TRACE(compute);
+    const std::string cup = "[4, -1, -1]";
+    const auto marked = renderAovs(openShellAndCup(cup, 0, compute, true, "all")),
+               unmarked = renderAovs(openShellAndCup(cup, 0, compute, true, "unmarked"));
+    EXPECT_GT(cutPixelsOf(marked, 0.0f), 30);
+    EXPECT_EQ(cutPixelsOf(unmarked, 0.0f), cutPixelsOf(marked, 0.0f));
+    EXPECT_EQ(cutPixelsOf(marked, 1.0f), 0);
+    EXPECT_GT(cutPixelsOf(unmarked, 1.0f), 30);
+  }
 }
 
 // The marks take one stencil value per object, 255 to a clear: a cup seen through the shell's

@@ -1134,6 +1134,7 @@ TEST(SceneAdaptive, EnumeratedValues) {
   EXPECT_EQ(adaptive("compute", "cpu").compute, C::Cpu);
   using S = AdaptiveCutawayOptions::CutSurfaces;
   EXPECT_EQ(adaptive("cutSurfaces", "all").cutSurfaces, S::All);
+  EXPECT_EQ(adaptive("cutSurfaces", "unmarked").cutSurfaces, S::Unmarked);
   EXPECT_EQ(adaptive("cutSurfaces", "watertight").cutSurfaces, S::Watertight);
   EXPECT_EQ(adaptive("cutSurfaces", "none").cutSurfaces, S::None);
 }

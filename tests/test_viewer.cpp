@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -495,51 +497,60 @@ TEST(Viewer, AFailedReloadKeepsTheLastGoodScene) {
 // for a mouse drag) and a full frame misses --interactive-fps, the window shows the view
 // rendered at 1/d of its size without multisampling, stretched bilinearly; once the view
 // rests, the frame at full size. With --interactive-fps 0 every frame is at full size.
-TEST(Viewer, WhileTheViewMovesAFrameTooSlowIsDrawnSmallerThenAtFullSize) {
-  ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
-  constexpr int kWidth = 480, kHeight = 360;
-  const auto session = [&](const std::string& tag, const std::string& fps) {
-    const fs::path script = scratch("moving-" + tag + ".txt");
-    std::ofstream(script) << "moving on\norbit 30 10\nsave " << scratch("moving.json").string()
-                          << "\nscreenshot-window " << scratch("moving-" + tag + ".png").string()
-                          << "\nmoving off\nscreenshot-window "
-                          << scratch("rest-" + tag + ".png").string() << "\nquit\n";
-    return runUnderXvfb(kSource + "/examples/engine.json --no-panels --size " +
-                        std::to_string(kWidth) + "x" + std::to_string(kHeight) +
-                        " --interactive-fps " + fps + " --script " + script.string());
-  };
-  // A goal of 1 ms: no frame meets it, so the moving frame is drawn smaller.
-  const Result r = session("reduced", "1000");
-  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+namespace {
+
+constexpr int kMovingWidth = 480, kMovingHeight = 360;
+
+// A viewer session on `example` that moves the view, saves it and takes the window's picture
+// moving and at rest (moving-TAG.png, rest-TAG.png), under a goal of `fps`.
+Result movingSession(const std::string& example, const std::string& tag, const std::string& fps) {
+  const fs::path script = scratch("moving-" + tag + ".txt");
+  std::ofstream(script) << "moving on\norbit 30 10\nsave " << scratch("moving.json").string()
+                        << "\nscreenshot-window " << scratch("moving-" + tag + ".png").string()
+                        << "\nmoving off\nscreenshot-window "
+                        << scratch("rest-" + tag + ".png").string() << "\nquit\n";
+  return runUnderXvfb(kSource + "/examples/" + example + " --no-panels --size " +
+                      std::to_string(kMovingWidth) + "x" + std::to_string(kMovingHeight) +
+                      " --interactive-fps " + fps + " --script " + script.string());
+}
+
+// Checks that session's moving picture against `cutaway render --simplify` of the saved view
+// at w×h and one sample (`settings(w, h)` adding what else the moving frame changes), and its
+// resting one against the full render; returns the CLI, the full render's file.
+std::pair<std::string, fs::path> expectMovingThenFullFrames(
+    const Result& r, const std::function<std::string(int, int)>& settings) {
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(
+  EXPECT_TRUE(std::regex_search(
       r.out, m, std::regex(R"(while the view moves: (\d+)x(\d+) \(1/(\d) of 480x360\))")))
       << r.out;
+  if (m.empty()) return {};
   // ⌈√(full frame / 1 ms)⌉ within [2, 8]: 8 on llvmpipe, where the full frame takes > 49 ms.
   const int d = std::stoi(m[3]), w = std::stoi(m[1]), h = std::stoi(m[2]);
   EXPECT_GE(d, 2) << r.out;
   EXPECT_LE(d, 8) << r.out;
-  EXPECT_EQ(w, kWidth / d);
-  EXPECT_EQ(h, kHeight / d);
+  EXPECT_EQ(w, kMovingWidth / d);
+  EXPECT_EQ(h, kMovingHeight / d);
 
-  // The moving frame is `cutaway render --simplify` of the same view at w×h and one sample
-  // (the meshes' simplified versions within the pixel error of that size), stretched with
+  // The meshes' simplified versions within the pixel error of that size, stretched with
   // bilinear filtering (texel centres at (i + ½)·d); GL's filter weights round, by a level at
   // most when this was written.
   const std::string cli = cliLike(r);
   const fs::path small = scratch("moving-small.png");
-  const Result rendered =
-      run(cli + " render " + scratch("moving.json").string() + " --size " + std::to_string(w) +
-          "x" + std::to_string(h) + " --samples 1 --simplify -o " + small.string());
-  ASSERT_EQ(rendered.exitCode, 0) << rendered.err;
+  const Result rendered = run(
+      cli + " render " + scratch("moving.json").string() + " --size " + std::to_string(w) + "x" +
+      std::to_string(h) + " --samples 1 --simplify " + settings(w, h) + " -o " + small.string());
+  EXPECT_EQ(rendered.exitCode, 0) << rendered.err;
+  if (rendered.exitCode != 0) return {};
   const Rgba8Image ref = readPng(small), moving = readPng(scratch("moving-reduced.png"));
-  ASSERT_EQ(moving.width, kWidth);
-  ASSERT_EQ(moving.height, kHeight);
+  EXPECT_EQ(moving.width, kMovingWidth);
+  EXPECT_EQ(moving.height, kMovingHeight);
+  if (moving.width != kMovingWidth || moving.height != kMovingHeight) return {};
   double sum = 0;
   int worst = 0;
-  for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
-      const float u = (x + 0.5f) * w / kWidth - 0.5f, v = (y + 0.5f) * h / kHeight - 0.5f;
+  for (int y = 0; y < kMovingHeight; ++y)
+    for (int x = 0; x < kMovingWidth; ++x) {
+      const float u = (x + 0.5f) * w / kMovingWidth - 0.5f,
+                  v = (y + 0.5f) * h / kMovingHeight - 0.5f;
       const int x0 = int(std::floor(u)), y0 = int(std::floor(v));
       const float fx = u - x0, fy = v - y0;
       const auto texel = [&](int i, int j, int c) {
@@ -554,7 +565,7 @@ TEST(Viewer, WhileTheViewMovesAFrameTooSlowIsDrawnSmallerThenAtFullSize) {
         worst = std::max(worst, diff);
       }
     }
-  const double mean = sum / (3.0 * kWidth * kHeight);
+  const double mean = sum / (3.0 * kMovingWidth * kMovingHeight);
   std::printf("moving frame vs the %dx%d render stretched: mean %.3f, worst %d (of 255)\n", w, h,
               mean, worst);
   EXPECT_LE(mean, 0.1);
@@ -563,16 +574,40 @@ TEST(Viewer, WhileTheViewMovesAFrameTooSlowIsDrawnSmallerThenAtFullSize) {
   // At rest: the full-size frame, which the reduced one is not.
   const Rgba8Image rest = readPng(scratch("rest-reduced.png"));
   const fs::path full = scratch("rest-reference.png");
-  ASSERT_EQ(run(cli + " render " + scratch("moving.json").string() + " --size 480x360 -o " +
+  EXPECT_EQ(run(cli + " render " + scratch("moving.json").string() + " --size 480x360 -o " +
                 full.string())
                 .exitCode,
             0);
   expectSameImage(rest, readPng(full));
   EXPECT_NE(moving.pixels, rest.pixels);
+  return {cli, full};
+}
+
+}  // namespace
+
+TEST(Viewer, WhileTheViewMovesAFrameTooSlowIsDrawnSmallerThenAtFullSize) {
+  ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
+  // A goal of 1 ms: no frame meets it, so the moving frame is drawn smaller.
+  const Result r = movingSession("engine.json", "reduced", "1000");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  const auto [cli, full] = expectMovingThenFullFrames(r, [](int, int) { return ""; });
+  ASSERT_FALSE(cli.empty());
 
   // Off: the moving frame is the full one.
-  const Result off = session("full", "0");
+  const Result off = movingSession("engine.json", "full", "0");
   ASSERT_EQ(off.exitCode, 0) << off.out << off.err;
   EXPECT_EQ(off.out.find("while the view moves"), std::string::npos) << off.out;
   expectSameImage(readPng(scratch("moving-full.png")), readPng(full));
+}
+
+// A moving adaptive cutaway also takes its buffer no finer than the smaller image, and its
+// open meshes' cut surfaces unmarked (house-moving-bunny's walls and floors are open meshes).
+TEST(Viewer, AMovingCutawayTakesASmallerBufferAndUnmarkedCutSurfaces) {
+  ASSERT_TRUE(hasXvfbRun()) << kNoXvfb;
+  const Result r = movingSession("house-moving-bunny.json", "reduced", "1000");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  expectMovingThenFullFrames(r, [](int w, int h) {
+    return "--set cutters.adaptive.cutSurfaces=unmarked --set cutters.adaptive.bufferSize=" +
+           std::to_string(std::bit_ceil(unsigned(std::max(w, h))));
+  });
 }

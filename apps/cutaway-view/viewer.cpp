@@ -535,10 +535,15 @@ void Viewer::renderMoving() {
   const bool built = !moving_ || movingScene_.width != width || movingScene_.height != height;
   movingScene_ = state_.scene;
   addSimplifiedVersions(movingScene_, simplified_);
-  // The adaptive cut's buffer no finer than the smaller image (its size is free, Burns08 §6).
-  if (auto* adaptive = movingScene_.cutters.find<AdaptiveCutawayOptions>())
+  // The adaptive cut's buffer no finer than the smaller image (its size is free, Burns08 §6),
+  // and open meshes' back faces behind the cut all cut surfaces: their removal marks cost two
+  // draws an open mesh and change a few pixels of the cut's rim.
+  if (auto* adaptive = movingScene_.cutters.find<AdaptiveCutawayOptions>()) {
     adaptive->bufferSize =
         std::min(adaptive->bufferSize, int(std::bit_ceil(unsigned(std::max(width, height)))));
+    using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
+    if (adaptive->cutSurfaces == CutSurfaces::All) adaptive->cutSurfaces = CutSurfaces::Unmarked;
+  }
   movingScene_.width = width, movingScene_.height = height;
   movingScene_.samples = 1;  // stretched and soon redrawn: no multisampling
   if (built) {

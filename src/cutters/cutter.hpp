@@ -48,8 +48,12 @@ struct CutLook {
   // Its GLSL's kCutSurface on a back face says only that its cut lies in front (Burns08's C
   // spreads over the whole view). On a mesh that is not watertight that also holds for a back
   // face seen through the mesh's own opening, so there the mesh kind shows its cut surfaces
-  // only where a front fragment of the mesh was removed (kinds/meshes: removal marks).
+  // only where a front fragment of the mesh was removed (kinds/meshes: removal marks). Fixed
+  // for a renderer's life (it prepares the marks' program and stencil); `skipsMarks` leaves
+  // them out for a frame, every back face behind the cut then a cut surface (two draws fewer
+  // an open mesh).
   bool marksOpenMeshes = false;
+  bool skipsMarks = false;
 };
 
 // A G-buffer of removed material whose feature lines the composer draws faded over the image

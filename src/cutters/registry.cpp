@@ -40,7 +40,7 @@ ObjectCut objectCut(const std::vector<ActiveCutter>& cutters, std::size_t object
     const CutLook look = c.cutter->look(object);
     if (cuts) cut.cutBy |= 1 << c.slot;
     if (look.cutSurface) cut.cutSurfaces |= 1 << c.slot;
-    if (cuts && look.marksOpenMeshes) cut.marksBy |= 1 << c.slot;
+    if (cuts && look.marksOpenMeshes && !look.skipsMarks) cut.marksBy |= 1 << c.slot;
     cut.clipPasses = std::max(cut.clipPasses, passes);
     cut.cutColors.emplace_back(c.slot, look.cutColor);
     if (!cut.backColor) cut.backColor = look.backColor;

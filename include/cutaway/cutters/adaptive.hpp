@@ -62,7 +62,7 @@ struct AdaptiveCutawayOptions {
   glm::vec3 floorNormal{0.0f, 1.0f, 0.0f};  // world space
   fields::JumpFloodingVariant variant = fields::JumpFloodingVariant::jfaPlus1;
   enum class Compute { Auto, Gpu, Cpu } compute = Compute::Auto;
-  enum class CutSurfaces { All, Watertight, None } cutSurfaces = CutSurfaces::All;
+  enum class CutSurfaces { All, Unmarked, Watertight, None } cutSurfaces = CutSurfaces::All;
   std::optional<glm::vec3> cutSurfaceColor;  // default: the object's colour, slightly darker
   bool outlines = true;                      // cut outlines (Burns08 §4.2)
   glm::vec3 outlineColor{0.0f};

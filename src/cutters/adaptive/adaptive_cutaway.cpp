@@ -104,9 +104,11 @@ CutLook AdaptiveCutaway::look(std::size_t index) const {
   using CutSurfaces = AdaptiveCutawayOptions::CutSurfaces;
   const AdaptiveCutawayOptions& a = options();
   return {.cutSurface = a.cutSurfaces == CutSurfaces::All ||
+                        a.cutSurfaces == CutSurfaces::Unmarked ||
                         (a.cutSurfaces == CutSurfaces::Watertight && o.mesh->report.watertight),
           .cutColor = a.cutSurfaceColor.value_or(o.material.color * 0.8f),
-          .marksOpenMeshes = !graded_};  // graded: no cut surfaces (clip.glsl)
+          .marksOpenMeshes = !graded_,  // graded: no cut surfaces (clip.glsl)
+          .skipsMarks = a.cutSurfaces == CutSurfaces::Unmarked};
 }
 
 std::optional<glm::vec3> AdaptiveCutaway::cutOutlineColor() const {

@@ -114,29 +114,33 @@ const OptionsSchema& adaptiveCutawaySchema() {
                       .live = true})
           .applies([](const O& o) { return o.directionalConstraint; })
           .alsoSets([](O& o) { o.directionalConstraint = true; })
-          .choice("jumpFlooding", &O::variant,
-                  {{"jfa", fields::JumpFloodingVariant::jfa},
-                   {"jfa+1", fields::JumpFloodingVariant::jfaPlus1},
-                   {"1+jfa", fields::JumpFloodingVariant::onePlusJfa},
-                   {"jfa+2", fields::JumpFloodingVariant::jfaPlus2}},
-                  {.label = "jump flooding", .doc = "Step sequence of jump flooding (Burns08 §5.1)."})
+          .choice(
+              "jumpFlooding", &O::variant,
+              {{"jfa", fields::JumpFloodingVariant::jfa},
+               {"jfa+1", fields::JumpFloodingVariant::jfaPlus1},
+               {"1+jfa", fields::JumpFloodingVariant::onePlusJfa},
+               {"jfa+2", fields::JumpFloodingVariant::jfaPlus2}},
+              {.label = "jump flooding", .doc = "Step sequence of jump flooding (Burns08 §5.1)."})
           .choice("compute", &O::compute,
                   {{"auto", O::Compute::Auto}, {"gpu", O::Compute::Gpu}, {"cpu", O::Compute::Cpu}},
                   {.doc = "Where jump flooding runs; auto: the CPU on llvmpipe."})
           .choice("cutSurfaces", &O::cutSurfaces,
                   {{"all", O::CutSurfaces::All},
+                   {"unmarked", O::CutSurfaces::Unmarked},
                    {"watertight", O::CutSurfaces::Watertight},
                    {"none", O::CutSurfaces::None}},
                   {.label = "cut surfaces",
                    .doc = "Shade back faces behind the cut as solid cut surfaces (Burns08 §4.1): "
-                          "on every mesh, on watertight ones, or never.",
+                          "on every mesh, on every mesh without telling an open one's inside "
+                          "from its cut (faster), on watertight ones, or never.",
                    .live = true})
           .optional("cutSurfaceColor", &O::cutSurfaceColor, Type::Color, 0, 1, glm::vec3(0.6f),
                     {.label = "cut-surface colour",
                      .doc = "Colour of the cut surfaces; unset: the cut object's colour, darker.",
                      .live = true})
           .value("outlines", &O::outlines,
-                 {.label = "cut outlines", .doc = "Draw the boundary of the cut surfaces (Burns08 §4.2)."})
+                 {.label = "cut outlines",
+                  .doc = "Draw the boundary of the cut surfaces (Burns08 §4.2)."})
           .color("outlineColor", &O::outlineColor,
                  {.label = "outline colour", .doc = "Colour of the cut outlines.", .live = true})
           .applies([](const O& o) { return o.outlines; })
@@ -150,7 +154,8 @@ const OptionsSchema& adaptiveCutawaySchema() {
                          "{transitionAngle, overlay, reduction}."})
           .check([](const json_reader::Context& ctx, json_reader::ObjectReader& r, O& o) {
             // A floorNormal without a word about the constraint asks for it.
-            if (r.has("floorNormal") && !r.has("directionalConstraint")) o.directionalConstraint = true;
+            if (r.has("floorNormal") && !r.has("directionalConstraint"))
+              o.directionalConstraint = true;
             if (o.contextual && o.contextual->transitionAngle < o.angle)
               ctx.fail(r.at("contextual"), "the transition angle θ₂ (" +
                                                formatOptionValue(double(o.contextual->transitionAngle)) +
