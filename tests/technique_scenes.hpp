@@ -1,4 +1,5 @@
-// The techniques' test scenes: for each registered technique (cutter, style), scenes where it
+// The techniques' test scenes: for each registered technique (cutter, style, the networks' and
+// volumes' options), scenes where it
 // is on, shared by the tests that go through every option of every schema
 // (test_live_options.cpp, test_options_round_trip.cpp). A technique without scenes here
 // fails those tests, so a new cutter or style must name its scenes.
@@ -56,6 +57,12 @@ inline std::vector<Case> cases() {
     else if (t.path == "style")
       c.examples = {"examples/engine.json", "examples/engine-contextual.json"},
       c.setup = {{"style.shadows", "true"}, {"style.emphasis.linesOnlyBelow", "0.2"}};
+    else if (t.path == "networks")
+      c.examples = {"examples/pipes-street.json"};
+    // Without lines: those follow the last frame's (Burns11 §2.4.1.3's walks, each segment's
+    // fate decided the frame before), so a live change takes frames to reach a new renderer's.
+    else if (t.path == "volumes")
+      c.examples = {"examples/mri-head-clip.json"};
     else if (!t.name.empty())
       c.examples = {"examples/bunny.json"}, c.setup = {{"style.name", t.name}};
     out.push_back(c);

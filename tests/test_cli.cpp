@@ -848,6 +848,16 @@ TEST(Cli, SetOverridesAnyOptionByItsPath) {
     EXPECT_EQ(lines(bad.err), 1) << bad.err;
     EXPECT_FALSE(fs::exists(out)) << set;
   }
+  // Every pipe network's and volume's options too, as the viewer's `set` takes them.
+  for (const auto& [example, set] : {std::pair{"pipes-street", "networks.radiusScale=2"},
+                                     std::pair{"mri-head-clip", "volumes.mode=maximum"}}) {
+    const fs::path before = scratch("set-member-plain.png"), after = scratch("set-member.png");
+    const std::string file = kSource + "/examples/" + example + ".json --size 96x72 -o ";
+    ASSERT_EQ(run("render " + file + before.string()).exitCode, 0);
+    const Result member = run("render " + file + after.string() + " --set " + set);
+    ASSERT_EQ(member.exitCode, 0) << member.err;
+    EXPECT_NE(readPng(before).pixels, readPng(after).pixels) << set;
+  }
   // --cutaway-angle is checked as --set is, and named: θ₁ above the contextual θ₂.
   const Result angle = run("render " + kSource + "/examples/engine-contextual.json --size 64x48 " +
                            "--cutaway-angle 80 -o " + scratch("angle.png").string());
@@ -889,6 +899,8 @@ TEST(Cli, OptionsListsEverySchema) {
   ASSERT_EQ(table.exitCode, 0) << table.err;
   EXPECT_NE(table.out.find("cutters.boxCut.size"), std::string::npos);
   EXPECT_NE(table.out.find("style.gooch.alpha"), std::string::npos);
+  EXPECT_NE(table.out.find("networks.radiusScale"), std::string::npos);
+  EXPECT_NE(table.out.find("volumes.sampleDistance"), std::string::npos);
   const Result json = run("options --json");
   ASSERT_EQ(json.exitCode, 0) << json.err;
   const auto options = nlohmann::json::parse(json.out);

@@ -173,6 +173,17 @@ TEST(Viewer, ScriptLineFailingAtRunTimeNamesTheLine) {
   EXPECT_EQ(entry.err, "cutaway-view: error: " + script.string() +
                            ": line 2: cutters.clipSurfaces.surfaces.0.position: no entry 0: "
                            "\"surfaces\" has 0 entries\n");
+  // A pixel past the view, also past INT_MAX (it once wrapped to a negative int: a crash).
+  for (const auto& [line, coordinates] :
+       {std::pair{"probe 3000000000 1", "3000000000, 1"}, std::pair{"pick 1e30 1", "1e+30, 1"},
+        std::pair{"pick 160 0", "160, 0"}}) {
+    std::ofstream(script) << "wait 1\n" << line << "\nquit\n";
+    const Result far =
+        runUnderXvfb(kSource + "/examples/bunny.json --size 160x120 --script " + script.string());
+    EXPECT_EQ(far.exitCode, 1) << far.err;
+    EXPECT_EQ(far.err, "cutaway-view: error: " + script.string() + ": line 2: pixel (" +
+                           coordinates + ") is outside the 160×120 view\n");
+  }
 }
 
 // The scenario: orbit, select the pistons, change the cutter, look at the cutaway

@@ -13,8 +13,6 @@ const std::vector<ParameterGroup>& parameterGroups() {
         if (o.technique == t.path) g.parameters.push_back(Parameter{o.spec});
       out.push_back(std::move(g));
     }
-    out.push_back({"networks", "Pipe networks (Konev18)", "", networkParameters()});
-    out.push_back({"volumes", "Volumes", "", volumeParameters()});
     return out;
   }();
   return groups;

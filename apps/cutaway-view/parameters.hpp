@@ -1,7 +1,7 @@
 // Parameters as the viewer edits them: every registered technique's options
 // (cutaway/render/techniques.hpp: the scene file's paths, types, ranges, defaults and docs,
-// as `cutaway render --set` takes them), grouped by technique, and the pipe networks' and
-// volumes' run-time options. The panels draw them as sliders and toggles and the script's
+// as `cutaway render --set` takes them, the pipe networks' and volumes' among them), grouped by
+// technique. The panels draw them as sliders and toggles and the script's
 // `set KEY VALUE` goes through the same table, so the UI, the script, the CLI and the scene
 // file can never disagree on what exists or on its range. A parameter whose spec is live
 // (a uniform) redraws with the same renderer; any other builds a new one.
@@ -37,9 +37,5 @@ struct ParameterGroup {
 const std::vector<ParameterGroup>& parameterGroups();
 const ParameterGroup* findGroup(const std::string& name);
 const Parameter* findParameter(const std::string& key);
-// The pipe networks' (parameters/networks.cpp).
-std::vector<Parameter> networkParameters();
-// The volumes' (parameters/volumes.cpp).
-std::vector<Parameter> volumeParameters();
 
 }  // namespace cutaway::view

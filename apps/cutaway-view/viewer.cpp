@@ -318,8 +318,9 @@ void Viewer::execute(const ScriptCommand& c) {
       break;
     case Kind::Pick:
       update(true);
-      if (int(n[0]) >= width_ || int(n[1]) >= height_)
-        throw Error("pixel (" + std::to_string(int(n[0])) + ", " + std::to_string(int(n[1])) +
+      // Compared as read: a coordinate past INT_MAX would turn negative as an int.
+      if (n[0] >= width_ || n[1] >= height_)
+        throw Error("pixel (" + formatOptionValue(n[0]) + ", " + formatOptionValue(n[1]) +
                     ") is outside the " + std::to_string(width_) + "×" + std::to_string(height_) +
                     " view");
       pick(int(n[0]), int(n[1]), false);
@@ -373,8 +374,9 @@ void Viewer::execute(const ScriptCommand& c) {
       break;
     case Kind::Probe:
       update();
-      if (int(n[0]) >= width_ || int(n[1]) >= height_)
-        throw Error("pixel outside the " + std::to_string(width_) + "×" + std::to_string(height_) +
+      if (n[0] >= width_ || n[1] >= height_)
+        throw Error("pixel (" + formatOptionValue(n[0]) + ", " + formatOptionValue(n[1]) +
+                    ") is outside the " + std::to_string(width_) + "×" + std::to_string(height_) +
                     " view");
       std::printf("probe %d %d: %s\n", int(n[0]), int(n[1]), valueAt(int(n[0]), int(n[1])).c_str());
       std::fflush(stdout);

@@ -4,6 +4,7 @@
 
 #include "cutaway/core/error.hpp"
 #include "cutters/registry.hpp"
+#include "kinds/member_options.hpp"
 #include "styles/registry.hpp"
 
 namespace cutaway {
@@ -122,6 +123,8 @@ std::vector<SceneOption> makeSceneOptions() {
       out.push_back({spec.key, path, spec});
     }
   }
+  for (OptionSpec& spec : networkOptions()) out.push_back({spec.key, "networks", std::move(spec)});
+  for (OptionSpec& spec : volumeOptions()) out.push_back({spec.key, "volumes", std::move(spec)});
   return out;
 }
 
@@ -134,6 +137,8 @@ const std::vector<TechniqueInfo>& techniques() {
       if (t.schema) out.push_back({"cutters." + t.key, t.title, "", t.schema});
     out.push_back({"style", "Style", "", &styleSchema()});
     for (const StyleType& t : styleTypes()) out.push_back({"style." + t.key, t.title, t.name, t.schema});
+    out.push_back({"networks", "Pipe networks (Konev18)", "", nullptr});
+    out.push_back({"volumes", "Volumes", "", nullptr});
     return out;
   }();
   return list;

@@ -168,7 +168,8 @@ json styleJson(const Style& style) {
   return out;
 }
 
-// A network's keys the viewer edits; its pipes, shafts and attributes stay as written.
+// A network's keys --set and the viewer edit (kinds/pipes/network_options.cpp); its pipes,
+// shafts and attributes stay as written.
 json networkJson(const PipeNetwork& n) {
   return {{"radiusScale", exact(n.radiusScale)},
           {"shaftOpening", exact(n.shaftOpening)},
@@ -188,7 +189,7 @@ json transferPointsJson(const std::vector<TransferPoint>& points) {
   return out;
 }
 
-// The volume options the viewer edits (apps/cutaway-view/parameters/volumes.cpp and its
+// The volume options --set and the viewer edit (kinds/volumes/volume_options.cpp, the viewer's
 // transfer-function editor), the transfer function under the key it was read from.
 json volumeJson(const SceneVolume& v) {
   json out = {{"mode", volumeModeName(v.mode)},

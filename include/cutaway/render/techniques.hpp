@@ -2,8 +2,9 @@
 // CLI's --set, the viewer's panels and script and the bindings name them. The path is the
 // scene file's: "cutters.<key>.<option>" for a cutter ("cutters.<key>" alone switches it),
 // "style.<option>" for the style's own (its name, lines, shadows), "style.<key>.<option>" for
-// a shading style's. Each option's type, range, default, documentation and liveness come
-// from the technique's schema (cutaway/core/options.hpp), written once.
+// a shading style's; "networks.<option>" and "volumes.<option>" for every pipe network's or
+// volume's. Each option's type, range, default, documentation and liveness come from the
+// technique's schema (cutaway/core/options.hpp), written once.
 //
 //   cutaway::setOption(scene, "cutters.adaptive.angle", "30");   // turns the cutter on first
 //   cutaway::setOption(scene, "style.lines.width", "2");
@@ -23,10 +24,10 @@ struct TechniqueInfo {
   std::string path;   // "cutters.adaptive", "style", "style.gooch"
   std::string title;  // for panels
   std::string name;   // shading styles: their style.name ("blinn-phong"); else empty
-  const OptionsSchema* schema;
+  const OptionsSchema* schema;  // null for "networks" and "volumes" (members of each)
 };
 // In registry order: the cutters with options of their own, the style's own keys, each
-// shading style.
+// shading style; then the pipe networks' and the volumes' options.
 const std::vector<TechniqueInfo>& techniques();
 // The shading styles' names (style.name), in registry order.
 const std::vector<std::string>& styleNames();

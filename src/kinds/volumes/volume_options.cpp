@@ -1,11 +1,12 @@
-// The volumes' ray-casting options (src/kinds/volumes; cutaway::SceneVolume) and their lines'
-// (src/styles/volume_lines) as viewer parameters. They apply to every volume of the scene at once
-// (the first one's value is shown) and are read by the renderer every frame: a change redraws
-// without a new renderer. The files come from the scene file; the transfer functions have their own
-// editor (panels/transfer_panel.cpp).
-#include "../parameters.hpp"
+// The volumes' ray-casting options (cutaway::SceneVolume) and their lines'
+// (src/styles/volume_lines) as scene options ("volumes.<key>": --set, the viewer, the bindings).
+// They apply to every volume of the scene at once (the first one's value is read) and are read by
+// the renderer every frame: a change redraws without a new renderer. The files come from the scene
+// file; the transfer functions have the viewer's editor
+// (apps/cutaway-view/panels/transfer_panel.cpp).
+#include "kinds/member_options.hpp"
 
-namespace cutaway::view {
+namespace cutaway {
 
 namespace {
 
@@ -13,9 +14,9 @@ const char* const kModes[] = {"composite", "maximum", "isosurface"};
 
 // A member of every volume, as a number, a bool or (the mode) a choice.
 template <typename T>
-Parameter volumeMember(std::string key, std::string label, Parameter::Type type,
-                       T SceneVolume::*field, std::string help) {
-  Parameter p;
+OptionSpec volumeMember(std::string key, std::string label, OptionSpec::Type type,
+                        T SceneVolume::*field, std::string help) {
+  OptionSpec p;
   p.key = "volumes." + key;
   p.label = std::move(label);
   p.type = type;
@@ -23,7 +24,7 @@ Parameter volumeMember(std::string key, std::string label, Parameter::Type type,
   p.live = true;
   if constexpr (std::is_same_v<T, VolumeMode>)
     p.choices.assign(std::begin(kModes), std::end(kModes));
-  p.get = [field](const void* scene) -> ParameterValue {
+  p.get = [field](const void* scene) -> OptionValue {
     const Scene& s = *static_cast<const Scene*>(scene);
     const T v = s.volumes.empty() ? SceneVolume{}.*field : s.volumes.front().*field;
     if constexpr (std::is_same_v<T, VolumeMode>)
@@ -33,7 +34,7 @@ Parameter volumeMember(std::string key, std::string label, Parameter::Type type,
     else
       return double(v);
   };
-  p.set = [field](void* scene, const ParameterValue& value) {
+  p.set = [field](void* scene, const OptionValue& value) {
     Scene& s = *static_cast<Scene*>(scene);
     T v{};
     if constexpr (std::is_same_v<T, VolumeMode>) {
@@ -53,26 +54,30 @@ Parameter volumeMember(std::string key, std::string label, Parameter::Type type,
 
 }  // namespace
 
-std::vector<Parameter> volumeParameters() {
+std::vector<OptionSpec> volumeOptions() {
   using Type = OptionSpec::Type;
   using V = SceneVolume;
-  std::vector<Parameter> out;
+  std::vector<OptionSpec> out;
   out.push_back(volumeMember("mode", "mode", Type::Choice, &V::mode,
                              "Emission–absorption front to back, maximum intensity projection, "
                              "or the first crossing of the isovalue."));
-  Parameter step = volumeMember("sampleDistance", "step (voxels)", Type::Float, &V::sampleDistance,
-                                "The ray's step in voxels; the opacities are corrected for it.");
+  OptionSpec step = volumeMember("sampleDistance", "step (voxels)", Type::Float, &V::sampleDistance,
+                                 "The ray's step in voxels; the opacities are corrected for it.");
   step.min = 0.05, step.max = 8, step.sliderMax = 2;
   out.push_back(step);
-  Parameter opacity =
+  OptionSpec opacity =
       volumeMember("opacityDistance", "opacity distance", Type::Float, &V::opacityDistance,
                    "The length in voxels the transfer function's opacities hold "
                    "for: larger makes the volume more transparent.");
   opacity.min = 0.05, opacity.max = 1000, opacity.sliderMax = 20;
   out.push_back(opacity);
-  Parameter iso = volumeMember("isoValue", "isovalue", Type::Float, &V::isoValue,
-                               "The isosurface mode's value, in the file's units.");
+  OptionSpec iso = volumeMember("isoValue", "isovalue", Type::Float, &V::isoValue,
+                                "The isosurface mode's value, in the file's units.");
   iso.min = -1e6, iso.max = 1e6, iso.sliderMax = 4000;
+  iso.applies = [](const void* scene) {
+    const Scene& s = *static_cast<const Scene*>(scene);
+    return !s.volumes.empty() && s.volumes.front().mode == VolumeMode::Isosurface;
+  };
   out.push_back(iso);
   out.push_back(volumeMember("shading", "shading", Type::Bool, &V::shading,
                              "Gradient normals shaded by the style; off: emission only."));
@@ -84,8 +89,7 @@ std::vector<Parameter> volumeParameters() {
   // The volumes' lines (Burns11 §2.4), by their schema: each option of every volume that has
   // lines (the first one's shown), live.
   for (const OptionSpec& spec : volumeLineStyleSchema().flatten()) {
-    Parameter p;
-    static_cast<OptionSpec&>(p) = spec;
+    OptionSpec p = spec;
     p.key = "volumes.lines." + spec.key;
     if (spec.key.ends_with(".value")) p.sliderMax = 4000;  // an isovalue, as the mode's
     const auto first = [](const Scene& s) -> const VolumeLineStyle* {
@@ -98,7 +102,7 @@ std::vector<Parameter> volumeParameters() {
       const VolumeLineStyle defaults;
       return spec.get(lines ? lines : &defaults);
     };
-    p.set = [spec](void* scene, const ParameterValue& value) {
+    p.set = [spec](void* scene, const OptionValue& value) {
       for (SceneVolume& v : static_cast<Scene*>(scene)->volumes)
         if (v.lines) spec.set(&*v.lines, value);
     };
@@ -111,4 +115,4 @@ std::vector<Parameter> volumeParameters() {
   return out;
 }
 
-}  // namespace cutaway::view
+}  // namespace cutaway

@@ -1,10 +1,11 @@
-// The pipe networks' run-time options (Konev18 §§5–7; cutaway::PipeNetwork) as viewer
-// parameters. They apply to every network of the scene at once (the first one's value is
-// shown) and are read by the renderer every frame: a change redraws without a new renderer.
-// The pipes, shafts and their attributes come from the scene file.
-#include "../parameters.hpp"
+// The pipe networks' run-time options (Konev18 §§5–7; cutaway::PipeNetwork) as scene options
+// ("networks.<key>": --set, the viewer, the bindings). They apply to every network of the
+// scene at once (the first one's value is read) and are read by the renderer every frame: a
+// change redraws without a new renderer. The pipes, shafts and their attributes come from the
+// scene file.
+#include "kinds/member_options.hpp"
 
-namespace cutaway::view {
+namespace cutaway {
 
 namespace {
 
@@ -15,16 +16,16 @@ bool hasNetworks(const Scene& s) {
 // A member of every network; `also` applies the value to what was copied from it at load
 // (the shafts' and meshed pipes' object colours).
 template <typename T>
-Parameter networkMember(std::string key, std::string label, Parameter::Type type,
-                        T PipeNetwork::*field, std::string help,
-                        void (*also)(Scene&, int network, const T&) = nullptr) {
-  Parameter p;
+OptionSpec networkMember(std::string key, std::string label, OptionSpec::Type type,
+                         T PipeNetwork::*field, std::string help,
+                         void (*also)(Scene&, int network, const T&) = nullptr) {
+  OptionSpec p;
   p.key = "networks." + key;
   p.label = std::move(label);
   p.type = type;
   p.doc = std::move(help);
   p.live = true;
-  p.get = [field](const void* scene) -> ParameterValue {
+  p.get = [field](const void* scene) -> OptionValue {
     const Scene& s = *static_cast<const Scene*>(scene);
     const T& v = s.networks.empty() ? PipeNetwork{}.*field : s.networks.front().*field;
     if constexpr (std::is_same_v<T, glm::vec3>)
@@ -32,7 +33,7 @@ Parameter networkMember(std::string key, std::string label, Parameter::Type type
     else
       return double(v);
   };
-  p.set = [field, also](void* scene, const ParameterValue& value) {
+  p.set = [field, also](void* scene, const OptionValue& value) {
     Scene& s = *static_cast<Scene*>(scene);
     T v;
     if constexpr (std::is_same_v<T, glm::vec3>)
@@ -65,18 +66,18 @@ void colorShaftInsides(Scene& s, int network, const glm::vec3& color) {
 
 }  // namespace
 
-std::vector<Parameter> networkParameters() {
+std::vector<OptionSpec> networkOptions() {
   using Type = OptionSpec::Type;
   using N = PipeNetwork;
-  std::vector<Parameter> out;
-  Parameter radius = networkMember("radiusScale", "radius scale", Type::Float, &N::radiusScale,
-                                   "§5: every pipe radius times this, at run time (the "
-                                   "billboards, proxies and water follow).");
+  std::vector<OptionSpec> out;
+  OptionSpec radius = networkMember("radiusScale", "radius scale", Type::Float, &N::radiusScale,
+                                    "§5: every pipe radius times this, at run time (the "
+                                    "billboards, proxies and water follow).");
   radius.min = 1e-3, radius.max = 1e3, radius.sliderMax = 10;
   out.push_back(radius);
-  Parameter opening = networkMember("shaftOpening", "shaft opening", Type::Float, &N::shaftOpening,
-                                    "§7: shaft fragments are discarded where n·v (heights "
-                                    "ignored) exceeds this; lower opens a wider wedge.");
+  OptionSpec opening = networkMember("shaftOpening", "shaft opening", Type::Float, &N::shaftOpening,
+                                     "§7: shaft fragments are discarded where n·v (heights "
+                                     "ignored) exceeds this; lower opens a wider wedge.");
   opening.min = -1, opening.max = 1;
   out.push_back(opening);
   out.push_back(networkMember("color", "outside", Type::Color, &N::color,
@@ -92,4 +93,4 @@ std::vector<Parameter> networkParameters() {
   return out;
 }
 
-}  // namespace cutaway::view
+}  // namespace cutaway
