@@ -121,6 +121,20 @@ TEST(PipeNetworkOps, SharpBendsSplitWithJoints) {
   EXPECT_FLOAT_EQ(net.pipes[1].cut->y, 5.0f);
 }
 
+// A zig-zag of 20,000 right angles splits into 19,999 two-node pieces, each holding its own
+// nodes only (each once held room for all of them: 5 GB for a 330 KB scene file).
+TEST(PipeNetworkOps, AZigZagSplitsIntoPiecesThatHoldTheirOwnNodes) {
+  PipeNetwork net;
+  Pipe zigzag{.radius = 0.1f};
+  for (int i = 0; i < 20000; ++i) zigzag.nodes.push_back({float(i / 2 + i % 2), 0, float(i / 2)});
+  net.pipes.push_back(zigzag);
+  EXPECT_EQ(splitSharpBends(net, 60.0f).size(), 19998u);
+  ASSERT_EQ(net.pipes.size(), 19999u);
+  std::size_t held = 0;
+  for (const Pipe& p : net.pipes) EXPECT_EQ(p.nodes.size(), 2u), held += p.nodes.capacity();
+  EXPECT_LE(held, 2u * 2u * net.pipes.size());
+}
+
 TEST(PipeNetworkOps, CrossingCutsKeepTheLargerPipe) {
   PipeNetwork net;
   net.pipes.push_back(

@@ -1377,6 +1377,29 @@ TEST(SceneCamera, ARangeDeeperThanTheAdaptiveCutResolvesIsNamed) {
   EXPECT_EQ(c.unresolvable(1.0f, deepestDepthRange(s)), "");
 }
 
+// Whatever the cutters, a perspective range deeper than the depth buffer's floats resolve
+// (far / near > 1e6) is named: at 1e8 every surface rounded to the cleared far depth and the
+// picture was blank with exit 0. Its least near, 1e-15, is taken as written.
+TEST(SceneCamera, ARangeDeeperThanTheDepthBufferResolvesIsNamed) {
+  const std::string objects = R"({"objects": [{"name": "cube", "file": "cube.obj"}],)";
+  Camera c = parse(objects + R"("camera": {"eye": [0.5, 0.5, 3], "target": [0.5, 0.5, 0.5],
+    "near": 4e-8, "far": 4}})")
+                 .resolvedCamera();
+  EXPECT_NE(c.unresolvable(1.0f).find("far / near 1e+08) is deeper than a 32-bit depth buffer "
+                                      "resolves (1e+06): give a larger near"),
+            std::string::npos)
+      << c.unresolvable(1.0f);
+  c.near = 5e-6f;  // far / near 8e5
+  EXPECT_EQ(c.unresolvable(1.0f), "");
+  c.near = 4e-8f;
+  c.projection = Projection::Orthographic;
+  EXPECT_EQ(c.unresolvable(1.0f), "");
+  const Scene least = parse(objects + R"("camera": {"fit": true, "near": 1e-15, "height": 1e-15,
+    "projection": "orthographic"}})");
+  EXPECT_EQ(least.camera.near, 1e-15f);
+  EXPECT_EQ(least.camera.height, 1e-15f);
+}
+
 // A given far plane nearer than the derived near is kept; the near plane yields to it.
 TEST(SceneCamera, AGivenFarNearerThanTheSceneIsKept) {
   for (const char* projection : {"perspective", "orthographic"}) {

@@ -157,8 +157,12 @@ std::vector<Joint> splitSharpBends(PipeNetwork& network, float maxBendDegrees) {
   for (const Pipe& pipe : network.pipes) {
     std::size_t start = 0;
     float arcStart = 0.0f, arc = 0.0f;
+    // The pipe without its nodes: a copy of them each piece would take memory and time
+    // quadratic in the bends.
+    Pipe bare = pipe;
+    bare.nodes = {};
     const auto emit = [&](std::size_t end) {
-      Pipe piece = pipe;
+      Pipe piece = bare;
       piece.nodes.assign(pipe.nodes.begin() + std::ptrdiff_t(start),
                          pipe.nodes.begin() + std::ptrdiff_t(end) + 1);
       piece.cut.reset();

@@ -40,6 +40,14 @@ std::string Camera::unresolvable(float aspect, float deepestRange) const {
   if (!(double(far) - double(near) > kSteps * std::max(std::abs(near), std::abs(far))))
     return "the depth range from near " + text(near) + " to far " + text(far) +
            " is too thin for 32-bit floats (the eye is " + text(distance) + " from the target)";
+  // A window depth's float steps near 1 (2⁻²⁴) span ~6e-8 · far / near of the far distance: at
+  // far / near = 1e6 the far half of the view keeps ~17 of them; at 1e8 every surface past a
+  // few near distances rounds to the cleared 1 and the picture is blank.
+  constexpr double kDeepestDepthBuffer = 1e6;
+  if (projection == Projection::Perspective && double(far) > kDeepestDepthBuffer * double(near))
+    return "the depth range from near " + text(near) + " to far " + text(far) + " (far / near " +
+           text(double(far) / double(near)) + ") is deeper than a 32-bit depth buffer resolves (" +
+           text(kDeepestDepthBuffer) + "): give a larger near";
   if (deepestRange > 0.0f && projection == Projection::Perspective &&
       double(far) > double(deepestRange) * double(near))
     return "the depth range from near " + text(near) + " to far " + text(far) + " (far / near " +

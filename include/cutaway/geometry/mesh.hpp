@@ -25,7 +25,7 @@ namespace cutaway {
 constexpr float kMaxSceneReach = 1e15f;
 // The least a scene's part may measure across (and a volume's voxel): below, 32-bit floats
 // underflow the squared lengths of its normals and gradients (shading lost near 1e-20).
-constexpr float kMinSceneDetail = 1e-15f;
+constexpr double kMinSceneDetail = 1e-15;
 // How far p lies from the origin along an axis: what kMaxSceneReach bounds.
 inline float sceneReach(const glm::vec3& p) {
   return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});

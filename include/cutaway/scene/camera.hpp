@@ -32,7 +32,8 @@ struct Camera {
   glm::mat4 projectionMatrix(float aspect) const;
   // Why 32-bit floats cannot draw this resolved camera's view (near and far set), or "":
   // eye and target closer than a few of the floats' steps at their magnitude, a depth range
-  // [near, far] as thin, or matrices that are not finite (a scene 1e-30 across).
+  // [near, far] as thin, a perspective one deeper than 1e6 (far / near: its depth buffer
+  // cannot order surfaces), or matrices that are not finite (a scene 1e-30 across).
   // A perspective range deeper than `deepestRange` (far / near; 0: any) is one too.
   std::string unresolvable(float aspect, float deepestRange = 0.0f) const;
   // World units of the view's height at the target (orthographic: `height`).
