@@ -1,5 +1,6 @@
 // Files written together (core/atomic_file.hpp): all of them or none, whatever fails where.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <csignal>
 #include <filesystem>
@@ -125,6 +126,22 @@ TEST(AtomicFiles, ALinkHasTheFileItPointsToReplaced) {
   fs::create_symlink("loop", dir / "loop");
   test::expectError([&] { writeFileAtomically(dir / "loop", text("x")); },
                     {"too many levels of symbolic links"});
+}
+
+// A FIFO (or a device, or a link to one) is not replaced by a regular file: refused, as
+// `cutaway render -o` onto one once reported success having replaced it.
+TEST(AtomicFiles, AFifoOrALinkToOneIsRefused) {
+  const fs::path dir = folderWithTwoFiles("fifo");
+  ASSERT_EQ(::mkfifo((dir / "pipe").c_str(), 0600), 0);
+  fs::create_symlink("pipe", dir / "to-pipe");
+  for (const char* name : {"pipe", "to-pipe"}) {
+    test::expectError([&] { writeFileAtomically(dir / name, text("x")); },
+                      {(dir / "pipe").string(), "is not a regular file"});
+    test::expectError([&] { replaceFileAtomically(dir / name, [](const fs::path&) {}); },
+                      {"is not a regular file"});
+  }
+  EXPECT_TRUE(fs::is_fifo(dir / "pipe"));
+  EXPECT_TRUE(fs::is_symlink(dir / "to-pipe"));
 }
 
 // A program stopped by a signal while it writes (`timeout`, Ctrl-C, a closed terminal) leaves

@@ -241,6 +241,17 @@ TEST(Cli, AnAnimationsTakenOutputsFailBeforeTheFirstFrame) {
   EXPECT_FALSE(fs::exists(dir / "f_1.png"));
   EXPECT_FALSE(fs::exists(dir / "g_1.png"));
   EXPECT_FALSE(fs::exists(dir / "aovs" / "0001"));
+  // The pattern in a folder's name: each frame's folder must be there, not the pattern's.
+  fs::create_directories(dir / "d1");
+  r = run("render " + scene + " --frames 2 -o " + (dir / "d%d" / "f.png").string());
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("no such folder: " + (dir / "d2").string()), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "d1" / "f.png"));
+  fs::create_directories(dir / "d2");
+  r = run("render " + scene + " --frames 2 -o " + (dir / "d%d" / "f.png").string());
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "d1" / "f.png"));
+  EXPECT_TRUE(fs::exists(dir / "d2" / "f.png"));
 }
 
 // A frame that fails while rendering (the volume's lines outgrow "mostSegments" as the camera
@@ -1119,8 +1130,12 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
   EXPECT_EQ(proc.err.find(".tmp-"), std::string::npos) << proc.err;
   const std::string png = test::scratchPath("cli", "dem.png").string();
   const auto named = run("dem --extent 0 0 20 20 --crs EPSG:27700 -o " + png);
-  EXPECT_EQ(named.exitCode, 1);
+  EXPECT_EQ(named.exitCode, 2);  // a command-line value, as `render -o x.jpg` is
   EXPECT_NE(named.err.find("dem.png: dem writes a GeoTIFF"), std::string::npos) << named.err;
+  const auto base = run("dem --extent 0 0 20 20 --crs EPSG:27700 --base 1e39 -o " + odd);
+  EXPECT_EQ(base.exitCode, 2);
+  EXPECT_NE(base.err.find("--base: the base height must fit in Float32"), std::string::npos)
+      << base.err;
   EXPECT_FALSE(std::filesystem::exists(png));
   // Heights beyond Float32 would be written as infinities.
   const auto huge = run("dem --extent 0 0 20 20 --crs EPSG:27700 --relief 1e39 -o " + odd);

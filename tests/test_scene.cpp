@@ -1419,8 +1419,8 @@ TEST(SceneCamera, AGivenFarNearerThanTheSceneIsKept) {
   EXPECT_GT(c.far, c.near);
 }
 
-// The derived depth range holds the proxies, which the cutters draw; fitting frames only the
-// visible objects.
+// The derived depth range holds the proxies of interest, which the adaptive cutter draws;
+// fitting frames only the visible objects.
 TEST(SceneCamera, TheDerivedDepthRangeHoldsTheProxies) {
   const char* objects = R"({"objects": [{"name": "cube", "file": "cube.obj"}], )";
   const char* camera = R"("camera": {"eye": [0.5, 0.5, 30], "target": [0.5, 0.5, 0.5]})";
@@ -1437,6 +1437,16 @@ TEST(SceneCamera, TheDerivedDepthRangeHoldsTheProxies) {
   Scene fitted = s;
   fitted.camera.fit = true;
   EXPECT_EQ(fitted.resolvedCamera().target, glm::vec3(0.5f)) << "fit frames the cube alone";
+  // A proxy of another role has no effect: far away, it leaves the planes alone (it once
+  // moved the near plane past the cube: a blank picture).
+  const Camera context =
+      parse(
+          std::string(objects) +
+          R"("proxies": [{"name": "far", "role": "context", "box": {"min": [1e6, 1e6, 1e6], "max": [1.1e6, 1.1e6, 1.1e6]}}], )" +
+          camera + "}")
+          .resolvedCamera();
+  EXPECT_EQ(context.near, alone.near);
+  EXPECT_EQ(context.far, alone.far);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -128,6 +128,27 @@ TEST(Viewer, WithoutADisplayFailsWithOneLineSuggestingRender) {
   EXPECT_NE(r.err.find("cutaway render"), std::string::npos) << r.err;
 }
 
+// A refused command line exits 2, the size's as the other options'; a script or a scene that
+// is a folder or a device is named so before anything is read (/dev/zero once grew without end).
+TEST(Viewer, BadCommandLinesAndFilesAreRefusedBeforeAWindowOpens) {
+  const std::string bunny = kSource + "/examples/bunny.json";
+  for (const std::string& size : {"0x0", "20000x10", "big"}) {
+    const Result r = run("env -u DISPLAY " + kViewer + " " + bunny + " --size " + size);
+    EXPECT_EQ(r.exitCode, 2) << size;
+    EXPECT_EQ(r.err.rfind("cutaway-view: error: --size: ", 0), 0u) << r.err;
+  }
+  const Result fps = run("env -u DISPLAY " + kViewer + " " + bunny + " --interactive-fps -1");
+  EXPECT_EQ(fps.exitCode, 2) << fps.err;
+  for (const std::string& file : {std::string("/dev/zero"), scratch("").string()}) {
+    const Result script = run("env -u DISPLAY " + kViewer + " " + bunny + " --script " + file);
+    EXPECT_EQ(script.exitCode, 1);
+    EXPECT_NE(script.err.find(": not a regular file"), std::string::npos) << script.err;
+    const Result scene = run("env -u DISPLAY " + kViewer + " " + file);
+    EXPECT_EQ(scene.exitCode, 1);
+    EXPECT_NE(scene.err.find(": not a regular file"), std::string::npos) << scene.err;
+  }
+}
+
 TEST(Viewer, BadScriptIsRejectedBeforeAWindowOpens) {
   const fs::path script = scratch("bad.txt");
   std::ofstream(script) << "wait 1\norbit 30\n";

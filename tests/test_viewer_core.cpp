@@ -560,6 +560,14 @@ TEST(ViewerSave, RelativeMeshPathsFollowTheFileElsewhere) {
   SceneDocument::load(dir / "scene.json").save(original, current, dir / "same.json");
   std::ifstream in(dir / "same.json");
   EXPECT_EQ(nlohmann::json::parse(in)["objects"][0]["file"], "cube.obj");
+  // A folder as the target is named as one (its relative paths once made it "mesh file not
+  // found").
+  try {
+    SceneDocument::load(dir / "scene.json").save(original, current, dir / "sub");
+    ADD_FAILURE() << "a folder was taken";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "sub").string() + ": is a directory, not a file");
+  }
 }
 
 TEST(ViewerSave, EscapedNamesMatchThemselvesOnly) {

@@ -45,18 +45,26 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cutaway-view: error: %s (see --help)\n", e.what());
     return 2;
   }
-  try {
-    if (!size.empty()) {
-      static const std::regex sizeRe(R"((\d{1,5})x(\d{1,5}))");
-      std::smatch m;
-      if (!std::regex_match(size, m, sizeRe))
-        throw cutaway::Error("--size", "",
-                             "expected WxH, e.g. 1024x768, got " + cutaway::quote(size));
+  // A refused command line exits 2, as the options above do.
+  if (!size.empty()) {
+    static const std::regex sizeRe(R"((\d{1,5})x(\d{1,5}))");
+    std::smatch m;
+    const char* why = nullptr;
+    if (!std::regex_match(size, m, sizeRe)) {
+      why = "expected WxH, e.g. 1024x768";
+    } else {
       options.width = std::stoi(m[1]), options.height = std::stoi(m[2]);
       if (options.width < 1 || options.height < 1 || options.width > 16384 ||
           options.height > 16384)
-        throw cutaway::Error("--size", "", "width and height must be in [1, 16384]");
+        why = "width and height must be in [1, 16384]";
     }
+    if (why) {
+      std::fprintf(stderr, "cutaway-view: error: --size: %s, got %s\n", why,
+                   cutaway::quote(size).c_str());
+      return 2;
+    }
+  }
+  try {
     options.scene = scene;
     options.script = script;
     options.panels = !noPanels;

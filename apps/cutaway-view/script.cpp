@@ -268,6 +268,10 @@ Script parseScript(const std::string& text, const std::string& file) {
 }
 
 Script loadScript(const std::filesystem::path& path) {
+  // A folder would read as an empty script, a device (/dev/zero) without end.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw Error(path.string(), "", "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path.string(), "", "cannot open script file");
   std::stringstream text;

@@ -80,7 +80,8 @@ constexpr const char* kKept = " (the last good scene stays)";
 
 Viewer::Viewer(const ViewerOptions& options) : options_(options) {
   if (!options.script.empty()) script_ = loadScript(options.script);
-  adopt(loadScene(options.scene), SceneDocument::load(options.scene), options.scene, false);
+  Scene scene = loadScene(options.scene);  // first: it names a folder or a device as such
+  adopt(std::move(scene), SceneDocument::load(options.scene), options.scene, false);
   state_.showPanels = options.panels;
 
   const int width = options.width > 0 ? options.width : original_.width;

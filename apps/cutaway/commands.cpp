@@ -326,7 +326,8 @@ void checkOutputs(const RenderOptions& options) {
     throw Error(options.output, "", "is a directory, not a file name");
   if (!isPngName(out))
     throw CommandLineError(options.output, "", "only PNG is written: give the output a .png name");
-  checkFolderOf(options.output);
+  // An animation's names are patterns, whose folders are checked frame by frame.
+  if (options.frames == 0) checkFolderOf(options.output);
   // One path for two outputs: the later would take the earlier's place.
   const auto same = [](const std::string& a, const std::string& b) {
     const auto resolved = [](const std::string& p) {
@@ -347,7 +348,7 @@ void checkOutputs(const RenderOptions& options) {
       throw CommandLineError(options.svg, "", "--svg writes SVG: give it a .svg name");
     if (std::filesystem::is_directory(options.svg, ec))
       throw Error(options.svg, "", "is a directory, not a file name");
-    checkFolderOf(options.svg);
+    if (options.frames == 0) checkFolderOf(options.svg);
   }
   if (options.aovDir.empty()) return;
   std::filesystem::path dir = std::filesystem::path(options.aovDir).lexically_normal();
@@ -463,9 +464,12 @@ int render(const RenderOptions& options) {
   // An animation's outputs that something else holds fail before the first frame is written.
   std::error_code ec;
   for (int i = 1; i <= options.frames; ++i) {
-    for (const std::string* pattern : {&options.output, &options.svg})
-      if (!pattern->empty() && std::filesystem::is_directory(framePath(*pattern, i), ec))
+    for (const std::string* pattern : {&options.output, &options.svg}) {
+      if (pattern->empty()) continue;
+      if (std::filesystem::is_directory(framePath(*pattern, i), ec))
         throw Error(framePath(*pattern, i), "", "is a directory, not a file name");
+      checkFolderOf(framePath(*pattern, i));
+    }
     if (options.aovDir.empty()) continue;
     const std::string folder = aovFrameFolder(options.aovDir, i);
     if (std::filesystem::exists(folder, ec) && !std::filesystem::is_directory(folder, ec))
@@ -626,13 +630,17 @@ int dem(const DemOptions& o) {
   std::string ext = std::filesystem::path(o.output).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".tif" && ext != ".tiff")
-    throw Error(o.output, "", "dem writes a GeoTIFF: give the output a .tif name");
+    throw CommandLineError(o.output, "", "dem writes a GeoTIFF: give the output a .tif name");
   // Float32 heights: base … base + relief must be floats, or the file holds infinities.
-  for (const double h : {o.base, o.base + o.relief})
-    if (!(std::abs(h) <= double(std::numeric_limits<float>::max())))
-      throw CommandLineError(
-          "--relief", "",
-          "heights from --base to --base + --relief must fit in Float32 (|h| ≤ 3.4e38)");
+  const auto fits = [](double h) {
+    return std::abs(h) <= double(std::numeric_limits<float>::max());
+  };
+  if (!fits(o.base))
+    throw CommandLineError("--base", "", "the base height must fit in Float32 (|h| ≤ 3.4e38)");
+  if (!fits(o.base + o.relief))
+    throw CommandLineError(
+        "--relief", "",
+        "heights from --base to --base + --relief must fit in Float32 (|h| ≤ 3.4e38)");
   try {
     writeSyntheticDem(o.output, {.min = {o.extent[0], o.extent[1]},
                                  .max = {o.extent[2], o.extent[3]},

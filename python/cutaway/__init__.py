@@ -151,7 +151,12 @@ def _option_text(value):
 
 def _set(self, path, value):
     """Sets any technique's option by its scene-file path (`cutaway options` lists them)."""
-    self._set_text(path, _option_text(value))
+    try:
+        text = _option_text(value)
+    except (TypeError, ValueError, OverflowError):  # a list of names, a number past a float
+        raise Error("%s: expected a number, a name, true/false or a list of numbers, got %r"
+                    % (path, value)) from None
+    self._set_text(path, text)
 
 
 def _add_volume(self, name, values, spacing=None, origin=None, affine=None, **entry):
@@ -213,8 +218,12 @@ class Renderer:
         if isinstance(time, bool) or not isinstance(time, numbers.Real):
             raise Error("render: time: expected seconds as a number, got %s %r"
                         % (type(time).__name__, time))
+        try:
+            seconds = float(time)
+        except OverflowError:  # an int past a float: as far outside the range as it gets
+            seconds = math.inf
         self._aovs = None
-        return self._native.render(float(time)).view(Image)
+        return self._native.render(seconds).view(Image)
 
     def aovs(self):
         """Every AOV of the last frame by name: float32, (height, width) or (height, width, 3),

@@ -40,6 +40,19 @@ std::filesystem::path followLinks(std::filesystem::path path) {
   throw Error(path.string(), "", "too many levels of symbolic links");
 }
 
+// The file a write to `named` replaces: a link's target. A device, a FIFO or a socket there
+// would be replaced by a regular file, not written to: refused.
+std::filesystem::path writtenPath(const std::filesystem::path& named) {
+  namespace fs = std::filesystem;
+  fs::path path = followLinks(named);
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::exists(status) && !fs::is_directory(status) && !fs::is_regular_file(status))
+    throw Error(path.string(), "",
+                "is not a regular file (a device, a FIFO or a socket): only files are written");
+  return path;
+}
+
 // The temporaries being written, and the folders made for them, removed by the signal handler a
 // program may install (removeTemporariesOnSignals); fixed slots, as a handler may not allocate
 // or lock.
@@ -167,7 +180,7 @@ void removeTemporariesOnSignals() {
 
 void replaceFileAtomically(const std::filesystem::path& named,
                            const std::function<void(const std::filesystem::path&)>& write) {
-  const std::filesystem::path path = followLinks(named);
+  const std::filesystem::path path = writtenPath(named);
   // Before the writer runs: a C library's own message would name the temporary.
   const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
   if (std::error_code ec; !std::filesystem::is_directory(folder, ec))
@@ -223,7 +236,7 @@ void writeFilesAtomically(const std::vector<std::pair<std::filesystem::path, Fil
   namespace fs = std::filesystem;
   std::vector<std::pair<fs::path, FileWriter>> files;
   files.reserve(named.size());
-  for (const auto& [path, write] : named) files.emplace_back(followLinks(path), write);
+  for (const auto& [path, write] : named) files.emplace_back(writtenPath(path), write);
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (files[i].first == files[j].first)

@@ -154,13 +154,13 @@ OptionValue parseOptionValue(const OptionSpec& p, const std::string& text) {
         double c = 0;
         if ((i < 2) != (comma != std::string::npos) ||
             !parseNumber(text.substr(start, comma - start), c))
-          throw std::invalid_argument("expected three comma-separated numbers x,y,z, got \"" +
-                                      text + "\"");
+          throw std::invalid_argument("expected three comma-separated numbers x,y,z, got " +
+                                      quote(text));
         if (p.type == Type::Color && !(c >= 0 && c <= 1))
           throw std::invalid_argument("colour channels must lie in [0, 1], got " + quote(text));
         if (p.type == Type::Vec3 && !(c >= p.min && c <= p.max))
-          throw std::invalid_argument("component " + std::to_string(i) + " of \"" + text +
-                                      "\" is outside " + rangeText(p.min, p.max));
+          throw std::invalid_argument("component " + std::to_string(i) + " of " + quote(text) +
+                                      " is outside " + rangeText(p.min, p.max));
         v[i] = c;
         start = comma + 1;
       }

@@ -344,10 +344,11 @@ Camera Scene::resolvedCamera(float time) const {
     }
   }
   // Depth range hugging the scene: better depth precision than a fixed range. It holds the
-  // proxies too: the cutters draw them (an interest proxy past the far plane lost its seed).
+  // proxies of interest too: the adaptive cutter draws them (one past the far plane lost its
+  // seed). The others have no effect (one far away once pushed the near plane past the scene).
   Bounds drawn = b;
   for (const SceneObject& o : objects)
-    if (o.proxy) drawn.extend(o.worldBounds());
+    if (o.proxy && o.role == Role::Interest) drawn.extend(o.worldBounds());
   if (drawn.min != b.min || drawn.max != b.max) {
     center = drawn.center();
     radius = std::max(drawn.radius(), 1e-6f * glm::length(center));

@@ -322,6 +322,9 @@ json SceneDocument::patched(const Scene& original, const Scene& current,
 
 void SceneDocument::save(const Scene& original, const Scene& current,
                          const fs::path& target) const {
+  // Before the check below, which would read a folder's relative paths from its parent.
+  std::error_code ec;
+  if (fs::is_directory(target, ec)) throw Error(target.string(), "", "is a directory, not a file");
   const std::string text = patched(original, current, target).dump(2) + "\n";
   // The strict loader is the judge of the format; then what the viewer changed must read back.
   Scene saved;

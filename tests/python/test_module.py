@@ -314,7 +314,7 @@ def test_a_frame_comes_first_and_its_time_is_checked():
         renderer.aovs()
     with pytest.raises(cutaway.Error, match=r"timings: no frame yet"):
         renderer.timings()
-    for bad in (float("nan"), -1, 1e300):
+    for bad in (float("nan"), -1, 1e300, 10**400):
         with pytest.raises(cutaway.Error, match=r"render: time: expected seconds in \[0, 1e6\]"):
             renderer.render(bad)
     for bad in ("2", b"2", True, None, [1.0]):
@@ -352,6 +352,17 @@ def test_a_nul_in_an_argument_is_shown_not_the_end_of_the_message():
     assert "cutters.adaptive.angle\\0x" in str(e.value) and len(str(e.value)) > 30, str(e.value)
     with pytest.raises(cutaway.Error, match="cannot hold a NUL"):
         cutaway.load("/tmp/x\0.json")
+    # In a value too, which the message quotes whole, and the choices after it.
+    with pytest.raises(cutaway.Error) as e:
+        scene.set("style.name", "gooch\0x")
+    assert 'unknown value "gooch\\0x" (expected one of' in str(e.value), str(e.value)
+
+
+def test_a_value_python_cannot_turn_into_text_is_named():
+    scene = cutaway.from_dict(cube_scene())
+    for bad in (["gooch"], [10**400, 0, 0]):
+        with pytest.raises(cutaway.Error, match=r"style.name: expected a number, a name"):
+            scene.set("style.name", bad)
 
 
 def test_numpy_values_set_options():

@@ -43,10 +43,16 @@ class Error : public std::runtime_error {
 };
 
 // User text as a message shows it, in double quotes: cut after 60 characters, so that a
-// 100 KB name or value does not fill the terminal (the place around it says which one).
+// 100 KB name or value does not fill the terminal (the place around it says which one), and a
+// NUL as \0 (a message passed on through what() would end there).
 inline std::string quote(std::string_view text) {
   std::string q(1, '"');  // appended, not "\"" + …: GCC 12 warns on that (-Wrestrict)
-  q += text.substr(0, 60);
+  for (const char c : text.substr(0, 60)) {
+    if (c == '\0')
+      q += "\\0";
+    else
+      q += c;
+  }
   if (text.size() > 60) q += "…";
   q += '"';
   return q;
