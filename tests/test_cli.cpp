@@ -1115,6 +1115,8 @@ TEST(Cli, DemWritesAGeoTiffThatReadsBackAsItsNoise) {
             "--extent: the extent (0, 0) to (15, 20) must hold a whole, positive number of "
             "10-unit cells"},
            {"--extent 0 0 20 20 --crs EPSG:999999", "--crs: unknown CRS"},
+           {"--extent -1e308 -1e308 1e308 1e308 --cell 1e308 --crs EPSG:27700",
+            "--extent: the extent's width and height overflow 64-bit floats"},
            {"--extent 0 0 100 100 --crs EPSG:4326",
             "--extent: the extent (0, 0) to (100, 100) lies beyond the degrees of "
             "\"EPSG:4326\""}}) {

@@ -17,6 +17,7 @@
 #include "cutaway/geometry/mesh.hpp"
 #include "cutaway/io/mesh_import.hpp"
 #include "expect_error.hpp"
+#include "run_command.hpp"
 
 using namespace cutaway;
 
@@ -417,6 +418,12 @@ TEST(MeshImport, APathThatIsNoFileIsNamedSo) {
                     {"mesh file is not a regular file"});
   test::expectError([] { importMeshNodes("/no/such/mesh.obj"); },
                     {"/no/such/mesh.obj", "mesh file not found"});
+  // A link to itself is there but leads nowhere: its reason, not "not found".
+  const std::filesystem::path loop = test::scratchPath("mesh", "loop.obj");
+  std::filesystem::remove(loop);
+  std::filesystem::create_symlink("loop.obj", loop);
+  test::expectError([&] { importMeshNodes(loop); },
+                    {loop.string(), "mesh file cannot be read: Too many levels of symbolic links"});
 }
 
 // A glTF file whose `nodes` (JSON) each draw mesh 0, one triangle (0, 0, 0), (1, 0, 0),

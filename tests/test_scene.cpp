@@ -391,6 +391,15 @@ TEST(SceneErrors, ObjectsBeyondWhatFloatsCanRenderAreRefused) {
   EXPECT_NO_THROW((void)parseScene(
       R"({"objects": [{"name": "far", "file": "cube.obj", "transform": {"scale": 1e10}}]})",
       "far.json", kMeshes));
+  // A proxy too, at its own entry (it was named as a camera that is not finite).
+  test::expectError(
+      [&] {
+        (void)parseScene(R"({"objects": [{"name": "a", "file": "cube.obj"}], "proxies": [
+          {"name": "near", "box": {"min": [0, 0, 0], "max": [1, 1, 1]}},
+          {"name": "huge", "box": {"min": [-1e30, -1e30, -1e30], "max": [1e30, 1e30, 1e30]}}]})",
+                         "far.json", kMeshes);
+      },
+      {"far.json", "/proxies/1", "\"huge\" reaches", "1e15"});
 }
 
 // …and below: a part under 1e-15 across lost its shading (squared normals underflow near

@@ -321,10 +321,13 @@ thread_local std::vector<std::string>* AssimpWarnings::current_ = nullptr;
 // The import itself, in whichever process runs it.
 std::vector<ImportedNode> importHere(const std::filesystem::path& file) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec))
+  const std::filesystem::file_status status = std::filesystem::status(file, ec);
+  if (!std::filesystem::is_regular_file(status))
     throw Error(file.string(), "",
-                std::filesystem::exists(file, ec) ? "mesh file is not a regular file"
-                                                  : "mesh file not found");
+                std::filesystem::exists(status) ? "mesh file is not a regular file"
+                : ec && ec != std::errc::no_such_file_or_directory
+                    ? "mesh file cannot be read: " + ec.message()  // a loop of links
+                    : "mesh file not found");
   const bool gzip = file.extension() == ".gz";
   // "room.stl.gz" → "stl"
   std::string format = (gzip ? file.stem().extension() : file.extension()).string();

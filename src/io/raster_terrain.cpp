@@ -337,6 +337,8 @@ void writeSyntheticDem(const std::filesystem::path& file, const SyntheticDemOpti
   if (!(o.cell > 0.0)) throw Error(name, "", "the cell size must be positive");
   if (!(o.wavelength > 0.0)) throw Error(name, "", "the wavelength must be positive");
   if (o.octaves < 1 || o.octaves > 16) throw Error(name, "", "octaves must be in [1, 16]");
+  if (!std::isfinite(o.max.x - o.min.x) || !std::isfinite(o.max.y - o.min.y))
+    throw Error(name, "extent", "the extent's width and height overflow 64-bit floats");
   const glm::dvec2 size = (o.max - o.min) / o.cell;
   const glm::dvec2 whole = glm::round(size);
   if (!(size.x >= 1.0 && size.y >= 1.0) ||

@@ -904,8 +904,10 @@ void checkNamesAndReach(const Context& ctx, const Scene& scene) {
       return;
     ctx.fail(ptr, message.str());
   };
+  std::size_t proxy = 0;  // proxies keep the order of their entries; objects, split, do not
   for (const auto& o : scene.objects)
-    if (!o.proxy) checkReach("/objects", o.name, o.worldBounds());
+    checkReach(o.proxy ? "/proxies/" + std::to_string(proxy++) : "/objects", o.name,
+               o.worldBounds());
   for (std::size_t i = 0; i < scene.volumes.size(); ++i) {
     const SceneVolume& v = scene.volumes[i];
     const std::string ptr = "/volumes/" + std::to_string(i);
