@@ -40,7 +40,8 @@ Layer layerOf(const std::string& path) {
   // A technique's public header: its options and pure functions, at the scene model's level.
   if (isPublic && (top == "cutters" || top == "styles" || top == "kinds")) return {3, ""};
   if (top == "frame") return {4, ""};
-  if (is({"cutters/cutter.hpp", "kinds/kind.hpp", "styles/style.hpp"})) return {5, ""};
+  if (is({"cutters/cutter.hpp", "kinds/kind.hpp", "kinds/member_options.hpp", "styles/style.hpp"}))
+    return {5, ""};
   if (rel.rfind("cutters/registry", 0) == 0 || rel.rfind("styles/registry", 0) == 0)
     return {7, ""};
   if (top == "cutters" || top == "styles" || top == "kinds") {

@@ -3,6 +3,8 @@
 // get, set and applies take a (const) Scene*.
 #pragma once
 
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "cutaway/core/options.hpp"
@@ -12,5 +14,17 @@ namespace cutaway {
 
 std::vector<OptionSpec> networkOptions();  // kinds/pipes/network_options.cpp
 std::vector<OptionSpec> volumeOptions();   // kinds/volumes/volume_options.cpp
+
+// Such an option before its get, set and applies: all of them are live (read every frame).
+inline OptionSpec liveMemberOption(std::string path, std::string label, OptionSpec::Type type,
+                                   std::string doc) {
+  OptionSpec p;
+  p.key = std::move(path);
+  p.label = std::move(label);
+  p.type = type;
+  p.doc = std::move(doc);
+  p.live = true;
+  return p;
+}
 
 }  // namespace cutaway

@@ -19,12 +19,7 @@ template <typename T>
 OptionSpec networkMember(std::string key, std::string label, OptionSpec::Type type,
                          T PipeNetwork::*field, std::string help,
                          void (*also)(Scene&, int network, const T&) = nullptr) {
-  OptionSpec p;
-  p.key = "networks." + key;
-  p.label = std::move(label);
-  p.type = type;
-  p.doc = std::move(help);
-  p.live = true;
+  OptionSpec p = liveMemberOption("networks." + key, std::move(label), type, std::move(help));
   p.get = [field](const void* scene) -> OptionValue {
     const Scene& s = *static_cast<const Scene*>(scene);
     const T& v = s.networks.empty() ? PipeNetwork{}.*field : s.networks.front().*field;

@@ -16,12 +16,7 @@ const char* const kModes[] = {"composite", "maximum", "isosurface"};
 template <typename T>
 OptionSpec volumeMember(std::string key, std::string label, OptionSpec::Type type,
                         T SceneVolume::*field, std::string help) {
-  OptionSpec p;
-  p.key = "volumes." + key;
-  p.label = std::move(label);
-  p.type = type;
-  p.doc = std::move(help);
-  p.live = true;
+  OptionSpec p = liveMemberOption("volumes." + key, std::move(label), type, std::move(help));
   if constexpr (std::is_same_v<T, VolumeMode>)
     p.choices.assign(std::begin(kModes), std::end(kModes));
   p.get = [field](const void* scene) -> OptionValue {
