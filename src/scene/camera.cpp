@@ -44,15 +44,13 @@ std::string Camera::unresolvable(float aspect, float deepestRange) const {
   // far / near = 1e6 the far half of the view keeps ~17 of them; at 1e8 every surface past a
   // few near distances rounds to the cleared 1 and the picture is blank.
   constexpr double kDeepestDepthBuffer = 1e6;
-  if (projection == Projection::Perspective && double(far) > kDeepestDepthBuffer * double(near))
+  const bool cut = deepestRange > 0.0f && double(deepestRange) < kDeepestDepthBuffer;
+  const double deepest = cut ? double(deepestRange) : kDeepestDepthBuffer;
+  if (projection == Projection::Perspective && double(far) > deepest * double(near))
     return "the depth range from near " + text(near) + " to far " + text(far) + " (far / near " +
-           text(double(far) / double(near)) + ") is deeper than a 32-bit depth buffer resolves (" +
-           text(kDeepestDepthBuffer) + "): give a larger near";
-  if (deepestRange > 0.0f && projection == Projection::Perspective &&
-      double(far) > double(deepestRange) * double(near))
-    return "the depth range from near " + text(near) + " to far " + text(far) + " (far / near " +
-           text(double(far) / double(near)) + ") is deeper than the adaptive cutaway resolves (" +
-           text(deepestRange) + "): give a larger near";
+           text(double(far) / double(near)) + ") is deeper than " +
+           (cut ? "the adaptive cutaway" : "a 32-bit depth buffer") + " resolves (" +
+           text(deepest) + "): give a larger near";
   const glm::mat4 m = projectionMatrix(aspect) * view();
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
